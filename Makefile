@@ -1,0 +1,117 @@
+# The one entry point.  `make run` runs the default scenario, `make test`
+# runs every test.  Both set up what they need first (tools/deps.sh).
+#
+# Layout of build/: obj/ (normal objects), asan/ (sanitizer build),
+# fw/ (firmware hygiene objects), tests/ (test binaries), swarmsim.
+
+.DEFAULT_GOAL := all
+BUILD := build
+SHELL := /bin/bash
+
+# Dependencies: found or installed by tools/deps.sh, recorded in config.mk.
+# Make rebuilds an included makefile that is missing or out of date.
+include $(BUILD)/config.mk
+$(BUILD)/config.mk: tools/deps.sh tools/requirements.txt
+	@mkdir -p $(BUILD)
+	tools/deps.sh > $@.tmp && mv $@.tmp $@
+
+WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+INC := -Ihal -Ifirmware -Isim_host
+CFLAGS_COMMON := $(WARN) $(INC) -g -O2 -fno-strict-aliasing
+# Firmware and HAL helpers are C99; the simulator may use C11.
+FW_CFLAGS := -std=c99 -pedantic $(CFLAGS_COMMON)
+SIM_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(CFLAGS_COMMON) $(BOX2D_CFLAGS) $(PNG_CFLAGS)
+LDLIBS_SIM := $(BOX2D_LIBS) $(YAML_LIBS) $(PNG_LIBS) $(GL_LIBS) -lpthread -lm
+
+FW_SRC := $(sort $(wildcard firmware/*.c)) $(sort $(wildcard hal/*.c))
+SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c)))
+TEST_SRC := $(sort $(wildcard tests/test_*.c))
+
+# $(call objs,VARIANT,SOURCES)
+objs = $(patsubst %.c,$(BUILD)/$(1)/%.o,$(2))
+
+FW_OBJ := $(call objs,obj,$(FW_SRC))
+SIM_OBJ := $(call objs,obj,$(SIM_SRC))
+FW_OBJ_ASAN := $(call objs,asan,$(FW_SRC))
+SIM_OBJ_ASAN := $(call objs,asan,$(SIM_SRC))
+TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
+TESTS_ASAN := $(patsubst tests/%.c,$(BUILD)/tests/asan/%,$(TEST_SRC))
+
+ASAN := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+
+.PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps
+
+all: $(BUILD)/swarmsim
+
+deps: $(BUILD)/config.mk
+
+$(BUILD)/obj/firmware/%.o $(BUILD)/obj/hal/%.o: | $(BUILD)/config.mk
+$(BUILD)/obj/firmware/%.o: firmware/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/obj/hal/%.o: hal/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/obj/sim_host/%.o: sim_host/%.c
+	@mkdir -p $(@D)
+	$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/asan/firmware/%.o: firmware/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+$(BUILD)/asan/hal/%.o: hal/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+$(BUILD)/asan/sim_host/%.o: sim_host/%.c
+	@mkdir -p $(@D)
+	$(CC) $(SIM_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+
+$(BUILD)/libswarm.a: $(FW_OBJ) $(SIM_OBJ)
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN)
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+$(BUILD)/swarmsim: $(BUILD)/obj/sim_host/main.o $(BUILD)/libswarm.a
+	$(CC) -o $@ $^ $(LDLIBS_SIM)
+
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libswarm.a
+	@mkdir -p $(@D)
+	$(CC) $(SIM_CFLAGS) $(CMOCKA_CFLAGS) -o $@ $< $(BUILD)/libswarm.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
+$(BUILD)/tests/asan/%: tests/%.c $(BUILD)/libswarm-asan.a
+	@mkdir -p $(@D)
+	$(CC) $(SIM_CFLAGS) $(ASAN) $(CMOCKA_CFLAGS) -o $@ $< $(BUILD)/libswarm-asan.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
+
+# ---------------------------------------------------------------- run
+RUN_SCENARIO ?= sim_host/scenarios/random_walk.yaml
+RUN_OUT ?= out/run
+run: $(BUILD)/swarmsim
+	$(BUILD)/swarmsim $(RUN_SCENARIO) --out $(RUN_OUT) --frames 1000 $(RUN_ARGS)
+
+# ---------------------------------------------------------------- tests
+# Each CMocka binary prints its own summary; CMOCKA_MESSAGE_OUTPUT stays on
+# the standard output so CI reads it.
+unit-tests: $(TESTS)
+	@set -e; for t in $(TESTS); do echo "== $$t"; (cd tests && ../$$t); done
+
+asan-tests: $(TESTS_ASAN)
+	@set -e; for t in $(TESTS_ASAN); do echo "== $$t (ASan/UBSan)"; \
+	  (cd tests && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ../$$t); done
+
+cli-tests: $(BUILD)/swarmsim
+	@set -e; for t in $(sort $(wildcard tests/cli/*.sh)); do echo "== $$t"; bash $$t $(BUILD)/swarmsim; done
+
+firmware-hygiene: $(BUILD)/config.mk
+	@bash tests/firmware/hygiene.sh
+
+test: unit-tests asan-tests cli-tests firmware-hygiene
+	@echo "make test: all test groups passed"
+
+# ---------------------------------------------------------------- bench
+bench: $(BUILD)/swarmsim
+	bash tools/bench/bench.sh $(BUILD)/swarmsim
+
+clean:
+	rm -rf $(BUILD)/obj $(BUILD)/asan $(BUILD)/fw $(BUILD)/tests $(BUILD)/*.a $(BUILD)/swarmsim
+
+-include $(shell find $(BUILD)/obj $(BUILD)/asan -name '*.d' 2>/dev/null)

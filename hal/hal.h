@@ -1,0 +1,174 @@
+/*
+ * hal.h - the contract between portable e-puck controllers and a platform.
+ *
+ * Controllers include this header (and firmware headers) only.  Every call
+ * takes the robot as an opaque `hal_t *`; a platform defines `struct hal` and
+ * every function below, and is bound at link time:
+ *   - hal/epuck/   the e-puck1 (dsPIC30F6014A) over GCtronic's e-puck library;
+ *   - sim_host/    the simulator, one hal_t per simulated robot.
+ *
+ * Units are integers at the boundary (the dsPIC has no FPU) and are named on
+ * every channel.  Angles are in milliradians, counter-clockwise positive, zero
+ * straight ahead (x forward, y to the robot's left).  Distances are in
+ * millimetres, times in milliseconds.
+ *
+ * Reads are consistent within one control step: a platform samples a sensor
+ * at most once per step, so two reads of the same channel in one step return
+ * the same value.  No call blocks.
+ */
+#ifndef HAL_H
+#define HAL_H
+
+#include <stdint.h>
+
+/** The robot a controller runs on.  Opaque: defined by the platform. */
+typedef struct hal hal_t;
+
+/* ------------------------------------------------------------------ */
+/* Identity and time                                                   */
+/* ------------------------------------------------------------------ */
+
+/** Robot id, 0..65534 (the simulator numbers robots from 0). */
+uint16_t hal_robot_id(hal_t *hal);
+
+/** Milliseconds since the controller was started.  Advances by one control
+ *  period per step; wraps after 49.7 days. */
+uint32_t hal_time_ms(hal_t *hal);
+
+/** The control period in milliseconds: the time between two `*_step` calls
+ *  (100 ms by default, the 10 Hz of seeds 000 and 003). */
+uint16_t hal_control_period_ms(hal_t *hal);
+
+/* ------------------------------------------------------------------ */
+/* IR proximity and ambient light (the 8 TCRT1000 sensors)            */
+/* ------------------------------------------------------------------ */
+
+/** Number of IR sensors.  Bearings (degrees, CCW positive): IR0 -17,
+ *  IR1 -50, IR2 -90, IR3 -150, IR4 +150, IR5 +90, IR6 +50, IR7 +17. */
+#define HAL_IR_COUNT 8u
+
+/** Largest raw value of the 12-bit A/D converter. */
+#define HAL_RAW_MAX 4095u
+
+/** Calibrated proximity of sensor `index` (0..7) in raw counts 0..4095:
+ *  larger is closer (about 4095 at contact, 235 at 30 mm, near 0 beyond
+ *  ~80 mm).  Out-of-range index returns 0. */
+uint16_t hal_ir_proximity(hal_t *hal, uint8_t index);
+
+/** Ambient light at sensor `index` (0..7) in raw counts 0..4095.  The value
+ *  FALLS as light rises (about 4000 in the dark).  Out-of-range index
+ *  returns HAL_RAW_MAX. */
+uint16_t hal_ir_ambient(hal_t *hal, uint8_t index);
+
+/** Bearing of IR sensor `index` in milliradians (CCW positive), so that
+ *  controllers need not carry the table.  Out-of-range index returns 0. */
+int16_t hal_ir_bearing_mrad(uint8_t index);
+
+/* ------------------------------------------------------------------ */
+/* Camera colour blobs                                                 */
+/* ------------------------------------------------------------------ */
+
+/** Colour classes the blob detector reports. */
+typedef enum hal_colour {
+    HAL_COLOUR_NONE = 0,
+    HAL_COLOUR_RED = 1,
+    HAL_COLOUR_GREEN = 2,
+    HAL_COLOUR_BLUE = 3,
+    HAL_COLOUR_COUNT = 4
+} hal_colour_t;
+
+/** One coloured region seen by the front camera. */
+typedef struct hal_blob {
+    uint8_t colour;        /**< hal_colour_t */
+    int16_t bearing_mrad;  /**< centre of the blob, CCW positive, 0 ahead */
+    uint16_t width_mrad;   /**< apparent angular width */
+    uint16_t pixels;       /**< area in pixels of the platform's frame */
+} hal_blob_t;
+
+/** Most blobs a platform reports per step. */
+#define HAL_MAX_BLOBS 8u
+
+/** Fills up to `max` blobs, largest first, and returns how many.  The
+ *  frame behind them is the latest complete one (on the e-puck a capture
+ *  runs in the background; the simulator computes it on request). */
+uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max);
+
+/* ------------------------------------------------------------------ */
+/* Microphones and speaker                                             */
+/* ------------------------------------------------------------------ */
+
+/** Number of microphones (e-puck1: 3). */
+#define HAL_MIC_COUNT 3u
+/** Sound bands a controller can emit and listen to (band 0 is unused). */
+#define HAL_SOUND_BANDS 4u
+/** Returned by a sound call the platform does not model. */
+#define HAL_NOT_MODELLED (-1)
+
+/** Sound level heard by microphone `mic` (0..2) in frequency band `band`
+ *  (1..HAL_SOUND_BANDS-1), in raw amplitude counts 0..32767, or
+ *  HAL_NOT_MODELLED. */
+int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band);
+
+/** Emits a tone in `band` (0 = silence) until changed.  Returns 0, or
+ *  HAL_NOT_MODELLED. */
+int8_t hal_speaker_set(hal_t *hal, uint8_t band);
+
+/* ------------------------------------------------------------------ */
+/* IR local communication (libIrcom style: 8 data bits per frame)      */
+/* ------------------------------------------------------------------ */
+
+/** A received message with the receiver's estimate of where it came from. */
+typedef struct hal_ircom_msg {
+    uint8_t value;         /**< the 8 data bits */
+    uint8_t sensor;        /**< IR sensor that received it, 0..7 */
+    int16_t bearing_mrad;  /**< bearing of the sender, CCW positive */
+    uint16_t range_mm;     /**< estimated range to the sender */
+} hal_ircom_msg_t;
+
+/** Queues one byte for transmission during the next control period.
+ *  Returns 0, or -1 if a byte is already queued for this period. */
+int8_t hal_ircom_send(hal_t *hal, uint8_t value);
+
+/** Pops the oldest received message into `out`.  Returns 1 if a message
+ *  was popped, 0 if the queue is empty. */
+uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out);
+
+/* ------------------------------------------------------------------ */
+/* Wheels (stepper motors)                                             */
+/* ------------------------------------------------------------------ */
+
+/** Largest wheel speed magnitude in steps/s (e-puck1). */
+#define HAL_WHEEL_SPEED_MAX 1000
+
+/** Sets both wheel speeds in steps/s (1000 steps per revolution of a
+ *  41 mm wheel: 1 step = 0.1288 mm).  Clamped to +-HAL_WHEEL_SPEED_MAX. */
+void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s);
+
+/** Step counters in steps since start, 16-bit, wrapping as on the robot.
+ *  They count commanded motor steps, which a blocked wheel still makes. */
+void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right);
+
+/* ------------------------------------------------------------------ */
+/* LEDs                                                                */
+/* ------------------------------------------------------------------ */
+
+/** Number of red ring LEDs (LED0 front, counting clockwise seen from above). */
+#define HAL_LED_COUNT 8u
+
+/** Switches ring LED `index` (0..7) on (non-zero) or off. */
+void hal_set_led(hal_t *hal, uint8_t index, uint8_t on);
+/** Switches the green body LED. */
+void hal_set_body_led(hal_t *hal, uint8_t on);
+/** Switches the red front LED. */
+void hal_set_front_led(hal_t *hal, uint8_t on);
+
+/* ------------------------------------------------------------------ */
+/* Telemetry                                                           */
+/* ------------------------------------------------------------------ */
+
+/** Offers `len` bytes to the telemetry sink (Bluetooth UART on the robot,
+ *  the LCM publisher in the simulator).  Never blocks: returns how many
+ *  bytes were accepted, which may be fewer than `len` (0 when busy). */
+uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len);
+
+#endif /* HAL_H */

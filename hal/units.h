@@ -1,0 +1,37 @@
+/*
+ * units.h - e-puck geometry and integer unit conversions shared by the
+ * firmware and the simulator (no floating point: the dsPIC has no FPU).
+ */
+#ifndef HAL_UNITS_H
+#define HAL_UNITS_H
+
+#include <stdint.h>
+
+/** Wheel diameter, micrometres (41 mm). */
+#define EPUCK_WHEEL_DIAMETER_UM 41000L
+/** Distance between the wheels, micrometres (53 mm). */
+#define EPUCK_AXLE_UM 53000L
+/** Motor steps per wheel revolution. */
+#define EPUCK_STEPS_PER_REV 1000L
+/** Body diameter, micrometres (70 mm). */
+#define EPUCK_BODY_DIAMETER_UM 70000L
+
+/** Millimetres travelled by a wheel for `steps` motor steps
+ *  (0.12881 mm per step), rounded toward zero.  |steps| <= 1,000,000. */
+int32_t units_steps_to_mm(int32_t steps);
+
+/** Motor steps for a wheel to travel `mm`, rounded to nearest.
+ *  |mm| <= 200,000. */
+int32_t units_mm_to_steps(int32_t mm);
+
+/** Steps each wheel makes (in opposite directions) to turn the robot in
+ *  place by `mrad` milliradians, rounded to nearest.  |mrad| <= 1,000,000. */
+int32_t units_turn_mrad_to_steps(int32_t mrad);
+
+/** Wheel speed in steps/s for a ground speed in mm/s, rounded to nearest. */
+int16_t units_mm_s_to_steps_s(int16_t mm_s);
+
+/** Steps a wheel at `steps_s` makes in `period_ms`, rounded toward zero. */
+int32_t units_steps_in_period(int16_t steps_s, uint16_t period_ms);
+
+#endif

@@ -1,0 +1,56 @@
+/* The registry: one entry per firmware controller the simulator can run. */
+#include "controllers.h"
+
+#include <string.h>
+
+#include "random_walk.h"
+
+/* ---------------------------------------------------------- random_walk */
+
+#define RW_FIELD(f) offsetof(random_walk_params_t, f), sizeof(((random_walk_params_t *)0)->f)
+static const param_desc_t random_walk_param_descs[] = {
+    { "speed_steps_s", PARAM_I16, RW_FIELD(speed_steps_s), 0, 1000, NULL,
+      "forward wheel speed, steps/s (500 = 64.4 mm/s)" },
+    { "turn_speed_steps_s", PARAM_I16, RW_FIELD(turn_speed_steps_s), 1, 1000, NULL,
+      "wheel speed when turning in place, steps/s" },
+    { "turn_chance", PARAM_U16, RW_FIELD(turn_chance), 0, 65535, NULL,
+      "chance of a tumble per step, in 1/65536" },
+    { "avoid_enter", PARAM_U16, RW_FIELD(avoid_enter), 0, 4095, NULL,
+      "front IR proximity that starts an avoidance, counts" },
+    { "avoid_exit", PARAM_U16, RW_FIELD(avoid_exit), 0, 4095, NULL,
+      "front IR proximity below which avoidance ends, counts" },
+    PARAM_END
+};
+
+static void rw_defaults(void *params) { random_walk_default_params(params); }
+static void rw_init(void *state, const void *params, uint32_t seed) { random_walk_init(state, params, seed); }
+static void rw_step(void *state, hal_t *hal) { random_walk_step(state, hal); }
+static uint32_t rw_oae(const void *state) { return ((const random_walk_t *)state)->oae_count; }
+static const char *rw_state(const void *state)
+{
+    return random_walk_state_name(((const random_walk_t *)state)->state);
+}
+
+/* ---------------------------------------------------------- registry */
+
+static const sim_controller_t registry[] = {
+    { "random_walk", "random walk with IR obstacle avoidance (seed 000's ASM, A(t) = 0)",
+      sizeof(random_walk_t), sizeof(random_walk_params_t), random_walk_param_descs,
+      rw_defaults, rw_init, rw_step, rw_oae, rw_state },
+};
+
+const sim_controller_t *controllers_find(const char *name)
+{
+    size_t i;
+    for (i = 0; i < sizeof registry / sizeof registry[0]; i++) {
+        if (strcmp(registry[i].name, name) == 0) {
+            return &registry[i];
+        }
+    }
+    return NULL;
+}
+
+const sim_controller_t *controllers_at(size_t i)
+{
+    return (i < sizeof registry / sizeof registry[0]) ? &registry[i] : NULL;
+}

@@ -1,0 +1,38 @@
+/*
+ * controllers.h - the registry of firmware controllers the simulator can run.
+ *
+ * Each entry adapts one firmware controller (firmware/<name>.h: a state
+ * struct, *_default_params, *_init, *_step) to the simulator, with the
+ * descriptor table of its params struct so that scenarios can set them.
+ */
+#ifndef SIM_CONTROLLERS_H
+#define SIM_CONTROLLERS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hal.h"
+#include "param.h"
+
+typedef struct sim_controller {
+    const char *name;            /**< scenario `controller.name` */
+    const char *doc;             /**< one line for --help */
+    size_t state_size;           /**< bytes of the state struct */
+    size_t params_size;          /**< bytes of the params struct */
+    const param_desc_t *params;  /**< keys of `controller.params` */
+    void (*default_params)(void *params);
+    void (*init)(void *state, const void *params, uint32_t seed);
+    void (*step)(void *state, hal_t *hal);
+    /** Obstacle-avoidance events the robot has counted so far. */
+    uint32_t (*oae_count)(const void *state);
+    /** Name of the current state of the controller's state machine. */
+    const char *(*state_name)(const void *state);
+} sim_controller_t;
+
+/** The controller called `name`, or NULL. */
+const sim_controller_t *controllers_find(const char *name);
+
+/** The i-th registered controller, or NULL past the end. */
+const sim_controller_t *controllers_at(size_t i);
+
+#endif
