@@ -31,12 +31,25 @@ static const char *rw_state(const void *state)
     return random_walk_state_name(((const random_walk_t *)state)->state);
 }
 
+/* ---------------------------------------------------------- idle */
+
+/* Robots that run no firmware: they keep the wheel speeds last set through
+ * their hal_t (tests drive robots this way) and are obstacles otherwise. */
+static const param_desc_t idle_param_descs[] = { PARAM_END };
+static void idle_defaults(void *params) { (void)params; }
+static void idle_init(void *state, const void *params, uint32_t seed) { (void)state; (void)params; (void)seed; }
+static void idle_step(void *state, hal_t *hal) { (void)state; (void)hal; }
+static uint32_t idle_oae(const void *state) { (void)state; return 0; }
+static const char *idle_state(const void *state) { (void)state; return "idle"; }
+
 /* ---------------------------------------------------------- registry */
 
 static const sim_controller_t registry[] = {
     { "random_walk", "random walk with IR obstacle avoidance (seed 000's ASM, A(t) = 0)",
       sizeof(random_walk_t), sizeof(random_walk_params_t), random_walk_param_descs,
       rw_defaults, rw_init, rw_step, rw_oae, rw_state },
+    { "idle", "no firmware: robots keep the wheel speeds set through their hal_t",
+      0, 0, idle_param_descs, idle_defaults, idle_init, idle_step, idle_oae, idle_state },
 };
 
 const sim_controller_t *controllers_find(const char *name)

@@ -1,0 +1,33 @@
+/*
+ * rand.h - the simulator's random streams (sensor noise, packet loss,
+ * placement).  xoshiro128+ seeded by splitmix64: fast, and every stream is
+ * a pure function of (run seed, robot id, purpose), so results do not depend
+ * on thread count or evaluation order across robots.
+ */
+#ifndef SIM_RAND_H
+#define SIM_RAND_H
+
+#include <stdint.h>
+
+typedef struct sim_rand {
+    uint64_t s[2];
+    double spare;       /**< second normal of the last polar draw */
+    int has_spare;
+} sim_rand_t;
+
+/** Purposes, so that streams of one robot never overlap. */
+enum { RAND_PLACEMENT = 1, RAND_SENSORS = 2, RAND_IRCOM = 3, RAND_WHEELS = 4, RAND_CONTROLLER = 5 };
+
+/** Seeds a stream from the run seed, an index (robot id) and a purpose. */
+void sim_rand_seed(sim_rand_t *r, uint64_t seed, uint64_t index, uint64_t purpose);
+
+/** 32-bit seed for a firmware generator, derived the same way. */
+uint32_t sim_rand_seed32(uint64_t seed, uint64_t index, uint64_t purpose);
+
+uint64_t sim_rand_u64(sim_rand_t *r);
+/** Uniform in [0, 1). */
+double sim_rand_uniform(sim_rand_t *r);
+/** Standard normal (Marsaglia polar method). */
+double sim_rand_normal(sim_rand_t *r);
+
+#endif

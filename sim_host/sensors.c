@@ -1,0 +1,302 @@
+/*
+ * sensors.c - geometric sensor models of the e-puck, calibrated per
+ * EPUCK.md.  Each is computed at most once per control step per robot,
+ * and only when the controller asks (see sim_hal.c).
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "sim_internal.h"
+
+/* IR sensors sit on a 33 mm radius, 33 mm above the floor; the camera
+ * looks forward from the front of the body [? height]. */
+#define IR_MOUNT_RADIUS 0.033f
+#define SENSOR_HEIGHT 0.033f
+#define CAMERA_HEIGHT 0.030f
+
+/* Sensor bearings as unit vectors in the robot frame (IR0..IR7). */
+static const float ir_cos[HAL_IR_COUNT] = { 0.956305f, 0.642788f, 0.0f, -0.866025f,
+                                            -0.866025f, 0.0f, 0.642788f, 0.956305f };
+static const float ir_sin[HAL_IR_COUNT] = { -0.292372f, -0.766044f, -1.0f, -0.5f,
+                                            0.5f, 1.0f, 0.766044f, 0.292372f };
+
+/* Proximity (raw counts) against distance from the sensor to a surface,
+ * measured on a real e-puck (Webots calibration, EPUCK.md). */
+static const float ir_table_m[] = { 0.000f, 0.005f, 0.010f, 0.015f, 0.020f,
+                                    0.030f, 0.040f, 0.050f, 0.060f, 0.070f };
+static const float ir_table_v[] = { 4095, 2133, 1466, 601, 384, 235, 158, 120, 104, 67 };
+#define IR_TABLE_N (sizeof ir_table_m / sizeof ir_table_m[0])
+
+/** Calibrated proximity without noise at distance d (m).  Beyond the last
+ *  measured point (70 mm: 67) the value fades linearly to 0 at `range`:
+ *  an assumption, documented in the README. */
+float sensors_ir_curve(float d, float range)
+{
+    if (d <= 0.0f) {
+        return ir_table_v[0];
+    }
+    for (size_t k = 1; k < IR_TABLE_N; k++) {
+        if (d <= ir_table_m[k]) {
+            float u = (d - ir_table_m[k - 1]) / (ir_table_m[k] - ir_table_m[k - 1]);
+            return ir_table_v[k - 1] + u * (ir_table_v[k] - ir_table_v[k - 1]);
+        }
+    }
+    float last = ir_table_m[IR_TABLE_N - 1];
+    if (d >= range || range <= last) {
+        return 0.0f;
+    }
+    return ir_table_v[IR_TABLE_N - 1] * (range - d) / (range - last);
+}
+
+static uint16_t to_raw(double v)
+{
+    if (v <= 0.0) return 0;
+    if (v >= HAL_RAW_MAX) return HAL_RAW_MAX;
+    return (uint16_t)lround(v);
+}
+
+static float nearest_obstacle(const obstacle_t *o, const cone_t *k)
+{
+    if (o->shape == SHAPE_CYLINDER) {
+        return geom_cone_circle(k, o->c, o->r);
+    }
+    float d = INFINITY;
+    for (int e = 0; e < 4; e++) {
+        d = fminf(d, geom_cone_segment(k, o->corner[e], o->corner[(e + 1) & 3]));
+    }
+    return d;
+}
+
+#define IR_MAX_NEAR 64
+
+void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
+{
+    sim_robot_t *r = &sim->robots[i];
+    const scenario_t *sc = sim->sc;
+    float range = sc->ir.range;
+    float reach = IR_MOUNT_RADIUS + range;
+    uint32_t near_robot[IR_MAX_NEAR], near_obst[IR_MAX_NEAR];
+    float R = reach + SIM_ROBOT_RADIUS;
+    uint32_t nr = sim_gather_robots(sim, r->x - R, r->y - R, r->x + R, r->y + R, near_robot, IR_MAX_NEAR);
+    uint32_t no = sim_gather_obstacles(sim, r->x - reach, r->y - reach, r->x + reach, r->y + reach,
+                                       near_obst, IR_MAX_NEAR);
+    /* Inner faces of the walls within reach. */
+    vec2_t wall[4][2];
+    int nw = 0;
+    float hw = sim->hw, hh = sim->hh;
+    if (r->x + reach > hw) { wall[nw][0] = v2(hw, -hh); wall[nw][1] = v2(hw, hh); nw++; }
+    if (r->x - reach < -hw) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(-hw, hh); nw++; }
+    if (r->y + reach > hh) { wall[nw][0] = v2(-hw, hh); wall[nw][1] = v2(hw, hh); nw++; }
+    if (r->y - reach < -hh) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(hw, -hh); nw++; }
+
+    float ch = cosf(r->theta), sh = sinf(r->theta);
+    float half = sc->ir.aperture * 3.14159265f / 180.0f;
+    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
+        float d = INFINITY;
+        if (nr > 1 || no > 0 || nw > 0) {
+            vec2_t a = v2_rot(v2(ir_cos[s], ir_sin[s]), ch, sh);
+            vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
+            cone_t k = geom_cone(p, atan2f(a.y, a.x), half);
+            for (uint32_t j = 0; j < nr; j++) {
+                if (near_robot[j] != i) {
+                    const sim_robot_t *q = &sim->robots[near_robot[j]];
+                    d = fminf(d, geom_cone_circle(&k, v2(q->x, q->y), SIM_ROBOT_RADIUS));
+                }
+            }
+            for (uint32_t j = 0; j < no; j++) {
+                d = fminf(d, nearest_obstacle(&sim->obstacles[near_obst[j]], &k));
+            }
+            for (int w = 0; w < nw; w++) {
+                d = fminf(d, geom_cone_segment(&k, wall[w][0], wall[w][1]));
+            }
+        }
+        double v = (d < range) ? sensors_ir_curve(d, range) : 0.0f;
+        v += v * sc->ir.noise_rel * sim_rand_normal(&r->noise);
+        v += sc->ir.noise_abs * sim_rand_normal(&r->noise);
+        out[s] = to_raw(v);
+    }
+}
+
+void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
+{
+    sim_robot_t *r = &sim->robots[i];
+    const scenario_t *sc = sim->sc;
+    float ch = cosf(r->theta), sh = sinf(r->theta);
+    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
+        vec2_t a = v2_rot(v2(ir_cos[s], ir_sin[s]), ch, sh);
+        vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
+        /* Irradiance on the sensor: intensity * cos(incidence) / d^2 from
+         * each lamp, in 3D (lamps hang above the floor).  Shadows cast by
+         * robots and obstacles are not modelled. */
+        double e = 0.0;
+        for (uint32_t l = 0; l < sc->light_count; l++) {
+            const light_def_t *L = &sc->lights[l];
+            double hx = L->x - p.x, hy = L->y - p.y, dz = L->height - SENSOR_HEIGHT;
+            double d2 = hx * hx + hy * hy + dz * dz;
+            double along = (hx * a.x + hy * a.y) / sqrt(d2);
+            if (along > 0.0 && d2 > 1e-12) {
+                e += L->intensity * along / d2;
+            }
+        }
+        /* The raw value falls as light rises: dark at e = 0, dark/2 at
+         * e = half, towards 0 for bright light. */
+        double v = sc->ambient.dark * sc->ambient.half / (sc->ambient.half + e);
+        v += v * sc->ambient.noise_rel * sim_rand_normal(&r->noise);
+        out[s] = to_raw(v);
+    }
+}
+
+/* ------------------------------------------------------------- camera */
+
+typedef sim_interval_t interval_t;
+
+/* Angular interval (robot frame, rad) and nearest distance of a disc. */
+static int disc_interval(vec2_t cam, float heading, vec2_t c, float rad, interval_t *out)
+{
+    vec2_t v = v2_sub(c, cam);
+    float d = v2_len(v);
+    if (d <= rad) {
+        return 0;
+    }
+    float mid = geom_wrap(atan2f(v.y, v.x) - heading), w = asinf(rad / d);
+    out->lo = mid - w;
+    out->hi = mid + w;
+    out->near = d - rad;
+    return 1;
+}
+
+static int box_interval(vec2_t cam, float heading, const obstacle_t *o, interval_t *out)
+{
+    vec2_t v = v2_sub(o->c, cam);
+    float mid = atan2f(v.y, v.x);
+    float lo = 0.0f, hi = 0.0f, near = INFINITY;
+    for (int e = 0; e < 4; e++) {
+        vec2_t q = v2_sub(o->corner[e], cam);
+        float rel = geom_wrap(atan2f(q.y, q.x) - mid);
+        lo = fminf(lo, rel);
+        hi = fmaxf(hi, rel);
+        vec2_t n = v2_sub(geom_closest_on_segment(cam, o->corner[e], o->corner[(e + 1) & 3]), cam);
+        near = fminf(near, v2_len(n));
+    }
+    if (near <= 0.0f || hi - lo >= 3.14159265f) {
+        return 0;   /* camera inside or against the box */
+    }
+    float m = geom_wrap(mid - heading);
+    out->lo = m + lo;
+    out->hi = m + hi;
+    out->near = near;
+    return 1;
+}
+
+#define CAM_MAX_PIECES 16
+#define CAM_MAX_BLOBS 64
+
+/* Removes [lo, hi] from a set of disjoint pieces. */
+static int subtract(interval_t *pieces, int n, float lo, float hi)
+{
+    interval_t out[CAM_MAX_PIECES];
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        if (hi <= pieces[k].lo || lo >= pieces[k].hi) {
+            out[m++] = pieces[k];
+            continue;
+        }
+        if (lo > pieces[k].lo && m < CAM_MAX_PIECES) {
+            out[m] = pieces[k];
+            out[m++].hi = lo;
+        }
+        if (hi < pieces[k].hi && m < CAM_MAX_PIECES) {
+            out[m] = pieces[k];
+            out[m++].lo = hi;
+        }
+    }
+    for (int k = 0; k < m; k++) pieces[k] = out[k];
+    return m;
+}
+
+static int blob_order(const void *a, const void *b)
+{
+    const hal_blob_t *x = a, *y = b;
+    if (x->pixels != y->pixels) return (x->pixels < y->pixels) ? 1 : -1;
+    return (x->bearing_mrad > y->bearing_mrad) - (x->bearing_mrad < y->bearing_mrad);
+}
+
+uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
+{
+    const scenario_t *sc = sim->sc;
+    sim_robot_t *r = &sim->robots[i];
+    float heading = r->theta, range = sc->camera.range;
+    float half = sc->camera.fov * 3.14159265f / 360.0f;
+    float col = 2.0f * half / sc->camera.width_px;        /* rad per column */
+    float vfov = 2.0f * half * sc->camera.height_px / sc->camera.width_px;
+    vec2_t cam = v2(r->x + SIM_ROBOT_RADIUS * cosf(heading), r->y + SIM_ROBOT_RADIUS * sinf(heading));
+
+    uint32_t *obst = sim->cam_scratch.obstacles, *rob = sim->cam_scratch.robots;
+    uint32_t *occ_obj = sim->cam_scratch.occluder_object;
+    interval_t *occ = (interval_t *)sim->cam_scratch.intervals;
+    uint32_t no = sim_gather_obstacles(sim, cam.x - range, cam.y - range, cam.x + range, cam.y + range,
+                                       obst, SIM_CAMERA_MAX_NEAR);
+    uint32_t nr = sim_gather_robots(sim, cam.x - range - SIM_ROBOT_RADIUS, cam.y - range - SIM_ROBOT_RADIUS,
+                                    cam.x + range + SIM_ROBOT_RADIUS, cam.y + range + SIM_ROBOT_RADIUS,
+                                    rob, SIM_CAMERA_MAX_NEAR);
+    /* Everything that can hide something: other robots and all obstacles. */
+    uint32_t nocc = 0;
+    for (uint32_t j = 0; j < nr; j++) {
+        if (rob[j] != i && disc_interval(cam, heading, v2(sim->robots[rob[j]].x, sim->robots[rob[j]].y),
+                                         SIM_ROBOT_RADIUS, &occ[nocc])) {
+            nocc++;
+        }
+    }
+    uint32_t first_obstacle = nocc;
+    for (uint32_t j = 0; j < no; j++) {
+        const obstacle_t *o = &sim->obstacles[obst[j]];
+        int ok = (o->shape == SHAPE_CYLINDER) ? disc_interval(cam, heading, o->c, o->r, &occ[nocc])
+                                              : box_interval(cam, heading, o, &occ[nocc]);
+        if (ok) {
+            occ_obj[nocc++] = obst[j];
+        }
+    }
+
+    hal_blob_t blobs[CAM_MAX_BLOBS];
+    uint32_t nb = 0;
+    for (uint32_t t = first_obstacle; t < nocc && nb < CAM_MAX_BLOBS; t++) {
+        const obstacle_t *o = &sim->obstacles[occ_obj[t]];
+        interval_t it = occ[t];
+        if (o->colour == HAL_COLOUR_NONE || it.near > range) {
+            continue;
+        }
+        interval_t pieces[CAM_MAX_PIECES] = { { fmaxf(it.lo, -half), fminf(it.hi, half), it.near } };
+        int np = (pieces[0].hi > pieces[0].lo) ? 1 : 0;
+        for (uint32_t q = 0; q < nocc && np > 0; q++) {
+            if (q != t && occ[q].near < it.near) {
+                np = subtract(pieces, np, occ[q].lo, occ[q].hi);
+            }
+        }
+        int best = -1;
+        for (int k = 0; k < np; k++) {
+            if (best < 0 || pieces[k].hi - pieces[k].lo > pieces[best].hi - pieces[best].lo) best = k;
+        }
+        if (best < 0) {
+            continue;
+        }
+        float width = pieces[best].hi - pieces[best].lo;
+        float cols = width / col;
+        if (cols < 1.0f) {
+            continue;   /* narrower than a pixel column */
+        }
+        /* Rows: the object spans the floor to its top, seen from the lens. */
+        float dist = it.near > 0.001f ? it.near : 0.001f;
+        float vang = atanf(fmaxf(o->height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
+        float rows = fminf(vang, vfov) / (vfov / sc->camera.height_px);
+        hal_blob_t *b = &blobs[nb++];
+        b->colour = (uint8_t)o->colour;
+        b->bearing_mrad = (int16_t)lroundf(1000.0f * 0.5f * (pieces[best].lo + pieces[best].hi));
+        b->width_mrad = (uint16_t)lroundf(1000.0f * width);
+        float px = floorf(cols) * fmaxf(1.0f, floorf(rows));
+        b->pixels = (uint16_t)fminf(px, 65535.0f);
+    }
+    qsort(blobs, nb, sizeof blobs[0], blob_order);
+    uint8_t count = (uint8_t)(nb < HAL_MAX_BLOBS ? nb : HAL_MAX_BLOBS);
+    for (uint8_t k = 0; k < count; k++) out[k] = blobs[k];
+    return count;
+}

@@ -1,0 +1,141 @@
+/*
+ * sim_hal.c - the simulator's implementation of hal.h.  Each robot's
+ * controller gets its own hal_t; sensors are computed lazily, once per
+ * control step, from the pose at the start of the step.
+ */
+#include "sim_internal.h"
+
+static sim_robot_t *robot(hal_t *hal) { return &hal->sim->robots[hal->index]; }
+static uint64_t stamp(const hal_t *hal) { return hal->sim->step + 1; }
+
+uint16_t hal_robot_id(hal_t *hal) { return (uint16_t)hal->index; }
+
+uint32_t hal_time_ms(hal_t *hal)
+{
+    return (uint32_t)(hal->sim->step * hal->sim->sc->control_period_ms);
+}
+
+uint16_t hal_control_period_ms(hal_t *hal) { return hal->sim->sc->control_period_ms; }
+
+uint16_t hal_ir_proximity(hal_t *hal, uint8_t index)
+{
+    sim_robot_t *r = robot(hal);
+    if (index >= HAL_IR_COUNT) {
+        return 0;
+    }
+    if (r->ir_stamp != stamp(hal)) {
+        sensors_ir(hal->sim, hal->index, r->ir);
+        r->ir_stamp = stamp(hal);
+    }
+    return r->ir[index];
+}
+
+uint16_t hal_ir_ambient(hal_t *hal, uint8_t index)
+{
+    sim_robot_t *r = robot(hal);
+    if (index >= HAL_IR_COUNT) {
+        return HAL_RAW_MAX;
+    }
+    if (r->ambient_stamp != stamp(hal)) {
+        sensors_ambient(hal->sim, hal->index, r->ambient);
+        r->ambient_stamp = stamp(hal);
+    }
+    return r->ambient[index];
+}
+
+uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
+{
+    sim_robot_t *r = robot(hal);
+    if (r->camera_stamp != stamp(hal)) {
+        r->blob_count = sensors_camera(hal->sim, hal->index, r->blobs);
+        r->camera_stamp = stamp(hal);
+    }
+    uint8_t n = r->blob_count < max ? r->blob_count : max;
+    for (uint8_t k = 0; k < n; k++) {
+        out[k] = r->blobs[k];
+    }
+    return n;
+}
+
+/* Sound is modelled with the RepAtt work (seed 002); until then the
+ * contract answers "not modelled". */
+int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band)
+{
+    (void)hal;
+    (void)mic;
+    (void)band;
+    return HAL_NOT_MODELLED;
+}
+
+int8_t hal_speaker_set(hal_t *hal, uint8_t band)
+{
+    (void)hal;
+    (void)band;
+    return HAL_NOT_MODELLED;
+}
+
+int8_t hal_ircom_send(hal_t *hal, uint8_t value)
+{
+    sim_robot_t *r = robot(hal);
+    if (r->ircom_tx >= 0) {
+        return -1;
+    }
+    r->ircom_tx = value;
+    return 0;
+}
+
+uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
+{
+    sim_robot_t *r = robot(hal);
+    if (r->rx_count == 0) {
+        return 0;
+    }
+    *out = r->rx[r->rx_head];
+    r->rx_head = (uint8_t)((r->rx_head + 1) % SIM_IRCOM_QUEUE);
+    r->rx_count--;
+    return 1;
+}
+
+static int16_t clamp_speed(int16_t v)
+{
+    return v > HAL_WHEEL_SPEED_MAX ? HAL_WHEEL_SPEED_MAX : (v < -HAL_WHEEL_SPEED_MAX ? -HAL_WHEEL_SPEED_MAX : v);
+}
+
+void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s)
+{
+    sim_robot_t *r = robot(hal);
+    r->cmd_left = clamp_speed(left_steps_s);
+    r->cmd_right = clamp_speed(right_steps_s);
+}
+
+void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right)
+{
+    sim_robot_t *r = robot(hal);
+    /* 16-bit counters wrap as on the robot. */
+    *left = (int16_t)(uint16_t)(int64_t)r->steps_left;
+    *right = (int16_t)(uint16_t)(int64_t)r->steps_right;
+}
+
+static void set_bit(uint16_t *bits, unsigned bit, uint8_t on)
+{
+    *bits = on ? (uint16_t)(*bits | (1u << bit)) : (uint16_t)(*bits & ~(1u << bit));
+}
+
+void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
+{
+    if (index < HAL_LED_COUNT) {
+        set_bit(&robot(hal)->leds, index, on);
+    }
+}
+
+void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, 8, on); }
+void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, 9, on); }
+
+uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)
+{
+    /* Telemetry is published by the simulator itself (LCM work); the
+     * firmware's bytes are accepted and dropped here. */
+    (void)hal;
+    (void)bytes;
+    return len;
+}

@@ -1,0 +1,126 @@
+/*
+ * sim_internal.h - the state shared by the simulator's modules (world,
+ * sensors, IR communication, HAL).  Not a public header.
+ */
+#ifndef SIM_INTERNAL_H
+#define SIM_INTERNAL_H
+
+#include <box2d/box2d.h>
+
+#include "controllers.h"
+#include "geometry.h"
+#include "grid.h"
+#include "hal.h"
+#include "rand.h"
+#include "sim.h"
+
+/** libIrcom keeps a queue of 20 received messages. */
+#define SIM_IRCOM_QUEUE 20u
+
+/** What a controller's `hal_t *` points to in the simulator. */
+struct hal {
+    struct sim *sim;
+    uint32_t index;
+};
+
+typedef struct sim_robot {
+    hal_t hal;
+    b2BodyId body;
+    float x, y, theta;             /**< pose at the start of this control step */
+    int16_t cmd_left, cmd_right;   /**< commanded wheel speeds, steps/s */
+    double steps_left, steps_right;/**< commanded steps so far */
+    uint16_t leds;                 /**< bits 0-7 ring, 8 body, 9 front */
+
+    /* Sensor caches, valid when *_stamp == sim->step + 1. */
+    uint64_t ir_stamp, ambient_stamp, camera_stamp;
+    uint16_t ir[HAL_IR_COUNT];
+    uint16_t ambient[HAL_IR_COUNT];
+    hal_blob_t blobs[HAL_MAX_BLOBS];
+    uint8_t blob_count;
+
+    int16_t ircom_tx;              /**< byte to send this step, or -1 */
+    hal_ircom_msg_t rx[SIM_IRCOM_QUEUE];
+    uint8_t rx_head, rx_count;
+    uint32_t rx_dropped;
+
+    sim_rand_t noise;              /**< sensor noise */
+    sim_rand_t ircom_rand;         /**< loss and estimate noise at this receiver */
+    sim_rand_t wheel_rand;         /**< actuation noise */
+    void *ctrl;                    /**< controller state, or NULL when idle */
+    uint8_t escaped;
+} sim_robot_t;
+
+typedef struct obstacle {
+    int shape;                     /**< object_shape_t */
+    vec2_t c;                      /**< centre */
+    float r;                       /**< cylinder radius */
+    vec2_t corner[4];              /**< box corners, counter-clockwise */
+    float height;
+    int colour;
+    float aabb[4];
+} obstacle_t;
+
+/** An angular interval seen from the camera, rad, and its nearest distance, m. */
+typedef struct sim_interval { float lo, hi, near; } sim_interval_t;
+
+/** Most robots or obstacles the camera considers within its range. */
+#define SIM_CAMERA_MAX_NEAR 1024u
+
+struct sim {
+    const scenario_t *sc;
+    const sim_controller_t *ctrl;
+    uint64_t seed;
+    uint64_t step;
+    float dt;                      /**< control period, s */
+    float hw, hh;                  /**< half width and height of the arena, m */
+    b2WorldId world;
+
+    uint32_t n;
+    sim_robot_t *robots;
+    uint8_t *ctrl_states;
+    float *px, *py;                /**< robot centres, for the grid */
+    grid_t robot_grid;
+
+    uint32_t n_obstacles;
+    obstacle_t *obstacles;
+    grid_t obstacle_grid;
+    uint32_t *obstacle_mark;       /**< de-duplicates grid hits per query */
+    uint32_t mark_stamp;
+
+    struct {                       /**< working memory of sensors_camera */
+        uint32_t obstacles[SIM_CAMERA_MAX_NEAR];
+        uint32_t robots[SIM_CAMERA_MAX_NEAR];
+        uint32_t occluder_object[2 * SIM_CAMERA_MAX_NEAR];
+        sim_interval_t intervals[2 * SIM_CAMERA_MAX_NEAR];
+    } cam_scratch;
+
+    sim_metrics_t metrics;
+};
+
+/* world.c: Box2D bodies */
+int world_create(struct sim *sim, char err[256]);
+void world_destroy(struct sim *sim);
+void world_drive(struct sim *sim);
+void world_advance(struct sim *sim);
+void world_read_poses(struct sim *sim);
+
+/* sensors.c */
+/** Noise-free calibrated proximity at distance d (m) from a surface. */
+float sensors_ir_curve(float d, float range);
+void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
+void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
+uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
+
+/* ircom.c */
+void ircom_deliver(struct sim *sim);
+
+/** Writes to `out` (at most `max`) the indices of obstacles whose bounding
+ *  boxes meet [minx,maxx] x [miny,maxy], each once, in ascending order of
+ *  first grid hit; returns how many. */
+uint32_t sim_gather_obstacles(struct sim *sim, float minx, float miny, float maxx, float maxy,
+                              uint32_t *out, uint32_t max);
+/** Same for robots whose centres lie in the box. */
+uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float maxx, float maxy,
+                           uint32_t *out, uint32_t max);
+
+#endif

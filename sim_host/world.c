@@ -1,0 +1,155 @@
+/*
+ * world.c - the Box2D side of a run: walls, static obstacles and the robot
+ * bodies, driven by their wheel speeds.
+ *
+ * A robot is a dynamic disc.  At each control step its velocity is set from
+ * the commanded wheel speeds (differential drive); Box2D then resolves the
+ * contacts over `physics_substeps` sub-steps, so robots push each other and
+ * never pass through walls.  A pushed robot keeps the velocity the solver
+ * gave it until the next control step resets it (at most one period).
+ */
+#include <math.h>
+#include <stdio.h>
+
+#include "sim_internal.h"
+
+/* 150 g on a 70 mm disc. */
+#define ROBOT_DENSITY (0.150f / (3.14159265f * SIM_ROBOT_RADIUS * SIM_ROBOT_RADIUS))
+/* Plastic on plastic and painted walls: low friction so robots slide
+ * along walls instead of sticking to them. */
+#define ROBOT_FRICTION 0.1f
+
+static void add_box(b2BodyId body, float hx, float hy, b2Vec2 centre, float angle)
+{
+    b2ShapeDef sd = b2DefaultShapeDef();
+    b2Polygon box = b2MakeOffsetBox(hx, hy, centre, b2MakeRot(angle));
+    b2CreatePolygonShape(body, &sd, &box);
+}
+
+static void create_static(struct sim *sim)
+{
+    const scenario_t *sc = sim->sc;
+    b2BodyDef bd = b2DefaultBodyDef();
+    b2BodyId ground = b2CreateBody(sim->world, &bd);
+    float t = sc->arena.wall_thickness, hw = sim->hw, hh = sim->hh;
+
+    /* Four walls whose inner faces bound [-hw, hw] x [-hh, hh]. */
+    add_box(ground, hw + t, t / 2, (b2Vec2){ 0, hh + t / 2 }, 0);
+    add_box(ground, hw + t, t / 2, (b2Vec2){ 0, -hh - t / 2 }, 0);
+    add_box(ground, t / 2, hh + t, (b2Vec2){ hw + t / 2, 0 }, 0);
+    add_box(ground, t / 2, hh + t, (b2Vec2){ -hw - t / 2, 0 }, 0);
+
+    for (uint32_t k = 0; k < sim->n_obstacles; k++) {
+        const obstacle_t *o = &sim->obstacles[k];
+        const object_def_t *d = &sc->objects[k];
+        if (o->shape == SHAPE_CYLINDER) {
+            b2ShapeDef sd = b2DefaultShapeDef();
+            b2Circle c = { { o->c.x, o->c.y }, o->r };
+            b2CreateCircleShape(ground, &sd, &c);
+        } else {
+            add_box(ground, d->width / 2, d->depth / 2, (b2Vec2){ o->c.x, o->c.y },
+                    d->angle * 3.14159265f / 180.0f);
+        }
+    }
+}
+
+int world_create(struct sim *sim, char err[256])
+{
+    b2WorldDef wd = b2DefaultWorldDef();
+    wd.gravity = (b2Vec2){ 0.0f, 0.0f };
+    /* Robots are always driven; sleeping would only cost checks. */
+    wd.enableSleep = false;
+    sim->world = b2CreateWorld(&wd);
+    if (!b2World_IsValid(sim->world)) {
+        snprintf(err, 256, "cannot create the Box2D world");
+        return -1;
+    }
+    create_static(sim);
+
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_robot_t *r = &sim->robots[i];
+        b2BodyDef bd = b2DefaultBodyDef();
+        bd.type = b2_dynamicBody;
+        bd.position = (b2Vec2){ r->x, r->y };
+        bd.rotation = b2MakeRot(r->theta);
+        bd.userData = (void *)(uintptr_t)(i + 1);
+        r->body = b2CreateBody(sim->world, &bd);
+        b2ShapeDef sd = b2DefaultShapeDef();
+        sd.density = ROBOT_DENSITY;
+        sd.material.friction = ROBOT_FRICTION;
+        sd.enableContactEvents = true;
+        sd.userData = (void *)(uintptr_t)(i + 1);
+        b2Circle c = { { 0.0f, 0.0f }, SIM_ROBOT_RADIUS };
+        b2CreateCircleShape(r->body, &sd, &c);
+    }
+    return 0;
+}
+
+void world_destroy(struct sim *sim)
+{
+    if (b2World_IsValid(sim->world)) {
+        b2DestroyWorld(sim->world);
+    }
+}
+
+void world_drive(struct sim *sim)
+{
+    const double noise = sim->sc->wheels.speed_noise_rel;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_robot_t *r = &sim->robots[i];
+        double l = r->cmd_left, rr = r->cmd_right;
+        /* Motor steps are counted as commanded: a blocked stepper still steps. */
+        r->steps_left += l * sim->dt;
+        r->steps_right += rr * sim->dt;
+        if (noise > 0.0) {
+            l *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
+            rr *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
+        }
+        double v = 0.5 * (l + rr) * SIM_STEP_M;
+        double w = (rr - l) * SIM_STEP_M / SIM_AXLE_M;
+        b2Body_SetLinearVelocity(r->body, (b2Vec2){ (float)(v * cos(r->theta)), (float)(v * sin(r->theta)) });
+        b2Body_SetAngularVelocity(r->body, (float)w);
+    }
+}
+
+static int is_robot(b2ShapeId s) { return b2Shape_GetUserData(s) != NULL; }
+
+void world_advance(struct sim *sim)
+{
+    b2World_Step(sim->world, sim->dt, sim->sc->physics_substeps);
+    b2ContactEvents ev = b2World_GetContactEvents(sim->world);
+    for (int k = 0; k < ev.beginCount; k++) {
+        int a = is_robot(ev.beginEvents[k].shapeIdA), b = is_robot(ev.beginEvents[k].shapeIdB);
+        if (a && b) {
+            sim->metrics.robot_contacts++;
+        } else if (a || b) {
+            sim->metrics.static_contacts++;
+        }
+    }
+}
+
+void world_read_poses(struct sim *sim)
+{
+    double moved = 0.0, clearance = sim->metrics.min_wall_clearance_m;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_robot_t *r = &sim->robots[i];
+        b2Vec2 p = b2Body_GetPosition(r->body);
+        float dx = p.x - r->x, dy = p.y - r->y;
+        moved += sqrt((double)dx * dx + (double)dy * dy);
+        r->x = p.x;
+        r->y = p.y;
+        r->theta = b2Rot_GetAngle(b2Body_GetRotation(r->body));
+        sim->px[i] = p.x;
+        sim->py[i] = p.y;
+        double gap = fmin(sim->hw - fabs(p.x), sim->hh - fabs(p.y)) - SIM_ROBOT_RADIUS;
+        if (gap < clearance) {
+            clearance = gap;
+        }
+        if (!r->escaped && (fabsf(p.x) > sim->hw || fabsf(p.y) > sim->hh)) {
+            r->escaped = 1;
+            sim->metrics.escaped++;
+        }
+    }
+    sim->metrics.distance_m += moved;
+    sim->metrics.min_wall_clearance_m = clearance;
+}

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# hygiene.sh - checks the firmware rules on the compiled objects:
+#  1. every firmware and platform-neutral HAL source compiles warning-free as
+#     C99 on the host and with avr-gcc (16-bit int and pointers, 32-bit
+#     double: the data model of XC16 on the dsPIC);
+#  2. no object has writable static data (.data/.bss non-empty or data
+#     symbols): controllers keep all state in their structs;
+#  3. nothing calls malloc/calloc/realloc/free;
+#  4. no conditional compilation in controllers except include guards.
+# The checker is itself checked on a bad source that must be caught.
+set -u
+cd "$(dirname "$0")/../.."
+out=build/fw
+mkdir -p "$out/host" "$out/avr"
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+srcs=$(ls firmware/*.c hal/*.c)
+flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Ifirmware"
+
+# Writable static data in one object: prints what it finds.
+writable() {
+    local o=$1
+    size -A "$o" | awk '$1 ~ /^\.(data|bss)(\.|$)/ && $2 > 0 { print "section " $1 " has " $2 " bytes" }'
+    nm "$o" | awk '$2 ~ /^[dDbBC]$/ { print "writable symbol " $3 }'
+}
+allocates() { nm -u "$1" | awk '$2 ~ /^(malloc|calloc|realloc|free)$/ { print "calls " $2 }'; }
+
+for src in $srcs; do
+    name=$(basename "${src%.c}")
+    obj="$out/host/$name.o"
+    if ! cc $flags -O2 -c "$src" -o "$obj"; then bad "$src does not compile on the host"; continue; fi
+    ok
+    w=$(writable "$obj")
+    if [ -n "$w" ]; then bad "$src: writable static data: $w"; else ok; fi
+    a=$(allocates "$obj")
+    if [ -n "$a" ]; then bad "$src: $a"; else ok; fi
+    if avr-gcc -mmcu=atmega128 $flags -Os -c "$src" -o "$out/avr/$name.o"; then ok
+    else bad "$src does not compile warning-free with avr-gcc (16-bit int)"; fi
+done
+
+# Controllers: no #if/#ifdef other than the include guard of a header.
+for f in firmware/*.c firmware/*.h; do
+    n=$(grep -cE '^\s*#\s*(if|ifdef|ifndef|elif)\b' "$f")
+    guard=0
+    case "$f" in *.h) guard=1 ;; esac
+    if [ "$n" -gt "$guard" ]; then bad "$f: conditional compilation in a controller"; else ok; fi
+done
+
+# The checker must catch what it looks for.
+probe="$out/probe.c"
+printf '#include <stdlib.h>\nint probe(void);\nint probe(void) { static int count; char *p = malloc(4); free(p); return ++count; }\n' > "$probe"
+cc -std=c99 -O0 -c "$probe" -o "$out/probe.o"
+if [ -n "$(writable "$out/probe.o")" ]; then ok; else bad "checker missed a mutable static"; fi
+if [ -n "$(allocates "$out/probe.o")" ]; then ok; else bad "checker missed malloc"; fi
+
+echo "firmware hygiene: $(echo $srcs | wc -w) sources, host and avr-gcc"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,420 @@
+/*
+ * test_sim.c - the simulator's physics and sensor models against the
+ * e-puck facts they are calibrated to (EPUCK.md), and determinism.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "hal.h"
+#include "scenario.h"
+#include "sim.h"
+#include "sim_internal.h"
+
+#define PI 3.14159265358979
+
+/* A scenario with idle robots (tests drive them through their hal_t). */
+static scenario_t *idle_scenario(uint32_t robots, float arena)
+{
+    scenario_t *sc = calloc(1, sizeof *sc);
+    assert_non_null(sc);
+    scenario_defaults(sc);
+    strcpy(sc->controller.name, "idle");
+    sc->robots.count = robots;
+    sc->robots.placement = PLACE_GRID;
+    sc->arena.width = sc->arena.height = arena;
+    return sc;
+}
+
+static sim_t *make(const scenario_t *sc, uint64_t seed)
+{
+    char err[256] = "";
+    sim_t *sim = sim_create(sc, seed, err);
+    if (!sim) fail_msg("sim_create: %s", err);
+    return sim;
+}
+
+/* Mean of `n` readings of IR sensor `s`, one per control step. */
+static double mean_ir(sim_t *sim, uint32_t robot, uint8_t s, int n)
+{
+    double sum = 0;
+    for (int k = 0; k < n; k++) {
+        sum += hal_ir_proximity(sim_robot_hal(sim, robot), s);
+        sim_step(sim);
+    }
+    return sum / n;
+}
+
+/* ------------------------------------------------------------------ IR */
+
+static void test_ir_follows_calibration_table(void **state)
+{
+    (void)state;
+    static const double d_m[] = { 0.005, 0.010, 0.015, 0.020, 0.030, 0.040, 0.050, 0.060, 0.070 };
+    static const double raw[] = { 2133, 1466, 601, 384, 235, 158, 120, 104, 67 };
+    scenario_t *sc = idle_scenario(1, 2.0f);
+    sim_t *sim = make(sc, 1);
+    for (size_t k = 0; k < sizeof d_m / sizeof d_m[0]; k++) {
+        /* Heading +17 deg puts IR0's axis (-17 deg) square onto the +x wall. */
+        double x = 1.0 - 0.033 - d_m[k];
+        sim_set_robot_pose(sim, 0, x, 0.0, 17.0 * PI / 180.0);
+        double m = mean_ir(sim, 0, 0, 200);
+        /* Noise: 1 % relative + 5 counts absolute per reading; the mean of
+         * 200 readings is within 4 standard errors plus rounding. */
+        double tol = 4.0 * (0.01 * raw[k] + 5.0) / sqrt(200.0) + 1.0;
+        if (fabs(m - raw[k]) > tol) {
+            fail_msg("at %.3f m IR0 reads %.1f, calibration %.0f (tolerance %.1f)", d_m[k], m, raw[k], tol);
+        }
+    }
+    /* Far from everything: near zero. */
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    assert_true(mean_ir(sim, 0, 0, 100) < 10.0);
+    sim_destroy(sim);
+    free(sc);
+}
+
+static void test_ir_bearing_left_is_ir5(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 2.0f);
+    sc->object_count = 1;
+    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.035f + 0.01f + 0.05f,
+                                     .radius = 0.05f, .height = 0.05f };
+    sc->robots.placement = PLACE_RANDOM;
+    sim_t *sim = make(sc, 2);
+    /* Robot at the origin heading +x: the cylinder is at +90 deg (left). */
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    uint16_t v[HAL_IR_COUNT];
+    for (uint8_t s = 0; s < HAL_IR_COUNT; s++) v[s] = hal_ir_proximity(sim_robot_hal(sim, 0), s);
+    assert_true(v[5] > 1000);
+    assert_true(v[2] < 50);
+    for (uint8_t s = 0; s < HAL_IR_COUNT; s++) {
+        if (s != 5) assert_true(v[s] < v[5]);
+    }
+    /* Turned by 180 deg the same obstacle is on the right: IR2. */
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, PI);
+    assert_true(hal_ir_proximity(sim_robot_hal(sim, 0), 2) > 1000);
+    assert_true(hal_ir_proximity(sim_robot_hal(sim, 0), 5) < 50);
+    sim_destroy(sim);
+    free(sc);
+}
+
+static void test_ir_sees_other_robot(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(2, 2.0f);
+    sim_t *sim = make(sc, 3);
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    /* Robot 1 just ahead: body surfaces 15 mm apart. */
+    sim_set_robot_pose(sim, 1, 0.085, 0.0, 0.0);
+    uint16_t front = hal_ir_proximity(sim_robot_hal(sim, 0), 0);
+    uint16_t back = hal_ir_proximity(sim_robot_hal(sim, 0), 3);
+    assert_true(front > 300);
+    assert_true(back < 50);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* --------------------------------------------------------------- light */
+
+static void test_light_falls_with_distance(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 6.0f);
+    sc->light_count = 1;
+    sc->lights[0] = (light_def_t){ .x = 0.0f, .y = 0.0f, .height = 0.1f, .intensity = 1.0f };
+    sc->ambient.noise_rel = 0.0f;
+    sim_t *sim = make(sc, 4);
+    double prev = 0;
+    static const double dist[] = { 0.3, 0.6, 1.2, 2.4 };
+    for (size_t k = 0; k < 4; k++) {
+        /* Robot on the -x side facing the lamp (+x): IR0/IR7 look at it. */
+        sim_set_robot_pose(sim, 0, -dist[k], 0.0, 0.0);
+        double front = hal_ir_ambient(sim_robot_hal(sim, 0), 0);
+        double back = hal_ir_ambient(sim_robot_hal(sim, 0), 3);
+        /* Raw counts rise (less light) as the lamp gets farther. */
+        assert_true(front > prev);
+        /* A sensor facing away sees less light (higher raw value). */
+        assert_true(back > front);
+        prev = front;
+    }
+    assert_true(prev < sc->ambient.dark);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* -------------------------------------------------------------- camera */
+
+static uint8_t blobs_of(sim_t *sim, uint32_t i, hal_blob_t *b)
+{
+    sim_step(sim);   /* a fresh step: the camera is sampled once per step */
+    return hal_camera_blobs(sim_robot_hal(sim, i), b, HAL_MAX_BLOBS);
+}
+
+static void test_camera_field_of_view_and_occlusion(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(2, 3.0f);
+    sc->object_count = 1;
+    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f, .radius = 0.03f,
+                                     .height = 0.05f, .colour = HAL_COLOUR_RED };
+    sim_t *sim = make(sc, 5);
+    hal_blob_t b[HAL_MAX_BLOBS];
+    sim_set_robot_pose(sim, 1, -1.0, -1.0, 0.0);   /* out of the way */
+
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);     /* facing it */
+    assert_int_equal(blobs_of(sim, 0, b), 1);
+    assert_int_equal(b[0].colour, HAL_COLOUR_RED);
+    assert_true(abs(b[0].bearing_mrad) < 10);
+    assert_true(b[0].width_mrad > 150 && b[0].width_mrad < 180);   /* 2 asin(0.03/0.365) */
+
+    /* Turned 20 deg to the right, the object appears on the left.  The
+     * lens sits at the front of the body (35 mm from the centre), so the
+     * bearing is 349 mrad plus the parallax atan(12.0 / 367.1) = 382 mrad. */
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, -20.0 * PI / 180.0);
+    assert_int_equal(blobs_of(sim, 0, b), 1);
+    assert_true(abs(b[0].bearing_mrad - 382) < 5);
+
+    /* Outside the 56 deg field of view. */
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, PI / 2);
+    assert_int_equal(blobs_of(sim, 0, b), 0);
+
+    /* Hidden behind another robot. */
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    sim_set_robot_pose(sim, 1, 0.2, 0.0, 0.0);
+    assert_int_equal(blobs_of(sim, 0, b), 0);
+
+    /* Beyond the camera range (0.6 m). */
+    sim_set_robot_pose(sim, 1, -1.0, -1.0, 0.0);
+    sim_set_robot_pose(sim, 0, -0.4, 0.0, 0.0);
+    assert_int_equal(blobs_of(sim, 0, b), 0);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* -------------------------------------------------------------- motion */
+
+static void test_motion_straight_500_steps(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 4.0f);
+    sim_t *sim = make(sc, 6);
+    sim_set_robot_pose(sim, 0, -1.0, 0.0, 0.0);
+    hal_set_wheel_speeds(sim_robot_hal(sim, 0), 500, 500);
+    for (int k = 0; k < 100; k++) sim_step(sim);     /* 10 s */
+    double x, y, t;
+    sim_robot_pose(sim, 0, &x, &y, &t);
+    double speed = (x + 1.0) / 10.0;
+    /* 500 steps/s x 0.12881 mm = 64.4 mm/s, within 2 %. */
+    assert_true(fabs(speed - 0.0644) < 0.02 * 0.0644);
+    assert_true(fabs(y) < 1e-3);
+    int16_t l, r;
+    hal_wheel_steps(sim_robot_hal(sim, 0), &l, &r);
+    assert_int_equal(l, 5000);
+    assert_int_equal(r, 5000);
+    sim_destroy(sim);
+    free(sc);
+}
+
+static void test_motion_rotation_in_place(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 4.0f);
+    sim_t *sim = make(sc, 7);
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    hal_set_wheel_speeds(sim_robot_hal(sim, 0), -300, 300);
+    double turned = 0, x, y, t, prev = 0;
+    for (int k = 0; k < 10; k++) {                   /* 1 s */
+        sim_step(sim);
+        sim_robot_pose(sim, 0, &x, &y, &t);
+        double d = t - prev;
+        turned += d > PI ? d - 2 * PI : (d < -PI ? d + 2 * PI : d);
+        prev = t;
+    }
+    /* omega = 2 v / axle = 2 x 300 x 0.12881 mm / 53 mm = 1.458 rad/s. */
+    double expect = 2.0 * 300 * SIM_STEP_M / SIM_AXLE_M;
+    assert_true(fabs(turned - expect) < 0.02 * expect);
+    assert_true(hypot(x, y) < 1e-3);
+    sim_destroy(sim);
+    free(sc);
+}
+
+static void test_speed_is_clamped_and_counters_wrap(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 20.0f);
+    sim_t *sim = make(sc, 8);
+    sim_set_robot_pose(sim, 0, -9.0, 0.0, 0.0);
+    hal_set_wheel_speeds(sim_robot_hal(sim, 0), 3000, 3000);   /* clamps to 1000 */
+    for (int k = 0; k < 400; k++) sim_step(sim);              /* 40 s: 40000 steps */
+    int16_t l, r;
+    hal_wheel_steps(sim_robot_hal(sim, 0), &l, &r);
+    assert_int_equal(l, (int16_t)(uint16_t)40000u);
+    double x, y, t;
+    sim_robot_pose(sim, 0, &x, &y, &t);
+    assert_true(fabs((x + 9.0) - 40 * 1000 * SIM_STEP_M) < 0.02 * 40 * 1000 * SIM_STEP_M);
+    sim_destroy(sim);
+    free(sc);
+}
+
+static void test_robot_cannot_pass_wall_and_pushes_robot(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(2, 1.0f);
+    sim_t *sim = make(sc, 9);
+    sim_set_robot_pose(sim, 0, 0.3, 0.2, 0.0);
+    hal_set_wheel_speeds(sim_robot_hal(sim, 0), 1000, 1000);
+    /* Robot 1 drives into robot 0's path, robot 0 drives into the wall. */
+    sim_set_robot_pose(sim, 1, -0.3, -0.2, 0.0);
+    sim_set_robot_pose(sim, 0, -0.1, -0.2, 0.0);
+    hal_set_wheel_speeds(sim_robot_hal(sim, 1), 1000, 1000);
+    hal_set_wheel_speeds(sim_robot_hal(sim, 0), 200, 200);
+    for (int k = 0; k < 300; k++) sim_step(sim);
+    double x0, y0, t0, x1, y1, t1;
+    sim_robot_pose(sim, 0, &x0, &y0, &t0);
+    sim_robot_pose(sim, 1, &x1, &y1, &t1);
+    assert_true(x0 <= 0.5 - 0.035 + 0.006);       /* stopped by the wall */
+    assert_true(hypot(x1 - x0, y1 - y0) >= 0.07 - 0.006);  /* never overlap */
+    assert_true(sim_metrics(sim)->robot_contacts >= 1);
+    assert_true(sim_metrics(sim)->static_contacts >= 1);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* ---------------------------------------------------------- robustness */
+
+static void test_twenty_robots_100k_steps_stay_inside(void **state)
+{
+    (void)state;
+    scenario_t *sc = calloc(1, sizeof *sc);
+    scenario_defaults(sc);      /* random walk, 20 robots, 4 x 4 m */
+    sc->object_count = 1;
+    sc->objects[0] = (object_def_t){ .shape = SHAPE_BOX, .x = 0.5f, .y = 0.5f, .width = 0.5f,
+                                     .depth = 0.1f, .angle = 30.0f, .height = 0.05f };
+    sim_t *sim = make(sc, 10);
+    for (int k = 0; k < 100000; k++) {
+        sim_step(sim);
+    }
+    const sim_metrics_t *m = sim_metrics(sim);
+    assert_int_equal(m->escaped, 0);
+    /* Box2D resolves contacts to within its linear slop (5 mm): never a
+     * deeper overlap with a wall. */
+    if (m->min_wall_clearance_m < -0.005) fail_msg("overlap %.4f m", m->min_wall_clearance_m);
+    assert_true(sim_oae_total(sim) > 0);
+    assert_true(m->distance_m > 20 * 100.0);   /* they really moved */
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* --------------------------------------------------------- determinism */
+
+static uint64_t run_hash(uint64_t seed, int steps)
+{
+    scenario_t *sc = calloc(1, sizeof *sc);
+    scenario_defaults(sc);
+    sc->wheels.speed_noise_rel = 0.05f;
+    sim_t *sim = make(sc, seed);
+    for (int k = 0; k < steps; k++) sim_step(sim);
+    uint64_t h = sim_state_hash(sim);
+    sim_destroy(sim);
+    free(sc);
+    return h;
+}
+
+static void test_same_seed_same_state(void **state)
+{
+    (void)state;
+    assert_true(run_hash(42, 600) == run_hash(42, 600));
+    assert_true(run_hash(42, 600) != run_hash(43, 600));
+}
+
+/* --------------------------------------------------------------- ircom */
+
+static void test_ircom_range_bearing_and_blocking(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(2, 2.0f);
+    sc->ircom.loss = 0.0f;
+    sc->object_count = 1;
+    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.03f,
+                                     .height = 0.05f };
+    sim_t *sim = make(sc, 11);
+    hal_ircom_msg_t m;
+    /* Sender 0.15 m to the left of the receiver (heading +x): IR5. */
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
+    assert_int_equal(hal_ircom_send(sim_robot_hal(sim, 1), 0xA5), 0);
+    assert_int_equal(hal_ircom_send(sim_robot_hal(sim, 1), 0x11), -1);   /* one per step */
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);  /* not before the step */
+    sim_step(sim);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 1);
+    assert_int_equal(m.value, 0xA5);
+    assert_int_equal(m.sensor, 5);
+    assert_int_equal(m.bearing_mrad, 1571);
+    assert_true(m.range_mm > 75 && m.range_mm < 225);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 1), &m), 0);  /* not to itself */
+
+    /* Out of range (0.25 m). */
+    sim_set_robot_pose(sim, 1, 0.0, 0.4, 0.0);
+    hal_ircom_send(sim_robot_hal(sim, 1), 1);
+    sim_step(sim);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);
+
+    /* Blocked by the cylinder between them. */
+    sim_set_robot_pose(sim, 0, 0.5, 0.4, 0.0);
+    sim_set_robot_pose(sim, 1, 0.5, 0.6, 0.0);
+    hal_ircom_send(sim_robot_hal(sim, 1), 2);
+    sim_step(sim);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);
+    sim_destroy(sim);
+
+    /* Loss 1: nothing arrives. */
+    sc->ircom.loss = 1.0f;
+    sc->object_count = 0;
+    sim = make(sc, 12);
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
+    hal_ircom_send(sim_robot_hal(sim, 1), 3);
+    sim_step(sim);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);
+    sim_destroy(sim);
+    free(sc);
+}
+
+static void test_placement_failure_is_reported(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(500, 0.5f);
+    sc->robots.placement = PLACE_RANDOM;
+    char err[256] = "";
+    sim_t *sim = sim_create(sc, 1, err);
+    assert_null(sim);
+    assert_non_null(strstr(err, "cannot place robot"));
+    free(sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_ir_follows_calibration_table),
+        cmocka_unit_test(test_ir_bearing_left_is_ir5),
+        cmocka_unit_test(test_ir_sees_other_robot),
+        cmocka_unit_test(test_light_falls_with_distance),
+        cmocka_unit_test(test_camera_field_of_view_and_occlusion),
+        cmocka_unit_test(test_motion_straight_500_steps),
+        cmocka_unit_test(test_motion_rotation_in_place),
+        cmocka_unit_test(test_speed_is_clamped_and_counters_wrap),
+        cmocka_unit_test(test_robot_cannot_pass_wall_and_pushes_robot),
+        cmocka_unit_test(test_ircom_range_bearing_and_blocking),
+        cmocka_unit_test(test_placement_failure_is_reported),
+        cmocka_unit_test(test_same_seed_same_state),
+        cmocka_unit_test(test_twenty_robots_100k_steps_stay_inside),
+    };
+    return cmocka_run_group_tests_name("sim", tests, NULL, NULL);
+}
