@@ -50,11 +50,8 @@ static void usage(FILE *f)
     for (size_t i = 0; controllers_at(i); i++) {
         const sim_controller_t *c = controllers_at(i);
         fprintf(f, "  %-14s %s\n", c->name, c->doc);
-        for (const param_desc_t *p = c->params; p && p->key; p++) {
-            fprintf(f, "      controller.params.%-20s [%g, %g] %s\n", p->key, p->min, p->max, p->doc);
-        }
     }
-    fputs("\nscenario keys:\n", f);
+    fputc('\n', f);
     scenario_print_schema(f);
 }
 

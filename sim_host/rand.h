@@ -11,8 +11,6 @@
 
 typedef struct sim_rand {
     uint64_t s[2];
-    double spare;       /**< second normal of the last polar draw */
-    int has_spare;
 } sim_rand_t;
 
 /** Purposes, so that streams of one robot never overlap. */
@@ -27,7 +25,7 @@ uint32_t sim_rand_seed32(uint64_t seed, uint64_t index, uint64_t purpose);
 uint64_t sim_rand_u64(sim_rand_t *r);
 /** Uniform in [0, 1). */
 double sim_rand_uniform(sim_rand_t *r);
-/** Standard normal (Marsaglia polar method). */
+/** Standard normal (ziggurat method). */
 double sim_rand_normal(sim_rand_t *r);
 
 #endif

@@ -52,7 +52,7 @@ static uint16_t to_raw(double v)
 {
     if (v <= 0.0) return 0;
     if (v >= HAL_RAW_MAX) return HAL_RAW_MAX;
-    return (uint16_t)lround(v);
+    return (uint16_t)(v + 0.5);
 }
 
 static float nearest_obstacle(const obstacle_t *o, const cone_t *k)
