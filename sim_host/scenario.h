@@ -134,7 +134,7 @@ void scenario_defaults(scenario_t *out);
 /**
  * Reads `path`, applies `overrides` in order, validates, and fills `out`.
  * Returns 0, or -1 with a message in `err` that names the file, the line
- * and the key ("scenarios/x.yaml:12: robots.count: 2.5 is not an integer").
+ * and the key ("x.yaml:12: robots.count: expected an integer, got '2.5'").
  * On error `out` is unspecified.  The caller owns `out` (it is large:
  * allocate it on the heap).
  */

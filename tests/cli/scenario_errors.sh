@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# scenario_errors.sh - every class of scenario error makes swarmsim exit 2,
+# print "swarmsim: FILE:LINE: key.path: message" (or "swarmsim: --set ...")
+# on stderr, and write nothing to the --out folder.
+#
+# usage (from the repository root): bash tests/cli/scenario_errors.sh build/swarmsim
+set -u
+if [ $# -ne 1 ]; then
+    echo "usage: $0 path/to/swarmsim" >&2
+    exit 2
+fi
+sim=$1
+case $sim in /*) ;; *) sim="$PWD/$sim" ;; esac
+cd "$(dirname "$0")/../.." || exit 1
+if [ ! -x "$sim" ]; then
+    echo "scenario_errors.sh: '$sim' is not an executable (build it with make)" >&2
+    exit 1
+fi
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/scenario_errors.XXXXXX") || exit 1
+trap 'rm -rf "$tmp"' EXIT
+d=tests/data/scenarios
+pass=0 fail=0 n=0
+
+# expect_error NAME EXPECTED-STDERR-TEXT SWARMSIM-ARGS...
+# Runs swarmsim with the args and --out in a fresh path; checks exit 2, the
+# text on stderr, and that the --out path was not created (or is empty).
+expect_error() {
+    local name=$1 want=$2 out rc why=""
+    shift 2
+    n=$((n + 1))
+    out="$tmp/out$n"
+    "$sim" "$@" --out "$out" >"$tmp/stdout" 2>"$tmp/stderr"
+    rc=$?
+    if [ "$rc" -ne 2 ]; then
+        why="exit status $rc, expected 2"
+    elif ! grep -qF -- "$want" "$tmp/stderr"; then
+        why="stderr lacks: $want"
+    elif [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
+        why="files were written to the --out folder: $(ls -A "$out" | head -5 | tr '\n' ' ')"
+    fi
+    if [ -z "$why" ]; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1))
+        echo "FAIL: $name: $why"
+        sed 's/^/    stderr: /' "$tmp/stderr" | head -5
+    fi
+}
+
+# ---- errors in the file: FILE:LINE: key.path: message
+expect_error "YAML syntax error" \
+    "swarmsim: $d/syntax_error.yaml:6: YAML syntax error: " \
+    "$d/syntax_error.yaml"
+expect_error "unknown key with a suggestion" \
+    "swarmsim: $d/unknown_key.yaml:4: robots.cuont: unknown key 'cuont' (did you mean 'count'?)" \
+    "$d/unknown_key.yaml"
+expect_error "integer expected" \
+    "swarmsim: $d/wrong_type_int.yaml:3: robots.count: expected an integer, got '2.5'" \
+    "$d/wrong_type_int.yaml"
+expect_error "number expected" \
+    "swarmsim: $d/wrong_type_number.yaml:3: arena.width: expected a number, got 'wide'" \
+    "$d/wrong_type_number.yaml"
+expect_error "boolean expected" \
+    "swarmsim: $d/wrong_type_bool.yaml:3: nest.enabled: expected true/false, got 'yes'" \
+    "$d/wrong_type_bool.yaml"
+expect_error "mapping expected" \
+    "swarmsim: $d/wrong_type_mapping.yaml:2: arena: expected a mapping, got '4'" \
+    "$d/wrong_type_mapping.yaml"
+expect_error "out of range" \
+    "swarmsim: $d/out_of_range.yaml:3: robots.count: 200000 is out of range [0, 100000]" \
+    "$d/out_of_range.yaml"
+expect_error "bad enum value" \
+    "swarmsim: $d/bad_enum.yaml:4: robots.placement: expected one of random|nest|grid, got 'spiral'" \
+    "$d/bad_enum.yaml"
+expect_error "duplicate key" \
+    "swarmsim: $d/duplicate_key.yaml:4: robots.count: duplicate key 'count' (first on line 3)" \
+    "$d/duplicate_key.yaml"
+expect_error "cylinder without a radius" \
+    "swarmsim: $d/cylinder_no_radius.yaml:4: objects[1].radius: a cylinder needs radius > 0" \
+    "$d/cylinder_no_radius.yaml"
+expect_error "object outside the arena" \
+    "swarmsim: $d/object_outside.yaml:4: objects[0]: the cylinder reaches outside the arena" \
+    "$d/object_outside.yaml"
+expect_error "unknown controller" \
+    "swarmsim: $d/bad_controller.yaml:3: controller.name: unknown controller 'levy_walk' (valid: random_walk" \
+    "$d/bad_controller.yaml"
+expect_error "controller parameter out of range" \
+    "swarmsim: $d/bad_controller_param.yaml:5: controller.params.speed_steps_s: 5000 is out of range [0, 1000]" \
+    "$d/bad_controller_param.yaml"
+
+# ---- too many objects (generated: 4097 entries, the last on line 4098)
+{
+    echo "objects:"
+    for ((i = 0; i < 4097; i++)); do echo "  - { x: 0, y: 0, radius: 0.01 }"; done
+} >"$tmp/many.yaml"
+expect_error "too many objects" \
+    "swarmsim: $tmp/many.yaml:4098: objects[4096]: too many objects (at most 4096)" \
+    "$tmp/many.yaml"
+
+# ---- a file that is not there
+expect_error "missing file" \
+    "swarmsim: $tmp/nope.yaml: cannot open: No such file or directory" \
+    "$tmp/nope.yaml"
+
+# ---- bad --set overrides on a valid file: --set TEXT: key.path: message
+ok=$d/valid_small.yaml
+expect_error "--set: integer expected" \
+    "swarmsim: --set robots.count=abc: robots.count: expected an integer, got 'abc'" \
+    "$ok" --set robots.count=abc
+expect_error "--set: unknown key" \
+    "swarmsim: --set robots.cuont=5: robots.cuont: unknown key 'cuont' (did you mean 'count'?)" \
+    "$ok" --set robots.cuont=5
+expect_error "--set: unknown controller parameter" \
+    "swarmsim: --set controller.params.speed=3: controller.params.speed: unknown key 'speed'" \
+    "$ok" --set controller.params.speed=3
+expect_error "--set: out of range" \
+    "swarmsim: --set ircom.loss=2: ircom.loss: 2 is out of range [0, 1]" \
+    "$ok" --set ircom.loss=2
+expect_error "--set: sequence index out of range" \
+    "swarmsim: --set objects.7.x=1: objects[7]: index out of range (the sequence has 2 entries)" \
+    "$ok" --set objects.7.x=1
+expect_error "--set: without '='" \
+    "swarmsim: --set robots.count: expected key.path=value" \
+    "$ok" --set robots.count
+expect_error "--set: malformed key path" \
+    "swarmsim: --set robots..count=3: malformed key path 'robots..count'" \
+    "$ok" --set robots..count=3
+expect_error "--set: a later override replaces an earlier one" \
+    "swarmsim: --set robots.count=1.5: robots.count: expected an integer, got '1.5'" \
+    "$ok" --set robots.count=3 --set robots.count=1.5
+
+echo "$pass passed, $fail failed"
+if [ "$fail" -ne 0 ]; then
+    echo "scenario_errors.sh: $fail of $n checks failed" >&2
+    exit 1
+fi

@@ -1,0 +1,821 @@
+/*
+ * test_scenario.c - the strict YAML scenario loader (sim_host/scenario.c):
+ * defaults, a full file, every error class with its line, key path and
+ * message, `--set` overrides, controller params and object validation.
+ *
+ * Each test writes its YAML into a private temporary directory.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "random_walk.h"
+#include "scenario.h"
+
+#define MAX_SETS 8
+
+static char tmpdir[256];
+
+typedef struct fixture {
+    scenario_t *sc;
+    char err[SCENARIO_ERROR_MAX];
+    char path[512];  /* the file of the last load */
+} fixture_t;
+
+/* ---------------------------------------------------------------- helpers */
+
+static int group_setup(void **state)
+{
+    const char *base = getenv("TMPDIR");
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "%s/test_scenario.XXXXXX",
+             base != NULL && base[0] != '\0' ? base : "/tmp");
+    return mkdtemp(tmpdir) != NULL ? 0 : -1;
+}
+
+static int group_teardown(void **state)
+{
+    (void)state;
+    return rmdir(tmpdir);
+}
+
+static int setup(void **state)
+{
+    fixture_t *fx = calloc(1, sizeof *fx);
+    if (fx == NULL) {
+        return -1;
+    }
+    fx->sc = malloc(sizeof *fx->sc);
+    if (fx->sc == NULL) {
+        free(fx);
+        return -1;
+    }
+    *state = fx;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    fixture_t *fx = *state;
+    free(fx->sc);
+    free(fx);
+    return 0;
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(text, 1, strlen(text), f), strlen(text));
+    assert_int_equal(fclose(f), 0);
+}
+
+/* Writes `yaml` to tmpdir/name, loads it with the NULL-terminated `sets`,
+ * removes the file and returns scenario_load's result. */
+static int load_sets(fixture_t *fx, const char *name, const char *yaml, const char *const *sets)
+{
+    scenario_override_t overrides[MAX_SETS];
+    size_t n = 0;
+    int rc;
+    while (sets != NULL && sets[n] != NULL) {
+        assert_true(n < MAX_SETS);
+        overrides[n].text = sets[n];
+        n++;
+    }
+    snprintf(fx->path, sizeof fx->path, "%s/%s", tmpdir, name);
+    write_file(fx->path, yaml);
+    fx->err[0] = '\0';
+    rc = scenario_load(fx->path, overrides, n, fx->sc, fx->err);
+    assert_int_equal(unlink(fx->path), 0);
+    return rc;
+}
+
+static int load(fixture_t *fx, const char *yaml)
+{
+    return load_sets(fx, "s.yaml", yaml, NULL);
+}
+
+/* The error names the file and line (0: no line) and then `rest`. */
+static void assert_error_at(const fixture_t *fx, int line, const char *rest)
+{
+    char want[1024];
+    if (line > 0) {
+        snprintf(want, sizeof want, "%s:%d: %s", fx->path, line, rest);
+    } else {
+        snprintf(want, sizeof want, "%s: %s", fx->path, rest);
+    }
+    if (strstr(fx->err, want) == NULL) {
+        print_error("expected an error containing\n  %s\ngot\n  %s\n", want, fx->err);
+        fail();
+    }
+}
+
+static void expect_load_error(fixture_t *fx, const char *yaml, int line, const char *rest)
+{
+    if (load(fx, yaml) != -1) {
+        print_error("loading succeeded:\n%s\n", yaml);
+        fail();
+    }
+    assert_error_at(fx, line, rest);
+}
+
+/* An override error: exactly "--set TEXT: rest...". */
+static void expect_set_error(fixture_t *fx, const char *yaml, const char *set, const char *rest)
+{
+    const char *sets[] = { set, NULL };
+    char want[1024];
+    assert_int_equal(load_sets(fx, "s.yaml", yaml, sets), -1);
+    snprintf(want, sizeof want, "--set %s: %s", set, rest);
+    if (strncmp(fx->err, want, strlen(want)) != 0) {
+        print_error("expected an error starting with\n  %s\ngot\n  %s\n", want, fx->err);
+        fail();
+    }
+}
+
+static const random_walk_params_t *rw_params(const scenario_t *sc)
+{
+    return (const random_walk_params_t *)sc->controller.params.bytes;
+}
+
+/* ---------------------------------------------------------------- defaults */
+
+static void test_defaults(void **state)
+{
+    scenario_t *sc = ((fixture_t *)*state)->sc;
+    scenario_defaults(sc);
+    assert_int_equal(sc->seed, 1);
+    assert_float_equal(sc->duration, 60.0, 1e-9);
+    assert_int_equal(sc->control_period_ms, 100);
+    assert_int_equal(sc->physics_substeps, 4);
+    assert_float_equal(sc->arena.width, 4.0, 1e-6);
+    assert_float_equal(sc->arena.height, 4.0, 1e-6);
+    assert_float_equal(sc->arena.wall_thickness, 0.05, 1e-6);
+    assert_int_equal(sc->nest.enabled, 0);
+    assert_int_equal(sc->robots.count, 20);
+    assert_int_equal(sc->robots.placement, PLACE_RANDOM);
+    assert_float_equal(sc->robots.min_spacing, 0.08, 1e-6);
+    assert_int_equal(sc->object_count, 0);
+    assert_int_equal(sc->light_count, 0);
+    assert_string_equal(sc->controller.name, "random_walk");
+    assert_int_equal(rw_params(sc)->speed_steps_s, 500);
+    assert_int_equal(rw_params(sc)->avoid_exit, 150);
+    assert_float_equal(sc->ir.aperture, 15.0, 1e-6);
+    assert_float_equal(sc->ir.range, 0.1, 1e-6);
+    assert_float_equal(sc->ir.noise_rel, 0.01, 1e-6);
+    assert_float_equal(sc->ir.noise_abs, 5.0, 1e-6);
+    assert_float_equal(sc->ambient.dark, 4000.0, 1e-6);
+    assert_float_equal(sc->ambient.half, 1.0, 1e-6);
+    assert_float_equal(sc->ambient.noise_rel, 0.01, 1e-6);
+    assert_float_equal(sc->camera.fov, 56.0, 1e-6);
+    assert_float_equal(sc->camera.range, 0.6, 1e-6);
+    assert_int_equal(sc->camera.width_px, 40);
+    assert_int_equal(sc->camera.height_px, 40);
+    assert_float_equal(sc->ircom.range, 0.25, 1e-6);
+    assert_float_equal(sc->ircom.loss, 0.1, 1e-6);
+    assert_float_equal(sc->ircom.bearing_noise, 5.0, 1e-6);
+    assert_float_equal(sc->ircom.range_noise_rel, 0.1, 1e-6);
+    assert_int_equal(sc->ircom.quantise_bearing, 1);
+    assert_int_equal(sc->ircom.blocked_by_robots, 0);
+    assert_float_equal(sc->wheels.speed_noise_rel, 0.0, 1e-9);
+    assert_int_equal(sc->output.timeseries_every, 10);
+}
+
+/* An empty file, a comment-only file, a null document and empty sections
+ * all give exactly the defaults (plus path and name). */
+static void test_empty_documents_give_defaults(void **state)
+{
+    static const char *const docs[] = {
+        "", "# nothing here\n", "---\n", "~\n", "robots:\nobjects:\narena: {}\n",
+    };
+    fixture_t *fx = *state;
+    scenario_t *want = malloc(sizeof *want);
+    size_t i;
+    assert_non_null(want);
+    for (i = 0; i < sizeof docs / sizeof docs[0]; i++) {
+        assert_int_equal(load_sets(fx, "empty.yaml", docs[i], NULL), 0);
+        scenario_defaults(want);
+        snprintf(want->path, sizeof want->path, "%s", fx->path);
+        snprintf(want->name, sizeof want->name, "empty");
+        assert_string_equal(fx->sc->path, fx->path);
+        assert_string_equal(fx->sc->name, "empty");
+        assert_memory_equal(fx->sc, want, sizeof *want);
+    }
+    free(want);
+}
+
+static void test_name_from_path(void **state)
+{
+    fixture_t *fx = *state;
+    assert_int_equal(load_sets(fx, "foraging.v2.yaml", "seed: 3\n", NULL), 0);
+    assert_string_equal(fx->sc->name, "foraging.v2");
+    assert_int_equal(load_sets(fx, "noext", "seed: 3\n", NULL), 0);
+    assert_string_equal(fx->sc->name, "noext");
+    assert_int_equal(load_sets(fx, "x.yaml", "name: given name\n", NULL), 0);
+    assert_string_equal(fx->sc->name, "given name");
+    expect_load_error(fx, "name: aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\n", 1,
+                      "name: 'aaaa");
+    assert_non_null(strstr(fx->err, "is longer than 63 characters"));
+    expect_load_error(fx, "name: ''\n", 1, "name: expected a non-empty string");
+}
+
+/* ---------------------------------------------------------------- full file */
+
+static const char full_yaml[] =
+    "name: full\n"
+    "seed: 18446744073709551615\n"
+    "duration: 1.5e3\n"
+    "control_period_ms: 50\n"
+    "physics_substeps: 8\n"
+    "arena:\n"
+    "  width: 6\n"
+    "  height: 3.5\n"
+    "  wall_thickness: 0.1\n"
+    "nest:\n"
+    "  enabled: true\n"
+    "  x: -2\n"
+    "  y: 1\n"
+    "  diameter: 1.2\n"
+    "robots:\n"
+    "  count: 100000\n"
+    "  placement: nest\n"
+    "  min_spacing: 0.1\n"
+    "objects:\n"
+    "  - shape: cylinder\n"
+    "    x: 1\n"
+    "    y: -1\n"
+    "    radius: 0.2\n"
+    "    height: 0.3\n"
+    "    colour: red\n"
+    "  - {shape: box, x: 2, y: 0.5, width: 0.4, depth: 0.2, angle: 30, colour: blue}\n"
+    "lights:\n"
+    "  - {x: 0.5, y: 0.25, height: 0.4, intensity: 2.5}\n"
+    "  - {x: -1, y: -1}\n"
+    "controller:\n"
+    "  name: random_walk\n"
+    "  params:\n"
+    "    speed_steps_s: 400\n"
+    "    turn_speed_steps_s: 200\n"
+    "    turn_chance: 655\n"
+    "    avoid_enter: 500\n"
+    "    avoid_exit: 250\n"
+    "ir:\n"
+    "  aperture: 20\n"
+    "  range: 0.07\n"
+    "  noise_rel: 0.05\n"
+    "  noise_abs: 10\n"
+    "ambient:\n"
+    "  dark: 3800\n"
+    "  half: 0.5\n"
+    "  noise_rel: 0.02\n"
+    "camera:\n"
+    "  fov: 60\n"
+    "  range: 1\n"
+    "  width_px: 64\n"
+    "  height_px: 48\n"
+    "ircom:\n"
+    "  range: 0.3\n"
+    "  loss: 0.25\n"
+    "  bearing_noise: 10\n"
+    "  range_noise_rel: 0.2\n"
+    "  quantise_bearing: false\n"
+    "  blocked_by_robots: True\n"
+    "wheels:\n"
+    "  speed_noise_rel: 0.05\n"
+    "output:\n"
+    "  timeseries_every: 5\n";
+
+static void test_full_file(void **state)
+{
+    fixture_t *fx = *state;
+    const scenario_t *sc = fx->sc;
+    assert_int_equal(load(fx, full_yaml), 0);
+    assert_string_equal(sc->name, "full");
+    assert_true(sc->seed == UINT64_MAX);
+    assert_float_equal(sc->duration, 1500.0, 1e-9);
+    assert_int_equal(sc->control_period_ms, 50);
+    assert_int_equal(sc->physics_substeps, 8);
+    assert_float_equal(sc->arena.width, 6.0, 1e-6);
+    assert_float_equal(sc->arena.height, 3.5, 1e-6);
+    assert_float_equal(sc->arena.wall_thickness, 0.1, 1e-6);
+    assert_int_equal(sc->nest.enabled, 1);
+    assert_float_equal(sc->nest.x, -2.0, 1e-6);
+    assert_float_equal(sc->nest.y, 1.0, 1e-6);
+    assert_float_equal(sc->nest.diameter, 1.2, 1e-6);
+    assert_int_equal(sc->robots.count, 100000);
+    assert_int_equal(sc->robots.placement, PLACE_NEST);
+    assert_float_equal(sc->robots.min_spacing, 0.1, 1e-6);
+
+    assert_int_equal(sc->object_count, 2);
+    assert_int_equal(sc->objects[0].shape, SHAPE_CYLINDER);
+    assert_float_equal(sc->objects[0].x, 1.0, 1e-6);
+    assert_float_equal(sc->objects[0].y, -1.0, 1e-6);
+    assert_float_equal(sc->objects[0].radius, 0.2, 1e-6);
+    assert_float_equal(sc->objects[0].height, 0.3, 1e-6);
+    assert_int_equal(sc->objects[0].colour, 1);
+    assert_int_equal(sc->objects[1].shape, SHAPE_BOX);
+    assert_float_equal(sc->objects[1].x, 2.0, 1e-6);
+    assert_float_equal(sc->objects[1].y, 0.5, 1e-6);
+    assert_float_equal(sc->objects[1].width, 0.4, 1e-6);
+    assert_float_equal(sc->objects[1].depth, 0.2, 1e-6);
+    assert_float_equal(sc->objects[1].angle, 30.0, 1e-6);
+    assert_float_equal(sc->objects[1].height, 0.05, 1e-6);  /* entry default */
+    assert_int_equal(sc->objects[1].colour, 3);
+
+    assert_int_equal(sc->light_count, 2);
+    assert_float_equal(sc->lights[0].x, 0.5, 1e-6);
+    assert_float_equal(sc->lights[0].y, 0.25, 1e-6);
+    assert_float_equal(sc->lights[0].height, 0.4, 1e-6);
+    assert_float_equal(sc->lights[0].intensity, 2.5, 1e-6);
+    assert_float_equal(sc->lights[1].x, -1.0, 1e-6);
+    assert_float_equal(sc->lights[1].height, 0.1, 1e-6);    /* entry defaults */
+    assert_float_equal(sc->lights[1].intensity, 1.0, 1e-6);
+
+    assert_string_equal(sc->controller.name, "random_walk");
+    assert_int_equal(rw_params(sc)->speed_steps_s, 400);
+    assert_int_equal(rw_params(sc)->turn_speed_steps_s, 200);
+    assert_int_equal(rw_params(sc)->turn_chance, 655);
+    assert_int_equal(rw_params(sc)->avoid_enter, 500);
+    assert_int_equal(rw_params(sc)->avoid_exit, 250);
+
+    assert_float_equal(sc->ir.aperture, 20.0, 1e-6);
+    assert_float_equal(sc->ir.range, 0.07, 1e-6);
+    assert_float_equal(sc->ir.noise_rel, 0.05, 1e-6);
+    assert_float_equal(sc->ir.noise_abs, 10.0, 1e-6);
+    assert_float_equal(sc->ambient.dark, 3800.0, 1e-6);
+    assert_float_equal(sc->ambient.half, 0.5, 1e-6);
+    assert_float_equal(sc->ambient.noise_rel, 0.02, 1e-6);
+    assert_float_equal(sc->camera.fov, 60.0, 1e-6);
+    assert_float_equal(sc->camera.range, 1.0, 1e-6);
+    assert_int_equal(sc->camera.width_px, 64);
+    assert_int_equal(sc->camera.height_px, 48);
+    assert_float_equal(sc->ircom.range, 0.3, 1e-6);
+    assert_float_equal(sc->ircom.loss, 0.25, 1e-6);
+    assert_float_equal(sc->ircom.bearing_noise, 10.0, 1e-6);
+    assert_float_equal(sc->ircom.range_noise_rel, 0.2, 1e-6);
+    assert_int_equal(sc->ircom.quantise_bearing, 0);
+    assert_int_equal(sc->ircom.blocked_by_robots, 1);
+    assert_float_equal(sc->wheels.speed_noise_rel, 0.05, 1e-6);
+    assert_int_equal(sc->output.timeseries_every, 5);
+}
+
+/* ---------------------------------------------------------------- errors */
+
+typedef struct bad_case {
+    const char *yaml;
+    int line;
+    const char *rest;  /* what follows "FILE:LINE: " */
+} bad_case_t;
+
+static void expect_cases(fixture_t *fx, const bad_case_t *cases, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        expect_load_error(fx, cases[i].yaml, cases[i].line, cases[i].rest);
+    }
+}
+
+static void test_exact_message_format(void **state)
+{
+    fixture_t *fx = *state;
+    char want[1024];
+    assert_int_equal(load(fx, "seed: 4\nrobots:\n  count: 2.5\n"), -1);
+    snprintf(want, sizeof want, "%s:3: robots.count: expected an integer, got '2.5'", fx->path);
+    assert_string_equal(fx->err, want);
+}
+
+static void test_syntax_errors(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "a: 1\nrobots:\n  count: [1, 2\n", 4, "YAML syntax error: " },
+        { "robots:\n  count: 5\n bad: 1\n", 3, "YAML syntax error: did not find expected key" },
+        { "robots:\n  count: 5\n  placement: \"grid\n", 4, "YAML syntax error: " },
+        { "robots:\n\tcount: 5\n", 2, "YAML syntax error: " },
+        { "seed: 1\n---\nseed: 2\n", 2, "only one YAML document is allowed" },
+        { "a: &x 1\nb: *x\n", 2, "YAML aliases (*x) are not supported" },
+        { "seed: 1\nname: !!str 5\n", 2, "YAML tags" },
+        { "? [a]\n: b\n", 1, "a mapping key must be a scalar" },
+    };
+    expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
+}
+
+static void test_unknown_keys(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "seed: 1\nrobots:\n  cuont: 5\n", 3,
+          "robots.cuont: unknown key 'cuont' (did you mean 'count'?)" },
+        { "duraton: 5\n", 1, "duraton: unknown key 'duraton' (did you mean 'duration'?)" },
+        { "robots:\n  zzzzzz: 1\n", 2,
+          "robots.zzzzzz: unknown key 'zzzzzz' (valid keys: count, placement, min_spacing)" },
+        { "objects:\n  - radius: 0.1\n  - radius: 0.1\n    colur: red\n", 4,
+          "objects[1].colur: unknown key 'colur' (did you mean 'colour'?)" },
+        { "controller:\n  params:\n    speed: 3\n", 3,
+          "controller.params.speed: unknown key 'speed' (valid keys: speed_steps_s," },
+    };
+    expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
+}
+
+static void test_wrong_types(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "duration: abc\n", 1, "duration: expected a number, got 'abc'" },
+        { "duration:\n", 1, "duration: expected a number, got nothing" },
+        { "duration: nan\n", 1, "duration: expected a number, got 'nan'" },
+        { "duration: .inf\n", 1, "duration: expected a number, got '.inf'" },
+        { "duration: 0x10\n", 1, "duration: expected a number, got '0x10'" },
+        { "duration: 1.5s\n", 1, "duration: expected a number, got '1.5s'" },
+        { "duration: \"10\"\n", 1, "duration: expected a number, got the string \"10\"" },
+        { "robots:\n  count: 2.5\n", 2, "robots.count: expected an integer, got '2.5'" },
+        { "robots:\n  count: 1e3\n", 2, "robots.count: expected an integer, got '1e3'" },
+        { "robots:\n  count: 12abc\n", 2, "robots.count: expected an integer, got '12abc'" },
+        { "robots:\n  count: [1]\n", 2, "robots.count: expected an integer, got a sequence" },
+        { "seed: \"5\"\n", 1, "seed: expected an integer, got the string \"5\"" },
+        { "nest:\n  enabled: yes\n", 2, "nest.enabled: expected true/false, got 'yes'" },
+        { "nest:\n  enabled: 1\n", 2, "nest.enabled: expected true/false, got '1'" },
+        { "arena: 5\n", 1, "arena: expected a mapping, got '5'" },
+        { "arena: [1, 2]\n", 1, "arena: expected a mapping, got a sequence" },
+        { "objects:\n  shape: box\n", 2, "objects: expected a sequence, got a mapping" },
+        { "objects:\n  - 5\n", 2, "objects[0]: expected a mapping, got '5'" },
+        { "lights:\n  -\n", 2, "lights[0]: expected a mapping, got nothing" },
+        { "name: [a]\n", 1, "name: expected a string, got a sequence" },
+        { "controller: random_walk\n", 1, "controller: expected a mapping, got 'random_walk'" },
+        { "- a\n- b\n", 1, "expected a mapping of keys at the top level, got a sequence" },
+    };
+    expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
+}
+
+static void test_out_of_range(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "robots:\n  count: 200000\n", 2, "robots.count: 200000 is out of range [0, 100000]" },
+        { "robots:\n  count: -1\n", 2, "robots.count: -1 is out of range [0, 100000]" },
+        { "robots:\n  count: 99999999999999999999999\n", 2,
+          "robots.count: 99999999999999999999999 is out of range [0, 100000]" },
+        { "seed: 18446744073709551616\n", 1,
+          "seed: 18446744073709551616 is out of range [0, 18446744073709551615]" },
+        { "seed: -1\n", 1, "seed: -1 is out of range [0, 18446744073709551615]" },
+        { "arena:\n  width: 0.05\n", 2, "arena.width: 0.05 is out of range [0.1, 1000]" },
+        { "duration: 0\n", 1, "duration: 0 is out of range [0.001, 10000000]" },
+        { "duration: 1e400\n", 1, "duration: 1e400 is out of range" },
+        { "control_period_ms: 0\n", 1, "control_period_ms: 0 is out of range [1, 10000]" },
+        { "physics_substeps: 65\n", 1, "physics_substeps: 65 is out of range [1, 64]" },
+        { "ircom:\n  loss: 1.5\n", 2, "ircom.loss: 1.5 is out of range [0, 1]" },
+        { "output:\n  timeseries_every: 0\n", 2, "output.timeseries_every: 0 is out of range" },
+        { "lights:\n  - {x: 0, y: 0, intensity: -1}\n", 2,
+          "lights[0].intensity: -1 is out of range [0, 1000000]" },
+        { "duration: 0.05\n", 1, "duration: 0.05 s is shorter than one control period (0.1 s)" },
+    };
+    expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
+}
+
+static void test_number_forms(void **state)
+{
+    fixture_t *fx = *state;
+    assert_int_equal(load(fx, "seed: 007\nduration: +2\nrobots:\n  count: +5\n"
+                              "arena:\n  width: .5e1\n  height: 3.\n"),
+                     0);
+    assert_int_equal(fx->sc->seed, 7);
+    assert_float_equal(fx->sc->duration, 2.0, 1e-9);
+    assert_int_equal(fx->sc->robots.count, 5);
+    assert_float_equal(fx->sc->arena.width, 5.0, 1e-6);
+    assert_float_equal(fx->sc->arena.height, 3.0, 1e-6);
+    assert_int_equal(load(fx, "seed: -0\nnest:\n  enabled: FALSE\n"), 0);
+    assert_int_equal(fx->sc->seed, 0);
+    assert_int_equal(fx->sc->nest.enabled, 0);
+}
+
+static void test_bad_enum(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "robots:\n  placement: spiral\n", 2,
+          "robots.placement: expected one of random|nest|grid, got 'spiral'" },
+        { "robots:\n  placement: gird\n", 2,
+          "robots.placement: expected one of random|nest|grid, got 'gird' (did you mean 'grid'?)" },
+        { "robots:\n  placement: [grid]\n", 2,
+          "robots.placement: expected one of random|nest|grid, got a sequence" },
+        { "objects:\n  - shape: sphere\n", 2,
+          "objects[0].shape: expected one of cylinder|box, got 'sphere'" },
+        { "objects:\n  - radius: 1\n    colour: purple\n", 3,
+          "objects[0].colour: expected one of none|red|green|blue, got 'purple'" },
+    };
+    expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
+}
+
+static void test_duplicate_keys(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "seed: 1\nrobots:\n  count: 2\n  count: 3\n", 4,
+          "robots.count: duplicate key 'count' (first on line 3)" },
+        { "seed: 1\nseed: 2\n", 2, "seed: duplicate key 'seed' (first on line 1)" },
+        { "objects:\n  - {radius: 1, radius: 2}\n", 2,
+          "objects[0].radius: duplicate key 'radius'" },
+    };
+    expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
+}
+
+static void test_missing_file(void **state)
+{
+    fixture_t *fx = *state;
+    char want[700];
+    snprintf(fx->path, sizeof fx->path, "%s/does-not-exist.yaml", tmpdir);
+    assert_int_equal(scenario_load(fx->path, NULL, 0, fx->sc, fx->err), -1);
+    snprintf(want, sizeof want, "%s: cannot open: No such file or directory", fx->path);
+    assert_string_equal(fx->err, want);
+    assert_int_equal(scenario_load(tmpdir, NULL, 0, fx->sc, fx->err), -1);
+    snprintf(want, sizeof want, "%s: cannot open: Is a directory", tmpdir);
+    assert_string_equal(fx->err, want);
+}
+
+static void test_invalid_utf8(void **state)
+{
+    expect_load_error(*state, "name: \xff\xfe\n", 0, "cannot read: ");
+}
+
+/* Builds "objects:\n" and `n` one-line entries (entry i is on line i + 2). */
+static char *many_objects(size_t n)
+{
+    static const char entry[] = "  - {x: 0, y: 0, radius: 0.01}\n";
+    char *text = malloc(16 + n * (sizeof entry - 1));
+    size_t i, used;
+    assert_non_null(text);
+    used = (size_t)sprintf(text, "objects:\n");
+    for (i = 0; i < n; i++) {
+        memcpy(text + used, entry, sizeof entry - 1);
+        used += sizeof entry - 1;
+    }
+    text[used] = '\0';
+    return text;
+}
+
+static void test_too_many_entries(void **state)
+{
+    fixture_t *fx = *state;
+    char *ok = many_objects(SCENARIO_MAX_OBJECTS);
+    char *bad = many_objects(SCENARIO_MAX_OBJECTS + 1);
+    char lights[2048] = "lights:\n";
+    int i;
+    assert_int_equal(load(fx, ok), 0);
+    assert_int_equal(fx->sc->object_count, SCENARIO_MAX_OBJECTS);
+    expect_load_error(fx, bad, SCENARIO_MAX_OBJECTS + 2,
+                      "objects[4096]: too many objects (at most 4096)");
+    for (i = 0; i <= SCENARIO_MAX_LIGHTS; i++) {
+        strcat(lights, "  - {x: 0, y: 0}\n");
+    }
+    expect_load_error(fx, lights, SCENARIO_MAX_LIGHTS + 2,
+                      "lights[16]: too many lights (at most 16)");
+    free(ok);
+    free(bad);
+}
+
+/* Inputs that must fail cleanly (and not crash or leak). */
+static void test_hostile_inputs(void **state)
+{
+    fixture_t *fx = *state;
+    char deep[1200], longkey[3000], want[200];
+    memset(deep, '[', 500);
+    memset(deep + 500, ']', 500);
+    deep[1000] = '\0';
+    expect_load_error(fx, deep, 1, "nested deeper than 64 levels");
+    memset(longkey, 'k', 1000);
+    memcpy(longkey + 1000, ": 1\n", 5);
+    assert_int_equal(load(fx, longkey), -1);
+    memset(want, 'k', 64);  /* the key is cut to 64 characters in messages */
+    snprintf(want + 64, sizeof want - 64, ": unknown key '%.64s' (valid keys: name,", longkey);
+    assert_error_at(fx, 1, want);
+    memset(longkey, 'k', 2000);  /* libyaml: a simple key is at most 1024 chars */
+    memcpy(longkey + 2000, ": 1\n", 5);
+    expect_load_error(fx, longkey, 1, "YAML syntax error");
+    expect_load_error(fx, "objects: [[[1]]]\n", 1, "objects[0]: expected a mapping, got a sequence");
+    expect_load_error(fx, "{a: 1\n", 2, "YAML syntax error");
+    expect_load_error(fx, "robots: {count: 5}: 3\n", 1, "YAML syntax error");
+    expect_load_error(fx, "&a [*a]\n", 1, "YAML aliases (*a) are not supported");
+    expect_load_error(fx, "'unterminated\n", 2, "YAML syntax error");
+    expect_load_error(fx, "robots: &r {count: 5}\nnest: *r\n", 2, "YAML aliases (*r)");
+}
+
+/* ---------------------------------------------------------------- objects */
+
+static void test_object_shapes(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "objects:\n  - shape: cylinder\n    x: 1\n", 2,
+          "objects[0].radius: a cylinder needs radius > 0" },
+        { "objects:\n  - radius: 0.1\n  - shape: cylinder\n    x: 1\n    radius: 0\n", 5,
+          "objects[1].radius: a cylinder needs radius > 0" },
+        { "objects:\n  - {shape: box, width: 0.2, depth: 0.1}\n  - {shape: box, width: 0.2}\n"
+          "  - radius: 0.1\n", 3, "objects[1].depth: a box needs depth > 0" },
+        { "objects:\n  - shape: box\n    width: 0\n    depth: 1\n", 3,
+          "objects[0].width: a box needs width > 0" },
+        { "objects:\n  - radius: 0.1\n  - radius: 0.1\n  - radius: 0.1\n  - radius: -1\n", 5,
+          "objects[3].radius: -1 is out of range [0, 500]" },
+    };
+    expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
+}
+
+static void test_objects_inside_arena(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "objects:\n  - {x: 0, y: 0, radius: 0.1}\n  - x: 1.95\n    radius: 0.1\n", 3,
+          "objects[1]: the cylinder reaches outside the arena (x in [-2, 2], y in [-2, 2] m)" },
+        { "objects:\n  - {shape: box, x: 1.9, width: 1, depth: 0.1}\n", 2,
+          "objects[0]: the box reaches outside the arena" },
+        { "arena:\n  height: 1\nobjects:\n  - {y: -0.6, radius: 0.2}\n", 4,
+          "objects[0]: the cylinder reaches outside the arena (x in [-2, 2], y in [-0.5, 0.5] m)" },
+        { "lights:\n  - {x: 3, y: 0}\n", 2, "lights[0]: the light is outside the arena" },
+        { "nest:\n  enabled: true\n  x: 1.9\n  diameter: 0.5\n", 2,
+          "nest: the nest circle reaches outside the arena" },
+        { "robots:\n  count: 5\n  placement: nest\n", 3,
+          "robots.placement: 'nest' needs nest.enabled: true" },
+    };
+    fixture_t *fx = *state;
+    expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
+    /* Touching a wall is fine; a rotated box is checked by its footprint;
+     * a disabled nest is not checked. */
+    assert_int_equal(load(fx, "objects:\n  - {x: 1.9, radius: 0.1}\n"
+                              "  - {shape: box, x: -1.9, width: 1, depth: 0.1, angle: 90}\n"
+                              "nest: {enabled: false, x: 5}\n"),
+                     0);
+    assert_int_equal(fx->sc->object_count, 2);
+    assert_float_equal(fx->sc->objects[1].angle, 90.0, 1e-6);
+}
+
+/* ---------------------------------------------------------------- overrides */
+
+static void test_override_existing_and_absent(void **state)
+{
+    static const char *const sets[] = {
+        "robots.count=7", "nest.enabled=true", "controller.params.speed_steps_s=300",
+        "name='with space'", "duration=30", NULL,
+    };
+    fixture_t *fx = *state;
+    assert_int_equal(load_sets(fx, "s.yaml", "robots:\n  count: 5\nduration: 10\n", sets), 0);
+    assert_int_equal(fx->sc->robots.count, 7);
+    assert_int_equal(fx->sc->nest.enabled, 1);
+    assert_int_equal(rw_params(fx->sc)->speed_steps_s, 300);
+    assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);  /* default kept */
+    assert_string_equal(fx->sc->name, "with space");
+    assert_float_equal(fx->sc->duration, 30.0, 1e-9);
+}
+
+static void test_override_later_wins_and_fixes_file(void **state)
+{
+    static const char *const sets[] = { "robots.count=abc", "robots.count=9", NULL };
+    fixture_t *fx = *state;
+    /* The file's bad value is replaced before the check. */
+    assert_int_equal(load_sets(fx, "s.yaml", "robots:\n  count: nope\n", sets), 0);
+    assert_int_equal(fx->sc->robots.count, 9);
+}
+
+static void test_override_sequences(void **state)
+{
+    static const char *const sets[] = {
+        "objects.1.x=1.5", "objects[0].radius=0.3", "objects.2.radius=0.1",
+        "objects[2].colour=green", "lights.0.y=-1", NULL,
+    };
+    static const char *const clear[] = { "objects=[]", NULL };
+    static const char yaml[] = "objects:\n  - radius: 0.1\n  - {x: 0, radius: 0.2}\n";
+    fixture_t *fx = *state;
+    assert_int_equal(load_sets(fx, "s.yaml", yaml, sets), 0);
+    assert_int_equal(fx->sc->object_count, 3);
+    assert_float_equal(fx->sc->objects[0].radius, 0.3, 1e-6);
+    assert_float_equal(fx->sc->objects[1].x, 1.5, 1e-6);
+    assert_float_equal(fx->sc->objects[1].radius, 0.2, 1e-6);
+    assert_float_equal(fx->sc->objects[2].radius, 0.1, 1e-6);  /* appended */
+    assert_int_equal(fx->sc->objects[2].colour, 2);
+    assert_int_equal(fx->sc->light_count, 1);                 /* created */
+    assert_float_equal(fx->sc->lights[0].y, -1.0, 1e-6);
+    assert_int_equal(load_sets(fx, "s.yaml", yaml, clear), 0);
+    assert_int_equal(fx->sc->object_count, 0);
+}
+
+static void test_override_errors(void **state)
+{
+    fixture_t *fx = *state;
+    static const char two[] = "objects:\n  - radius: 0.1\n  - radius: 0.1\n";
+    char want[1024];
+    const char *sets[] = { "robots.count=abc", NULL };
+    assert_int_equal(load_sets(fx, "s.yaml", "robots:\n  count: 5\n", sets), -1);
+    assert_string_equal(fx->err, "--set robots.count=abc: robots.count: expected an integer, "
+                                 "got 'abc'");
+    expect_set_error(fx, "", "robots.count", "expected key.path=value");
+    expect_set_error(fx, "", "robots.cuont=5",
+                     "robots.cuont: unknown key 'cuont' (did you mean 'count'?)");
+    expect_set_error(fx, "", "foo.bar=1", "foo: unknown key 'foo'");
+    expect_set_error(fx, "", "robots.count=200000",
+                     "robots.count: 200000 is out of range [0, 100000]");
+    expect_set_error(fx, two, "objects.5.x=1",
+                     "objects[5]: index out of range (the sequence has 2 entries)");
+    expect_set_error(fx, two, "objects.x=1", "objects: expected an index into the sequence");
+    expect_set_error(fx, two, "objects.2.x=1", "objects[2].radius: a cylinder needs radius > 0");
+    expect_set_error(fx, "robots:\n  count: 5\n", "robots.count.x=1",
+                     "robots.count: expected a mapping, got '5'");
+    expect_set_error(fx, "robots:\n  count: 5\n", "robots[0]=1",
+                     "robots: expected a sequence, got a mapping");
+    expect_set_error(fx, "robots:\n  count: 5\n", "robots.0=1", "robots.0: unknown key '0'");
+    expect_set_error(fx, "", "robots.0=1", "robots: expected a mapping, got a sequence");
+    expect_set_error(fx, "", "a..b=1", "malformed key path 'a..b'");
+    expect_set_error(fx, "", "=5", "malformed key path ''");
+    expect_set_error(fx, "", "robots.=5", "malformed key path");
+    expect_set_error(fx, "", "objects[x].radius=1", "malformed key path");
+    expect_set_error(fx, "", "name=[", "value: YAML syntax error");
+    expect_set_error(fx, "", "name=", "name: expected a string, got nothing");
+    expect_set_error(fx, "", "controller.name=foo",
+                     "controller.name: unknown controller 'foo' (valid: random_walk");
+    /* A file error keeps its file line even with valid overrides. */
+    sets[0] = "seed=2";
+    assert_int_equal(load_sets(fx, "s.yaml", "seed: 1\nrobots:\n  count: x\n", sets), -1);
+    snprintf(want, sizeof want, "%s:3: robots.count: expected an integer, got 'x'", fx->path);
+    assert_string_equal(fx->err, want);
+}
+
+/* ---------------------------------------------------------------- controller */
+
+static void test_controller_params(void **state)
+{
+    fixture_t *fx = *state;
+    static const char *const sets[] = { "controller.params.turn_chance=70000", NULL };
+    /* params before name: still the named controller's keys and defaults. */
+    assert_int_equal(load(fx, "controller:\n  params:\n    speed_steps_s: 200\n"
+                              "  name: random_walk\n"),
+                     0);
+    assert_int_equal(rw_params(fx->sc)->speed_steps_s, 200);
+    assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);
+    assert_int_equal(rw_params(fx->sc)->turn_chance, 1311);
+    expect_load_error(fx, "controller:\n  name: nosuch\n", 2,
+                      "controller.name: unknown controller 'nosuch' (valid: random_walk");
+    expect_load_error(fx, "controller:\n  params:\n    turn_speed_steps_s: 0\n", 3,
+                      "controller.params.turn_speed_steps_s: 0 is out of range [1, 1000]");
+    expect_load_error(fx, "controller:\n  params: 5\n", 2,
+                      "controller.params: expected a mapping, got '5'");
+    expect_load_error(fx, "controller:\n  nmae: random_walk\n", 2,
+                      "controller.nmae: unknown key 'nmae' (did you mean 'name'?)");
+    assert_int_equal(load_sets(fx, "s.yaml", "", sets), -1);
+    assert_string_equal(fx->err, "--set controller.params.turn_chance=70000: "
+                                 "controller.params.turn_chance: 70000 is out of range "
+                                 "[0, 65535]");
+}
+
+/* ---------------------------------------------------------------- --help */
+
+static void test_print_schema(void **state)
+{
+    static const char *const wanted[] = {
+        "seed", "robots.count", "[0, 100000]", "random|nest|grid", "objects[].radius",
+        "lights[].intensity", "controller.params.speed_steps_s", "ircom.quantise_bearing",
+        "output.timeseries_every", "arena.width", "0.05",
+    };
+    char *text = NULL;
+    size_t len = 0, i;
+    FILE *f = open_memstream(&text, &len);
+    (void)state;
+    assert_non_null(f);
+    scenario_print_schema(f);
+    assert_int_equal(fclose(f), 0);
+    for (i = 0; i < sizeof wanted / sizeof wanted[0]; i++) {
+        if (strstr(text, wanted[i]) == NULL) {
+            print_error("schema lacks '%s'\n", wanted[i]);
+            free(text);
+            fail();
+        }
+    }
+    free(text);
+}
+
+#define T(f) cmocka_unit_test_setup_teardown(f, setup, teardown)
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        T(test_defaults),
+        T(test_empty_documents_give_defaults),
+        T(test_name_from_path),
+        T(test_full_file),
+        T(test_exact_message_format),
+        T(test_syntax_errors),
+        T(test_unknown_keys),
+        T(test_wrong_types),
+        T(test_out_of_range),
+        T(test_number_forms),
+        T(test_bad_enum),
+        T(test_duplicate_keys),
+        T(test_missing_file),
+        T(test_invalid_utf8),
+        T(test_too_many_entries),
+        T(test_hostile_inputs),
+        T(test_object_shapes),
+        T(test_objects_inside_arena),
+        T(test_override_existing_and_absent),
+        T(test_override_later_wins_and_fixes_file),
+        T(test_override_sequences),
+        T(test_override_errors),
+        T(test_controller_params),
+        T(test_print_schema),
+    };
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+}
