@@ -114,20 +114,25 @@ int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band);
 int8_t hal_speaker_set(hal_t *hal, uint8_t band);
 
 /* ------------------------------------------------------------------ */
-/* IR local communication (libIrcom style: 8 data bits per frame)      */
+/* IR local communication                                              */
 /* ------------------------------------------------------------------ */
+
+/** Data bits a platform carries per message: 8 with libIrcom on the bare
+ *  e-puck, 16 with the range-and-bearing turret (e-RandB).  Bits above the
+ *  platform's width are dropped by the sender. */
+uint8_t hal_ircom_payload_bits(hal_t *hal);
 
 /** A received message with the receiver's estimate of where it came from. */
 typedef struct hal_ircom_msg {
-    uint8_t value;         /**< the 8 data bits */
+    uint16_t value;        /**< the data bits (see hal_ircom_payload_bits) */
     uint8_t sensor;        /**< IR sensor that received it, 0..7 */
     int16_t bearing_mrad;  /**< bearing of the sender, CCW positive */
     uint16_t range_mm;     /**< estimated range to the sender */
 } hal_ircom_msg_t;
 
-/** Queues one byte for transmission during the next control period.
- *  Returns 0, or -1 if a byte is already queued for this period. */
-int8_t hal_ircom_send(hal_t *hal, uint8_t value);
+/** Queues one message for transmission during this control period.
+ *  Returns 0, or -1 if a message is already queued for this period. */
+int8_t hal_ircom_send(hal_t *hal, uint16_t value);
 
 /** Pops the oldest received message into `out`.  Returns 1 if a message
  *  was popped, 0 if the queue is empty. */

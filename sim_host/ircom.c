@@ -1,7 +1,7 @@
 /*
  * ircom.c - IR local communication between robots (libIrcom style).
  *
- * A byte queued by hal_ircom_send during step t reaches every robot within
+ * A message queued by hal_ircom_send during step t reaches every robot within
  * `ircom.range` (centre to centre) whose line of sight to the sender is not
  * blocked by an obstacle (nor by a robot when `blocked_by_robots`), unless
  * it is lost (probability `ircom.loss`, drawn at the receiver).  It is
@@ -48,7 +48,7 @@ static int blocked(struct sim *sim, uint32_t from, uint32_t to)
     return 0;
 }
 
-static void receive(struct sim *sim, uint32_t to, uint32_t from, uint8_t value)
+static void receive(struct sim *sim, uint32_t to, uint32_t from, uint16_t value)
 {
     sim_robot_t *r = &sim->robots[to];
     const sim_robot_t *s = &sim->robots[from];
@@ -95,7 +95,7 @@ void ircom_deliver(struct sim *sim)
         if (s->ircom_tx < 0) {
             continue;
         }
-        uint8_t value = (uint8_t)s->ircom_tx;
+        uint16_t value = (uint16_t)s->ircom_tx;
         s->ircom_tx = -1;
         uint32_t n = sim_gather_robots(sim, s->x - reach, s->y - reach, s->x + reach, s->y + reach, near,
                                        IRCOM_MAX_NEAR);

@@ -342,6 +342,8 @@ static const param_desc_t ircom_params[] = {
       "report the receiving sensor's bearing" },
     { "blocked_by_robots", PARAM_BOOL, SC(ircom.blocked_by_robots), 0, 1, NULL,
       "robots also block line of sight" },
+    { "payload_bits", PARAM_U8, SC(ircom.payload_bits), 8, 16, NULL,
+      "data bits per message: 8 libIrcom, 16 range-and-bearing turret" },
     PARAM_END
 };
 
@@ -455,6 +457,7 @@ void scenario_defaults(scenario_t *out)
     out->ircom.range_noise_rel = 0.1f;
     out->ircom.quantise_bearing = 1;
     out->ircom.blocked_by_robots = 0;
+    out->ircom.payload_bits = 8;
     out->wheels.speed_noise_rel = 0.0f;
     out->output.timeseries_every = 10;
 }

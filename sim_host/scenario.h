@@ -112,6 +112,7 @@ typedef struct scenario {
         float range_noise_rel;     /**< relative Gaussian sd of the range */
         uint8_t quantise_bearing;  /**< report the receiving sensor's bearing */
         uint8_t blocked_by_robots; /**< robots also block line of sight */
+        uint8_t payload_bits;      /**< 8 (libIrcom) or 16 (range-and-bearing turret) */
     } ircom;
 
     struct {

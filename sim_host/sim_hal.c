@@ -74,13 +74,15 @@ int8_t hal_speaker_set(hal_t *hal, uint8_t band)
     return HAL_NOT_MODELLED;
 }
 
-int8_t hal_ircom_send(hal_t *hal, uint8_t value)
+uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->sim->sc->ircom.payload_bits; }
+
+int8_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
     sim_robot_t *r = robot(hal);
     if (r->ircom_tx >= 0) {
         return -1;
     }
-    r->ircom_tx = value;
+    r->ircom_tx = (int32_t)(value & (uint16_t)((1u << hal->sim->sc->ircom.payload_bits) - 1u));
     return 0;
 }
 

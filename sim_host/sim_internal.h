@@ -38,7 +38,7 @@ typedef struct sim_robot {
     hal_blob_t blobs[HAL_MAX_BLOBS];
     uint8_t blob_count;
 
-    int16_t ircom_tx;              /**< byte to send this step, or -1 */
+    int32_t ircom_tx;              /**< message to send this step, or -1 */
     hal_ircom_msg_t rx[SIM_IRCOM_QUEUE];
     uint8_t rx_head, rx_count;
     uint32_t rx_dropped;

@@ -360,6 +360,13 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     assert_true(m.range_mm > 75 && m.range_mm < 225);
     assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 1), &m), 0);  /* not to itself */
 
+    /* 8-bit payloads (libIrcom) drop the high byte; 16-bit keep it. */
+    assert_int_equal(hal_ircom_payload_bits(sim_robot_hal(sim, 1)), 8);
+    hal_ircom_send(sim_robot_hal(sim, 1), 0x1234);
+    sim_step(sim);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 1);
+    assert_int_equal(m.value, 0x34);
+
     /* Out of range (0.25 m). */
     sim_set_robot_pose(sim, 1, 0.0, 0.4, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 1);
@@ -372,6 +379,17 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     hal_ircom_send(sim_robot_hal(sim, 1), 2);
     sim_step(sim);
     assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);
+    sim_destroy(sim);
+
+    /* 16-bit payload (range-and-bearing turret). */
+    sc->ircom.payload_bits = 16;
+    sim = make(sc, 13);
+    sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+    sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
+    hal_ircom_send(sim_robot_hal(sim, 1), 0xBEEF);
+    sim_step(sim);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 1);
+    assert_int_equal(m.value, 0xBEEF);
     sim_destroy(sim);
 
     /* Loss 1: nothing arrives. */
