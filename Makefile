@@ -96,7 +96,7 @@ unit-tests: $(TESTS)
 
 asan-tests: $(TESTS_ASAN)
 	@set -e; for t in $(TESTS_ASAN); do echo "== $$t (ASan/UBSan)"; \
-	  (cd tests && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ../$$t); done
+	  (cd tests && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 ../$$t); done
 
 cli-tests: $(BUILD)/swarmsim
 	@set -e; for t in $(sort $(wildcard tests/cli/*.sh)); do echo "== $$t"; bash $$t $(BUILD)/swarmsim; done

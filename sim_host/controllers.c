@@ -46,10 +46,10 @@ static const char *idle_state(const void *state) { (void)state; return "idle"; }
 
 static const sim_controller_t registry[] = {
     { "random_walk", "random walk with IR obstacle avoidance (seed 000's ASM, A(t) = 0)",
-      sizeof(random_walk_t), sizeof(random_walk_params_t), random_walk_param_descs,
-      rw_defaults, rw_init, rw_step, rw_oae, rw_state },
+      sizeof(random_walk_t), sizeof(random_walk_params_t), random_walk_param_descs, NULL,
+      rw_defaults, rw_init, rw_step, rw_oae, rw_state, NULL, NULL },
     { "idle", "no firmware: robots keep the wheel speeds set through their hal_t",
-      0, 0, idle_param_descs, idle_defaults, idle_init, idle_step, idle_oae, idle_state },
+      0, 0, idle_param_descs, NULL, idle_defaults, idle_init, idle_step, idle_oae, idle_state, NULL, NULL },
 };
 
 const sim_controller_t *controllers_find(const char *name)

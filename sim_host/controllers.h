@@ -13,6 +13,7 @@
 
 #include "hal.h"
 #include "param.h"
+#include "scenario.h"
 
 typedef struct sim_controller {
     const char *name;            /**< scenario `controller.name` */
@@ -20,6 +21,8 @@ typedef struct sim_controller {
     size_t state_size;           /**< bytes of the state struct */
     size_t params_size;          /**< bytes of the params struct */
     const param_desc_t *params;  /**< keys of `controller.params` */
+    const char *const *policies; /**< `controller.policy` values, NULL-terminated,
+                                      the first is the default; NULL if none */
     void (*default_params)(void *params);
     void (*init)(void *state, const void *params, uint32_t seed);
     void (*step)(void *state, hal_t *hal);
@@ -27,6 +30,12 @@ typedef struct sim_controller {
     uint32_t (*oae_count)(const void *state);
     /** Name of the current state of the controller's state machine. */
     const char *(*state_name)(const void *state);
+    /** Copies what the robot is told about its task from the scenario
+     *  (policy, task constants) into its params; NULL if nothing. */
+    void (*configure)(void *params, const scenario_t *sc);
+    /** Seed 000's task state: 'W' waiting, 'S' searching, 'R' returning,
+     *  or 0 for controllers without one; NULL means always 0. */
+    char (*task_state)(const void *state);
 } sim_controller_t;
 
 /** The controller called `name`, or NULL. */

@@ -300,6 +300,34 @@ static const param_desc_t light_params[] = {
 static const param_desc_t controller_params[] = {
     { "name", PARAM_STRING, SC(controller.name), 0, 0, NULL,
       "registered controller (see controller.params below)" },
+    { "policy", PARAM_STRING, SC(controller.policy), 0, 0, NULL,
+      "variant of the controller (forager: drtm, artm, frtm; default the first)" },
+    PARAM_END
+};
+
+static const char *const information_choices[] = { "beacon", "global", NULL };
+
+static const param_desc_t foraging_params[] = {
+    { "enabled", PARAM_BOOL, SC(foraging.enabled), 0, 1, NULL,
+      "seed 000's foraging task: food tokens, nest ledger, energy metrics" },
+    { "food_count", PARAM_U32, SC(foraging.food_count), 0, 10000, NULL,
+      "N_f, food tokens kept in the arena (one respawns per delivery)" },
+    { "token_radius", PARAM_FLOAT, SC(foraging.token_radius), 0.005, 0.5, NULL, "token radius, m" },
+    { "token_height", PARAM_FLOAT, SC(foraging.token_height), 0.005, 1, NULL, "token height, m" },
+    { "token_energy", PARAM_FLOAT, SC(foraging.token_energy), 1, 1e9, NULL,
+      "energy units per food token" },
+    { "initial_food", PARAM_FLOAT, SC(foraging.initial_food), -1e6, 1e6, NULL,
+      "F(0), food tokens in the nest at the start" },
+    { "desired_food", PARAM_FLOAT, SC(foraging.desired_food), -1e6, 1e6, NULL,
+      "F_d, desired food tokens in the nest" },
+    { "consumption", PARAM_FLOAT, SC(foraging.consumption), 0, 1e6, NULL,
+      "C_rate, food the nest consumes, tokens/min" },
+    { "move_cost", PARAM_FLOAT, SC(foraging.move_cost), 0, 1e9, NULL,
+      "energy units per step per foraging robot" },
+    { "oae_energy", PARAM_FLOAT, SC(foraging.oae_energy), 0, 1e9, NULL,
+      "E_a, energy units per obstacle-avoidance event" },
+    { "information", PARAM_ENUM, SC(foraging.information), 0, 0, information_choices,
+      "beacon: a nest-beacon e-puck keeps the ledger; global: ideal information" },
     PARAM_END
 };
 
@@ -379,6 +407,7 @@ MAPPING_SCHEMA(camera);
 MAPPING_SCHEMA(ircom);
 MAPPING_SCHEMA(wheels);
 MAPPING_SCHEMA(output);
+MAPPING_SCHEMA(foraging);
 
 static const seq_desc_t objects_seq = {
     "objects", SCENARIO_MAX_OBJECTS, sizeof(object_def_t), &object_default, &object_schema,
@@ -408,6 +437,7 @@ static const child_t top_children[] = {
     { "ircom", CHILD_MAPPING, &ircom_schema, NULL, "IR communication" },
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
+    { "foraging", CHILD_MAPPING, &foraging_schema, NULL, "seed 000 foraging task" },
     CHILD_END
 };
 static const schema_t top_schema = { top_params, top_children };
@@ -460,6 +490,17 @@ void scenario_defaults(scenario_t *out)
     out->ircom.payload_bits = 8;
     out->wheels.speed_noise_rel = 0.0f;
     out->output.timeseries_every = 10;
+    out->foraging.enabled = 0;
+    out->foraging.food_count = 20;
+    out->foraging.token_radius = 0.0175f;
+    out->foraging.token_height = 0.042f;
+    out->foraging.token_energy = 1500.0f;
+    out->foraging.initial_food = 5.0f;
+    out->foraging.desired_food = 20.0f;
+    out->foraging.consumption = 2.0f;
+    out->foraging.move_cost = 1.0f;
+    out->foraging.oae_energy = 10.0f;
+    out->foraging.information = INFO_BEACON;
 }
 
 /* ---------------------------------------------------------------- scalars */
@@ -862,6 +903,34 @@ static int fill_params(const loader_t *ld, const ynode_t *node, const char *path
     return fill_mapping(ld, node, path, &schema, sc->controller.params.bytes);
 }
 
+/* controller.policy must be one of the controller's; empty means its first. */
+static int check_policy(const loader_t *ld, const ynode_t *node, const char *path,
+                        const sim_controller_t *ctrl, scenario_t *sc)
+{
+    char p[PATH_BUF], valid[256] = "";
+    size_t i;
+    join(p, path, "policy");
+    if (ctrl->policies == NULL || ctrl->policies[0] == NULL) {
+        if (sc->controller.policy[0] != '\0') {
+            return fail(ld, node_of(node, "policy"), p, "controller '%s' has no policies",
+                        ctrl->name);
+        }
+        return 0;
+    }
+    if (sc->controller.policy[0] == '\0') {
+        snprintf(sc->controller.policy, sizeof sc->controller.policy, "%s", ctrl->policies[0]);
+        return 0;
+    }
+    for (i = 0; ctrl->policies[i] != NULL; i++) {
+        if (strcmp(ctrl->policies[i], sc->controller.policy) == 0) {
+            return 0;
+        }
+        list_key(valid, sizeof valid, ctrl->policies[i]);
+    }
+    return fail(ld, node_of(node, "policy"), p, "unknown policy '%s' for controller '%s' (valid: %s)",
+                sc->controller.policy, ctrl->name, valid);
+}
+
 /* The keys and the name first (params are deferred), then the params of the
  * named controller over its defaults, whatever order the file uses. */
 static int fill_controller(const loader_t *ld, const ynode_t *node, const char *path,
@@ -882,6 +951,9 @@ static int fill_controller(const loader_t *ld, const ynode_t *node, const char *
         join(p, path, "name");
         return fail(ld, node_of(node, "name"), p, "unknown controller '%s' (valid: %s)",
                     sc->controller.name, valid);
+    }
+    if (check_policy(ld, node, path, ctrl, sc) != 0) {
+        return -1;
     }
     join(p, path, "params");
     return fill_params(ld, ytree_get(node, "params"), p, ctrl, sc);
@@ -954,6 +1026,11 @@ static int cross_check(const loader_t *ld, const ynode_t *root, const scenario_t
     if (sc->robots.placement == PLACE_NEST && !sc->nest.enabled) {
         return fail(ld, node_of(robots, "placement"), "robots.placement",
                     "'nest' needs nest.enabled: true");
+    }
+    if (sc->foraging.enabled && !sc->nest.enabled) {
+        const ynode_t *f = ytree_get(root, "foraging");
+        return fail(ld, node_of(f, "enabled"), "foraging.enabled",
+                    "the foraging task needs a nest (nest.enabled: true)");
     }
     if (sc->duration * 1000.0 < sc->control_period_ms) {
         const ynode_t *d = ytree_get(root, "duration");

@@ -42,6 +42,12 @@ typedef struct light_def {
     float intensity;    /**< relative: 1 gives irradiance 1 at 1 m */
 } light_def_t;
 
+/** Where robots in the nest learn the nest's state (seed 000, 3.2). */
+typedef enum foraging_info {
+    INFO_BEACON = 0,  /**< a nest-beacon e-puck keeps the ledger, IR broadcast */
+    INFO_GLOBAL = 1   /**< ideal: the simulator broadcasts the true values */
+} foraging_info_t;
+
 typedef enum placement { PLACE_RANDOM = 0, PLACE_NEST = 1, PLACE_GRID = 2 } placement_t;
 
 typedef struct scenario {
@@ -77,6 +83,8 @@ typedef struct scenario {
 
     struct {
         char name[32];             /**< a name registered in controllers.c */
+        char policy[16];           /**< variant, for controllers that have some
+                                        (forager: drtm, artm, frtm) */
         /** The controller's params struct, filled from its defaults and then
          *  from `controller.params`; interpreted by the controller. */
         union {
@@ -122,6 +130,22 @@ typedef struct scenario {
     struct {
         uint32_t timeseries_every; /**< control steps between CSV rows */
     } output;
+
+    /** The foraging task of seed 000 (section 2.3-2.4, 3.1).  Amounts of
+     *  food are in tokens; energy in units (one token = token_energy). */
+    struct {
+        uint8_t enabled;
+        uint32_t food_count;       /**< N_f tokens kept in the arena */
+        float token_radius;        /**< m (seed: 3.5 cm diameter) */
+        float token_height;        /**< m (seed: 4.2 cm) */
+        float token_energy;        /**< units per token (1500) */
+        float initial_food;        /**< F(0), tokens in the nest at start */
+        float desired_food;        /**< F_d, tokens */
+        float consumption;         /**< nest consumption C_rate, tokens/min */
+        float move_cost;           /**< units per step per foraging robot */
+        float oae_energy;          /**< E_a, units per obstacle-avoidance event */
+        int information;           /**< foraging_info_t */
+    } foraging;
 } scenario_t;
 
 /** One `--set key.path=value` override. */

@@ -28,7 +28,6 @@ check_all() {
     need libyaml-dev      pc yaml-0.1
     need libpng-dev       pc libpng
     need libosmesa6-dev   hdr GL/osmesa.h
-    need libglu1-mesa-dev hdr GL/glu.h
     need gcc-avr          command -v avr-gcc
     need avr-libc         hdr_avr
     need python3-venv     python3 -c 'import venv, ensurepip'
@@ -96,5 +95,5 @@ CMOCKA_LIBS := $(pkg-config --libs cmocka)
 YAML_LIBS := $(pkg-config --libs yaml-0.1)
 PNG_CFLAGS := $(pkg-config --cflags libpng)
 PNG_LIBS := $(pkg-config --libs libpng)
-GL_LIBS := -lOSMesa -lGLU
+GL_LIBS := -lOSMesa
 MK

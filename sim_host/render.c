@@ -1,0 +1,608 @@
+/*
+ * render.c - headless top-down pictures of the arena (see render.h).
+ *
+ * Drawing is legacy OpenGL 1.x immediate mode into an OSMesa colour buffer,
+ * in pixel coordinates (origin at the bottom-left, as GL has it); the PNG
+ * writer flips the rows.  Every shape is a flat-coloured polygon drawn in
+ * painter's order, with no depth buffer, blending, dithering or smoothing, so
+ * the picture holds exactly the palette colours of render.h.
+ */
+#include "render.h"
+
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+#include <png.h>
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI_F 3.14159265358979323846f
+
+struct render_ctx {
+    OSMesaContext gl;  /**< owned */
+    int w, h;          /**< picture size, px */
+    uint8_t *rgba;     /**< w*h*4 bytes, the OSMesa colour buffer, bottom row
+                            first; owned */
+    uint8_t *row;      /**< w*3 bytes, one PNG row; owned */
+};
+
+/* ------------------------------------------------------------------ */
+/* Errors                                                              */
+/* ------------------------------------------------------------------ */
+
+static void set_err(char *err, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+static void set_err(char *err, const char *fmt, ...)
+{
+    if (!err)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, RENDER_ERR_MAX, fmt, ap);
+    va_end(ap);
+}
+
+/** strerror, thread-safe (strerror_r: XSI, or GNU under _GNU_SOURCE). */
+static const char *errstr(int e, char *buf, size_t len)
+{
+#if defined(_GNU_SOURCE)
+    return strerror_r(e, buf, len);
+#else
+    if (strerror_r(e, buf, len) != 0)
+        snprintf(buf, len, "error %d", e);
+    return buf;
+#endif
+}
+
+/* ------------------------------------------------------------------ */
+/* Create / destroy                                                    */
+/* ------------------------------------------------------------------ */
+
+render_ctx_t *render_create(int width_px, int height_px, char *err)
+{
+    if (width_px < RENDER_MIN_PX || width_px > RENDER_MAX_PX ||
+        height_px < RENDER_MIN_PX || height_px > RENDER_MAX_PX) {
+        set_err(err, "render: picture size %dx%d px is out of range "
+                "(%d..%d each)", width_px, height_px, RENDER_MIN_PX,
+                RENDER_MAX_PX);
+        return NULL;
+    }
+    render_ctx_t *ctx = calloc(1, sizeof *ctx);
+    if (!ctx) {
+        set_err(err, "render: out of memory");
+        return NULL;
+    }
+    ctx->w = width_px;
+    ctx->h = height_px;
+    ctx->rgba = calloc((size_t)width_px * (size_t)height_px, 4);
+    ctx->row = malloc((size_t)width_px * 3);
+    if (!ctx->rgba || !ctx->row) {
+        set_err(err, "render: out of memory for a %dx%d picture",
+                width_px, height_px);
+        render_destroy(ctx);
+        return NULL;
+    }
+    /* Colour only: shapes are drawn in painter's order. */
+    ctx->gl = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, NULL);
+    if (!ctx->gl) {
+        set_err(err, "render: OSMesaCreateContextExt failed");
+        render_destroy(ctx);
+        return NULL;
+    }
+    /* Check now that the context can be bound and is big enough. */
+    if (!OSMesaMakeCurrent(ctx->gl, ctx->rgba, GL_UNSIGNED_BYTE,
+                           width_px, height_px)) {
+        set_err(err, "render: OSMesaMakeCurrent failed for %dx%d px",
+                width_px, height_px);
+        render_destroy(ctx);
+        return NULL;
+    }
+    GLint dims[2] = {0, 0};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+    OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+    if (dims[0] < width_px || dims[1] < height_px) {
+        set_err(err, "render: %dx%d px exceeds the GL limit %dx%d",
+                width_px, height_px, (int)dims[0], (int)dims[1]);
+        render_destroy(ctx);
+        return NULL;
+    }
+    return ctx;
+}
+
+void render_destroy(render_ctx_t *ctx)
+{
+    if (!ctx)
+        return;
+    if (ctx->gl)
+        OSMesaDestroyContext(ctx->gl);
+    free(ctx->rgba);
+    free(ctx->row);
+    free(ctx);
+}
+
+/* ------------------------------------------------------------------ */
+/* World to picture                                                    */
+/* ------------------------------------------------------------------ */
+
+/** Pixels per metre for this scene, or 0 if the arena size is invalid. */
+static float view_scale(const render_ctx_t *ctx, const render_scene_t *sc)
+{
+    if (!ctx || !sc || !isfinite(sc->arena_w) || !isfinite(sc->arena_h) ||
+        sc->arena_w <= 0.0f || sc->arena_h <= 0.0f)
+        return 0.0f;
+    float wall = (isfinite(sc->wall) && sc->wall > 0.0f) ? sc->wall : 0.0f;
+    float ext_w = sc->arena_w + 2.0f * wall;
+    float ext_h = sc->arena_h + 2.0f * wall;
+    int small = ctx->w < ctx->h ? ctx->w : ctx->h;
+    float margin = fmaxf(4.0f, 0.03f * (float)small);
+    float s = fminf(((float)ctx->w - 2.0f * margin) / ext_w,
+                    ((float)ctx->h - 2.0f * margin) / ext_h);
+    return (isfinite(s) && s > 0.0f) ? s : 0.0f;
+}
+
+float render_scale_px_per_m(const render_ctx_t *ctx,
+                            const render_scene_t *scene)
+{
+    return view_scale(ctx, scene);
+}
+
+int render_world_to_pixel(const render_ctx_t *ctx, const render_scene_t *scene,
+                          float x, float y, float *col, float *row)
+{
+    float s = view_scale(ctx, scene);
+    if (s <= 0.0f || !col || !row)
+        return -1;
+    *col = 0.5f * (float)ctx->w + x * s;
+    *row = 0.5f * (float)ctx->h - y * s;
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* Drawing primitives, pixel coordinates (GL: y up)                    */
+/* ------------------------------------------------------------------ */
+
+/** The drawing frame: world (x, y) m -> GL pixel (cx + x*s, cy + y*s). */
+typedef struct frame {
+    float s, cx, cy;
+} frame_t;
+
+static void colour(uint32_t rgb)
+{
+    glColor3ub((GLubyte)(rgb >> 16), (GLubyte)(rgb >> 8), (GLubyte)rgb);
+}
+
+static int segments(float r_px)
+{
+    int n = (int)ceilf(2.0f * PI_F * r_px / 2.5f);
+    return n < 12 ? 12 : n > 256 ? 256 : n;
+}
+
+static void disc(float cx, float cy, float r)
+{
+    if (!(r > 0.0f))
+        return;
+    int n = segments(r);
+    glBegin(GL_TRIANGLE_FAN);
+    glVertex2f(cx, cy);
+    for (int i = 0; i <= n; i++) {
+        float a = 2.0f * PI_F * (float)(i % n) / (float)n;
+        glVertex2f(cx + r * cosf(a), cy + r * sinf(a));
+    }
+    glEnd();
+}
+
+/** Rectangle centred on (cx, cy), half sizes hx, hy along its own axes,
+ *  rotated by `a` rad CCW. */
+static void box(float cx, float cy, float hx, float hy, float a)
+{
+    if (!(hx > 0.0f) || !(hy > 0.0f))
+        return;
+    float c = cosf(a), s = sinf(a);
+    static const float k[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    glBegin(GL_TRIANGLE_FAN);
+    for (int i = 0; i < 4; i++) {
+        float u = k[i][0] * hx, v = k[i][1] * hy;
+        glVertex2f(cx + u * c - v * s, cy + u * s + v * c);
+    }
+    glEnd();
+}
+
+/** Axis-aligned rectangle [x0, x1] x [y0, y1]. */
+static void rect(float x0, float y0, float x1, float y1)
+{
+    glBegin(GL_TRIANGLE_FAN);
+    glVertex2f(x0, y0);
+    glVertex2f(x1, y0);
+    glVertex2f(x1, y1);
+    glVertex2f(x0, y1);
+    glEnd();
+}
+
+/** Five-pointed star, outer radius r, one point up. */
+static void star(float cx, float cy, float r)
+{
+    glBegin(GL_TRIANGLE_FAN);
+    glVertex2f(cx, cy);
+    for (int i = 0; i <= 10; i++) {
+        float a = 0.5f * PI_F + (float)(i % 10) * PI_F / 5.0f;
+        float rr = (i % 2) ? 0.45f * r : r;
+        glVertex2f(cx + rr * cosf(a), cy + rr * sinf(a));
+    }
+    glEnd();
+}
+
+static int finite2(float a, float b)
+{
+    return isfinite(a) && isfinite(b);
+}
+
+/* ------------------------------------------------------------------ */
+/* Scene                                                               */
+/* ------------------------------------------------------------------ */
+
+static uint32_t object_rgb(int c)
+{
+    switch (c) {
+    case 1: return RENDER_RGB_OBJ_RED;
+    case 2: return RENDER_RGB_OBJ_GREEN;
+    case 3: return RENDER_RGB_OBJ_BLUE;
+    default: return RENDER_RGB_OBJ_NONE;
+    }
+}
+
+static uint32_t highlight_rgb(uint8_t h)
+{
+    switch (h) {
+    case 0: return RENDER_RGB_ROBOT;
+    case 1: return RENDER_RGB_HL_RED;
+    case 2: return RENDER_RGB_HL_GREEN;
+    case 3: return RENDER_RGB_HL_BLUE;
+    case 4: return RENDER_RGB_HL_YELLOW;
+    default: return RENDER_RGB_HL_OTHER;
+    }
+}
+
+static void draw_arena(const frame_t *f, const render_scene_t *sc)
+{
+    float hw = 0.5f * sc->arena_w * f->s, hh = 0.5f * sc->arena_h * f->s;
+    float wall = (isfinite(sc->wall) && sc->wall > 0.0f) ? sc->wall * f->s
+                                                           : 0.0f;
+    if (wall < 2.0f)
+        wall = 2.0f;
+    colour(RENDER_RGB_WALL);
+    rect(f->cx - hw - wall, f->cy - hh - wall, f->cx + hw + wall,
+         f->cy + hh + wall);
+    colour(RENDER_RGB_FLOOR);
+    rect(f->cx - hw, f->cy - hh, f->cx + hw, f->cy + hh);
+}
+
+static void draw_nest(const frame_t *f, const render_scene_t *sc)
+{
+    if (!sc->nest_enabled || !finite2(sc->nest_x, sc->nest_y) ||
+        !isfinite(sc->nest_d) || sc->nest_d <= 0.0f)
+        return;
+    colour(RENDER_RGB_NEST);
+    disc(f->cx + sc->nest_x * f->s, f->cy + sc->nest_y * f->s,
+         0.5f * sc->nest_d * f->s);
+}
+
+static void draw_object(const frame_t *f, const render_object_t *o)
+{
+    if (!finite2(o->x, o->y))
+        return;
+    float x = f->cx + o->x * f->s, y = f->cy + o->y * f->s;
+    uint32_t fill = object_rgb(o->colour);
+    if (o->shape == 0) {
+        if (!isfinite(o->radius) || o->radius <= 0.0f)
+            return;
+        float r = fmaxf(o->radius * f->s, 1.0f);
+        colour(RENDER_RGB_OUTLINE);
+        disc(x, y, r);
+        colour(fill);
+        disc(x, y, r > 3.0f ? r - 1.0f : r);
+    } else if (o->shape == 1) {
+        if (!finite2(o->width, o->depth) || !isfinite(o->angle_deg) ||
+            o->width <= 0.0f || o->depth <= 0.0f)
+            return;
+        float hx = fmaxf(0.5f * o->width * f->s, 0.5f);
+        float hy = fmaxf(0.5f * o->depth * f->s, 0.5f);
+        float a = o->angle_deg * PI_F / 180.0f;
+        colour(RENDER_RGB_OUTLINE);
+        box(x, y, hx, hy, a);
+        colour(fill);
+        if (hx > 3.0f && hy > 3.0f)
+            box(x, y, hx - 1.0f, hy - 1.0f, a);
+        else
+            box(x, y, hx, hy, a);
+    }
+}
+
+static void draw_light(const frame_t *f, const render_light_t *l)
+{
+    if (!finite2(l->x, l->y))
+        return;
+    float x = f->cx + l->x * f->s, y = f->cy + l->y * f->s;
+    float r = fmaxf(0.05f * f->s, 7.0f);
+    colour(RENDER_RGB_LIGHT_RIM);
+    star(x, y, r + 2.0f);
+    colour(RENDER_RGB_LIGHT);
+    star(x, y, r);
+}
+
+static void draw_robot(const frame_t *f, const render_robot_t *rb, float r)
+{
+    if (!finite2(rb->x, rb->y) || !isfinite(rb->theta))
+        return;
+    float x = f->cx + rb->x * f->s, y = f->cy + rb->y * f->s;
+    float c = cosf(rb->theta), s = sinf(rb->theta);
+    float rim = fmaxf(1.0f, 0.08f * r);
+
+    colour(RENDER_RGB_OUTLINE);
+    disc(x, y, r);
+    colour(highlight_rgb(rb->highlight));
+    disc(x, y, r - rim);
+    if (rb->body_led) {
+        colour(RENDER_RGB_LED_GREEN);
+        disc(x, y, fmaxf(0.3f * r, 1.0f));
+    }
+    /* Heading bar: centre to the rim. */
+    float len = r - 0.5f * rim, hw = fmaxf(0.6f, 0.09f * r);
+    colour(RENDER_RGB_HEADING);
+    box(x + 0.5f * len * c, y + 0.5f * len * s, 0.5f * len, hw, rb->theta);
+    if (rb->front_led) {
+        colour(RENDER_RGB_LED_RED);
+        disc(x + 0.55f * r * c, y + 0.55f * r * s, fmaxf(0.7f, 0.13f * r));
+    }
+    /* Ring LEDs: LED i at -45*i degrees from the heading, on the rim. */
+    float lr = fmaxf(0.7f, 0.16f * r), ld = r - rim - 0.5f * lr;
+    colour(RENDER_RGB_LED_RED);
+    for (int i = 0; i < 8; i++) {
+        if (!(rb->leds & (1u << i)))
+            continue;
+        float a = rb->theta - (float)i * (PI_F / 4.0f);
+        disc(x + ld * cosf(a), y + ld * sinf(a), lr);
+    }
+}
+
+static void draw_scene(const render_ctx_t *ctx, const render_scene_t *sc,
+                       float s)
+{
+    frame_t f = {s, 0.5f * (float)ctx->w, 0.5f * (float)ctx->h};
+
+    glViewport(0, 0, ctx->w, ctx->h);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_DITHER);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_LIGHTING);
+    glDisable(GL_TEXTURE_2D);
+    glDisable(GL_POLYGON_SMOOTH);
+    glDisable(GL_SCISSOR_TEST);
+    glShadeModel(GL_FLAT);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glOrtho(0.0, (double)ctx->w, 0.0, (double)ctx->h, -1.0, 1.0);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+
+    glClearColor(((RENDER_RGB_BACKGROUND >> 16) & 255u) / 255.0f,
+                 ((RENDER_RGB_BACKGROUND >> 8) & 255u) / 255.0f,
+                 (RENDER_RGB_BACKGROUND & 255u) / 255.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+
+    draw_arena(&f, sc);
+    draw_nest(&f, sc);
+    for (uint32_t i = 0; i < sc->object_count; i++)
+        draw_object(&f, &sc->objects[i]);
+    /* Lights beneath the robots, so a robot under a lamp stays visible. */
+    for (uint32_t i = 0; i < sc->light_count; i++)
+        draw_light(&f, &sc->lights[i]);
+
+    float rr = sc->robot_radius > 0.0f && isfinite(sc->robot_radius)
+                   ? sc->robot_radius : RENDER_DEFAULT_ROBOT_RADIUS;
+    float r = fmaxf(rr * s, RENDER_MIN_ROBOT_RADIUS_PX);
+    for (uint32_t i = 0; i < sc->robot_count; i++)
+        draw_robot(&f, &sc->robots[i], r);
+}
+
+/* ------------------------------------------------------------------ */
+/* PNG                                                                 */
+/* ------------------------------------------------------------------ */
+
+typedef struct png_job {
+    FILE *fp;
+    const char *path;  /**< the final path, for messages */
+    char *err;
+    int io_errno;      /**< errno of a failed write, else 0 */
+} png_job_t;
+
+static void png_error_cb(png_structp png, png_const_charp msg)
+{
+    png_job_t *job = png_get_error_ptr(png);
+    char buf[128];
+    if (job->io_errno)
+        set_err(job->err, "render: cannot write '%s': %s", job->path,
+                errstr(job->io_errno, buf, sizeof buf));
+    else
+        set_err(job->err, "render: cannot write '%s': libpng: %s",
+                job->path, msg);
+    png_longjmp(png, 1);
+}
+
+static void png_warning_cb(png_structp png, png_const_charp msg)
+{
+    (void)png;
+    (void)msg;
+}
+
+static void png_write_cb(png_structp png, png_bytep data, size_t len)
+{
+    png_job_t *job = png_get_io_ptr(png);
+    if (fwrite(data, 1, len, job->fp) != len) {
+        job->io_errno = errno ? errno : EIO;
+        png_error(png, "write failed");
+    }
+}
+
+static void png_flush_cb(png_structp png)
+{
+    png_job_t *job = png_get_io_ptr(png);
+    if (fflush(job->fp) != 0) {
+        job->io_errno = errno ? errno : EIO;
+        png_error(png, "flush failed");
+    }
+}
+
+/** Fills one PNG row (top row first) from the bottom-up RGBA buffer. */
+static void png_row(const render_ctx_t *ctx, int y)
+{
+    const uint8_t *src = ctx->rgba + (size_t)(ctx->h - 1 - y) *
+                                         (size_t)ctx->w * 4;
+    uint8_t *dst = ctx->row;
+    for (int x = 0; x < ctx->w; x++, src += 4, dst += 3) {
+        dst[0] = src[0];
+        dst[1] = src[1];
+        dst[2] = src[2];
+    }
+}
+
+/** Encodes the picture to job->fp.  0 or -1 with job->err set. */
+static int png_encode(const render_ctx_t *ctx, png_job_t *job)
+{
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, job,
+                                              png_error_cb, png_warning_cb);
+    if (!png) {
+        set_err(job->err, "render: cannot write '%s': libpng init failed",
+                job->path);
+        return -1;
+    }
+    png_infop info = png_create_info_struct(png);
+    if (!info) {
+        png_destroy_write_struct(&png, NULL);
+        set_err(job->err, "render: cannot write '%s': libpng init failed",
+                job->path);
+        return -1;
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return -1;
+    }
+    png_set_write_fn(png, job, png_write_cb, png_flush_cb);
+    png_set_IHDR(png, info, (png_uint_32)ctx->w, (png_uint_32)ctx->h, 8,
+                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    /* Flat colours compress well even at a fast level. */
+    png_set_compression_level(png, 3);
+    png_write_info(png, info);
+    for (int y = 0; y < ctx->h; y++) {
+        png_row(ctx, y);
+        png_write_row(png, ctx->row);
+    }
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    return 0;
+}
+
+/** Writes the picture to path atomically (path.tmp, then rename). */
+static int write_png_atomic(const render_ctx_t *ctx, const char *path,
+                            char *err)
+{
+    char ebuf[128];
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 5);
+    if (!tmp) {
+        set_err(err, "render: cannot write '%s': out of memory", path);
+        return -1;
+    }
+    memcpy(tmp, path, n);
+    memcpy(tmp + n, ".tmp", 5);
+
+    FILE *fp = fopen(tmp, "wb");
+    if (!fp) {
+        int e = errno;
+        set_err(err, "render: cannot write '%s' (temporary '%s'): %s", path,
+                tmp, errstr(e, ebuf, sizeof ebuf));
+        free(tmp);
+        return -1;
+    }
+    png_job_t job = {fp, path, err, 0};
+    int rc = png_encode(ctx, &job);
+    if (rc == 0 && (fflush(fp) != 0 || ferror(fp))) {
+        int e = errno ? errno : EIO;
+        set_err(err, "render: cannot write '%s': %s", path,
+                errstr(e, ebuf, sizeof ebuf));
+        rc = -1;
+    }
+    if (fclose(fp) != 0 && rc == 0) {
+        int e = errno;
+        set_err(err, "render: cannot write '%s': %s", path,
+                errstr(e, ebuf, sizeof ebuf));
+        rc = -1;
+    }
+    if (rc == 0 && rename(tmp, path) != 0) {
+        int e = errno;
+        set_err(err, "render: cannot rename '%s' to '%s': %s", tmp, path,
+                errstr(e, ebuf, sizeof ebuf));
+        rc = -1;
+    }
+    if (rc != 0)
+        remove(tmp);
+    free(tmp);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ */
+/* Render                                                              */
+/* ------------------------------------------------------------------ */
+
+int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
+                     const char *png_path, char *err)
+{
+    if (!ctx || !scene || !png_path || !*png_path) {
+        set_err(err, "render: %s", !ctx ? "no render context"
+                                   : !scene ? "no scene"
+                                            : "empty PNG path");
+        return -1;
+    }
+    float s = view_scale(ctx, scene);
+    if (s <= 0.0f) {
+        set_err(err, "render: '%s': invalid arena size %gx%g m", png_path,
+                (double)scene->arena_w, (double)scene->arena_h);
+        return -1;
+    }
+    if ((scene->robot_count && !scene->robots) ||
+        (scene->object_count && !scene->objects) ||
+        (scene->light_count && !scene->lights)) {
+        set_err(err, "render: '%s': a scene count is non-zero but its array "
+                "is NULL", png_path);
+        return -1;
+    }
+
+    /* OSMesa contexts are current per thread: bind ours on this thread for
+     * this call only, and release it before returning. */
+    if (!OSMesaMakeCurrent(ctx->gl, ctx->rgba, GL_UNSIGNED_BYTE, ctx->w,
+                           ctx->h)) {
+        set_err(err, "render: '%s': OSMesaMakeCurrent failed", png_path);
+        return -1;
+    }
+    for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; i++) {
+        /* drop errors left from an earlier call */
+    }
+    draw_scene(ctx, scene, s);
+    glFinish();
+    GLenum gl_err = glGetError();
+    OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+    if (gl_err != GL_NO_ERROR) {
+        set_err(err, "render: '%s': OpenGL error 0x%04x", png_path,
+                (unsigned)gl_err);
+        return -1;
+    }
+    return write_png_atomic(ctx, png_path, err);
+}
