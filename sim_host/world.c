@@ -9,6 +9,7 @@
  * gave it until the next control step resets it (at most one period).
  */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 
 #include "sim_internal.h"
@@ -53,13 +54,20 @@ static void create_static(struct sim *sim)
     }
 }
 
+/* Box2D keeps its worlds in one process-wide table that b2CreateWorld and
+ * b2DestroyWorld change without locking: runs on the thread pool take
+ * turns for those two calls.  Everything else in a world is its own. */
+static pthread_mutex_t world_table_lock = PTHREAD_MUTEX_INITIALIZER;
+
 int world_create(struct sim *sim, char err[256])
 {
     b2WorldDef wd = b2DefaultWorldDef();
     wd.gravity = (b2Vec2){ 0.0f, 0.0f };
     /* Robots are always driven; sleeping would only cost checks. */
     wd.enableSleep = false;
+    pthread_mutex_lock(&world_table_lock);
     sim->world = b2CreateWorld(&wd);
+    pthread_mutex_unlock(&world_table_lock);
     if (!b2World_IsValid(sim->world)) {
         snprintf(err, 256, "cannot create the Box2D world");
         return -1;
@@ -87,9 +95,11 @@ int world_create(struct sim *sim, char err[256])
 
 void world_destroy(struct sim *sim)
 {
+    pthread_mutex_lock(&world_table_lock);
     if (b2World_IsValid(sim->world)) {
         b2DestroyWorld(sim->world);
     }
+    pthread_mutex_unlock(&world_table_lock);
 }
 
 void world_drive(struct sim *sim)
