@@ -42,22 +42,30 @@ static void idle_step(void *state, hal_t *hal) { (void)state; (void)hal; }
 static uint32_t idle_oae(const void *state) { (void)state; return 0; }
 static const char *idle_state(const void *state) { (void)state; return "idle"; }
 
+static const sim_controller_t controller_random_walk = {
+    "random_walk", "random walk with IR obstacle avoidance (seed 000's ASM, A(t) = 0)",
+    sizeof(random_walk_t), sizeof(random_walk_params_t), random_walk_param_descs, NULL,
+    rw_defaults, rw_init, rw_step, rw_oae, rw_state, NULL, NULL
+};
+
+static const sim_controller_t controller_idle = {
+    "idle", "no firmware: robots keep the wheel speeds set through their hal_t",
+    0, 0, idle_param_descs, NULL, idle_defaults, idle_init, idle_step, idle_oae, idle_state, NULL, NULL
+};
+
 /* ---------------------------------------------------------- registry */
 
-static const sim_controller_t registry[] = {
-    { "random_walk", "random walk with IR obstacle avoidance (seed 000's ASM, A(t) = 0)",
-      sizeof(random_walk_t), sizeof(random_walk_params_t), random_walk_param_descs, NULL,
-      rw_defaults, rw_init, rw_step, rw_oae, rw_state, NULL, NULL },
-    { "idle", "no firmware: robots keep the wheel speeds set through their hal_t",
-      0, 0, idle_param_descs, NULL, idle_defaults, idle_init, idle_step, idle_oae, idle_state, NULL, NULL },
+static const sim_controller_t *const registry[] = {
+    &controller_random_walk, &controller_idle, &controller_forager, &controller_nest_beacon
 };
+
+#define REGISTRY_SIZE (sizeof registry / sizeof registry[0])
 
 const sim_controller_t *controllers_find(const char *name)
 {
-    size_t i;
-    for (i = 0; i < sizeof registry / sizeof registry[0]; i++) {
-        if (strcmp(registry[i].name, name) == 0) {
-            return &registry[i];
+    for (size_t i = 0; i < REGISTRY_SIZE; i++) {
+        if (strcmp(registry[i]->name, name) == 0) {
+            return registry[i];
         }
     }
     return NULL;
@@ -65,5 +73,5 @@ const sim_controller_t *controllers_find(const char *name)
 
 const sim_controller_t *controllers_at(size_t i)
 {
-    return (i < sizeof registry / sizeof registry[0]) ? &registry[i] : NULL;
+    return i < REGISTRY_SIZE ? registry[i] : NULL;
 }

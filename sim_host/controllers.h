@@ -38,6 +38,10 @@ typedef struct sim_controller {
     char (*task_state)(const void *state);
 } sim_controller_t;
 
+/** Seed 000's forager and nest beacon (controllers_foraging.c). */
+extern const sim_controller_t controller_forager;
+extern const sim_controller_t controller_nest_beacon;
+
 /** The controller called `name`, or NULL. */
 const sim_controller_t *controllers_find(const char *name);
 

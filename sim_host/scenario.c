@@ -326,6 +326,8 @@ static const param_desc_t foraging_params[] = {
       "energy units per step per foraging robot" },
     { "oae_energy", PARAM_FLOAT, SC(foraging.oae_energy), 0, 1e9, NULL,
       "E_a, energy units per obstacle-avoidance event" },
+    { "robot_speed", PARAM_FLOAT, SC(foraging.robot_speed), 0.001, 0.128, NULL,
+      "v, forager speed, m/s (seed 000: 0.05); sets T2 = L/(2v)" },
     { "information", PARAM_ENUM, SC(foraging.information), 0, 0, information_choices,
       "beacon: a nest-beacon e-puck keeps the ledger; global: ideal information" },
     PARAM_END
@@ -500,6 +502,7 @@ void scenario_defaults(scenario_t *out)
     out->foraging.consumption = 2.0f;
     out->foraging.move_cost = 1.0f;
     out->foraging.oae_energy = 10.0f;
+    out->foraging.robot_speed = 0.05f;
     out->foraging.information = INFO_BEACON;
 }
 

@@ -144,6 +144,7 @@ typedef struct scenario {
         float consumption;         /**< nest consumption C_rate, tokens/min */
         float move_cost;           /**< units per step per foraging robot */
         float oae_energy;          /**< E_a, units per obstacle-avoidance event */
+        float robot_speed;         /**< v, m/s: foragers drive at it; T2 = L/(2v) */
         int information;           /**< foraging_info_t */
     } foraging;
 } scenario_t;

@@ -189,6 +189,7 @@ static int box_interval(vec2_t cam, float heading, const obstacle_t *o, interval
 }
 
 #define CAM_MAX_PIECES 16
+#define CAM_TOKEN 0x80000000u   /* occluder_object flag: a food token index */
 #define CAM_MAX_BLOBS 64
 
 /* Removes [lo, hi] from a set of disjoint pieces. */
@@ -256,13 +257,27 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
             occ_obj[nocc++] = obst[j];
         }
     }
+    /* Food tokens (foraging): red, seen and hiding like any object.  The one
+     * a robot carries sits just ahead of its lens and fills the view. */
+    uint32_t n_tokens = sim->foraging_on ? sim->forage.n_tokens : 0;
+    for (uint32_t k = 0; k < n_tokens && nocc < 2 * SIM_CAMERA_MAX_NEAR; k++) {
+        const food_token_t *tok = &sim->forage.tokens[k];
+        float dx = tok->x - cam.x, dy = tok->y - cam.y;
+        if (dx * dx + dy * dy <= range * range + 0.01f
+            && disc_interval(cam, heading, v2(tok->x, tok->y), sc->foraging.token_radius, &occ[nocc])) {
+            occ_obj[nocc++] = CAM_TOKEN | k;
+        }
+    }
 
     hal_blob_t blobs[CAM_MAX_BLOBS];
     uint32_t nb = 0;
     for (uint32_t t = first_obstacle; t < nocc && nb < CAM_MAX_BLOBS; t++) {
-        const obstacle_t *o = &sim->obstacles[occ_obj[t]];
+        int is_token = (occ_obj[t] & CAM_TOKEN) != 0;
+        const obstacle_t *o = is_token ? NULL : &sim->obstacles[occ_obj[t]];
+        int colour = is_token ? HAL_COLOUR_RED : o->colour;
+        float height = is_token ? sc->foraging.token_height : o->height;
         interval_t it = occ[t];
-        if (o->colour == HAL_COLOUR_NONE || it.near > range) {
+        if (colour == HAL_COLOUR_NONE || it.near > range) {
             continue;
         }
         interval_t pieces[CAM_MAX_PIECES] = { { fmaxf(it.lo, -half), fminf(it.hi, half), it.near } };
@@ -286,10 +301,10 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         }
         /* Rows: the object spans the floor to its top, seen from the lens. */
         float dist = it.near > 0.001f ? it.near : 0.001f;
-        float vang = atanf(fmaxf(o->height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
+        float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
         float rows = fminf(vang, vfov) / (vfov / sc->camera.height_px);
         hal_blob_t *b = &blobs[nb++];
-        b->colour = (uint8_t)o->colour;
+        b->colour = (uint8_t)colour;
         b->bearing_mrad = (int16_t)lroundf(1000.0f * 0.5f * (pieces[best].lo + pieces[best].hi));
         b->width_mrad = (uint16_t)lroundf(1000.0f * width);
         float px = floorf(cols) * fmaxf(1.0f, floorf(rows));

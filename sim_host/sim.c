@@ -69,16 +69,24 @@ static int place_robots(struct sim *sim, char err[256])
     sim_rand_seed(&rnd, sim->seed, 0, RAND_PLACEMENT);
     float margin = SIM_ROBOT_RADIUS + 0.005f;
     float spacing = fmaxf(sc->robots.min_spacing, 2 * SIM_ROBOT_RADIUS);
-    uint32_t cols = (uint32_t)ceil(sqrt((double)sim->n * sim->hw / sim->hh));
+    uint32_t cols = (uint32_t)ceil(sqrt((double)sim->n_swarm * sim->hw / sim->hh));
     if (cols == 0) cols = 1;
 
-    for (uint32_t i = 0; i < sim->n; i++) {
+    /* The nest beacon stands still at the nest centre; place it first so
+     * the others keep clear of it. */
+    if (sim->beacon >= 0) {
+        sim_robot_t *b = &sim->robots[sim->beacon];
+        b->x = sc->nest.x;
+        b->y = sc->nest.y;
+        b->theta = 0.0f;
+    }
+    for (uint32_t i = 0; i < sim->n_swarm; i++) {
         sim_robot_t *r = &sim->robots[i];
         int placed = 0;
         for (int attempt = 0; attempt < 20000 && !placed; attempt++) {
             float x, y;
             if (sc->robots.placement == PLACE_GRID) {
-                uint32_t rows = (sim->n + cols - 1) / cols;
+                uint32_t rows = (sim->n_swarm + cols - 1) / cols;
                 x = -sim->hw + (2 * sim->hw) * ((float)(i % cols) + 0.5f) / (float)cols;
                 y = -sim->hh + (2 * sim->hh) * ((float)(i / cols) + 0.5f) / (float)rows;
                 attempt = 20000;   /* one position only */
@@ -97,6 +105,10 @@ static int place_robots(struct sim *sim, char err[256])
                 float dx = sim->robots[j].x - x, dy = sim->robots[j].y - y;
                 ok = dx * dx + dy * dy >= spacing * spacing;
             }
+            if (ok && sim->beacon >= 0) {
+                float dx = sim->robots[sim->beacon].x - x, dy = sim->robots[sim->beacon].y - y;
+                ok = dx * dx + dy * dy >= spacing * spacing;
+            }
             for (uint32_t k = 0; ok && k < sim->n_obstacles; k++) {
                 ok = obstacle_gap(&sim->obstacles[k], v2(x, y)) >= 0.005f;
             }
@@ -110,7 +122,7 @@ static int place_robots(struct sim *sim, char err[256])
         if (!placed) {
             snprintf(err, 256, "cannot place robot %u of %u (placement %s): no free spot; "
                      "enlarge the arena or nest, or use fewer robots",
-                     i + 1, sim->n, sc->robots.placement == PLACE_GRID ? "grid"
+                     i + 1, sim->n_swarm, sc->robots.placement == PLACE_GRID ? "grid"
                      : sc->robots.placement == PLACE_NEST ? "nest" : "random");
             return -1;
         }
@@ -130,18 +142,41 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     sim->dt = sc->control_period_ms / 1000.0f;
     sim->hw = sc->arena.width / 2;
     sim->hh = sc->arena.height / 2;
-    sim->n = sc->robots.count;
+    sim->n_swarm = sc->robots.count;
+    sim->beacon = -1;
     sim->n_obstacles = sc->object_count;
     sim->ctrl = controllers_find(sc->controller.name);
     sim->metrics.min_wall_clearance_m = INFINITY;
-    if (!sim->ctrl) {
-        snprintf(err, 256, "unknown controller '%s'", sc->controller.name);
+    sim->foraging_on = sc->foraging.enabled;
+    if (sim->foraging_on && sc->foraging.information == INFO_BEACON) {
+        sim->beacon_ctrl = controllers_find("nest_beacon");
+        sim->beacon = (int32_t)sim->n_swarm;
+    }
+    sim->n = sim->n_swarm + (sim->beacon >= 0 ? 1u : 0u);
+    if (!sim->ctrl || (sim->beacon >= 0 && !sim->beacon_ctrl)) {
+        snprintf(err, 256, "unknown controller '%s'", sim->ctrl ? "nest_beacon" : sc->controller.name);
         free(sim);
         return NULL;
     }
+    /* Each robot's params: the scenario's, then what the task tells it. */
+    memcpy(sim->params.bytes, sc->controller.params.bytes, sizeof sim->params.bytes);
+    if (sim->ctrl->configure) {
+        sim->ctrl->configure(sim->params.bytes, sc);
+    }
+    if (sim->beacon_ctrl) {
+        sim->beacon_ctrl->default_params(sim->beacon_params.bytes);
+        if (sim->beacon_ctrl->configure) {
+            sim->beacon_ctrl->configure(sim->beacon_params.bytes, sc);
+        }
+    }
     size_t n = sim->n ? sim->n : 1, no = sim->n_obstacles ? sim->n_obstacles : 1;
     sim->robots = calloc(n, sizeof *sim->robots);
-    sim->ctrl_states = calloc(n, sim->ctrl->state_size ? sim->ctrl->state_size : 1);
+    size_t state_size = sim->ctrl->state_size;
+    if (sim->beacon_ctrl && sim->beacon_ctrl->state_size > state_size) {
+        state_size = sim->beacon_ctrl->state_size;
+    }
+    state_size = (state_size + 15u) & ~(size_t)15u;   /* keep every state aligned */
+    sim->ctrl_states = calloc(n, state_size ? state_size : 1);
     sim->px = calloc(n, sizeof *sim->px);
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
@@ -183,12 +218,16 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
         sim_rand_seed(&r->noise, seed, i, RAND_SENSORS);
         sim_rand_seed(&r->ircom_rand, seed, i, RAND_IRCOM);
         sim_rand_seed(&r->wheel_rand, seed, i, RAND_WHEELS);
-        r->ctrl = sim->ctrl->state_size ? sim->ctrl_states + (size_t)i * sim->ctrl->state_size : NULL;
+        int is_beacon = (int32_t)i == sim->beacon;
+        r->ctrl_desc = is_beacon ? sim->beacon_ctrl : sim->ctrl;
+        r->ctrl = r->ctrl_desc->state_size ? sim->ctrl_states + (size_t)i * state_size : NULL;
         if (r->ctrl) {
-            sim->ctrl->init(r->ctrl, sc->controller.params.bytes, sim_rand_seed32(seed, i, RAND_CONTROLLER));
+            r->ctrl_desc->init(r->ctrl, is_beacon ? sim->beacon_params.bytes : sim->params.bytes,
+                               sim_rand_seed32(seed, i, RAND_CONTROLLER));
         }
     }
-    if (world_create(sim, err) != 0 || grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0) {
+    if (world_create(sim, err) != 0 || grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0
+        || (sim->foraging_on && foraging_init(sim, err) != 0)) {
         sim_destroy(sim);
         return NULL;
     }
@@ -201,6 +240,7 @@ void sim_destroy(sim_t *sim)
         return;
     }
     world_destroy(sim);
+    foraging_free(sim);
     grid_free(&sim->robot_grid);
     grid_free(&sim->obstacle_grid);
     free(sim->robots);
@@ -214,17 +254,26 @@ void sim_destroy(sim_t *sim)
 
 void sim_step(sim_t *sim)
 {
+    if (sim->foraging_on && sim->beacon < 0) {
+        foraging_broadcast_truth(sim);
+    }
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_robot_t *r = &sim->robots[i];
         if (r->ctrl) {
-            sim->ctrl->step(r->ctrl, &r->hal);
+            r->ctrl_desc->step(r->ctrl, &r->hal);
         }
     }
     ircom_deliver(sim);
+    if (sim->foraging_on) {
+        foraging_release(sim);
+    }
     world_drive(sim);
     world_advance(sim);
     world_read_poses(sim);
     grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
+    if (sim->foraging_on) {
+        foraging_update(sim);
+    }
     sim->step++;
 }
 
@@ -285,10 +334,13 @@ uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float 
 
 uint64_t sim_step_count(const sim_t *sim) { return sim->step; }
 uint32_t sim_robot_count(const sim_t *sim) { return sim->n; }
+uint32_t sim_swarm_count(const sim_t *sim) { return sim->n_swarm; }
+int32_t sim_beacon_index(const sim_t *sim) { return sim->beacon; }
 const scenario_t *sim_scenario(const sim_t *sim) { return sim->sc; }
 hal_t *sim_robot_hal(sim_t *sim, uint32_t i) { return &sim->robots[i].hal; }
 void *sim_robot_controller(sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
 const sim_metrics_t *sim_metrics(const sim_t *sim) { return &sim->metrics; }
+const struct foraging *sim_foraging(const sim_t *sim) { return sim->foraging_on ? &sim->forage : NULL; }
 uint16_t sim_robot_leds(const sim_t *sim, uint32_t i) { return sim->robots[i].leds; }
 
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta)
@@ -313,10 +365,19 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     r->ir_stamp = r->ambient_stamp = r->camera_stamp = 0;
 }
 
+char sim_robot_task_state(const sim_t *sim, uint32_t i)
+{
+    const sim_robot_t *r = &sim->robots[i];
+    if ((int32_t)i == sim->beacon) {
+        return 'B';
+    }
+    return (r->ctrl && r->ctrl_desc->task_state) ? r->ctrl_desc->task_state(r->ctrl) : 0;
+}
+
 uint64_t sim_oae_total(const sim_t *sim)
 {
     uint64_t total = 0;
-    for (uint32_t i = 0; i < sim->n; i++) {
+    for (uint32_t i = 0; i < sim->n_swarm; i++) {
         if (sim->robots[i].ctrl && sim->ctrl->oae_count) {
             total += sim->ctrl->oae_count(sim->robots[i].ctrl);
         }

@@ -42,7 +42,12 @@ void sim_destroy(sim_t *sim);
 void sim_step(sim_t *sim);
 
 uint64_t sim_step_count(const sim_t *sim);
+/** All robots, the nest beacon included (it is the last one). */
 uint32_t sim_robot_count(const sim_t *sim);
+/** Robots running the scenario's controller: indices 0 .. count-1. */
+uint32_t sim_swarm_count(const sim_t *sim);
+/** Index of the nest-beacon robot, or -1. */
+int32_t sim_beacon_index(const sim_t *sim);
 const scenario_t *sim_scenario(const sim_t *sim);
 
 /** The hal_t of robot `i`, to drive a robot from a test. */
@@ -57,10 +62,18 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
 /** LED state of robot `i`: bit k = ring LED k; bit 8 body; bit 9 front. */
 uint16_t sim_robot_leds(const sim_t *sim, uint32_t i);
 
-/** Sum of the robots' own obstacle-avoidance counts. */
+/** Seed 000's task state of robot `i`: 'W', 'S', 'R', or 0 (none);
+ *  'B' for the nest beacon. */
+char sim_robot_task_state(const sim_t *sim, uint32_t i);
+
+/** Sum of the swarm robots' own obstacle-avoidance counts. */
 uint64_t sim_oae_total(const sim_t *sim);
 
 const sim_metrics_t *sim_metrics(const sim_t *sim);
+
+struct foraging;
+/** The foraging task's ground truth (foraging.h), or NULL when disabled. */
+const struct foraging *sim_foraging(const sim_t *sim);
 
 /** FNV-1a hash of every robot's pose bits and counters: equal hashes mean
  *  bit-identical runs. */

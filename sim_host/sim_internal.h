@@ -8,6 +8,7 @@
 #include <box2d/box2d.h>
 
 #include "controllers.h"
+#include "foraging.h"
 #include "geometry.h"
 #include "grid.h"
 #include "hal.h"
@@ -46,6 +47,7 @@ typedef struct sim_robot {
     sim_rand_t noise;              /**< sensor noise */
     sim_rand_t ircom_rand;         /**< loss and estimate noise at this receiver */
     sim_rand_t wheel_rand;         /**< actuation noise */
+    const sim_controller_t *ctrl_desc; /**< what runs on this robot */
     void *ctrl;                    /**< controller state, or NULL when idle */
     uint8_t escaped;
 } sim_robot_t;
@@ -66,16 +68,27 @@ typedef struct sim_interval { float lo, hi, near; } sim_interval_t;
 /** Most robots or obstacles the camera considers within its range. */
 #define SIM_CAMERA_MAX_NEAR 1024u
 
+/** A controller's params block (aligned for any member type). */
+typedef union sim_params {
+    uint8_t bytes[SCENARIO_CONTROLLER_PARAMS_MAX];
+    double align_double;
+    uint64_t align_u64;
+} sim_params_t;
+
 struct sim {
     const scenario_t *sc;
-    const sim_controller_t *ctrl;
+    const sim_controller_t *ctrl;  /**< the swarm's controller */
+    const sim_controller_t *beacon_ctrl; /**< the nest beacon's, or NULL */
+    sim_params_t params, beacon_params;
     uint64_t seed;
     uint64_t step;
     float dt;                      /**< control period, s */
     float hw, hh;                  /**< half width and height of the arena, m */
     b2WorldId world;
 
-    uint32_t n;
+    uint32_t n;                    /**< all robots, the beacon included */
+    uint32_t n_swarm;              /**< robots running the scenario's controller: 0..n_swarm-1 */
+    int32_t beacon;                /**< index of the nest beacon robot, or -1 */
     sim_robot_t *robots;
     uint8_t *ctrl_states;
     float *px, *py;                /**< robot centres, for the grid */
@@ -95,6 +108,8 @@ struct sim {
     } cam_scratch;
 
     sim_metrics_t metrics;
+    uint8_t foraging_on;
+    foraging_t forage;
 };
 
 /* world.c: Box2D bodies */

@@ -1,0 +1,416 @@
+#include "forager.h"
+
+#include "nest_link.h"
+
+/* The walk's stream must differ from the forager's own (n, roulette). */
+#define WALK_SEED_SALT UINT32_C(0x5bd1e995)
+/* 90 degrees in mrad: a light farther round than this is behind. */
+#define QUARTER_TURN_MRAD 1571
+/* A blob this close to straight ahead is centred, mrad. */
+#define CENTRED_MRAD 150
+/* No beacon frame this step. */
+#define NO_RANGE 0xFFFFu
+
+void forager_default_params(forager_params_t *params)
+{
+    params->policy = TA_DRTM;
+    params->alpha = 3.0f;
+    params->beta = 2.0f;
+    params->t1_steps = 50u;
+    params->n_min = 2u;
+    params->n_max = 9u;
+    params->theta0 = 3.3f;
+    params->theta_min = 1.0f;
+    params->theta_max = 10.0f;
+    params->artm_delta = 0.5f;
+    params->f_d_tokens = 20.0f;
+    params->n_robots = 20u;
+    params->arena_l_mm = 4000u;
+    params->speed_steps_s = 388;   /* 0.05 m/s: T2 = L / (2 v) = 40 s */
+    params->steer_gain = 800;      /* a blob at the edge of the view (~490 mrad) turns
+                                      at about the forward speed */
+    /* Width of a token in the gripper: it fills the 977 mrad view.  A token
+     * still on the floor is at most about 850 mrad wide until the scoop
+     * takes it, so 900 tells the two apart. */
+    params->grasp_width_mrad = 900u;
+    params->near_width_mrad = 250u;
+    params->lost_steps = 3u;
+    params->nest_radius_mm = 750u;
+    params->nest_margin_mm = 100u;
+    params->nest_confirm = 3u;
+    params->light_detect = 3600u;
+    params->deposit_steps = 5u;
+    random_walk_default_params(&params->walk);
+    params->walk.speed_steps_s = params->speed_steps_s;
+    /* Search: a tumble every 20 s on average, a 1 m run at 0.05 m/s (a
+     * quarter of the arena side).  Seed 000 does not give its random walk;
+     * this is our choice. */
+    params->walk.turn_chance = 328u;   /* 0.005 * 65536 */
+}
+
+void forager_init(forager_t *self, const forager_params_t *params, uint32_t seed)
+{
+    self->params = *params;
+    /* One forward speed for the whole robot: it sets T2 = L / (2 v). */
+    self->params.walk.speed_steps_s = self->params.speed_steps_s;
+    self->seed = seed;
+    forager_reset(self);
+}
+
+void forager_reset(forager_t *self)
+{
+    const forager_params_t *p = &self->params;
+    uint8_t hi = (p->n_max >= p->n_min) ? p->n_max : p->n_min;
+
+    rng_seed(&self->rng, self->seed);
+    random_walk_init(&self->walk, &p->walk, self->seed ^ WALK_SEED_SALT);
+    /* n differs between robots so that they do not all respond at once. */
+    self->n = (uint8_t)rng_range(&self->rng, p->n_min, hi);
+
+    self->state = FORAGER_WAIT;
+    self->t1 = 0u;
+    /* All robots start in the nest with no OAE: eq 6 gives 0 for DRTM. */
+    self->theta = (p->policy == TA_DRTM) ? ta_drtm_threshold(p->alpha, p->beta, 0.0f, 0.0f)
+                                         : p->theta0;
+    self->S = 0.0f;
+    self->S_prev = 0.0f;
+    self->P_s = 0.0f;
+    self->k = 0.0f;
+    self->M_A = 0.0f;
+    self->decided = 0u;
+    self->deposits = 0u;
+    self->beacon_known = 0u;
+    self->beacon_food_q4 = 0;
+    self->beacon_n_waiting = 0u;
+    self->beacon_mean_oae_q8 = 0u;
+    self->beacon_range_mm = NO_RANGE;
+    self->nest_frames = 0u;
+    self->carrying = 0u;
+    self->lost = 0u;
+    self->timer = 0u;
+    self->report_oaes = 0u;
+}
+
+/* ------------------------------------------------------------ sensing */
+
+/* Pops every message; remembers the beacon's quantities and counts the
+ * beacon frames in a row heard from inside the nest. */
+static void read_inbox(forager_t *self, hal_t *hal)
+{
+    hal_ircom_msg_t msg;
+    nest_link_frame_t f;
+    const forager_params_t *p = &self->params;
+    uint16_t inside = (p->nest_radius_mm > p->nest_margin_mm)
+                      ? (uint16_t)(p->nest_radius_mm - p->nest_margin_mm) : 0u;
+    while (hal_ircom_receive(hal, &msg) != 0u) {
+        if (nest_link_decode(msg.value, &f) != NL_BEACON) {
+            continue;   /* other robots' reports */
+        }
+        switch (f.kind) {
+        case NL_KIND_FOOD:
+            self->beacon_food_q4 = f.value;
+            self->beacon_known |= FORAGER_KNOWS_FOOD;
+            break;
+        case NL_KIND_WAITING:
+            self->beacon_n_waiting = (uint16_t)f.value;
+            self->beacon_known |= FORAGER_KNOWS_WAITING;
+            break;
+        default:
+            self->beacon_mean_oae_q8 = (uint16_t)f.value;
+            self->beacon_known |= FORAGER_KNOWS_MEAN_OAE;
+            break;
+        }
+        self->beacon_range_mm = msg.range_mm;
+        /* The range estimate is noisy (about 10 % on the turret): only
+         * nest_confirm frames in a row inside the nest count as arrival. */
+        if (msg.range_mm < inside) {
+            if (self->nest_frames < 255u) {
+                self->nest_frames++;
+            }
+        } else {
+            self->nest_frames = 0u;
+        }
+    }
+}
+
+/* The widest red blob in view into `out`; 0 if none. */
+static uint8_t widest_red(hal_t *hal, hal_blob_t *out)
+{
+    hal_blob_t blobs[HAL_MAX_BLOBS];
+    uint8_t n = hal_camera_blobs(hal, blobs, (uint8_t)HAL_MAX_BLOBS);
+    uint8_t found = 0u;
+    uint8_t i;
+    for (i = 0; i < n && i < HAL_MAX_BLOBS; i++) {
+        if (blobs[i].colour == HAL_COLOUR_RED && (found == 0u || blobs[i].width_mrad > out->width_mrad)) {
+            *out = blobs[i];
+            found = 1u;
+        }
+    }
+    return found;
+}
+
+/* ------------------------------------------------------------ motion */
+
+static int16_t clamp_speed(int32_t v)
+{
+    if (v > HAL_WHEEL_SPEED_MAX) {
+        return HAL_WHEEL_SPEED_MAX;
+    }
+    if (v < -HAL_WHEEL_SPEED_MAX) {
+        return (int16_t)-HAL_WHEEL_SPEED_MAX;
+    }
+    return (int16_t)v;
+}
+
+/* f(x) of eq 1 with A(t) = 1: drive forward, turning toward `bearing_mrad`
+ * (CCW positive: a target on the left speeds up the right wheel). */
+static void steer(const forager_t *self, hal_t *hal, int16_t bearing_mrad)
+{
+    int32_t d = (int32_t)self->params.steer_gain * (int32_t)bearing_mrad / 1000;
+    int32_t v = (int32_t)self->params.speed_steps_s;
+    hal_set_wheel_speeds(hal, clamp_speed(v - d), clamp_speed(v + d));
+}
+
+/* Phototaxis toward the brightest ambient sensor (lowest reading).
+ * Returns 0 when no sensor sees the light. */
+static uint8_t phototaxis(const forager_t *self, hal_t *hal)
+{
+    uint16_t best = HAL_RAW_MAX;
+    uint8_t best_i = 0u;
+    uint8_t i;
+    int16_t bearing;
+    int16_t w = self->params.walk.turn_speed_steps_s;
+    for (i = 0; i < HAL_IR_COUNT; i++) {
+        uint16_t a = hal_ir_ambient(hal, i);
+        if (a < best) {
+            best = a;
+            best_i = i;
+        }
+    }
+    if (best >= self->params.light_detect) {
+        return 0u;
+    }
+    bearing = hal_ir_bearing_mrad(best_i);
+    if (bearing > QUARTER_TURN_MRAD) {
+        hal_set_wheel_speeds(hal, (int16_t)-w, w);   /* behind on the left: turn CCW */
+    } else if (bearing < -QUARTER_TURN_MRAD) {
+        hal_set_wheel_speeds(hal, w, (int16_t)-w);   /* behind on the right: turn CW */
+    } else {
+        steer(self, hal, bearing);
+    }
+    return 1u;
+}
+
+/* ------------------------------------------------------------ transitions */
+
+static void enter_wait(forager_t *self, hal_t *hal)
+{
+    self->state = FORAGER_WAIT;
+    self->t1 = 0u;
+    self->carrying = 0u;
+    hal_set_wheel_speeds(hal, 0, 0);
+}
+
+/* Leaving the nest: a fresh run of the walk, but the OAE total and the
+ * walk's random stream go on. */
+static void enter_search(forager_t *self, hal_t *hal)
+{
+    self->state = FORAGER_SEARCH;
+    self->walk.state = RW_FORWARD;
+    self->walk.turn_sign = 1;
+    self->walk.turn_steps_left = 0;
+    hal_set_led(hal, 0u, 0u);   /* the walk's avoidance LED */
+}
+
+static void enter_return(forager_t *self)
+{
+    self->state = FORAGER_RETURN;
+    self->lost = 0u;
+    self->nest_frames = 0u;   /* arrival counts from frames heard from now on */
+}
+
+static void enter_deposit(forager_t *self, hal_t *hal)
+{
+    int16_t v = self->params.speed_steps_s;
+    self->state = FORAGER_DEPOSIT;
+    hal_set_wheel_speeds(hal, (int16_t)-v, (int16_t)-v);
+    self->timer = 1u;   /* this step is the first of backing */
+}
+
+/* ------------------------------------------------------------ states */
+
+/* Eqs 2-7 and the roulette, at the end of each T1 in the nest. */
+static void decide(forager_t *self, hal_t *hal)
+{
+    const forager_params_t *p = &self->params;
+    float food_tokens;
+
+    self->t1 = 0u;
+    if (self->beacon_known != FORAGER_KNOWS_ALL) {
+        self->P_s = 0.0f;   /* nothing to go on: stay */
+        return;
+    }
+    food_tokens = (float)self->beacon_food_q4 * 0.0625f;
+    self->S = ta_stimulus(p->f_d_tokens, food_tokens);
+    self->k = ta_traffic_density(p->n_robots, self->beacon_n_waiting,
+                                 (float)p->arena_l_mm * 0.001f);
+    self->M_A = (float)self->beacon_mean_oae_q8 * 0.00390625f;   /* 1/256 */
+    switch (p->policy) {
+    case TA_DRTM:
+        self->theta = ta_drtm_threshold(p->alpha, p->beta, self->k, self->M_A);
+        break;
+    case TA_ARTM:
+        self->theta = ta_artm_update(self->theta, self->S,
+                                     self->decided != 0u ? self->S_prev : self->S,
+                                     p->artm_delta, p->theta_min, p->theta_max);
+        break;
+    default:
+        self->theta = p->theta0;
+        break;
+    }
+    self->S_prev = self->S;
+    self->decided = 1u;
+    self->P_s = ta_probability(self->S, self->theta, self->n);
+    if (ta_roulette(&self->rng, self->P_s) != 0u) {
+        enter_search(self, hal);
+    }
+}
+
+static void send_report(forager_t *self, hal_t *hal)
+{
+    uint16_t id = hal_robot_id(hal);
+    uint16_t frame = (self->report_oaes != 0u)
+                     ? nest_link_encode_oaes(id, self->walk.oae_count)
+                     : nest_link_encode_deposits(id, self->deposits);
+    if (hal_ircom_send(hal, frame) == 0) {
+        self->report_oaes ^= 1u;
+    }
+}
+
+static void wait_step(forager_t *self, hal_t *hal)
+{
+    hal_set_wheel_speeds(hal, 0, 0);
+    send_report(self, hal);
+    self->t1++;
+    if (self->t1 >= self->params.t1_steps) {
+        decide(self, hal);
+    }
+}
+
+static void search_step(forager_t *self, hal_t *hal)
+{
+    hal_blob_t blob;
+    const forager_params_t *p = &self->params;
+    uint8_t seen = widest_red(hal, &blob);
+
+    self->carrying = (uint8_t)(seen != 0u && blob.width_mrad >= p->grasp_width_mrad);
+    if (self->carrying != 0u) {
+        enter_return(self);   /* acts from the next step */
+    } else if (seen != 0u) {
+        /* The token's own IR echo is not an obstacle when we are about to
+         * grasp it; anything else in front is. */
+        uint8_t near = (uint8_t)(blob.bearing_mrad > -CENTRED_MRAD && blob.bearing_mrad < CENTRED_MRAD
+                                 && blob.width_mrad >= p->near_width_mrad);
+        if (random_walk_front_proximity(hal) > p->walk.avoid_enter && near == 0u) {
+            random_walk_step(&self->walk, hal);
+        } else {
+            steer(self, hal, blob.bearing_mrad);
+        }
+    } else {
+        random_walk_step(&self->walk, hal);
+    }
+}
+
+static void return_step(forager_t *self, hal_t *hal)
+{
+    hal_blob_t blob;
+    const forager_params_t *p = &self->params;
+    uint8_t seen = widest_red(hal, &blob);
+
+    self->carrying = (uint8_t)(seen != 0u && blob.width_mrad >= p->grasp_width_mrad);
+    if (self->carrying == 0u) {
+        self->lost++;
+        if (self->lost >= p->lost_steps) {
+            self->state = FORAGER_SEARCH;   /* dropped it: search on, mid-walk */
+            return;
+        }
+    } else {
+        self->lost = 0u;
+    }
+    if (self->nest_frames >= p->nest_confirm) {
+        enter_deposit(self, hal);
+    } else if (random_walk_front_proximity(hal) > p->walk.avoid_enter
+               || self->walk.state == RW_AVOID) {
+        random_walk_step(&self->walk, hal);
+    } else if (phototaxis(self, hal) == 0u) {
+        random_walk_step(&self->walk, hal);
+    }
+}
+
+static void deposit_step(forager_t *self, hal_t *hal)
+{
+    hal_blob_t blob;
+    const forager_params_t *p = &self->params;
+    int16_t v = p->speed_steps_s;
+    uint8_t seen = widest_red(hal, &blob);
+
+    self->carrying = (uint8_t)(seen != 0u && blob.width_mrad >= p->grasp_width_mrad);
+    if (self->timer >= p->deposit_steps) {
+        if (self->carrying == 0u) {
+            self->deposits++;
+            enter_wait(self, hal);
+            return;
+        }
+        if (self->timer >= 2u * (uint16_t)p->deposit_steps) {
+            enter_wait(self, hal);   /* still held: give up without counting */
+            return;
+        }
+    }
+    hal_set_wheel_speeds(hal, (int16_t)-v, (int16_t)-v);
+    self->timer++;
+}
+
+void forager_step(forager_t *self, hal_t *hal)
+{
+    read_inbox(self, hal);
+
+    switch (self->state) {
+    case FORAGER_WAIT:
+        wait_step(self, hal);
+        break;
+    case FORAGER_SEARCH:
+        search_step(self, hal);
+        break;
+    case FORAGER_RETURN:
+        return_step(self, hal);
+        break;
+    case FORAGER_DEPOSIT:
+        deposit_step(self, hal);
+        break;
+    default:
+        enter_wait(self, hal);
+        break;
+    }
+}
+
+char forager_paper_state(uint8_t state)
+{
+    switch (state) {
+    case FORAGER_WAIT: return 'W';
+    case FORAGER_SEARCH: return 'S';
+    case FORAGER_RETURN: return 'R';
+    case FORAGER_DEPOSIT: return 'R';
+    default: return '?';
+    }
+}
+
+const char *forager_state_name(uint8_t state)
+{
+    switch (state) {
+    case FORAGER_WAIT: return "wait";
+    case FORAGER_SEARCH: return "search";
+    case FORAGER_RETURN: return "return";
+    case FORAGER_DEPOSIT: return "deposit";
+    default: return "?";
+    }
+}

@@ -1,0 +1,215 @@
+/*
+ * fake_hal.h - a scripted hal.h for unit tests of controllers.
+ *
+ * Defines `struct hal` (sensor values the test sets, wheel speeds and LEDs
+ * the controller sets, an IR inbox queue and an outbox log) and a
+ * non-static definition of every hal_* function of hal/hal.h except
+ * hal_ir_bearing_mrad (hal/hal_common.c).  Include it from exactly one .c
+ * per test binary; then the simulator's HAL is not linked in, so such a
+ * test must not call any sim_* function.
+ *
+ * Between two controller steps call fake_hal_end_step(): it advances the
+ * clock and lets the controller send again.
+ */
+#ifndef TESTS_FAKE_HAL_H
+#define TESTS_FAKE_HAL_H
+
+#include <stdint.h>
+#include <string.h>
+
+#include "hal.h"
+
+#define FAKE_INBOX_MAX 64u
+#define FAKE_OUTBOX_MAX 4096u
+
+struct hal {
+    /* Identity and time. */
+    uint16_t id;
+    uint32_t time_ms;
+    uint16_t period_ms;
+    uint8_t payload_bits;
+
+    /* Scripted sensors. */
+    uint16_t proximity[HAL_IR_COUNT];
+    uint16_t ambient[HAL_IR_COUNT];
+    hal_blob_t blobs[HAL_MAX_BLOBS];
+    uint8_t n_blobs;
+    int16_t mic[HAL_MIC_COUNT][HAL_SOUND_BANDS];
+
+    /* Recorded actuators. */
+    int16_t left, right;          /**< last wheel speeds set */
+    uint32_t wheel_calls;
+    int16_t steps_left, steps_right;
+    uint8_t leds;                 /**< bit i = ring LED i */
+    uint8_t body_led, front_led;
+    uint8_t speaker_band;
+    uint32_t telemetry_bytes;
+
+    /* IR communication. */
+    hal_ircom_msg_t inbox[FAKE_INBOX_MAX];
+    uint32_t in_head, in_count;
+    uint16_t outbox[FAKE_OUTBOX_MAX];
+    uint32_t out_count;           /**< frames sent in all (the log keeps the first FAKE_OUTBOX_MAX) */
+    uint16_t last_sent;
+    uint8_t sent_this_step;
+};
+
+/* ------------------------------------------------------------ test side */
+
+/** Robot `id`, 100 ms steps, 16-bit messages, dark, nothing in view. */
+static inline void fake_hal_init(hal_t *hal, uint16_t id)
+{
+    uint8_t i;
+    memset(hal, 0, sizeof *hal);
+    hal->id = id;
+    hal->period_ms = 100u;
+    hal->payload_bits = 16u;
+    for (i = 0; i < HAL_IR_COUNT; i++) {
+        hal->ambient[i] = 4000u;
+    }
+}
+
+static inline void fake_hal_end_step(hal_t *hal)
+{
+    hal->time_ms += hal->period_ms;
+    hal->sent_this_step = 0u;
+}
+
+/** Queues a received message; returns 0 when the inbox is full. */
+static inline int fake_hal_push(hal_t *hal, uint16_t value, uint16_t range_mm, int16_t bearing_mrad)
+{
+    hal_ircom_msg_t *m;
+    if (hal->in_count >= FAKE_INBOX_MAX) {
+        return 0;
+    }
+    m = &hal->inbox[(hal->in_head + hal->in_count) % FAKE_INBOX_MAX];
+    m->value = value;
+    m->sensor = 0u;
+    m->bearing_mrad = bearing_mrad;
+    m->range_mm = range_mm;
+    hal->in_count++;
+    return 1;
+}
+
+/** Shows one blob (replacing what was in view). */
+static inline void fake_hal_show_blob(hal_t *hal, uint8_t colour, int16_t bearing_mrad, uint16_t width_mrad)
+{
+    hal->n_blobs = 1u;
+    hal->blobs[0].colour = colour;
+    hal->blobs[0].bearing_mrad = bearing_mrad;
+    hal->blobs[0].width_mrad = width_mrad;
+    hal->blobs[0].pixels = (uint16_t)(width_mrad / 10u);
+}
+
+static inline void fake_hal_clear_blobs(hal_t *hal) { hal->n_blobs = 0u; }
+
+/* ------------------------------------------------------------ hal.h */
+
+uint16_t hal_robot_id(hal_t *hal) { return hal->id; }
+uint32_t hal_time_ms(hal_t *hal) { return hal->time_ms; }
+uint16_t hal_control_period_ms(hal_t *hal) { return hal->period_ms; }
+
+uint16_t hal_ir_proximity(hal_t *hal, uint8_t index)
+{
+    return index < HAL_IR_COUNT ? hal->proximity[index] : 0u;
+}
+
+uint16_t hal_ir_ambient(hal_t *hal, uint8_t index)
+{
+    return index < HAL_IR_COUNT ? hal->ambient[index] : (uint16_t)HAL_RAW_MAX;
+}
+
+uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
+{
+    uint8_t i;
+    uint8_t n = hal->n_blobs < max ? hal->n_blobs : max;
+    for (i = 0; i < n; i++) {
+        out[i] = hal->blobs[i];
+    }
+    return n;
+}
+
+int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band)
+{
+    if (mic >= HAL_MIC_COUNT || band >= HAL_SOUND_BANDS) {
+        return 0;
+    }
+    return hal->mic[mic][band];
+}
+
+int8_t hal_speaker_set(hal_t *hal, uint8_t band)
+{
+    hal->speaker_band = band;
+    return 0;
+}
+
+uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->payload_bits; }
+
+int8_t hal_ircom_send(hal_t *hal, uint16_t value)
+{
+    if (hal->sent_this_step != 0u) {
+        return -1;
+    }
+    if (hal->payload_bits < 16u) {
+        value = (uint16_t)(value & ((1u << hal->payload_bits) - 1u));
+    }
+    hal->sent_this_step = 1u;
+    if (hal->out_count < FAKE_OUTBOX_MAX) {
+        hal->outbox[hal->out_count] = value;
+    }
+    hal->out_count++;
+    hal->last_sent = value;
+    return 0;
+}
+
+uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
+{
+    if (hal->in_count == 0u) {
+        return 0u;
+    }
+    *out = hal->inbox[hal->in_head];
+    hal->in_head = (hal->in_head + 1u) % FAKE_INBOX_MAX;
+    hal->in_count--;
+    return 1u;
+}
+
+void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s)
+{
+    if (left_steps_s > HAL_WHEEL_SPEED_MAX) left_steps_s = HAL_WHEEL_SPEED_MAX;
+    if (left_steps_s < -HAL_WHEEL_SPEED_MAX) left_steps_s = -HAL_WHEEL_SPEED_MAX;
+    if (right_steps_s > HAL_WHEEL_SPEED_MAX) right_steps_s = HAL_WHEEL_SPEED_MAX;
+    if (right_steps_s < -HAL_WHEEL_SPEED_MAX) right_steps_s = -HAL_WHEEL_SPEED_MAX;
+    hal->left = left_steps_s;
+    hal->right = right_steps_s;
+    hal->wheel_calls++;
+}
+
+void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right)
+{
+    *left = hal->steps_left;
+    *right = hal->steps_right;
+}
+
+void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
+{
+    if (index >= HAL_LED_COUNT) {
+        return;
+    }
+    if (on != 0u) {
+        hal->leds = (uint8_t)(hal->leds | (1u << index));
+    } else {
+        hal->leds = (uint8_t)(hal->leds & ~(1u << index));
+    }
+}
+
+void hal_set_body_led(hal_t *hal, uint8_t on) { hal->body_led = on; }
+void hal_set_front_led(hal_t *hal, uint8_t on) { hal->front_led = on; }
+
+uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)
+{
+    (void)bytes;
+    hal->telemetry_bytes += len;
+    return len;
+}
+
+#endif
