@@ -116,6 +116,22 @@ void foraging_release(struct sim *sim)
     }
 }
 
+int foraging_drop(struct sim *sim, uint32_t i)
+{
+    foraging_t *f = &sim->forage;
+    if (!sim->foraging_on || i >= sim->n_swarm || f->carried[i] < 0) {
+        return 0;
+    }
+    food_token_t *t = &f->tokens[f->carried[i]];
+    /* Left on the floor a little ahead, out of the gripper's reach. */
+    t->x += 0.1f * cosf(sim->robots[i].theta);
+    t->y += 0.1f * sinf(sim->robots[i].theta);
+    t->carrier = -1;
+    f->carried[i] = -1;
+    f->dropped++;
+    return 1;
+}
+
 static void carry_and_grasp(struct sim *sim)
 {
     foraging_t *f = &sim->forage;

@@ -60,6 +60,10 @@ void foraging_update(struct sim *sim);
 /** Ideal global information: the true nest state, sent as a nest beacon would. */
 void foraging_broadcast_truth(struct sim *sim);
 
+/** Makes robot `i` lose the token it carries where it is (a test of the
+ *  firmware's lost-token path).  Returns 1 if it carried one. */
+int foraging_drop(struct sim *sim, uint32_t i);
+
 /** Exact energy balance: F(0) + delivered - consumed, in tokens. */
 double foraging_balance(const struct sim *sim);
 

@@ -25,6 +25,15 @@ check "aggregate summary differs between 1 and 2 threads" "cmp -s '$tmp/t1/summa
 check "seeds 1 and 2 gave the same run" "! cmp -s '$tmp/t1/run_1/summary.json' '$tmp/t1/run_2/summary.json'"
 # --seed 2 makes rep 0 use seed 2: identical to rep 1 of the --seed 1 run.
 check "--seed 2 run_2 differs from --seed 1 run_2" "cmp -s '$tmp/t1/run_2/summary.json' '$tmp/s2/run_2/summary.json'"
+# The foraging task (beacon, tokens, ledger) with both thread counts.
+fargs=(sim_host/scenarios/foraging_base.yaml --steps 2000 --reps 3 --quiet)
+"$sim" "${fargs[@]}" --threads 1 --out "$tmp/f1"
+"$sim" "${fargs[@]}" --threads 2 --out "$tmp/f2"
+for seed in 1 2 3; do
+    for f in summary.json timeseries.csv; do
+        check "foraging run_$seed/$f differs between 1 and 2 threads" "cmp -s '$tmp/f1/run_$seed/$f' '$tmp/f2/run_$seed/$f'"
+    done
+done
 check "state hash missing" "grep -q state_hash '$tmp/t1/run_1/summary.json'"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

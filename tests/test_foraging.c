@@ -1,0 +1,178 @@
+/*
+ * test_foraging.c - seed 000's foraging task end to end in the simulator:
+ * firmware foragers and the nest beacon on the base condition, checked
+ * against ground truth (deliveries, the energy ledger to the unit, the
+ * beacon's estimate, a lost token).
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "forager.h"
+#include "nest_beacon.h"
+#include "scenario.h"
+#include "sim.h"
+#include "sim_internal.h"
+
+#define BASE "../sim_host/scenarios/foraging_base.yaml"
+
+static scenario_t *load(const char *policy, const char *info)
+{
+    scenario_t *sc = malloc(sizeof *sc);
+    char err[SCENARIO_ERROR_MAX], set_policy[64], set_info[64];
+    snprintf(set_policy, sizeof set_policy, "controller.policy=%s", policy);
+    snprintf(set_info, sizeof set_info, "foraging.information=%s", info);
+    scenario_override_t sets[2] = { { set_policy }, { set_info } };
+    assert_non_null(sc);
+    if (scenario_load(BASE, sets, 2, sc, err) != 0) fail_msg("%s", err);
+    return sc;
+}
+
+static sim_t *make(const scenario_t *sc, uint64_t seed)
+{
+    char err[256];
+    sim_t *sim = sim_create(sc, seed, err);
+    if (!sim) fail_msg("%s", err);
+    return sim;
+}
+
+/* 3000 steps (5 min) of the base condition with DRTM and the beacon:
+ * tokens are collected and delivered, each delivery raises the nest level
+ * by one token less that step's costs, and the ledger balances. */
+static void test_base_run_collects_and_balances(void **state)
+{
+    (void)state;
+    scenario_t *sc = load("drtm", "beacon");
+    sim_t *sim = make(sc, 7);
+    const foraging_t *f = sim_foraging(sim);
+    const double E = sc->foraging.token_energy;
+    uint64_t forage_steps = 0, rises = 0;
+    double prev = sc->foraging.initial_food;
+    assert_non_null(f);
+    assert_true(fabs(f->food - 5.0) < 1e-12);
+    for (int k = 0; k < 3000; k++) {
+        uint64_t delivered = f->delivered;
+        sim_step(sim);
+        for (uint32_t i = 0; i < sim_swarm_count(sim); i++) {
+            char st = sim_robot_task_state(sim, i);
+            forage_steps += st == 'S' || st == 'R';
+        }
+        if (f->delivered > delivered) {
+            /* A delivery: +1 token, minus at most every robot's step cost
+             * and a few OAEs and the nest's 5 units. */
+            double up = f->food - prev;
+            assert_true(up > 1.0 - (20 * 1 + 5 + 10 * 20) / E && up <= 1.0 * (double)(f->delivered - delivered));
+            rises++;
+        }
+        prev = f->food;
+    }
+    assert_true(f->delivered >= 10);
+    assert_true(rises >= 10);
+    /* The ledger, recomputed here in energy units: to the unit. */
+    double nest = sc->foraging.consumption / 60.0 * 300.0 * E;                 /* 2 tokens/min, 5 min */
+    double spent = nest + forage_steps * sc->foraging.move_cost + sim_oae_total(sim) * sc->foraging.oae_energy;
+    double units = (sc->foraging.initial_food + (double)f->delivered) * E - spent;
+    assert_true(fabs(units - f->food * E) < 1e-6);
+    assert_int_equal(nest, 15000.0);
+    /* The robots' own deposit counts agree with the deliveries: a robot
+     * still backing out counts its deposit a few steps later, and a robot
+     * that meets another one carrying a token face to face can take that
+     * token, filling its view, for its own (a belief; the metrics come from
+     * the simulator's ground truth).  At most one such mistake in 20. */
+    uint64_t deposits = 0, backing = 0;
+    for (uint32_t i = 0; i < sim_swarm_count(sim); i++) {
+        const forager_t *fg = sim_robot_controller(sim, i);
+        deposits += fg->deposits;
+        backing += fg->state == FORAGER_DEPOSIT;
+    }
+    uint64_t slack = f->delivered / 20 + 1;
+    if (!(deposits <= f->delivered + slack && deposits + backing + slack >= f->delivered))
+        fail_msg("robots counted %llu deposits (%llu backing), the nest got %llu, dropped %llu", (unsigned long long)deposits, (unsigned long long)backing, (unsigned long long)f->delivered, (unsigned long long)f->dropped);
+    /* The beacon's ledger estimates the true nest level from reports. */
+    const nest_beacon_t *b = sim_robot_controller(sim, (uint32_t)sim_beacon_index(sim));
+    double beacon_food = nest_beacon_food_q4(b) / 16.0;
+    assert_true(fabs(beacon_food - f->food) < 4.0);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* A robot that loses its token searches again. */
+static void test_lost_token_goes_back_to_search(void **state)
+{
+    (void)state;
+    scenario_t *sc = load("drtm", "beacon");
+    sim_t *sim = make(sc, 8);
+    int32_t carrier = -1;
+    for (int k = 0; k < 6000 && carrier < 0; k++) {
+        sim_step(sim);
+        for (uint32_t i = 0; i < sim_swarm_count(sim) && carrier < 0; i++) {
+            const forager_t *fg = sim_robot_controller(sim, i);
+            if (fg->state == FORAGER_RETURN && sim->forage.carried[i] >= 0) {
+                carrier = (int32_t)i;
+            }
+        }
+    }
+    assert_true(carrier >= 0);
+    const forager_t *fg = sim_robot_controller(sim, (uint32_t)carrier);
+    assert_int_equal(foraging_drop(sim, (uint32_t)carrier), 1);
+    for (int k = 0; k < fg->params.lost_steps + 1; k++) {
+        sim_step(sim);
+    }
+    assert_int_equal(fg->state, FORAGER_SEARCH);
+    assert_int_equal(sim_foraging(sim)->dropped, 1);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* At the start every robot waits in the nest, and with S(0) = 15 > 0 and
+ * theta = 0 (DRTM, eq 6 with k = M_A = 0) they all leave at the first
+ * decision, after T1 steps. */
+static void test_everyone_leaves_at_first_decision(void **state)
+{
+    (void)state;
+    scenario_t *sc = load("drtm", "global");
+    sim_t *sim = make(sc, 9);
+    assert_int_equal(sim_beacon_index(sim), -1);
+    for (int k = 0; k < 49; k++) sim_step(sim);
+    assert_int_equal(sim_foraging(sim)->waiting, 20);
+    for (int k = 0; k < 2; k++) sim_step(sim);
+    assert_int_equal(sim_foraging(sim)->waiting, 0);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* When the nest is full (F(0) >= F_d, S <= 0) nobody ever leaves. */
+static void test_full_nest_keeps_everyone_home(void **state)
+{
+    (void)state;
+    const char *policies[3] = { "drtm", "artm", "frtm" };
+    for (int p = 0; p < 3; p++) {
+        scenario_t *sc = load(policies[p], "beacon");
+        sc->foraging.initial_food = 40.0f;     /* 40 - 600 s x 2/min > 20 */
+        sc->foraging.consumption = 2.0f;
+        sim_t *sim = make(sc, 10);
+        for (int k = 0; k < 3000; k++) {
+            sim_step(sim);
+            assert_int_equal(sim_foraging(sim)->waiting, 20);
+        }
+        sim_destroy(sim);
+        free(sc);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_base_run_collects_and_balances),
+        cmocka_unit_test(test_lost_token_goes_back_to_search),
+        cmocka_unit_test(test_everyone_leaves_at_first_decision),
+        cmocka_unit_test(test_full_nest_keeps_everyone_home),
+    };
+    return cmocka_run_group_tests_name("foraging", tests, NULL, NULL);
+}
