@@ -39,7 +39,7 @@ TESTS_ASAN := $(patsubst tests/%.c,$(BUILD)/tests/asan/%,$(TEST_SRC))
 
 ASAN := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 
-.PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps
+.PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps study-drtm
 
 all: $(BUILD)/swarmsim
 
@@ -83,7 +83,7 @@ $(BUILD)/tests/asan/%: tests/%.c $(BUILD)/libswarm-asan.a
 	$(CC) $(SIM_CFLAGS) $(ASAN) $(CMOCKA_CFLAGS) -o $@ $< $(BUILD)/libswarm-asan.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
 
 # ---------------------------------------------------------------- run
-RUN_SCENARIO ?= sim_host/scenarios/random_walk.yaml
+RUN_SCENARIO ?= sim_host/scenarios/foraging_base.yaml
 RUN_OUT ?= out/run
 run: $(BUILD)/swarmsim
 	$(BUILD)/swarmsim $(RUN_SCENARIO) --out $(RUN_OUT) --frames 1000 $(RUN_ARGS)
@@ -106,6 +106,15 @@ firmware-hygiene: $(BUILD)/config.mk
 
 test: unit-tests asan-tests cli-tests firmware-hygiene
 	@echo "make test: all test groups passed"
+
+# ---------------------------------------------------------------- studies
+# Seed 000's simulation study: 5 conditions x {DRTM, ARTM, FRTM} x 50 runs.
+STUDY_ARGS ?=
+$(VENV)/.study-installed: tools/requirements-study.txt | $(BUILD)/config.mk
+	$(VENV)/bin/pip install --disable-pip-version-check -q -r tools/requirements-study.txt
+	touch $@
+study-drtm: $(BUILD)/swarmsim $(VENV)/.study-installed
+	$(PYTHON) tools/study/study_drtm.py --sim $(BUILD)/swarmsim $(STUDY_ARGS)
 
 # ---------------------------------------------------------------- bench
 bench: $(BUILD)/swarmsim
