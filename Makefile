@@ -39,6 +39,14 @@ TESTS_ASAN := $(patsubst tests/%.c,$(BUILD)/tests/asan/%,$(TEST_SRC))
 
 ASAN := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 
+# Feature fragments (tools/make/*.mk) add to these before any rule uses them:
+#   SIM_EXTRA_OBJ / SIM_EXTRA_OBJ_ASAN  objects linked into libswarm
+#   EXTRA_TESTS                          targets `make test` also runs
+EXTRA_TESTS :=
+SIM_EXTRA_OBJ :=
+SIM_EXTRA_OBJ_ASAN :=
+include $(sort $(wildcard tools/make/*.mk))
+
 .PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps study-drtm
 
 all: $(BUILD)/swarmsim
@@ -65,10 +73,10 @@ $(BUILD)/asan/sim_host/%.o: sim_host/%.c
 	@mkdir -p $(@D)
 	$(CC) $(SIM_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
 
-$(BUILD)/libswarm.a: $(FW_OBJ) $(SIM_OBJ)
+$(BUILD)/libswarm.a: $(FW_OBJ) $(SIM_OBJ) $(SIM_EXTRA_OBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^
-$(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN)
+$(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN) $(SIM_EXTRA_OBJ_ASAN)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
@@ -104,7 +112,7 @@ cli-tests: $(BUILD)/swarmsim
 firmware-hygiene: $(BUILD)/config.mk
 	@bash tests/firmware/hygiene.sh
 
-test: unit-tests asan-tests cli-tests firmware-hygiene
+test: unit-tests asan-tests cli-tests firmware-hygiene $(EXTRA_TESTS)
 	@echo "make test: all test groups passed"
 
 # ---------------------------------------------------------------- studies
