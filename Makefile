@@ -47,7 +47,7 @@ SIM_EXTRA_OBJ :=
 SIM_EXTRA_OBJ_ASAN :=
 include $(sort $(wildcard tools/make/*.mk))
 
-.PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps study-drtm
+.PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps
 
 all: $(BUILD)/swarmsim
 
@@ -114,15 +114,6 @@ firmware-hygiene: $(BUILD)/config.mk
 
 test: unit-tests asan-tests cli-tests firmware-hygiene $(EXTRA_TESTS)
 	@echo "make test: all test groups passed"
-
-# ---------------------------------------------------------------- studies
-# Seed 000's simulation study: 5 conditions x {DRTM, ARTM, FRTM} x 50 runs.
-STUDY_ARGS ?=
-$(VENV)/.study-installed: tools/requirements-study.txt | $(BUILD)/config.mk
-	$(VENV)/bin/pip install --disable-pip-version-check -q -r tools/requirements-study.txt
-	touch $@
-study-drtm: $(BUILD)/swarmsim $(VENV)/.study-installed
-	$(PYTHON) tools/study/study_drtm.py --sim $(BUILD)/swarmsim $(STUDY_ARGS)
 
 # ---------------------------------------------------------------- bench
 bench: $(BUILD)/swarmsim
