@@ -30,9 +30,12 @@ check_all() {
     need libosmesa6-dev   hdr GL/osmesa.h
     need gcc-avr          command -v avr-gcc
     need avr-libc         hdr_avr
+    need gcc-arm-none-eabi       command -v arm-none-eabi-gcc
+    need libnewlib-arm-none-eabi hdr_arm
     need python3-venv     python3 -c 'import venv, ensurepip'
 }
 hdr_avr() { printf '#include <stdint.h>\n' | avr-gcc -mmcu=atmega128 -E -x c - >/dev/null; }
+hdr_arm() { printf '#include <string.h>\n' | arm-none-eabi-gcc -mcpu=cortex-m4 -E -x c - >/dev/null; }
 
 check_all
 if [ ${#missing[@]} -gt 0 ]; then

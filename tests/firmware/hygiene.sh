@@ -7,6 +7,12 @@
 #     symbols): controllers keep all state in their structs;
 #  3. nothing calls malloc/calloc/realloc/free;
 #  4. no conditional compilation in controllers except include guards.
+# hal/epuck (the e-puck1 HAL) obeys rules 1-3 too: its state is the
+# caller's struct hal.  The images' mains (firmware/apps) compile under rule
+# 1 and call no allocator; their static variables are the one documented
+# exception (no heap on the robot, main never returns): only the robot's
+# struct hal (app_hal), the controller (app_*) and the camera frames
+# (camera_frames) may be writable statics there.
 # The checker is itself checked on a bad source that must be caught.
 set -u
 cd "$(dirname "$0")/../.."
@@ -16,8 +22,8 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
-srcs=$(ls firmware/*.c hal/*.c)
-flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Ifirmware"
+srcs=$(ls firmware/*.c hal/*.c hal/epuck/*.c)
+flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Ifirmware -Ihal/epuck"
 
 # Writable static data in one object: prints what it finds.
 writable() {
@@ -40,6 +46,22 @@ for src in $srcs; do
     else bad "$src does not compile warning-free with avr-gcc (16-bit int)"; fi
 done
 
+# Images (firmware/apps): warning-free on both, no allocator, and no
+# writable statics but the documented ones.
+apps=$(ls firmware/apps/*.c)
+for src in $apps; do
+    name=app_$(basename "${src%.c}")
+    obj="$out/host/$name.o"
+    if ! cc $flags -O2 -c "$src" -o "$obj"; then bad "$src does not compile on the host"; continue; fi
+    ok
+    if avr-gcc -mmcu=atmega128 $flags -Os -c "$src" -o "$out/avr/$name.o"; then ok
+    else bad "$src does not compile warning-free with avr-gcc (16-bit int)"; fi
+    w=$(nm "$obj" | awk '$2 ~ /^[dDbBC]$/ { print $3 }' | grep -vE '^(app_[A-Za-z0-9_]+|camera_frames)(\.[0-9]+)?$')
+    if [ -n "$w" ]; then bad "$src: undocumented writable statics: $w"; else ok; fi
+    a=$(allocates "$obj")
+    if [ -n "$a" ]; then bad "$src: $a"; else ok; fi
+done
+
 # Controllers: no #if/#ifdef other than the include guard of a header.
 for f in firmware/*.c firmware/*.h; do
     n=$(grep -cE '^\s*#\s*(if|ifdef|ifndef|elif)\b' "$f")
@@ -55,6 +77,6 @@ cc -std=c99 -O0 -c "$probe" -o "$out/probe.o"
 if [ -n "$(writable "$out/probe.o")" ]; then ok; else bad "checker missed a mutable static"; fi
 if [ -n "$(allocates "$out/probe.o")" ]; then ok; else bad "checker missed malloc"; fi
 
-echo "firmware hygiene: $(echo $srcs | wc -w) sources, host and avr-gcc"
+echo "firmware hygiene: $(echo $srcs | wc -w) sources and $(echo $apps | wc -w) images, host and avr-gcc"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,0 +1,78 @@
+/*
+ * forager_main.c - the forager image (seed 000): firmware/forager.c on a
+ * real e-puck1 with the range-and-bearing turret (16-bit nest messages).
+ *
+ * Task allocation policy: the selector switch picks it at power-on,
+ *   1 = DRTM, 2 = ARTM, 3 = FRTM, any other position = the build's default,
+ * which is APP_FORAGER_POLICY (make firmware FORAGER_POLICY=drtm|artm|frtm;
+ * DRTM when not given).  Swarm constants of eq 4 and T2 come from the build
+ * too: APP_N_ROBOTS (N_r, 20) and APP_ARENA_L_MM (L, 4000 mm); everything
+ * else is forager_default_params (seed 000's values).
+ *
+ * Static storage: an image is the one place where the firmware's state
+ * lives in static variables (no heap on the robot, and main never
+ * returns): the robot's struct hal, its two camera frames, and the
+ * controller.  tests/firmware/hygiene.sh checks that an app has no other
+ * writable statics.
+ */
+#include <stdint.h>
+
+#include "forager.h"
+#include "hal_epuck.h"
+
+#ifndef APP_FORAGER_POLICY
+#define APP_FORAGER_POLICY TA_DRTM
+#endif
+#ifndef APP_N_ROBOTS
+#define APP_N_ROBOTS 20u
+#endif
+#ifndef APP_ARENA_L_MM
+#define APP_ARENA_L_MM 4000u
+#endif
+
+static struct hal app_hal;
+static uint8_t camera_frames[2u * HAL_EPUCK_FRAME_BYTES];
+static forager_t app_forager;
+
+/* Timer-2 agenda, interrupt context: only counts the period. */
+static void app_tick(void)
+{
+    hal_epuck_tick(&app_hal);
+}
+
+static ta_policy_t choose_policy(uint8_t selector)
+{
+    switch (selector) {
+    case 1u: return TA_DRTM;
+    case 2u: return TA_ARTM;
+    case 3u: return TA_FRTM;
+    default: return APP_FORAGER_POLICY;
+    }
+}
+
+int main(void)
+{
+    hal_epuck_config_t cfg;
+    forager_params_t params;
+
+    hal_epuck_default_config(&cfg);
+    (void)hal_epuck_init(&app_hal, &cfg, camera_frames, (uint16_t)sizeof camera_frames);
+    hal_epuck_start(&app_hal, app_tick);
+
+    forager_default_params(&params);
+    params.policy = choose_policy(hal_epuck_selector(&app_hal));
+    params.n_robots = (uint16_t)APP_N_ROBOTS;
+    params.arena_l_mm = (uint16_t)APP_ARENA_L_MM;
+    hal_epuck_begin_step(&app_hal);   /* light readings for the seed */
+    forager_init(&app_forager, &params, hal_epuck_seed(&app_hal));
+
+    for (;;) {
+        if (hal_epuck_step_due(&app_hal) != 0u) {
+            hal_epuck_begin_step(&app_hal);
+            forager_step(&app_forager, &app_hal);
+            hal_epuck_end_step(&app_hal);
+        } else {
+            hal_epuck_poll(&app_hal);
+        }
+    }
+}

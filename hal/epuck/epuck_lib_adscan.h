@@ -1,0 +1,26 @@
+/*
+ * epuck_lib_adscan.h - GCtronic e-puck library, advance A/D scan module
+ * (library/a_d/advance_ad_scan/): IR proximity, ambient light and
+ * microphones sampled by the A/D interrupt.  Used by the images with the
+ * range-and-bearing turret (ircom_randb.c).  libIrcom images use libIrcom's
+ * own A/D module instead (epuck_lib_ircom.h): the two cannot be linked
+ * together.  Declarations only; see epuck_lib.h.
+ */
+#ifndef EPUCK_LIB_ADSCAN_H
+#define EPUCK_LIB_ADSCAN_H
+
+/* a_d/advance_ad_scan/e_ad_conv.h: starts the A/D scan; EPL_ALL_ADC samples
+ * IR, accelerometer and microphones. */
+void e_init_ad_scan(unsigned char only_micro);
+/** e_ad_conv.h: `only_micro` value that samples every channel. */
+#define EPL_ALL_ADC 0
+
+/* a_d/advance_ad_scan/e_prox.h: proximity minus the offsets measured by
+ * e_calibrate_ir (larger = closer; may be slightly negative), ambient light
+ * (raw 12-bit, falls as light rises), and the calibration itself (the
+ * robot must see nothing within ~10 cm while it runs). */
+void e_calibrate_ir(void);
+int e_get_calibrated_prox(unsigned int sensor_number);
+int e_get_ambient_light(unsigned int sensor_number);
+
+#endif

@@ -1,0 +1,233 @@
+/*
+ * hal_epuck.h - hal.h on a real e-puck1 (dsPIC30F6014A) over GCtronic's
+ * e-puck library.
+ *
+ * An image (firmware/apps/) defines the one `struct hal` of the robot and
+ * the controller's state as static storage (on bare metal there is nowhere
+ * else to keep them: no heap, and main never returns), and runs:
+ *
+ *     hal_epuck_init(&robot, &cfg, frames, sizeof frames);   struct only
+ *     hal_epuck_start(&robot, app_tick);                      hardware on
+ *     ...controller_init(&ctl, &params, hal_epuck_seed(&robot));
+ *     for (;;) {
+ *         if (hal_epuck_step_due(&robot)) {
+ *             hal_epuck_begin_step(&robot);     sample the sensors once
+ *             controller_step(&ctl, &robot);
+ *             hal_epuck_end_step(&robot);       actuators, IR send, clock
+ *         } else {
+ *             hal_epuck_poll(&robot);           background work
+ *         }
+ *     }
+ *
+ * with `static void app_tick(void) { hal_epuck_tick(&robot); }` registered
+ * as a timer-2 agenda of the control period.  The agenda runs in the timer
+ * interrupt, so it only counts ticks; the step itself runs in the main
+ * loop, where it can take its time without delaying the motors' agendas,
+ * and where every library call that busy-waits (I2C to the turret and the
+ * camera) is made.
+ *
+ * Timing: the step starts within one poll of its tick (a poll is a few ms
+ * at most: the turret's I2C read).  A step that overruns its period is
+ * counted (hal_epuck_overruns); the missed ticks are dropped and
+ * hal_time_ms still advances by one period per step, as hal.h says.
+ *
+ * Sensors are sampled once per step (begin_step) into this struct: IR
+ * proximity and ambient light, the step counters.  Camera blobs are
+ * computed at the first hal_camera_blobs call of a step, on the last
+ * complete frame, and kept for the rest of the step.  The camera captures
+ * into two buffers in turn: while the controller's step reads one, the
+ * driver fills the other; poll() swaps them when the driver reports a
+ * complete frame.  Received IR messages are moved into the inbox by poll(),
+ * between steps, so the inbox does not change during a step.  The message
+ * a step queues is sent by end_step (the turret's send busy-waits ~4 ms).
+ *
+ * Telemetry (hal_telemetry_write): bytes are copied into a buffer of
+ * HAL_EPUCK_TX_BYTES and handed to the UART1 driver, which sends them in
+ * the background; while it is busy the call accepts 0 bytes.  Pump a
+ * telemetry sender from the idle loop (hal_epuck_poll's caller) to keep
+ * the link busy.
+ *
+ * Microphone band levels and the speaker are HAL_NOT_MODELLED, as in the
+ * simulator, until the RepAtt work defines the bands.
+ *
+ * The sources of hal/epuck have no mutable static storage (hygiene.sh
+ * checks it): all state is in this struct.
+ */
+#ifndef HAL_EPUCK_H
+#define HAL_EPUCK_H
+
+#include <stdint.h>
+
+#include "blob_detect.h"
+#include "hal.h"
+
+/** Received IR messages kept between two steps (libIrcom's queue is 20). */
+#define HAL_EPUCK_INBOX 16u
+/** Telemetry bytes handed to the UART at once. */
+#define HAL_EPUCK_TX_BYTES 64u
+/** Camera frame of the default configuration: the whole width of the
+ *  sensor (the full field of view) subsampled by 16, and a band of 320
+ *  sensor rows around the horizon subsampled by 16: 40 x 20 RGB565 pixels,
+ *  1600 bytes.  Two of them (double buffering) take 3200 bytes, the RAM of
+ *  one 40 x 40 frame. */
+#define HAL_EPUCK_CAM_WIDTH 40u
+#define HAL_EPUCK_CAM_HEIGHT 20u
+#define HAL_EPUCK_FRAME_BYTES (HAL_EPUCK_CAM_WIDTH * HAL_EPUCK_CAM_HEIGHT * 2u)
+/** Value of hal_robot_id when no id was flashed (the word is erased). */
+#define HAL_EPUCK_NO_ID 0xFFFFu
+
+/** Configuration of the e-puck HAL.  Start from hal_epuck_default_config. */
+typedef struct hal_epuck_config {
+    uint16_t period_ms;            /**< control period, ms (100) */
+    uint16_t robot_id;             /**< hal_robot_id (HAL_EPUCK_NO_ID: the id
+                                        the flasher wrote, read by
+                                        hal_epuck_start; 0 if none was) */
+    uint8_t camera;                /**< 1: capture and detect blobs (1) */
+    uint16_t cam_width;            /**< frame columns (HAL_EPUCK_CAM_WIDTH) */
+    uint16_t cam_height;           /**< frame rows (HAL_EPUCK_CAM_HEIGHT) */
+    uint16_t cam_window_y;         /**< first sensor row of the window (80) */
+    uint16_t cam_window_h;         /**< sensor rows of the window (320) */
+    uint8_t cam_mirror;            /**< 1: column 0 is the robot's RIGHT: negate
+                                        bearings (0) [?] check on your robot:
+                                        an object on its left must give a
+                                        positive bearing */
+    blob_detect_params_t blob;     /**< detector parameters (defaults; fov
+                                        977 mrad [?], big-endian pixels) */
+    uint8_t randb_range;           /**< turret emission range, 0 = full (0) */
+    uint16_t randb_range_mm_per_unit; /**< mm per unit of the turret's range
+                                        (10: cm) [?] */
+} hal_epuck_config_t;
+
+/** The robot.  Fields are private to hal/epuck; an image only defines one
+ *  (static storage) and passes its address. */
+struct hal {
+    hal_epuck_config_t cfg;
+
+    /* Clock.  `ticks` is written only by the agenda (interrupt), `ticks_seen`
+     * only by the main loop: a 16-bit word is read and written atomically on
+     * the dsPIC, so no interrupt masking is needed. */
+    volatile uint16_t ticks;
+    uint16_t ticks_seen;
+    uint16_t overruns;           /**< periods missed because a step overran */
+    uint32_t time_ms;            /**< hal_time_ms */
+    uint32_t step;               /**< steps done */
+
+    /* Sensors sampled at begin_step. */
+    uint16_t prox[HAL_IR_COUNT];
+    uint16_t ambient[HAL_IR_COUNT];
+    int16_t steps_left, steps_right;
+
+    /* Camera: two buffers of frame_bytes in `frames`. */
+    uint8_t *frames;
+    uint16_t frame_bytes;
+    uint8_t cam_state;           /**< hal_epuck_cam_state_t */
+    uint8_t cam_negate;          /**< negate blob bearings (mirror, inverted sensor) */
+    uint8_t cam_filling;         /**< buffer the driver is filling, 0/1 */
+    uint8_t cam_complete;        /**< buffer with the last complete frame, 0/1,
+                                      or 0xFF before the first */
+    uint16_t cam_frames;         /**< complete frames so far (wraps) */
+    uint8_t blobs_step_valid;    /**< blobs[] computed in this step */
+    uint8_t n_blobs;
+    hal_blob_t blobs[HAL_MAX_BLOBS];
+
+    /* Actuators: set during a step, applied by end_step. */
+    int16_t speed_left, speed_right;
+    uint16_t leds;               /**< bits 0-7 ring, 8 body, 9 front */
+    uint16_t leds_applied;       /**< what the LEDs show (0xFFFF: unknown) */
+    int16_t speeds_applied[2];
+
+    /* IR communication. */
+    hal_ircom_msg_t inbox[HAL_EPUCK_INBOX];
+    uint8_t in_head, in_count;
+    uint16_t in_dropped;         /**< messages lost because the inbox was full */
+    uint16_t out_value;
+    uint8_t out_pending;         /**< a message is queued for end_step */
+    uint16_t sent;               /**< messages sent (wraps) */
+
+    /* Telemetry: the buffer the UART driver reads while it sends. */
+    uint8_t tx[HAL_EPUCK_TX_BYTES];
+};
+
+/** Camera states (struct hal.cam_state). */
+typedef enum hal_epuck_cam_state {
+    HAL_EPUCK_CAM_OFF = 0,       /**< not configured, or no frames given */
+    HAL_EPUCK_CAM_RUNNING = 1,   /**< capturing */
+    HAL_EPUCK_CAM_FAILED = 2     /**< the driver refused the window, or the
+                                      sensor is mounted vertically (some
+                                      PO3030K robots): blobs are never seen */
+} hal_epuck_cam_state_t;
+
+/** 100 ms, camera on with the 40 x 20 window, blob defaults, id from flash,
+ *  full turret range, turret range in cm. */
+void hal_epuck_default_config(hal_epuck_config_t *cfg);
+
+/** Sets up the struct (no hardware access).  `frames` holds two frames of
+ *  cfg->cam_width * cam_height * 2 bytes (`frames_bytes` >= twice that), or
+ *  is NULL for an image without camera.  Returns 0, or -1 if the frames
+ *  are too small for the configured window (the camera is then off). */
+int8_t hal_epuck_init(hal_t *hal, const hal_epuck_config_t *cfg, uint8_t *frames, uint16_t frames_bytes);
+
+/** Starts the hardware: ports, UART1, motors, A/D (and IR calibration: keep
+ *  the robot clear of obstacles for the first second), IR communication,
+ *  camera, then the agenda `tick` every control period.  `tick` must call
+ *  hal_epuck_tick on this struct. */
+void hal_epuck_start(hal_t *hal, void (*tick)(void));
+
+/** Counts one control period.  Called from the agenda (interrupt context). */
+void hal_epuck_tick(hal_t *hal);
+
+/** 1 if a control period has elapsed since the last step (then the caller
+ *  runs begin_step, the controller's step, end_step), else 0. */
+uint8_t hal_epuck_step_due(hal_t *hal);
+
+/** Background work between steps: swaps the camera buffers when a frame is
+ *  complete, moves received IR messages into the inbox.  Never blocks for
+ *  more than the IR driver's own busy-waits (a few ms on the turret). */
+void hal_epuck_poll(hal_t *hal);
+
+/** Samples the sensors of this step. */
+void hal_epuck_begin_step(hal_t *hal);
+
+/** Applies wheel speeds and LEDs, sends the queued IR message, advances the
+ *  clock by one period. */
+void hal_epuck_end_step(hal_t *hal);
+
+/** 32 bits for a controller's seed: the robot id mixed with the noise of
+ *  the ambient light readings (call after begin_step). */
+uint32_t hal_epuck_seed(hal_t *hal);
+
+/** Position of the selector switch, 0..15. */
+uint8_t hal_epuck_selector(hal_t *hal);
+
+/** Control periods missed because a step (or a poll) overran. */
+uint16_t hal_epuck_overruns(const hal_t *hal);
+
+/** The robot id the flasher wrote into program memory (word 0x17F36; see
+ *  tools/flash/epuck_flash.py --robot-id), HAL_EPUCK_NO_ID if none.
+ *  Defined in hal/epuck/xc16/robot_id.c (XC16 only: it reads program
+ *  memory); the portable link gates use a stub. */
+uint16_t hal_epuck_flash_robot_id(void);
+
+/* ---- IR backend: defined by ircom_randb.c or ircom_libircom.c ---- */
+
+/** Starts the A/D scan, calibrates the IR sensors, starts IR communication. */
+void hal_epuck_ir_start(hal_t *hal);
+/** Reads the 8 proximity and ambient values into hal->prox / ambient. */
+void hal_epuck_ir_sample(hal_t *hal);
+/** Moves received messages into the inbox (hal_epuck_inbox_push). */
+void hal_epuck_ir_poll(hal_t *hal);
+/** Sends hal->out_value. */
+void hal_epuck_ir_transmit(hal_t *hal);
+
+/** Appends a received message to the inbox; when full, the message is
+ *  dropped and counted (in_dropped).  Returns 1 if kept. */
+uint8_t hal_epuck_inbox_push(hal_t *hal, const hal_ircom_msg_t *msg);
+
+/** Index 0..7 of the e-puck IR sensor whose bearing is nearest to
+ *  `bearing_mrad` (any value; wrapped to (-pi, pi]). */
+uint8_t hal_epuck_nearest_sensor(int16_t bearing_mrad);
+
+/** `rad` radians (any float) as mrad wrapped to (-3142, 3142]. */
+int16_t hal_epuck_rad_to_mrad(float rad);
+
+#endif

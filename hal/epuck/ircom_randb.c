@@ -1,0 +1,79 @@
+/*
+ * ircom_randb.c - IR backend of the images with the e-RandB
+ * range-and-bearing turret (16-bit messages, ~1 m): the forager and the
+ * nest beacon.  Proximity and light come from the e-puck library's advance
+ * A/D scan, which also samples the microphones.
+ *
+ * The turret's driver busy-waits inside every call (I2C transfers plus nop
+ * loops: ~2 ms per reception check, ~4 ms per send), so reception is polled
+ * from the main loop between steps (hal_epuck_poll) and the step's message
+ * is sent after the step (hal_epuck_end_step).  The turret keeps one frame:
+ * a frame that arrives while an earlier one has not been polled replaces
+ * it, as on the turret itself.
+ *
+ * Bearings: the turret computes them on its own processor, in radians,
+ * counter-clockwise positive with 0 ahead [?] (check: a sender on the
+ * robot's left must give a positive bearing).  Range: the board's units
+ * times cfg.randb_range_mm_per_unit (10: the units are taken as cm [?]).
+ */
+#include "hal_epuck.h"
+
+#include "epuck_lib_adscan.h"
+#include "epuck_lib_randb.h"
+
+static uint16_t clamp_raw(int v)
+{
+    if (v < 0) {
+        return 0u;
+    }
+    if (v > (int)HAL_RAW_MAX) {
+        return (uint16_t)HAL_RAW_MAX;
+    }
+    return (uint16_t)v;
+}
+
+void hal_epuck_ir_start(hal_t *hal)
+{
+    e_init_ad_scan(EPL_ALL_ADC);
+    e_calibrate_ir();
+    e_init_randb(EPL_RANDB_I2C);
+    e_randb_set_range(hal->cfg.randb_range);
+    e_randb_set_calculation(EPL_RANDB_ON_BOARD);
+    e_randb_store_light_conditions();
+}
+
+void hal_epuck_ir_sample(hal_t *hal)
+{
+    uint8_t i;
+    for (i = 0; i < HAL_IR_COUNT; i++) {
+        hal->prox[i] = clamp_raw(e_get_calibrated_prox(i));
+        hal->ambient[i] = clamp_raw(e_get_ambient_light(i));
+    }
+}
+
+void hal_epuck_ir_poll(hal_t *hal)
+{
+    finalDataRegister r;
+    hal_ircom_msg_t m;
+    uint32_t range;
+    if (e_randb_reception(&r) == 0u) {
+        return;
+    }
+    m.value = (uint16_t)r.data;
+    m.bearing_mrad = hal_epuck_rad_to_mrad(r.bearing);
+    m.sensor = hal_epuck_nearest_sensor(m.bearing_mrad);
+    range = (uint32_t)(uint16_t)r.range * hal->cfg.randb_range_mm_per_unit;
+    m.range_mm = range > 0xFFFEu ? (uint16_t)0xFFFEu : (uint16_t)range;
+    (void)hal_epuck_inbox_push(hal, &m);
+}
+
+void hal_epuck_ir_transmit(hal_t *hal)
+{
+    e_randb_send_all_data(hal->out_value);
+}
+
+uint8_t hal_ircom_payload_bits(hal_t *hal)
+{
+    (void)hal;
+    return 16u;
+}

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""cpu_report.py - instructions per control step of each controller, measured
+on the host with valgrind --tool=callgrind, and an estimate for the e-puck1's
+dsPIC30F6014A (14.7456 MIPS, no FPU).
+
+Runs tests/firmware/cpu_harness (built by `make firmware-cpu`) under
+callgrind; the harness dumps the cost of every single step, so the mean and
+the maximum over the steps come straight from the dumps.
+
+The dsPIC figure is an ESTIMATE, not a measurement.  Assumptions:
+  - k = 3 dsPIC instructions per x86-64 instruction for our integer code:
+    the dsPIC's ALU is 16-bit, so the 32-bit additions, shifts and
+    comparisons of the controllers take 2-4 instructions each, and it has
+    16 working registers against x86-64's richer addressing; a typical
+    dsPIC instruction takes one cycle (branches 2, a 32/16 division 18);
+  - plus software floating point: x86-64 does a float operation in one
+    SSE instruction, XC16's library in ~100-400 cycles.  Only the
+    forager's decision step (every T1 = 50 steps) uses floats: ~35
+    operations (eqs 2-7 and the roulette, counted in firmware/forager.c
+    and firmware/task_alloc.c), budgeted at 200 cycles each = 7,000 cycles
+    on its maximum.
+Camera: on the robot a step that asks for blobs also runs blob_detect on
+the 40 x 20 frame; the "forager + camera" row adds its maximum.
+
+usage: cpu_report.py HARNESS [STEPS] [--out build/firmware/cpu.md]
+"""
+import argparse
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+MIPS = 14.7456e6
+K = 3
+FLOAT_CYCLES = 35 * 200
+PERIOD_MS = 100.0
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('harness')
+    ap.add_argument('steps', nargs='?', type=int, default=2000)
+    ap.add_argument('--out', default='build/firmware/cpu.md')
+    args = ap.parse_args()
+    if shutil.which('valgrind') is None:
+        print('cpu report: valgrind is not installed (apt-get install valgrind): skipped')
+        return 0
+    with tempfile.TemporaryDirectory() as tmp:
+        base = os.path.join(tmp, 'cg.out')
+        r = subprocess.run(['valgrind', '--tool=callgrind', f'--callgrind-out-file={base}',
+                            '--dump-instr=no', '--compress-strings=no', '--compress-pos=no',
+                            os.path.abspath(args.harness), str(args.steps)],
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            print(r.stdout + r.stderr)
+            print('cpu report: the harness failed under valgrind')
+            return 1
+        print(r.stdout.strip())
+        costs = {}
+        trig = re.compile(r'^desc: Trigger: Client Request: (\S+)$', re.M)
+        summ = re.compile(r'^summary: (\d+)$', re.M)
+        for path in glob.glob(base + '.*'):
+            with open(path) as f:
+                text = f.read()
+            t, s = trig.search(text), summ.search(text)
+            if t and s:
+                costs.setdefault(t.group(1), []).append(int(s.group(1)))
+
+    def est(x86, float_cycles=0):
+        cycles = K * x86 + float_cycles
+        ms = cycles / MIPS * 1000.0
+        return cycles, ms
+
+    rows = []
+    order = ['forager', 'nest_beacon', 'random_walk', 'blob_detect']
+    for name in order:
+        c = costs.get(name)
+        if not c:
+            print(f'cpu report: no measurements of {name}')
+            return 1
+        mean = sum(c) / len(c)
+        fl = FLOAT_CYCLES if name == 'forager' else 0
+        cyc, ms = est(max(c), fl)
+        rows.append((name, len(c), mean, max(c), cyc, ms))
+    f = costs['forager']
+    b = costs['blob_detect']
+    cyc, ms = est(max(f) + max(b), FLOAT_CYCLES)
+    rows.append(('forager + camera (robot step)', len(f), sum(f) / len(f) + sum(b) / len(b),
+                 max(f) + max(b), cyc, ms))
+
+    lines = ['| step | steps measured | x86-64 instructions, mean | x86-64 max | dsPIC cycles '
+             '(estimate, max) | ms at 14.7456 MIPS | share of the 100 ms period |',
+             '|---|---|---|---|---|---|---|']
+    for name, n, mean, mx, cyc, ms in rows:
+        lines.append(f'| {name} | {n} | {mean:,.0f} | {mx:,} | {cyc:,.0f} | {ms:.2f} | '
+                     f'{ms / PERIOD_MS * 100:.1f} % |')
+    lines += ['',
+              f'Measured with valgrind --tool=callgrind (gcc -O2, x86-64), one dump per step. '
+              f'dsPIC estimate = {K} x x86 instructions (16-bit ALU) + {FLOAT_CYCLES:,} cycles of '
+              'software float in the forager\'s decision step (~35 float operations x ~200 cycles); '
+              'an estimate, not a measurement on the robot.']
+    table = '\n'.join(lines) + '\n'
+    print()
+    print(table)
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    with open(args.out, 'w') as fo:
+        fo.write('# Controller CPU per step\n\n' + table)
+    print(f'written to {args.out}')
+    worst = max(ms for *_, ms in rows)
+    ok = worst < PERIOD_MS / 2
+    print(f'cpu report: worst step {worst:.2f} ms of {PERIOD_MS:.0f} ms: '
+          + ('fits well inside the period' if ok else 'TOO SLOW (more than half the period)'))
+    return 0 if ok else 1
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,70 @@
+/*
+ * epuck_stubs.h - stand-ins for the e-puck library functions hal/epuck
+ * declares (hal/epuck/epuck_lib*.h), for the link gates of
+ * `make firmware-check` (avr-gcc, arm-none-eabi-gcc) and the host tests of
+ * hal/epuck.  They do no I/O: each records what it is asked in
+ * `epuck_stub` and returns what a test put there.  Test code, not
+ * firmware: the mutable state is allowed here and is not counted as the
+ * firmware's RAM by the footprint report.
+ */
+#ifndef EPUCK_STUBS_H
+#define EPUCK_STUBS_H
+
+#define STUB_QUEUE 8
+
+typedef struct epuck_stub_state {
+    /* motors, LEDs, selector */
+    int speed_left, speed_right;
+    int speed_calls;
+    int steps_left, steps_right;
+    unsigned led[8];
+    unsigned body_led, front_led;
+    int led_calls;
+    int selector;
+    /* agenda */
+    void (*agenda)(void);
+    int agenda_cycle;
+    int agendas_started;
+    /* camera */
+    int cam_version, cam_orientation, cam_config_result;
+    unsigned cam_zoom_w, cam_zoom_h, cam_y1, cam_h;
+    char *capture_buf;
+    int captures;
+    int img_ready;
+    /* UART1 */
+    int uart_busy;
+    const char *uart_buf;
+    int uart_len;
+    int uart_sends;
+    /* A/D */
+    int prox[8];
+    int ambient[8];
+    int ad_started;
+    int calibrated;
+    /* e-RandB: frames to deliver, in order */
+    unsigned randb_data[STUB_QUEUE];
+    float randb_bearing[STUB_QUEUE];
+    unsigned randb_range[STUB_QUEUE];
+    int randb_count;
+    unsigned randb_sent[STUB_QUEUE];
+    int randb_sends;
+    /* libIrcom: messages to pop, in order */
+    long ircom_value[STUB_QUEUE];
+    float ircom_distance[STUB_QUEUE];
+    float ircom_direction[STUB_QUEUE];
+    int ircom_sensor[STUB_QUEUE];
+    int ircom_error[STUB_QUEUE];
+    int ircom_count;
+    int ircom_sending;
+    long ircom_sent[STUB_QUEUE];
+    int ircom_sends;
+    /* program memory word 0x17F36 */
+    unsigned flash_id;
+} epuck_stub_state_t;
+
+extern epuck_stub_state_t epuck_stub;
+
+/** Clears every field: speeds 0, no frames, UART idle, flash id erased. */
+void epuck_stub_reset(void);
+
+#endif

@@ -1,0 +1,403 @@
+/*
+ * test_hal_epuck.c - host tests of hal/epuck over the scripted stubs of the
+ * e-puck library (tests/firmware/stubs/).  Built twice by
+ * tools/make/firmware.mk: with the turret backend (ircom_randb.c, the
+ * default) and, with -DTEST_LIBIRCOM, with the libIrcom backend.
+ * Prints "N passed, M failed".
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "blob_detect.h"
+#include "epuck_stubs.h"
+#include "hal_epuck.h"
+
+static int passed, failed;
+
+#define CHECK(cond) do { \
+        if (cond) { passed++; } \
+        else { failed++; printf("FAIL %s:%d: %s\n", __FILE__, __LINE__, #cond); } \
+    } while (0)
+
+static struct hal robot;
+static uint8_t frames[2u * HAL_EPUCK_FRAME_BYTES];
+static int ticks_seen_by_agenda;
+
+static void tick(void)
+{
+    ticks_seen_by_agenda++;
+    hal_epuck_tick(&robot);
+}
+
+static void start(uint16_t id, uint8_t camera)
+{
+    hal_epuck_config_t cfg;
+    epuck_stub_reset();
+    memset(frames, 0, sizeof frames);
+    hal_epuck_default_config(&cfg);
+    cfg.robot_id = id;
+    cfg.camera = camera;
+    CHECK(hal_epuck_init(&robot, &cfg, camera ? frames : NULL, camera ? (uint16_t)sizeof frames : 0u) == 0);
+    hal_epuck_start(&robot, tick);
+}
+
+/* One control step with nothing done by a controller. */
+static void idle_step(void)
+{
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot) == 1u);
+    hal_epuck_begin_step(&robot);
+    hal_epuck_end_step(&robot);
+}
+
+static void test_start_and_clock(void)
+{
+    start(HAL_EPUCK_NO_ID, 1u);
+    CHECK(epuck_stub.agenda == tick);
+    CHECK(epuck_stub.agenda_cycle == 1000);   /* 100 ms in 0.1 ms */
+    CHECK(epuck_stub.agendas_started == 1);
+    CHECK(epuck_stub.ad_started == 1 && epuck_stub.calibrated == 1);
+    CHECK(hal_robot_id(&robot) == 0u);        /* no id flashed */
+    CHECK(hal_control_period_ms(&robot) == 100u);
+
+    epuck_stub_reset();
+    epuck_stub.flash_id = 17u;
+    {
+        hal_epuck_config_t cfg;
+        hal_epuck_default_config(&cfg);
+        (void)hal_epuck_init(&robot, &cfg, frames, (uint16_t)sizeof frames);
+        hal_epuck_start(&robot, tick);
+    }
+    CHECK(hal_robot_id(&robot) == 17u);
+
+    start(42u, 1u);
+    CHECK(hal_robot_id(&robot) == 42u);
+    CHECK(hal_epuck_step_due(&robot) == 0u);
+    epuck_stub.agenda();
+    CHECK(ticks_seen_by_agenda > 0);
+    CHECK(hal_epuck_step_due(&robot) == 1u);
+    CHECK(hal_epuck_step_due(&robot) == 0u);
+    CHECK(hal_time_ms(&robot) == 0u);
+    hal_epuck_begin_step(&robot);
+    hal_epuck_end_step(&robot);
+    CHECK(hal_time_ms(&robot) == 100u);
+    /* three periods pass during a long step: one step, two overruns */
+    hal_epuck_tick(&robot);
+    hal_epuck_tick(&robot);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot) == 1u);
+    CHECK(hal_epuck_step_due(&robot) == 0u);
+    CHECK(hal_epuck_overruns(&robot) == 2u);
+    /* the tick counter wraps */
+    robot.ticks = 0xFFFFu;
+    robot.ticks_seen = 0xFFFFu;
+    hal_epuck_tick(&robot);
+    CHECK(robot.ticks == 0u);
+    CHECK(hal_epuck_step_due(&robot) == 1u);
+    epuck_stub.selector = 0x13;
+    CHECK(hal_epuck_selector(&robot) == 3u);
+}
+
+static void test_sensors_sampled_once_per_step(void)
+{
+    uint8_t i;
+    int16_t l, r;
+    start(1u, 0u);
+    for (i = 0; i < 8u; i++) {
+        epuck_stub.prox[i] = 100 * i;
+        epuck_stub.ambient[i] = 3000 + i;
+    }
+    epuck_stub.prox[0] = -12;     /* calibration offset above the reading */
+    epuck_stub.prox[7] = 5000;
+    epuck_stub.steps_left = -5;
+    epuck_stub.steps_right = 32767;
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ir_proximity(&robot, 0) == 0u);
+    CHECK(hal_ir_proximity(&robot, 3) == 300u);
+    CHECK(hal_ir_proximity(&robot, 7) == 4095u);
+    CHECK(hal_ir_proximity(&robot, 8) == 0u);
+    CHECK(hal_ir_ambient(&robot, 2) == 3002u);
+    CHECK(hal_ir_ambient(&robot, 9) == 4095u);
+    epuck_stub.prox[3] = 999;     /* the interrupt updates the library's value */
+    CHECK(hal_ir_proximity(&robot, 3) == 300u);   /* ... not within a step */
+    hal_wheel_steps(&robot, &l, &r);
+    CHECK(l == -5 && r == 32767);
+    hal_epuck_end_step(&robot);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ir_proximity(&robot, 3) == 999u);
+    CHECK(hal_mic_level(&robot, 0, 1) == HAL_NOT_MODELLED);
+    CHECK(hal_speaker_set(&robot, 1) == HAL_NOT_MODELLED);
+    CHECK(hal_epuck_seed(&robot) != 0u);
+}
+
+static void test_actuators_applied_at_end_of_step(void)
+{
+    int calls, led_calls, speed_calls;
+    start(1u, 0u);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    hal_set_wheel_speeds(&robot, 1500, -2000);
+    hal_set_led(&robot, 2, 1);
+    hal_set_led(&robot, 9, 1);    /* no such LED: ignored */
+    hal_set_body_led(&robot, 1);
+    CHECK(epuck_stub.speed_calls == 0 && epuck_stub.led[2] == 0u);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.speed_left == 1000 && epuck_stub.speed_right == -1000);
+    CHECK(epuck_stub.led[2] == 1u && epuck_stub.body_led == 1u && epuck_stub.front_led == 0u);
+    led_calls = epuck_stub.led_calls;
+    speed_calls = epuck_stub.speed_calls;
+    calls = led_calls + speed_calls;
+    idle_step();   /* nothing changed: no library call */
+    CHECK(epuck_stub.led_calls + epuck_stub.speed_calls == calls);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    hal_set_led(&robot, 2, 0);
+    hal_set_front_led(&robot, 1);
+    hal_set_wheel_speeds(&robot, 300, -1000);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.led[2] == 0u && epuck_stub.front_led == 1u);
+    CHECK(epuck_stub.led_calls == led_calls + 2);          /* only what changed */
+    CHECK(epuck_stub.speed_left == 300 && epuck_stub.speed_calls == speed_calls + 1);
+}
+
+static void test_telemetry_never_blocks(void)
+{
+    uint8_t msg[100];
+    uint16_t i;
+    start(1u, 0u);
+    for (i = 0; i < sizeof msg; i++) {
+        msg[i] = (uint8_t)i;
+    }
+    epuck_stub.uart_busy = 1;
+    CHECK(hal_telemetry_write(&robot, msg, 10) == 0u);
+    CHECK(epuck_stub.uart_sends == 0);
+    epuck_stub.uart_busy = 0;
+    CHECK(hal_telemetry_write(&robot, msg, 100) == HAL_EPUCK_TX_BYTES);
+    CHECK(epuck_stub.uart_sends == 1 && epuck_stub.uart_len == (int)HAL_EPUCK_TX_BYTES);
+    CHECK(epuck_stub.uart_buf == (const char *)robot.tx);
+    CHECK(memcmp(robot.tx, msg, HAL_EPUCK_TX_BYTES) == 0);
+    CHECK(hal_telemetry_write(&robot, msg, 0) == 0u);
+    CHECK(hal_telemetry_write(&robot, msg + 64, 36) == 36u);
+    CHECK(robot.tx[0] == 64u);
+}
+
+/* A red rectangle of columns [c0, c1) over all rows of frame `k`. */
+static void paint_red(uint8_t k, uint16_t c0, uint16_t c1)
+{
+    uint16_t x, y;
+    uint8_t *f = frames + (size_t)k * HAL_EPUCK_FRAME_BYTES;
+    memset(f, 0, HAL_EPUCK_FRAME_BYTES);
+    for (y = 0; y < HAL_EPUCK_CAM_HEIGHT; y++) {
+        for (x = c0; x < c1; x++) {
+            f[2u * (y * HAL_EPUCK_CAM_WIDTH + x)] = 0xF8u;   /* RGB565 red, high byte first */
+            f[2u * (y * HAL_EPUCK_CAM_WIDTH + x) + 1u] = 0x00u;
+        }
+    }
+}
+
+static void test_camera_double_buffer(void)
+{
+    hal_blob_t b[HAL_MAX_BLOBS];
+    start(1u, 1u);
+    CHECK(robot.cam_state == HAL_EPUCK_CAM_RUNNING);
+    CHECK(epuck_stub.cam_zoom_w == 16u && epuck_stub.cam_zoom_h == 16u);
+    CHECK(epuck_stub.cam_y1 == 80u && epuck_stub.cam_h == 320u);
+    CHECK(epuck_stub.capture_buf == (char *)frames);
+    /* no complete frame yet */
+    idle_step();
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_camera_blobs(&robot, b, HAL_MAX_BLOBS) == 0u);
+    hal_epuck_end_step(&robot);
+    /* frame 0 completes: the driver moves on to frame 1 */
+    paint_red(0, 0, 8);   /* left edge of the image: positive bearing */
+    hal_epuck_poll(&robot);
+    CHECK(epuck_stub.captures == 1);   /* not ready yet: no swap */
+    epuck_stub.img_ready = 1;
+    hal_epuck_poll(&robot);
+    CHECK(epuck_stub.captures == 2);
+    CHECK(epuck_stub.capture_buf == (char *)frames + HAL_EPUCK_FRAME_BYTES);
+    CHECK(robot.cam_complete == 0u);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_camera_blobs(&robot, b, HAL_MAX_BLOBS) == 1u);
+    CHECK(b[0].colour == HAL_COLOUR_RED && b[0].bearing_mrad > 300);
+    CHECK(b[0].pixels == 8u * HAL_EPUCK_CAM_HEIGHT);
+    /* the driver writes into the other frame during the step: no change */
+    paint_red(1, 30, 40);
+    CHECK(hal_camera_blobs(&robot, b, HAL_MAX_BLOBS) == 1u && b[0].bearing_mrad > 300);
+    hal_epuck_end_step(&robot);
+    epuck_stub.img_ready = 1;
+    hal_epuck_poll(&robot);
+    CHECK(robot.cam_complete == 1u && epuck_stub.capture_buf == (char *)frames);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_camera_blobs(&robot, b, 1) == 1u && b[0].bearing_mrad < -300);
+    CHECK(hal_camera_blobs(&robot, b, 0) == 0u);
+    hal_epuck_end_step(&robot);
+
+    /* a sensor mounted upside down: bearings negated */
+    epuck_stub_reset();
+    epuck_stub.cam_orientation = 2;
+    {
+        hal_epuck_config_t cfg;
+        hal_epuck_default_config(&cfg);
+        (void)hal_epuck_init(&robot, &cfg, frames, (uint16_t)sizeof frames);
+    }
+    hal_epuck_start(&robot, tick);
+    paint_red(0, 0, 8);
+    epuck_stub.img_ready = 1;
+    hal_epuck_poll(&robot);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_camera_blobs(&robot, b, HAL_MAX_BLOBS) == 1u && b[0].bearing_mrad < -300);
+
+    /* a vertical sensor or a refused window: no blobs, ever */
+    epuck_stub_reset();
+    epuck_stub.cam_orientation = 0;
+    {
+        hal_epuck_config_t cfg;
+        hal_epuck_default_config(&cfg);
+        (void)hal_epuck_init(&robot, &cfg, frames, (uint16_t)sizeof frames);
+    }
+    hal_epuck_start(&robot, tick);
+    CHECK(robot.cam_state == HAL_EPUCK_CAM_FAILED && epuck_stub.captures == 0);
+    epuck_stub_reset();
+    epuck_stub.cam_config_result = -1;
+    {
+        hal_epuck_config_t cfg;
+        hal_epuck_default_config(&cfg);
+        (void)hal_epuck_init(&robot, &cfg, frames, (uint16_t)sizeof frames);
+        hal_epuck_start(&robot, tick);
+        CHECK(robot.cam_state == HAL_EPUCK_CAM_FAILED);
+        /* frames too small, or a window that does not divide */
+        CHECK(hal_epuck_init(&robot, &cfg, frames, 100u) == -1);
+        cfg.cam_width = 48u;
+        CHECK(hal_epuck_init(&robot, &cfg, frames, (uint16_t)sizeof frames) == -1);
+        CHECK(robot.cam_state == HAL_EPUCK_CAM_OFF);
+    }
+}
+
+static void test_bearings(void)
+{
+    CHECK(hal_epuck_rad_to_mrad(0.5f) == 500);
+    CHECK(hal_epuck_rad_to_mrad(-0.5f) == -500);
+    CHECK(hal_epuck_rad_to_mrad(3.5f) == 3500 - 6283);
+    CHECK(hal_epuck_rad_to_mrad(-7.0f) == -7000 + 6283);
+    CHECK(hal_epuck_rad_to_mrad(1.0e9f) == 0);
+    CHECK(hal_epuck_nearest_sensor(0) == 0u || hal_epuck_nearest_sensor(0) == 7u);
+    CHECK(hal_epuck_nearest_sensor(-300) == 0u);
+    CHECK(hal_epuck_nearest_sensor(1500) == 5u);
+    CHECK(hal_epuck_nearest_sensor(3100) == 4u);
+    CHECK(hal_epuck_nearest_sensor(-3100) == 3u);
+}
+
+#ifndef TEST_LIBIRCOM
+static void test_ircom_randb(void)
+{
+    hal_ircom_msg_t m;
+    uint8_t i;
+    start(5u, 0u);
+    CHECK(hal_ircom_payload_bits(&robot) == 16u);
+    epuck_stub.randb_data[0] = 0xC123u;
+    epuck_stub.randb_bearing[0] = 1.571f;
+    epuck_stub.randb_range[0] = 42u;
+    epuck_stub.randb_data[1] = 7u;
+    epuck_stub.randb_bearing[1] = -0.3f;
+    epuck_stub.randb_range[1] = 10000u;
+    epuck_stub.randb_count = 2;
+    hal_epuck_poll(&robot);   /* one frame per poll, as the turret holds one */
+    hal_epuck_poll(&robot);
+    hal_epuck_poll(&robot);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(m.value == 0xC123u && m.bearing_mrad == 1571 && m.range_mm == 420u && m.sensor == 5u);
+    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(m.value == 7u && m.bearing_mrad == -300 && m.range_mm == 0xFFFEu && m.sensor == 0u);
+    CHECK(hal_ircom_receive(&robot, &m) == 0u);
+    CHECK(hal_ircom_send(&robot, 0xBEEFu) == 0);
+    CHECK(hal_ircom_send(&robot, 0x1111u) == -1);   /* one per period */
+    CHECK(epuck_stub.randb_sends == 0);              /* sent after the step */
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.randb_sends == 1 && epuck_stub.randb_sent[0] == 0xBEEFu);
+    idle_step();
+    CHECK(epuck_stub.randb_sends == 1);
+    /* a full inbox drops and counts */
+    for (i = 0; i < HAL_EPUCK_INBOX + 3u; i++) {
+        epuck_stub.randb_data[0] = i;
+        epuck_stub.randb_count = 1;
+        hal_epuck_poll(&robot);
+    }
+    CHECK(robot.in_count == HAL_EPUCK_INBOX && robot.in_dropped == 3u);
+    CHECK(hal_ircom_receive(&robot, &m) == 1u && m.value == 0u);
+}
+#else
+static void test_ircom_libircom(void)
+{
+    hal_ircom_msg_t m;
+    start(5u, 0u);
+    CHECK(hal_ircom_payload_bits(&robot) == 8u);
+    epuck_stub.ircom_value[0] = 0x1AB;
+    epuck_stub.ircom_distance[0] = 12.34f;
+    epuck_stub.ircom_direction[0] = 0.873f;
+    epuck_stub.ircom_sensor[0] = 6;
+    epuck_stub.ircom_error[0] = 0;
+    epuck_stub.ircom_value[1] = 3;
+    epuck_stub.ircom_error[1] = 1;        /* transmission error: dropped */
+    epuck_stub.ircom_value[2] = 4;
+    epuck_stub.ircom_distance[2] = -1.0f;
+    epuck_stub.ircom_sensor[2] = 9;       /* out of range: from the bearing */
+    epuck_stub.ircom_direction[2] = -1.571f;
+    epuck_stub.ircom_error[2] = 0;
+    epuck_stub.ircom_count = 3;
+    hal_epuck_poll(&robot);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(m.value == 0xABu && m.range_mm == 123u && m.bearing_mrad == 873 && m.sensor == 6u);
+    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(m.value == 4u && m.range_mm == 0u && m.sensor == 2u);
+    CHECK(hal_ircom_receive(&robot, &m) == 0u);
+    CHECK(hal_ircom_send(&robot, 0x1234u) == 0);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.ircom_sends == 1 && epuck_stub.ircom_sent[0] == 0x34);
+    epuck_stub.ircom_sending = 1;   /* the previous one still going out */
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ircom_send(&robot, 0x55u) == 0);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.ircom_sends == 1);
+}
+#endif
+
+int main(void)
+{
+    test_start_and_clock();
+    test_sensors_sampled_once_per_step();
+    test_actuators_applied_at_end_of_step();
+    test_telemetry_never_blocks();
+    test_camera_double_buffer();
+    test_bearings();
+#ifndef TEST_LIBIRCOM
+    test_ircom_randb();
+    printf("hal/epuck (turret backend): %d passed, %d failed\n", passed, failed);
+#else
+    test_ircom_libircom();
+    printf("hal/epuck (libIrcom backend): %d passed, %d failed\n", passed, failed);
+#endif
+    return failed == 0 ? 0 : 1;
+}

@@ -1,0 +1,192 @@
+# firmware.mk - the real e-puck1 target: firmware images, their portable
+# gates, the CPU report, and the XC16 build of .hex files.
+#
+#   make firmware-check   every image with hal/epuck compiles warning-free and
+#                         links (against stubs of the e-puck library) with
+#                         avr-gcc (XC16's data model) and arm-none-eabi-gcc
+#                         (Cortex-M4F); footprint table and the 2 KB static
+#                         RAM gate; host tests of hal/epuck; flasher tests
+#                         against a simulated bootloader; the CPU report.
+#                         Part of `make test`.
+#   make firmware-cpu     instructions per control step (valgrind callgrind)
+#                         and the dsPIC estimate: build/firmware/cpu.md
+#   make firmware         .hex files with Microchip XC16 and the user's copy of
+#                         GCtronic's e-puck library (never in this repository):
+#                           XC16_DIR       XC16 install (bin/xc16-gcc)
+#                           EPUCK_LIB_DIR  the e-puck library (its library/ folder
+#                                          or the repository holding it)
+#                           RANDB_DIR      e-RandB turret driver (e_randb.c), for
+#                                          forager and nest_beacon
+#                           IRCOM_DIR      libIrcom sources, for random_walk
+#                         FIRMWARE_IMAGES (forager nest_beacon random_walk),
+#                         FORAGER_POLICY (drtm|artm|frtm), FIRMWARE_N_ROBOTS
+#                         (20), FIRMWARE_ARENA_MM (4000).
+#   make flash HEX=build/firmware/xc16/forager.hex DEVICE=/dev/rfcomm0 ROBOT_ID=7
+#
+# Images and their IR backend (hal/epuck/ircom_*.c):
+FW_IMAGE_SPECS := forager:randb nest_beacon:randb random_walk:libircom
+FW_OUT := $(BUILD)/firmware
+
+.PHONY: firmware firmware-check firmware-cpu firmware-gates firmware-hal-tests \
+        firmware-flash-tests flash
+
+EXTRA_TESTS += firmware-check
+
+firmware-check: firmware-gates firmware-hal-tests firmware-flash-tests firmware-cpu
+	@echo "firmware-check: all passed"
+
+firmware-gates: | $(BUILD)/config.mk
+	@python3 tests/firmware/image_gates.py --build $(FW_OUT) $(FW_IMAGE_SPECS)
+
+firmware-flash-tests:
+	@python3 tools/flash/test_flash.py
+
+# ------------------------------------------------ host tests of hal/epuck
+FW_HOST := $(FW_OUT)/host
+FW_HOST_CFLAGS := -std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes \
+  -Wmissing-prototypes -g -O1 -Ihal -Ifirmware -Ihal/epuck -Itests/firmware/stubs \
+  -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c \
+  tests/firmware/stubs/epuck_lib_stubs.c
+FW_HAL_DEPS := tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) $(wildcard hal/epuck/*.h) \
+  $(wildcard hal/*.h) tests/firmware/stubs/epuck_stubs.h
+
+$(FW_HOST)/test_hal_epuck_randb: $(FW_HAL_DEPS) hal/epuck/ircom_randb.c \
+    tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(CC) $(FW_HOST_CFLAGS) -o $@ tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) \
+	  hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
+$(FW_HOST)/test_hal_epuck_libircom: $(FW_HAL_DEPS) hal/epuck/ircom_libircom.c \
+    tests/firmware/stubs/ircom_stubs.c | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(CC) $(FW_HOST_CFLAGS) -DTEST_LIBIRCOM -o $@ tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) \
+	  hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c
+
+firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_libircom
+	@set -e; for t in $^; do ASAN_OPTIONS=detect_leaks=1 $$t; done
+
+# ------------------------------------------------ CPU report
+FW_CPU_SRC := firmware/forager.c firmware/nest_beacon.c firmware/nest_link.c \
+  firmware/random_walk.c firmware/rng.c firmware/task_alloc.c hal/blob_detect.c \
+  hal/hal_common.c hal/units.c
+FW_CPU_STEPS ?= 2000
+
+$(FW_HOST)/cpu_harness: tests/firmware/cpu_harness.c $(FW_CPU_SRC) $(wildcard firmware/*.h hal/*.h) | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(CC) -std=c99 -Wall -Wextra -Werror -g -O2 -Ihal -Ifirmware -o $@ tests/firmware/cpu_harness.c $(FW_CPU_SRC)
+
+firmware-cpu: $(FW_HOST)/cpu_harness
+	@$< 50 > /dev/null
+	@python3 tests/firmware/cpu_report.py $< $(FW_CPU_STEPS) --out $(FW_OUT)/cpu.md
+
+# ------------------------------------------------ flashing
+HEX ?=
+DEVICE ?=
+ROBOT_ID ?=
+flash:
+	@if [ -z "$(HEX)" ] || [ -z "$(DEVICE)" ]; then \
+	  echo "usage: make flash HEX=build/firmware/xc16/forager.hex DEVICE=/dev/rfcomm0 [ROBOT_ID=N]" >&2; exit 2; fi
+	python3 tools/flash/epuck_flash.py $(HEX) $(DEVICE) $(if $(ROBOT_ID),--robot-id $(ROBOT_ID))
+
+# ------------------------------------------------ XC16 build
+XC16_DIR ?=
+EPUCK_LIB_DIR ?=
+RANDB_DIR ?=
+IRCOM_DIR ?=
+FIRMWARE_IMAGES ?= forager nest_beacon random_walk
+FORAGER_POLICY ?= drtm
+FIRMWARE_N_ROBOTS ?= 20
+FIRMWARE_ARENA_MM ?= 4000
+
+# The library's own folder, whether EPUCK_LIB_DIR names it or its repository.
+EPL := $(if $(wildcard $(EPUCK_LIB_DIR)/library/motor_led),$(EPUCK_LIB_DIR)/library,$(EPUCK_LIB_DIR))
+XC16_BIN := $(XC16_DIR)/bin
+XC16_CC := $(XC16_BIN)/xc16-gcc
+FWX := $(FW_OUT)/xc16
+XC16_ARCH := -mcpu=30F6014A -omf=elf -mlarge-code -mlarge-data
+XC16_OURS := $(XC16_ARCH) -std=gnu99 -O1 -Wall -ffunction-sections -fdata-sections \
+  -Ihal -Ifirmware -Ihal/epuck
+XC16_LIBFLAGS := $(XC16_ARCH) -O1 -ffunction-sections -fdata-sections -I$(EPL) -I$(EPL)/uart \
+  -I$(EPL)/motor_led -I$(EPL)/motor_led/advance_one_timer -I$(EPL)/I2C \
+  -I$(EPL)/a_d/advance_ad_scan -I$(EPL)/camera/fast_2_timer -I$(EPL)/utility
+XC16_LDFLAGS := $(XC16_ARCH) -Wl,--heap=128,--stack=500,--gc-sections,--report-mem
+
+FW_POLICY_DEF := TA_$(shell echo '$(FORAGER_POLICY)' | tr a-z A-Z)
+FW_APP_DEFS := -DAPP_N_ROBOTS=$(FIRMWARE_N_ROBOTS)u -DAPP_ARENA_L_MM=$(FIRMWARE_ARENA_MM)u \
+  -DAPP_FORAGER_POLICY=$(FW_POLICY_DEF)
+
+FW_OURS_SRC := $(sort $(wildcard firmware/*.c)) $(sort $(wildcard hal/*.c)) \
+  hal/epuck/hal_epuck.c hal/epuck/xc16/robot_id.c
+FW_EPL_COMMON := motor_led/e_init_port.c motor_led/advance_one_timer/e_agenda.c \
+  motor_led/advance_one_timer/e_motors.c motor_led/advance_one_timer/e_led.c \
+  camera/fast_2_timer/e_common.c camera/fast_2_timer/e_calc_po3030k.c \
+  camera/fast_2_timer/e_calc_po6030k.c camera/fast_2_timer/e_calc_po8030d.c \
+  camera/fast_2_timer/e_po3030k_registers.c camera/fast_2_timer/e_po6030k_registers.c \
+  camera/fast_2_timer/e_po8030d_registers.c camera/fast_2_timer/e_timers.c \
+  camera/fast_2_timer/e_interrupt.s I2C/e_I2C_master_module.c I2C/e_I2C_protocol.c \
+  uart/e_init_uart1.s uart/e_uart1_rx_char.s uart/e_uart1_tx_char.s utility/utility.c
+FW_EPL_ADSCAN := a_d/advance_ad_scan/e_ad_conv.c a_d/advance_ad_scan/e_prox.c \
+  a_d/advance_ad_scan/e_micro.c a_d/advance_ad_scan/e_acc.c
+
+fw_obj = $(FWX)/ours/$(basename $(1)).o
+fw_epl_obj = $(FWX)/epl/$(basename $(1)).o
+FW_OURS_OBJ := $(foreach s,$(FW_OURS_SRC),$(call fw_obj,$(s)))
+FW_EPL_COMMON_OBJ := $(foreach s,$(FW_EPL_COMMON),$(call fw_epl_obj,$(s)))
+FW_EPL_ADSCAN_OBJ := $(foreach s,$(FW_EPL_ADSCAN),$(call fw_epl_obj,$(s)))
+FW_RANDB_OBJ := $(FWX)/randb/e_randb.o
+FW_IRCOM_SRC := $(notdir $(wildcard $(IRCOM_DIR)/*.c))
+FW_IRCOM_OBJ := $(patsubst %.c,$(FWX)/ircom/%.o,$(FW_IRCOM_SRC))
+
+FW_BACKEND_OBJ_randb := $(call fw_obj,hal/epuck/ircom_randb.c) $(FW_EPL_ADSCAN_OBJ) $(FW_RANDB_OBJ)
+FW_BACKEND_OBJ_libircom := $(call fw_obj,hal/epuck/ircom_libircom.c) $(FW_IRCOM_OBJ)
+fw_backend = $(patsubst $(1):%,%,$(filter $(1):%,$(FW_IMAGE_SPECS)))
+FW_HEX := $(patsubst %,$(FWX)/%.hex,$(FIRMWARE_IMAGES))
+
+$(FWX)/ours/%.o: %.c
+	@mkdir -p $(@D)
+	$(XC16_CC) $(XC16_OURS) $(if $(findstring apps/,$<),$(FW_APP_DEFS)) -c $< -o $@
+$(FWX)/epl/%.o: $(EPL)/%.c
+	@mkdir -p $(@D)
+	$(XC16_CC) $(XC16_LIBFLAGS) -c $< -o $@
+$(FWX)/epl/%.o: $(EPL)/%.s
+	@mkdir -p $(@D)
+	$(XC16_CC) $(XC16_LIBFLAGS) -c $< -o $@
+$(FWX)/randb/%.o: $(RANDB_DIR)/%.c
+	@mkdir -p $(@D)
+	$(XC16_CC) $(XC16_LIBFLAGS) -I$(RANDB_DIR) -c $< -o $@
+$(FWX)/ircom/%.o: $(IRCOM_DIR)/%.c
+	@mkdir -p $(@D)
+	$(XC16_CC) $(XC16_LIBFLAGS) -I$(IRCOM_DIR) -c $< -o $@
+
+# One image: its app, our code, the common library modules, its backend.
+define FW_IMAGE_RULES
+$(FWX)/$(1).elf: $(call fw_obj,firmware/apps/$(1)_main.c) $(FW_OURS_OBJ) $(FW_EPL_COMMON_OBJ) \
+    $$(FW_BACKEND_OBJ_$(call fw_backend,$(1)))
+	$$(XC16_CC) $$(XC16_LDFLAGS) -Wl,-Map=$(FWX)/$(1).map -o $$@ $$^
+$(FWX)/$(1).hex: $(FWX)/$(1).elf
+	$$(XC16_BIN)/xc16-bin2hex $$< -a -omf=elf
+	@echo "firmware: $$@ (flash it: make flash HEX=$$@ DEVICE=/dev/rfcommN ROBOT_ID=N)"
+endef
+$(foreach s,$(FW_IMAGE_SPECS),$(eval $(call FW_IMAGE_RULES,$(firstword $(subst :, ,$(s))))))
+
+# Says exactly what is missing, then builds what was asked.
+firmware:
+	@missing=0; say() { echo "firmware: $$*" >&2; missing=1; }; \
+	if [ -z "$(XC16_DIR)" ]; then \
+	  say "XC16_DIR is not set: install Microchip XC16 (a free download from microchip.com, not in any package registry) and run make firmware XC16_DIR=/opt/microchip/xc16/vX.YY ..."; \
+	elif [ ! -x "$(XC16_CC)" ]; then say "$(XC16_CC) not found: XC16_DIR must be the XC16 install folder (with bin/xc16-gcc)"; \
+	elif [ ! -x "$(XC16_BIN)/xc16-bin2hex" ]; then say "$(XC16_BIN)/xc16-bin2hex not found in the XC16 install"; fi; \
+	if [ -z "$(EPUCK_LIB_DIR)" ]; then \
+	  say "EPUCK_LIB_DIR is not set: get GCtronic's e-puck library (the e-puck-library repository on GitHub, folder library/) and pass EPUCK_LIB_DIR=/path/to/e-puck-library"; \
+	else for f in $(FW_EPL_COMMON) $(if $(filter %:randb,$(foreach i,$(FIRMWARE_IMAGES),$(filter $(i):%,$(FW_IMAGE_SPECS)))),$(FW_EPL_ADSCAN)); do \
+	  [ -f "$(EPL)/$$f" ] || say "EPUCK_LIB_DIR: $(EPL)/$$f not found (is EPUCK_LIB_DIR the e-puck library?)"; done; fi; \
+	for i in $(FIRMWARE_IMAGES); do case " $(FW_IMAGE_SPECS) " in *" $$i:"*) ;; *) say "unknown image '$$i' (images: $(FW_IMAGE_SPECS))";; esac; done; \
+	if [ -n "$(filter forager nest_beacon,$(FIRMWARE_IMAGES))" ]; then \
+	  if [ -z "$(RANDB_DIR)" ]; then say "RANDB_DIR is not set: forager and nest_beacon need the e-RandB range-and-bearing turret's e-puck driver (e_randb.c, e_randb.h) from the turret's distribution; or build FIRMWARE_IMAGES=random_walk only"; \
+	  elif [ ! -f "$(RANDB_DIR)/e_randb.c" ]; then say "$(RANDB_DIR)/e_randb.c not found"; fi; fi; \
+	if [ -n "$(filter random_walk,$(FIRMWARE_IMAGES))" ]; then \
+	  if [ -z "$(IRCOM_DIR)" ]; then say "IRCOM_DIR is not set: random_walk needs libIrcom's sources (ircom.c, ircomSend.c, ..., its e_ad_conv.c); or build FIRMWARE_IMAGES='forager nest_beacon' only"; \
+	  elif [ ! -f "$(IRCOM_DIR)/ircom.c" ]; then say "$(IRCOM_DIR)/ircom.c not found (is IRCOM_DIR libIrcom's source folder?)"; fi; fi; \
+	case "$(FORAGER_POLICY)" in drtm|artm|frtm) ;; *) say "FORAGER_POLICY must be drtm, artm or frtm";; esac; \
+	if [ $$missing != 0 ]; then echo "firmware: nothing built (make firmware-check runs the portable gates without XC16)" >&2; exit 1; fi
+	@$(MAKE) --no-print-directory $(FW_HEX)
