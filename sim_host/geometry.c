@@ -11,14 +11,18 @@ float geom_wrap(float angle)
 
 cone_t geom_cone(vec2_t p, float angle, float half)
 {
+    return geom_cone_dir(p, v2(cosf(angle), sinf(angle)), half, cosf(half), sinf(half));
+}
+
+cone_t geom_cone_dir(vec2_t p, vec2_t a, float half, float cos_half, float sin_half)
+{
     cone_t k;
-    float c = cosf(angle), s = sinf(angle), ch = cosf(half), sh = sinf(half);
     k.p = p;
-    k.a = v2(c, s);
+    k.a = a;
     k.half = half;
-    k.cos_half = ch;
-    k.e1 = v2_rot(k.a, ch, sh);
-    k.e2 = v2_rot(k.a, ch, -sh);
+    k.cos_half = cos_half;
+    k.e1 = v2_rot(a, cos_half, sin_half);
+    k.e2 = v2_rot(a, cos_half, -sin_half);
     return k;
 }
 

@@ -33,6 +33,10 @@ float geom_wrap(float angle);
 /** A cone at `p` looking along `angle` with half-angle `half`. */
 cone_t geom_cone(vec2_t p, float angle, float half);
 
+/** The same from the unit axis `a` and the cosine and sine of the
+ *  half-angle (no trigonometry: sensors build 8 cones per robot-step). */
+cone_t geom_cone_dir(vec2_t p, vec2_t a, float half, float cos_half, float sin_half);
+
 /** Distance from the apex to the nearest point of the circle (c, r)
  *  inside the cone; INFINITY if none; 0 if the apex is inside. */
 float geom_cone_circle(const cone_t *k, vec2_t c, float r);

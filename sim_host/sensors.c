@@ -90,13 +90,13 @@ void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
     if (r->y - reach < -hh) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(hw, -hh); nw++; }
 
     float ch = cosf(r->theta), sh = sinf(r->theta);
-    float half = sc->ir.aperture * 3.14159265f / 180.0f;
+    float half = sc->ir.aperture * 3.14159265f / 180.0f, cos_half = cosf(half), sin_half = sinf(half);
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
         float d = INFINITY;
         if (nr > 1 || no > 0 || nw > 0) {
             vec2_t a = v2_rot(v2(ir_cos[s], ir_sin[s]), ch, sh);
             vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
-            cone_t k = geom_cone(p, atan2f(a.y, a.x), half);
+            cone_t k = geom_cone_dir(p, a, half, cos_half, sin_half);
             for (uint32_t j = 0; j < nr; j++) {
                 if (near_robot[j] != i) {
                     const sim_robot_t *q = &sim->robots[near_robot[j]];
@@ -151,13 +151,22 @@ void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
 typedef sim_interval_t interval_t;
 
 /* Angular interval (robot frame, rad) and nearest distance of a disc. */
-static int disc_interval(vec2_t cam, float heading, vec2_t c, float rad, interval_t *out)
+/* What the camera sees from: the lens, its heading (angle and unit vector)
+ * and its range. */
+typedef struct view { vec2_t cam; float heading; vec2_t dir; float range; } view_t;
+
+/* Angular interval of a disc seen from the lens, or 0 when it cannot
+ * matter: the lens inside it, wholly behind the lens (the field of view is
+ * narrower than 180 deg), or farther than the range (then it can neither be
+ * seen nor hide anything that can). */
+static int disc_interval(const view_t *vw, vec2_t c, float rad, interval_t *out)
 {
-    vec2_t v = v2_sub(c, cam);
+    vec2_t v = v2_sub(c, vw->cam);
     float d = v2_len(v);
-    if (d <= rad) {
+    if (d <= rad || v2_dot(v, vw->dir) < -rad || d - rad > vw->range) {
         return 0;
     }
+    float heading = vw->heading;
     float mid = geom_wrap(atan2f(v.y, v.x) - heading), w = asinf(rad / d);
     out->lo = mid - w;
     out->hi = mid + w;
@@ -230,7 +239,9 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     float half = sc->camera.fov * 3.14159265f / 360.0f;
     float col = 2.0f * half / sc->camera.width_px;        /* rad per column */
     float vfov = 2.0f * half * sc->camera.height_px / sc->camera.width_px;
-    vec2_t cam = v2(r->x + SIM_ROBOT_RADIUS * cosf(heading), r->y + SIM_ROBOT_RADIUS * sinf(heading));
+    vec2_t dir = v2(cosf(heading), sinf(heading));
+    vec2_t cam = v2(r->x + SIM_ROBOT_RADIUS * dir.x, r->y + SIM_ROBOT_RADIUS * dir.y);
+    view_t vw = { cam, heading, dir, range };
 
     uint32_t *obst = sim->cam_scratch.obstacles, *rob = sim->cam_scratch.robots;
     uint32_t *occ_obj = sim->cam_scratch.occluder_object;
@@ -243,7 +254,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     /* Everything that can hide something: other robots and all obstacles. */
     uint32_t nocc = 0;
     for (uint32_t j = 0; j < nr; j++) {
-        if (rob[j] != i && disc_interval(cam, heading, v2(sim->robots[rob[j]].x, sim->robots[rob[j]].y),
+        if (rob[j] != i && disc_interval(&vw, v2(sim->robots[rob[j]].x, sim->robots[rob[j]].y),
                                          SIM_ROBOT_RADIUS, &occ[nocc])) {
             nocc++;
         }
@@ -251,7 +262,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     uint32_t first_obstacle = nocc;
     for (uint32_t j = 0; j < no; j++) {
         const obstacle_t *o = &sim->obstacles[obst[j]];
-        int ok = (o->shape == SHAPE_CYLINDER) ? disc_interval(cam, heading, o->c, o->r, &occ[nocc])
+        int ok = (o->shape == SHAPE_CYLINDER) ? disc_interval(&vw, o->c, o->r, &occ[nocc])
                                               : box_interval(cam, heading, o, &occ[nocc]);
         if (ok) {
             occ_obj[nocc++] = obst[j];
@@ -264,7 +275,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         const food_token_t *tok = &sim->forage.tokens[k];
         float dx = tok->x - cam.x, dy = tok->y - cam.y;
         if (dx * dx + dy * dy <= range * range + 0.01f
-            && disc_interval(cam, heading, v2(tok->x, tok->y), sc->foraging.token_radius, &occ[nocc])) {
+            && disc_interval(&vw, v2(tok->x, tok->y), sc->foraging.token_radius, &occ[nocc])) {
             occ_obj[nocc++] = CAM_TOKEN | k;
         }
     }

@@ -183,7 +183,7 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     sim->obstacle_mark = calloc(no, sizeof *sim->obstacle_mark);
     /* Cells a little larger than the IR reach: an IR query touches at
      * most 3 x 3 cells. */
-    float cell = fmaxf(0.25f, 2 * SIM_ROBOT_RADIUS + sc->ir.range + 0.04f);
+    float cell = fmaxf(0.5f, 2 * SIM_ROBOT_RADIUS + sc->ir.range + 0.04f);
     if (!sim->robots || !sim->ctrl_states || !sim->px || !sim->py || !sim->obstacles || !sim->obstacle_mark
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
