@@ -14,6 +14,7 @@
 #include "controllers.h"
 #include "runner.h"
 #include "scenario.h"
+#include "telemetry.h"
 
 #define MAX_SETS 256
 
@@ -34,13 +35,23 @@ static void usage(FILE *f)
 "                  results for a seed are bit-identical for any N\n"
 "  --steps N       control steps per run (default: duration / control period)\n"
 "  --out DIR       output folder (default out/<scenario name>); each run\n"
-"                  writes DIR/run_<seed>/{summary.json,timeseries.csv}\n"
+"                  writes DIR/run_<seed>/{summary.json,timeseries.csv,\n"
+"                  telemetry.lcmlog}\n"
 "  --set K=V       override scenario key K (dotted path, e.g. robots.count=30,\n"
 "                  controller.params.speed_steps_s=300, objects.0.x=1.5);\n"
 "                  repeatable, applied in order after the file\n"
 "  --frames N      write a top-down PNG every N steps, and the last frame,\n"
 "                  to DIR/run_<seed>/frames/ (default 0: none)\n"
 "  --frame-px N    width of the pictures in pixels (default 800)\n"
+"  --lcm URL       LCM telemetry (lcm_types/: RUN_INFO, SWARM_STATE, ROBOT_STATE,\n"
+"                  SWARM_EVENT, RUN_SUMMARY) to an LCM provider URL, e.g.\n"
+"                  udpm://239.255.76.67:7667?ttl=0; `off`: none.  Default: an LCM\n"
+"                  log DIR/run_<seed>/telemetry.lcmlog stamped with simulated time\n"
+"  --telemetry-rate R[,S]  robot states per robot per simulated second (R,\n"
+"                  default 1) and swarm states per simulated second (S,\n"
+"                  default 10); 0 sends none\n"
+"  --realtime X    with telemetry on: run no faster than X times real time\n"
+"                  (to watch a run live)\n"
 "  --quiet         print nothing on success (errors still go to stderr)\n"
 "  --help          this text, the controllers and every scenario key\n"
 "\n"
@@ -77,6 +88,8 @@ int main(int argc, char **argv)
     size_t nsets = 0;
     uint64_t seed = 0, reps = 1, threads = 0, steps = 0, frames = 0, frame_px = 800;
     int have_seed = 0, have_steps = 0, quiet = 0;
+    telemetry_options_t telemetry;
+    telemetry_default_options(&telemetry);
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     threads = cpus > 0 ? (uint64_t)cpus : 1;
 
@@ -117,6 +130,21 @@ int main(int argc, char **argv)
             bad = parse_uint(a, v, 0, UINT64_C(1000000000), &frames);
         } else if (!strcmp(a, "--frame-px")) {
             bad = parse_uint(a, v, 16, 8192, &frame_px);
+        } else if (!strcmp(a, "--lcm")) {
+            telemetry.enabled = strcmp(v, "off") != 0;
+            telemetry.url = telemetry.enabled ? v : NULL;
+        } else if (!strcmp(a, "--telemetry-rate")) {
+            if (telemetry_parse_rate(v, &telemetry) != 0) {
+                fprintf(stderr, "swarmsim: --telemetry-rate: '%s' is not R or R,S with rates in [0, 1000] Hz\n", v);
+                return 2;
+            }
+        } else if (!strcmp(a, "--realtime")) {
+            char *end;
+            telemetry.realtime = strtod(v, &end);
+            if (*v == '\0' || *end || !(telemetry.realtime > 0.0 && telemetry.realtime <= 1e6)) {
+                fprintf(stderr, "swarmsim: --realtime: '%s' is not a factor in (0, 1e6]\n", v);
+                return 2;
+            }
         } else if (!strcmp(a, "--out")) {
             out_dir = v;
         } else if (!strcmp(a, "--set")) {
@@ -166,6 +194,7 @@ int main(int argc, char **argv)
         .frame_px = (uint32_t)frame_px,
         .quiet = quiet,
         .progress = !quiet,
+        .telemetry = telemetry,
     };
     int rc = runner_run(&opt, err);
     if (rc != 0) {

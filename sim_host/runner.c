@@ -185,13 +185,22 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         sim_destroy(sim);
         return;
     }
+    telemetry_t *tel = NULL;
+    snprintf(path, sizeof path, "%s/" TELEMETRY_LOG_NAME, dir);
+    if (telemetry_open(&opt->telemetry, sim, path, &tel, err) != 0) {
+        fail(job, "%s%s", "", err);
+        sim_destroy(sim);
+        return;
+    }
     snprintf(path, sizeof path, "%s/timeseries.csv", dir);
     FILE *ts = open_tmp(path, tmp, sizeof tmp);
     if (!ts) {
         fail(job, "%s: cannot write: %s", path, strerror(errno));
+        telemetry_close(tel, 0, err);
         sim_destroy(sim);
         return;
     }
+    telemetry_begin(tel, sim, opt->steps);
     metric_list_t row;
     metrics_sample(sim, &row);
     for (unsigned k = 0; k < row.count; k++) {
@@ -210,6 +219,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
             ok = render_frame(job, sim, render, dir) == 0;
         }
         sim_step(sim);
+        telemetry_step(tel, sim);
         atomic_fetch_add(&job->steps_done, 1);
     }
     if (ok && !atomic_load(&job->failed)) {
@@ -226,12 +236,16 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     if (ok && !atomic_load(&job->failed)) {
         metrics_final(sim, &res->metrics);
         res->state_hash = sim_state_hash(sim);
+        telemetry_end(tel, sim, &res->metrics, res->state_hash);
         snprintf(path, sizeof path, "%s/summary.json", dir);
         FILE *f = open_tmp(path, tmp, sizeof tmp);
         if (f) write_run_summary(f, opt, seed, res);
         if (!f || commit(f, tmp, path) != 0) {
             fail(job, "%s: cannot write: %s", path, strerror(errno));
         }
+    }
+    if (telemetry_close(tel, ok && !atomic_load(&job->failed), err) != 0) {
+        fail(job, "%s%s", "", err);
     }
     sim_destroy(sim);
 }
@@ -375,8 +389,9 @@ int runner_run(const run_options_t *opt, char err[512])
         if (!opt->quiet && rc == 0) {
             double robot_steps = (double)opt->reps * (double)opt->steps * opt->scenario->robots.count;
             double sim_time = (double)opt->reps * (double)opt->steps * opt->scenario->control_period_ms / 1000.0;
-            printf("outputs: %s/ (run_<seed>/summary.json, timeseries.csv%s)\n", opt->out_dir,
-                   opt->frames_every ? ", frames/*.png" : "");
+            printf("outputs: %s/ (run_<seed>/summary.json, timeseries.csv%s%s)\n", opt->out_dir,
+                   opt->frames_every ? ", frames/*.png" : "",
+                   opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
             fprintf(stderr, "swarmsim: %u run(s) x %llu steps x %u robots in %.3f s wall on %u thread(s): "
                     "%.0f robot-steps/s, %.0fx real time\n", opt->reps, (unsigned long long)opt->steps,
                     opt->scenario->robots.count, wall, nthreads, robot_steps / wall, sim_time / wall);

@@ -7,6 +7,8 @@
  *   run_<seed>/summary.json     scenario, seed, controller, metrics
  *   run_<seed>/timeseries.csv   one row every output.timeseries_every steps
  *   run_<seed>/frames/frame_N.png  with frames_every > 0 (and the last frame)
+ *   run_<seed>/telemetry.lcmlog LCM telemetry (telemetry.h), unless it goes
+ *                               to an LCM URL or is off
  *   summary.json                with reps > 1: mean and sd of every metric
  * Every file is written to a temporary name and renamed when complete.
  */
@@ -16,6 +18,7 @@
 #include <stdint.h>
 
 #include "scenario.h"
+#include "telemetry.h"
 
 typedef struct run_options {
     const scenario_t *scenario;
@@ -28,6 +31,7 @@ typedef struct run_options {
     uint32_t frame_px;      /**< picture side, pixels */
     int quiet;              /**< no summary on stdout */
     int progress;           /**< progress bar on stderr (when it takes > 1 s) */
+    telemetry_options_t telemetry;  /**< all zero: no telemetry */
 } run_options_t;
 
 /** Runs everything.  Returns 0, or -1 with a message in `err`. */

@@ -833,6 +833,9 @@ def run_cell(sim: Path, scenario: Path, policy: str, folder: Path, args: argpars
     folder.parent.mkdir(parents=True, exist_ok=True)
     cmd = [str(sim), str(scenario), "--reps", str(args.reps), "--threads", str(args.threads),
            "--seed", str(args.seed), "--out", str(folder), "--quiet",
+           # No LCM log per run: 750 runs would write about 5 GB; the study
+           # reads summary.json and timeseries.csv only.
+           "--lcm", "off",
            "--set", f"controller.policy={policy}"]
     if args.steps is not None:
         cmd += ["--steps", str(args.steps)]

@@ -1,0 +1,740 @@
+/*
+ * telemetry.c - LCM telemetry of a simulation run (telemetry.h).
+ *
+ * Messages are encoded by the lcm-gen C code of lcm_types/ (build/lcm_c/)
+ * and go either to lcm_publish (a URL) or to the default log file, with the
+ * simulated time as each event's timestamp.  Everything a message holds is
+ * a function of the simulation state, never of the wall clock.
+ *
+ * The log file is LCM's log format, byte for byte what lcm_eventlog_write_event
+ * writes (tests/test_telemetry.c compares the two), but each event goes out
+ * in one fwrite from the encoding buffer: lcm_eventlog_write_event makes nine
+ * fwrite calls per event, which was 40 % of the telemetry's cost.
+ */
+#define _GNU_SOURCE 1   /* __fsetlocking */
+#include "telemetry.h"
+
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdio_ext.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <lcm/lcm.h>
+
+#include "forager.h"
+#include "nest_beacon.h"
+#include "sim_internal.h"
+#include "swarmlcm_event_t.h"
+#include "swarmlcm_robot_state_t.h"
+#include "swarmlcm_run_info_t.h"
+#include "swarmlcm_run_summary_t.h"
+#include "swarmlcm_swarm_state_t.h"
+
+/** Distinct controller states counted in SWARM_STATE. */
+#define MAX_STATES 32
+/** RUN_INFO is repeated every this many simulated seconds. */
+#define INFO_PERIOD_S 10.0
+#define DETAIL_MAX 48
+
+struct telemetry {
+    lcm_t *lcm;                  /* URL sink, or NULL */
+    FILE *log;                   /* log file sink, or NULL */
+    int64_t log_events;          /* events written to the log */
+    char path[1024], tmp[1040];  /* the log file and its temporary name */
+    int write_error;             /* errno of the first failed write, or 0 */
+    uint64_t publish_errors;     /* lcm_publish failures (URL sink) */
+    uint64_t messages;
+
+    uint64_t seed;
+    uint64_t steps;              /* steps the run will do */
+    uint32_t robot_every, swarm_every, info_every;   /* steps; 0: never */
+    double robot_hz, swarm_hz;
+    uint64_t robot_sent_step, swarm_sent_step;       /* last step sent, +1 (0: none) */
+    double realtime;
+    struct timespec wall0;
+
+    uint8_t *buf;                /* encoding buffer */
+    size_t buf_size;
+
+    /* Per robot, as of the previous step: what events are told against. */
+    uint32_t n;
+    uint32_t *prev_oae;
+    int32_t *prev_carried;
+    float *prev_token_x, *prev_token_y;
+    char *prev_task;
+    const char **prev_state;
+    uint8_t *prev_escaped;
+
+    /* Controller states seen so far, for SWARM_STATE's robots by state. */
+    uint16_t n_states;
+    const char *state_names[MAX_STATES];
+    int16_t state_counts[MAX_STATES];
+
+    /* metrics_sample columns by name, resolved once. */
+    const char *metric_name[METRICS_MAX];
+    int col_step, col_time, col_oae, col_robot_contacts, col_static_contacts, col_distance,
+        col_food, col_collected, col_waiting, col_searching, col_returning, col_active;
+};
+
+void telemetry_default_options(telemetry_options_t *opt)
+{
+    opt->enabled = 1;
+    opt->url = NULL;
+    opt->robot_hz = TELEMETRY_DEFAULT_ROBOT_HZ;
+    opt->swarm_hz = TELEMETRY_DEFAULT_SWARM_HZ;
+    opt->realtime = 0.0;
+}
+
+static int parse_hz(const char *text, const char *stop, double *out)
+{
+    char *end;
+    if (text == stop || !((*text >= '0' && *text <= '9') || *text == '.')) {
+        return -1;   /* no sign, space, nan or inf */
+    }
+    errno = 0;
+    double v = strtod(text, &end);
+    if (end != stop || errno || !(v >= 0.0 && v <= 1000.0)) {
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+int telemetry_parse_rate(const char *text, telemetry_options_t *opt)
+{
+    double robot, swarm = opt->swarm_hz;
+    const char *comma = strchr(text, ',');
+    const char *stop = comma ? comma : text + strlen(text);
+    if (parse_hz(text, stop, &robot) != 0 || (comma && parse_hz(comma + 1, comma + 1 + strlen(comma + 1), &swarm) != 0)) {
+        return -1;
+    }
+    opt->robot_hz = robot;
+    opt->swarm_hz = swarm;
+    return 0;
+}
+
+/* Steps between two messages at `hz` (0: never): the nearest whole number
+ * of control periods, at least one. */
+static uint32_t every_steps(double hz, uint16_t period_ms)
+{
+    if (hz <= 0.0) {
+        return 0;
+    }
+    double steps = floor(1000.0 / (hz * period_ms) + 0.5);
+    return steps < 1.0 ? 1u : steps > 4e9 ? 4000000000u : (uint32_t)steps;
+}
+
+static int64_t utime_of(const struct sim *sim)
+{
+    return (int64_t)sim->step * sim->sc->control_period_ms * 1000;
+}
+
+/* lcm-gen's C code computes each type's fingerprint lazily into a static:
+ * compute them once before any two runs can race on it. */
+static pthread_once_t hashes_once = PTHREAD_ONCE_INIT;
+static void compute_hashes(void)
+{
+    (void)__swarmlcm_robot_state_t_get_hash();
+    (void)__swarmlcm_swarm_state_t_get_hash();
+    (void)__swarmlcm_event_t_get_hash();
+    (void)__swarmlcm_run_info_t_get_hash();
+    (void)__swarmlcm_run_summary_t_get_hash();
+}
+
+int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char *log_path,
+                   telemetry_t **out, char err[256])
+{
+    const struct sim *sim = simp;
+    *out = NULL;
+    if (!opt->enabled) {
+        return 0;
+    }
+    pthread_once(&hashes_once, compute_hashes);
+    telemetry_t *t = calloc(1, sizeof *t);
+    uint32_t n = sim->n ? sim->n : 1;
+    if (t) {
+        t->n = sim->n;
+        t->buf_size = 4096;
+        t->buf = malloc(t->buf_size);
+        t->prev_oae = calloc(n, sizeof *t->prev_oae);
+        t->prev_carried = calloc(n, sizeof *t->prev_carried);
+        t->prev_token_x = calloc(n, sizeof *t->prev_token_x);
+        t->prev_token_y = calloc(n, sizeof *t->prev_token_y);
+        t->prev_task = calloc(n, sizeof *t->prev_task);
+        t->prev_state = calloc(n, sizeof *t->prev_state);
+        t->prev_escaped = calloc(n, sizeof *t->prev_escaped);
+    }
+    if (!t || !t->buf || !t->prev_oae || !t->prev_carried || !t->prev_token_x || !t->prev_token_y
+        || !t->prev_task || !t->prev_state || !t->prev_escaped) {
+        snprintf(err, 256, "telemetry: out of memory");
+        telemetry_close(t, 0, err);
+        return -1;
+    }
+    t->seed = sim->seed;
+    t->robot_hz = opt->robot_hz;
+    t->swarm_hz = opt->swarm_hz;
+    t->robot_every = every_steps(opt->robot_hz, sim->sc->control_period_ms);
+    t->swarm_every = every_steps(opt->swarm_hz, sim->sc->control_period_ms);
+    t->info_every = every_steps(1.0 / INFO_PERIOD_S, sim->sc->control_period_ms);
+    t->realtime = opt->realtime;
+    t->col_step = -1;
+    if (opt->url) {
+        t->lcm = lcm_create(opt->url);
+        if (!t->lcm) {
+            snprintf(err, 256, "telemetry: cannot open LCM URL '%s' (see lcm_create's message above)", opt->url);
+            telemetry_close(t, 0, err);
+            return -1;
+        }
+    } else {
+        if (snprintf(t->path, sizeof t->path, "%s", log_path) >= (int)sizeof t->path) {
+            snprintf(err, 256, "telemetry: log path too long");
+            telemetry_close(t, 0, err);
+            return -1;
+        }
+        snprintf(t->tmp, sizeof t->tmp, "%s.tmp", log_path);
+        t->log = fopen(t->tmp, "wb");
+        if (!t->log) {
+            snprintf(err, 256, "%.150s: cannot write: %.60s", t->tmp, strerror(errno));
+            t->tmp[0] = '\0';
+            telemetry_close(t, 0, err);
+            return -1;
+        }
+        /* One thread writes this file: no stdio locking, and a larger buffer. */
+        __fsetlocking(t->log, FSETLOCKING_BYCALLER);
+        setvbuf(t->log, NULL, _IOFBF, 1 << 16);
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t->wall0);
+    *out = t;
+    return 0;
+}
+
+/* An LCM log event's header: magic, event number, timestamp, channel
+ * length, data length (big-endian), then the channel name. */
+#define LOG_MAGIC 0xEDA1DA01u
+#define LOG_HEADER 28
+
+static void put_be(uint8_t *p, uint64_t v, int bytes)
+{
+    for (int k = bytes - 1; k >= 0; k--) {
+        p[k] = (uint8_t)(v & 0xFF);
+        v >>= 8;
+    }
+}
+
+/* Publishes the `len` bytes at buf + off, an encoded message; the `off`
+ * bytes before it are room for the log event's header and channel. */
+static void publish(telemetry_t *t, const char *channel, int channel_len, uint8_t *buf, int off, int len,
+                    int64_t utime)
+{
+    t->messages++;
+    if (t->log) {
+        put_be(buf, LOG_MAGIC, 4);
+        put_be(buf + 4, (uint64_t)t->log_events++, 8);
+        put_be(buf + 12, (uint64_t)utime, 8);
+        put_be(buf + 20, (uint64_t)channel_len, 4);
+        put_be(buf + 24, (uint64_t)len, 4);
+        memcpy(buf + LOG_HEADER, channel, (size_t)channel_len);
+        if (fwrite(buf, (size_t)(off + len), 1, t->log) != 1 && !t->write_error) {
+            t->write_error = errno ? errno : EIO;
+        }
+    } else if (lcm_publish(t->lcm, channel, buf + off, (unsigned)len) != 0) {
+        t->publish_errors++;
+    }
+}
+
+static uint8_t *reserve(telemetry_t *t, int size)
+{
+    if ((size_t)size > t->buf_size) {
+        size_t want = t->buf_size;
+        while (want < (size_t)size) want *= 2;
+        uint8_t *b = realloc(t->buf, want);
+        if (!b) {
+            return NULL;
+        }
+        t->buf = b;
+        t->buf_size = want;
+    }
+    return t->buf;
+}
+
+/* Encodes `msg` of lcm-gen type TYPE after room for the log header and
+ * publishes it on CHANNEL (a string literal). */
+#define SEND(t, TYPE, channel, msg, utime) do {                                   \
+        int chlen_ = (int)sizeof(channel) - 1, off_ = LOG_HEADER + chlen_;         \
+        int size_ = TYPE##_encoded_size(msg);                                     \
+        uint8_t *b_ = reserve((t), off_ + size_);                                  \
+        if (b_ && TYPE##_encode(b_, off_, size_, (msg)) == size_) {                \
+            publish((t), (channel), chlen_, b_, off_, size_, (utime));             \
+        } else if (!(t)->write_error) {                                            \
+            (t)->write_error = ENOMEM;                                             \
+        }                                                                          \
+    } while (0)
+
+/* ------------------------------------------------------------ robot state */
+
+static const char *state_of(const sim_robot_t *r)
+{
+    return r->ctrl ? r->ctrl_desc->state_name(r->ctrl) : "idle";
+}
+
+static void robot_message(const telemetry_t *t, const struct sim *sim, uint32_t i, swarmlcm_robot_state_t *m)
+{
+    const sim_robot_t *r = &sim->robots[i];
+    const sim_controller_t *d = r->ctrl_desc;
+    m->utime = utime_of(sim);
+    m->run = (int64_t)t->seed;
+    m->robot_id = (int16_t)i;
+    m->controller = (char *)d->name;
+    m->state = (char *)state_of(r);
+    m->task_state = (int8_t)sim_robot_task_state(sim, i);
+    m->policy = (char *)"";
+    m->threshold = m->probability = m->stimulus = m->k = m->mean_oae = m->energy = NAN;
+    m->response_n = 0;
+    m->oae_count = 0;
+    m->deposits = 0;
+    m->carrying = 0;
+    if (d == &controller_forager && r->ctrl) {
+        const forager_t *f = r->ctrl;
+        m->policy = (char *)ta_policy_name(f->params.policy);
+        m->threshold = f->theta;
+        m->probability = f->P_s;
+        m->stimulus = f->S;
+        m->k = f->k;
+        m->mean_oae = f->M_A;
+        m->response_n = (int8_t)f->n;
+        m->energy = (f->beacon_known & FORAGER_KNOWS_FOOD) ? (float)f->beacon_food_q4 / 16.0f : NAN;
+        m->oae_count = (int32_t)f->walk.oae_count;
+        m->deposits = (int32_t)f->deposits;
+        m->carrying = f->carrying != 0;
+    } else if (d == &controller_nest_beacon && r->ctrl) {
+        const nest_beacon_t *b = r->ctrl;
+        uint16_t te = b->params.token_energy ? b->params.token_energy : 1u;
+        m->energy = (float)((double)b->ledger_units / te);
+        m->mean_oae = b->params.n_robots ? (float)b->m_t2 / (float)b->params.n_robots : 0.0f;
+        m->oae_count = (int32_t)b->oae_total;
+        m->deposits = (int32_t)b->deposits_total;
+    } else if (r->ctrl && d->oae_count) {
+        m->oae_count = (int32_t)d->oae_count(r->ctrl);
+    }
+    m->carried_item = sim->foraging_on ? sim->forage.carried[i] : -1;
+
+    m->ir_max = -1;
+    m->ir_max_index = -1;
+    if (r->ir_stamp) {
+        uint16_t best = 0;
+        uint8_t at = 0;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+            if (r->ir[k] > best) {
+                best = r->ir[k];
+                at = k;
+            }
+        }
+        m->ir_max = (int16_t)best;
+        m->ir_max_index = (int8_t)at;
+    }
+    m->ambient_min = -1;
+    if (r->ambient_stamp) {
+        uint16_t low = HAL_RAW_MAX;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+            low = r->ambient[k] < low ? r->ambient[k] : low;
+        }
+        m->ambient_min = (int16_t)low;
+    }
+    m->blobs = r->camera_stamp ? (int8_t)r->blob_count : -1;
+    m->wheel_left = r->cmd_left;
+    m->wheel_right = r->cmd_right;
+    m->leds = (int16_t)r->leds;
+    m->pose_known = 1;
+    m->x = r->x;
+    m->y = r->y;
+    m->theta = r->theta;
+}
+
+static void send_robots(telemetry_t *t, const struct sim *sim)
+{
+    swarmlcm_robot_state_t m;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        robot_message(t, sim, i, &m);
+        SEND(t, swarmlcm_robot_state_t, TELEMETRY_CHANNEL_ROBOT_STATE, &m, m.utime);
+    }
+    t->robot_sent_step = sim->step + 1;
+}
+
+/* ------------------------------------------------------------ swarm state */
+
+static int column(const metric_list_t *row, const char *name)
+{
+    for (unsigned k = 0; k < row->count; k++) {
+        if (strcmp(row->name[k], name) == 0) {
+            return (int)k;
+        }
+    }
+    return -1;
+}
+
+/* Finds the columns of metrics_sample once (its names are literals, so the
+ * same pointers come back every time; a change of layout is noticed). */
+static void resolve_columns(telemetry_t *t, const metric_list_t *row)
+{
+    int same = t->col_step >= 0;
+    for (unsigned k = 0; same && k < row->count; k++) {
+        same = row->name[k] == t->metric_name[k];
+    }
+    if (same) {
+        return;
+    }
+    for (unsigned k = 0; k < row->count; k++) {
+        t->metric_name[k] = row->name[k];
+    }
+    t->col_step = column(row, "step");
+    t->col_time = column(row, "time_s");
+    t->col_oae = column(row, "oae_total");
+    t->col_robot_contacts = column(row, "robot_contacts");
+    t->col_static_contacts = column(row, "static_contacts");
+    t->col_distance = column(row, "distance_m");
+    t->col_food = column(row, "food_nest");
+    t->col_collected = column(row, "food_collected");
+    t->col_waiting = column(row, "waiting");
+    t->col_searching = column(row, "searching");
+    t->col_returning = column(row, "returning");
+    t->col_active = column(row, "active");
+}
+
+static double value(const metric_list_t *row, int col, double none)
+{
+    return col >= 0 ? row->value[col] : none;
+}
+
+static void count_states(telemetry_t *t, const struct sim *sim)
+{
+    for (uint16_t s = 0; s < t->n_states; s++) {
+        t->state_counts[s] = 0;
+    }
+    for (uint32_t i = 0; i < sim->n_swarm; i++) {
+        const char *name = state_of(&sim->robots[i]);
+        uint16_t s = 0;
+        while (s < t->n_states && t->state_names[s] != name) {
+            s++;
+        }
+        if (s == t->n_states) {   /* the same name at another address? */
+            s = 0;
+            while (s < t->n_states && strcmp(t->state_names[s], name) != 0) {
+                s++;
+            }
+        }
+        if (s == t->n_states) {
+            if (s == MAX_STATES) {
+                continue;
+            }
+            t->state_names[s] = name;
+            t->n_states++;
+        }
+        t->state_counts[s]++;
+    }
+}
+
+static void send_swarm(telemetry_t *t, const struct sim *sim)
+{
+    const scenario_t *sc = sim->sc;
+    metric_list_t row;
+    swarmlcm_swarm_state_t m;
+    metrics_sample(sim, &row);
+    resolve_columns(t, &row);
+    count_states(t, sim);
+    m.utime = utime_of(sim);
+    m.run = (int64_t)t->seed;
+    m.step = (int64_t)value(&row, t->col_step, (double)sim->step);
+    m.time_s = value(&row, t->col_time, NAN);
+    m.robots = (int32_t)sim->n_swarm;
+    m.n_states = (int16_t)t->n_states;
+    m.state_names = (char **)t->state_names;
+    m.state_counts = t->state_counts;
+    m.oae_total = (int64_t)value(&row, t->col_oae, 0);
+    m.robot_contacts = (int64_t)value(&row, t->col_robot_contacts, 0);
+    m.static_contacts = (int64_t)value(&row, t->col_static_contacts, 0);
+    m.distance_m = value(&row, t->col_distance, NAN);
+    m.foraging = sim->foraging_on;
+    m.food_nest = value(&row, t->col_food, NAN);
+    m.food_desired = sim->foraging_on ? sc->foraging.desired_food : NAN;
+    m.food_collected = (int64_t)value(&row, t->col_collected, 0);
+    m.food_dropped = sim->foraging_on ? (int64_t)sim->forage.dropped : 0;
+    m.waiting = (int16_t)value(&row, t->col_waiting, 0);
+    m.searching = (int16_t)value(&row, t->col_searching, 0);
+    m.returning = (int16_t)value(&row, t->col_returning, 0);
+    m.active = (int16_t)value(&row, t->col_active, 0);
+    m.k = NAN;
+    m.mean_oae = NAN;
+    if (sim->foraging_on && sim->n_swarm > 0) {
+        double area = (double)sc->arena.width * sc->arena.width;
+        m.k = (float)(((double)sim->n_swarm - sim->forage.waiting) / area);
+        m.mean_oae = (float)((double)sim->forage.window_sum / sim->n_swarm);
+    }
+    m.beacon = sim->beacon >= 0 && sim->robots[sim->beacon].ctrl;
+    m.beacon_food = NAN;
+    m.beacon_waiting = -1;
+    m.beacon_mean_oae = NAN;
+    if (m.beacon) {
+        const nest_beacon_t *b = sim->robots[sim->beacon].ctrl;
+        uint16_t te = b->params.token_energy ? b->params.token_energy : 1u;
+        m.beacon_food = (float)((double)b->ledger_units / te);
+        m.beacon_waiting = (int16_t)b->n_waiting;
+        m.beacon_mean_oae = b->params.n_robots ? (float)b->m_t2 / (float)b->params.n_robots : 0.0f;
+    }
+    SEND(t, swarmlcm_swarm_state_t, TELEMETRY_CHANNEL_SWARM_STATE, &m, m.utime);
+    t->swarm_sent_step = sim->step + 1;
+}
+
+/* ------------------------------------------------------------ run info */
+
+static void send_info(telemetry_t *t, const struct sim *sim)
+{
+    const scenario_t *sc = sim->sc;
+    swarmlcm_run_info_t m;
+    m.utime = utime_of(sim);
+    m.run = (int64_t)t->seed;
+    m.scenario = (char *)sc->name;
+    m.scenario_file = (char *)sc->path;
+    m.controller = (char *)sc->controller.name;
+    m.policy = (char *)(sim->ctrl && sim->ctrl->policies ? sc->controller.policy : "");
+    m.robots = (int32_t)sim->n_swarm;
+    m.beacon = sim->beacon >= 0;
+    m.steps = (int64_t)t->steps;
+    m.control_period_ms = sc->control_period_ms;
+    m.arena_width = sc->arena.width;
+    m.arena_height = sc->arena.height;
+    m.nest = sc->nest.enabled;
+    m.nest_x = sc->nest.x;
+    m.nest_y = sc->nest.y;
+    m.nest_diameter = sc->nest.diameter;
+    m.foraging = sim->foraging_on;
+    m.food_initial = sim->foraging_on ? sc->foraging.initial_food : NAN;
+    m.food_desired = sim->foraging_on ? sc->foraging.desired_food : NAN;
+    m.food_items = sim->foraging_on ? (int32_t)sc->foraging.food_count : 0;
+    m.robot_state_hz = (float)t->robot_hz;
+    m.swarm_state_hz = (float)t->swarm_hz;
+    SEND(t, swarmlcm_run_info_t, TELEMETRY_CHANNEL_RUN_INFO, &m, m.utime);
+}
+
+/* ------------------------------------------------------------ events */
+
+static void send_event(telemetry_t *t, const struct sim *sim, uint32_t i, int8_t kind,
+                       const char *detail, int32_t val)
+{
+    swarmlcm_event_t e;
+    e.utime = utime_of(sim);
+    e.run = (int64_t)t->seed;
+    e.robot_id = (int16_t)i;
+    e.kind = kind;
+    e.detail = (char *)detail;
+    e.value = val;
+    e.pose_known = 1;
+    e.x = sim->robots[i].x;
+    e.y = sim->robots[i].y;
+    SEND(t, swarmlcm_event_t, TELEMETRY_CHANNEL_EVENT, &e, e.utime);
+}
+
+/* The nest test of foraging.c, on the same floats: a token let go here is
+ * delivered. */
+static int in_nest(const struct sim *sim, float x, float y)
+{
+    float dx = x - sim->sc->nest.x, dy = y - sim->sc->nest.y, r = sim->sc->nest.diameter / 2.0f;
+    return dx * dx + dy * dy < r * r;
+}
+
+/* Robot i's state now, to tell the next step's events against. */
+static void remember(telemetry_t *t, const struct sim *sim, uint32_t i)
+{
+    const sim_robot_t *r = &sim->robots[i];
+    t->prev_oae[i] = (r->ctrl && r->ctrl_desc->oae_count) ? r->ctrl_desc->oae_count(r->ctrl) : 0;
+    t->prev_task[i] = sim_robot_task_state(sim, i);
+    t->prev_state[i] = state_of(r);
+    t->prev_escaped[i] = r->escaped;
+    t->prev_carried[i] = -1;
+    if (sim->foraging_on) {
+        int32_t k = sim->forage.carried[i];
+        t->prev_carried[i] = k;
+        if (k >= 0) {
+            t->prev_token_x[i] = sim->forage.tokens[k].x;
+            t->prev_token_y[i] = sim->forage.tokens[k].y;
+        }
+    }
+}
+
+/* The events of robot i in the last step, each told once: what changed
+ * since the previous step.  Then remembers the new state. */
+static void robot_events(telemetry_t *t, const struct sim *sim, uint32_t i)
+{
+    const sim_robot_t *r = &sim->robots[i];
+    const sim_controller_t *d = r->ctrl_desc;
+    char detail[DETAIL_MAX];
+    uint32_t oae = (r->ctrl && d->oae_count) ? d->oae_count(r->ctrl) : 0;
+    for (uint32_t k = t->prev_oae[i]; k < oae; k++) {
+        send_event(t, sim, i, SWARMLCM_EVENT_T_OAE, "", (int32_t)(k + 1));
+    }
+    t->prev_oae[i] = oae;
+    if (sim->foraging_on) {
+        int32_t was = t->prev_carried[i], now = sim->forage.carried[i];
+        if (was >= 0 && now != was) {
+            if (in_nest(sim, t->prev_token_x[i], t->prev_token_y[i])) {
+                send_event(t, sim, i, SWARMLCM_EVENT_T_DEPOSIT, "", was);
+            } else {
+                send_event(t, sim, i, SWARMLCM_EVENT_T_FAILURE, "token_dropped", was);
+            }
+        }
+        if (now >= 0 && now != was) {
+            send_event(t, sim, i, SWARMLCM_EVENT_T_PICKUP, "", now);
+        }
+        t->prev_carried[i] = now;
+        if (now >= 0) {
+            t->prev_token_x[i] = sim->forage.tokens[now].x;
+            t->prev_token_y[i] = sim->forage.tokens[now].y;
+        }
+    }
+    if (r->ctrl && d->task_state) {
+        char task = d->task_state(r->ctrl), was_task = t->prev_task[i];
+        const char *state = d->state_name(r->ctrl);
+        if (task != was_task && task && was_task) {
+            snprintf(detail, sizeof detail, "%s->%s", t->prev_state[i], state);
+            send_event(t, sim, i, SWARMLCM_EVENT_T_STATE_CHANGE, detail, task);
+            if (was_task == 'R' && task == 'S') {
+                send_event(t, sim, i, SWARMLCM_EVENT_T_FAILURE, "token_lost", task);
+            }
+        }
+        t->prev_task[i] = task;
+        t->prev_state[i] = state;
+    }
+    if (r->escaped != t->prev_escaped[i]) {
+        if (r->escaped) {
+            send_event(t, sim, i, SWARMLCM_EVENT_T_FAILURE, "escaped", 0);
+        }
+        t->prev_escaped[i] = r->escaped;
+    }
+}
+
+/* ------------------------------------------------------------ the run */
+
+void telemetry_begin(telemetry_t *t, const sim_t *simp, uint64_t steps)
+{
+    const struct sim *sim = simp;
+    if (!t) {
+        return;
+    }
+    t->steps = steps;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        remember(t, sim, i);
+    }
+    send_info(t, sim);
+    if (t->swarm_every) send_swarm(t, sim);
+    if (t->robot_every) send_robots(t, sim);
+}
+
+static void pace(telemetry_t *t, const struct sim *sim)
+{
+    double sim_s = (double)sim->step * sim->sc->control_period_ms / 1000.0;
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    double wall = (double)(now.tv_sec - t->wall0.tv_sec) + 1e-9 * (double)(now.tv_nsec - t->wall0.tv_nsec);
+    double ahead = sim_s / t->realtime - wall;
+    if (ahead > 0.001) {
+        struct timespec nap = { (time_t)ahead, (long)((ahead - floor(ahead)) * 1e9) };
+        nanosleep(&nap, NULL);
+    }
+}
+
+void telemetry_step(telemetry_t *t, const sim_t *simp)
+{
+    const struct sim *sim = simp;
+    if (!t) {
+        return;
+    }
+    for (uint32_t i = 0; i < sim->n_swarm; i++) {
+        robot_events(t, sim, i);
+    }
+    if (t->info_every && sim->step % t->info_every == 0) send_info(t, sim);
+    if (t->swarm_every && sim->step % t->swarm_every == 0) send_swarm(t, sim);
+    if (t->robot_every && sim->step % t->robot_every == 0) send_robots(t, sim);
+    if (t->realtime > 0) pace(t, sim);
+}
+
+void telemetry_end(telemetry_t *t, const sim_t *simp, const metric_list_t *final, uint64_t state_hash)
+{
+    const struct sim *sim = simp;
+    const scenario_t *sc = sim->sc;
+    if (!t) {
+        return;
+    }
+    if (t->swarm_every && t->swarm_sent_step != sim->step + 1) send_swarm(t, sim);
+    if (t->robot_every && t->robot_sent_step != sim->step + 1) send_robots(t, sim);
+    char hash[17];
+    char *names[METRICS_MAX];
+    double values[METRICS_MAX];
+    snprintf(hash, sizeof hash, "%016llx", (unsigned long long)state_hash);
+    for (unsigned k = 0; k < final->count; k++) {
+        names[k] = (char *)final->name[k];
+        values[k] = final->value[k];
+    }
+    swarmlcm_run_summary_t m;
+    m.utime = utime_of(sim);
+    m.run = (int64_t)t->seed;
+    m.scenario = (char *)sc->name;
+    m.scenario_file = (char *)sc->path;
+    m.controller = (char *)sc->controller.name;
+    m.policy = (char *)(sim->ctrl && sim->ctrl->policies ? sc->controller.policy : "");
+    m.robots = (int32_t)sim->n_swarm;
+    m.steps = (int64_t)sim->step;
+    m.control_period_ms = sc->control_period_ms;
+    m.state_hash = hash;
+    m.n_metrics = (int16_t)final->count;
+    m.metric_names = names;
+    m.metric_values = values;
+    SEND(t, swarmlcm_run_summary_t, TELEMETRY_CHANNEL_RUN_SUMMARY, &m, m.utime);
+}
+
+int telemetry_close(telemetry_t *t, int keep, char err[256])
+{
+    int rc = 0;
+    if (!t) {
+        return 0;
+    }
+    if (t->log) {
+        int bad = ferror(t->log);
+        if ((fclose(t->log) != 0 || bad) && !t->write_error) {
+            t->write_error = errno ? errno : EIO;
+        }
+        if (keep && !t->write_error && rename(t->tmp, t->path) != 0) {
+            t->write_error = errno;
+        }
+        if (!keep || t->write_error) {
+            remove(t->tmp);
+        }
+        if (keep && t->write_error) {
+            snprintf(err, 256, "%.150s: cannot write: %.60s", t->path, strerror(t->write_error));
+            rc = -1;
+        }
+    }
+    if (t->lcm) {
+        if (t->publish_errors) {
+            fprintf(stderr, "swarmsim: telemetry: %llu of %llu messages could not be published\n",
+                    (unsigned long long)t->publish_errors, (unsigned long long)t->messages);
+        }
+        lcm_destroy(t->lcm);
+    }
+    free(t->buf);
+    free(t->prev_oae);
+    free(t->prev_carried);
+    free(t->prev_token_x);
+    free(t->prev_token_y);
+    free(t->prev_task);
+    free(t->prev_state);
+    free(t->prev_escaped);
+    free(t);
+    return rc;
+}
+
+uint64_t telemetry_message_count(const telemetry_t *t) { return t ? t->messages : 0; }
+
+struct _lcm_t *telemetry_lcm(telemetry_t *t) { return t ? t->lcm : NULL; }

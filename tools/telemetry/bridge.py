@@ -1,0 +1,311 @@
+#!/usr/bin/env python3
+"""Serial bridge: real e-pucks' telemetry frames -> LCM.
+
+Reads one or several serial devices (the Bluetooth rfcomm ports of e-pucks,
+or any tty or pseudo-terminal), decodes the frames of
+firmware/telemetry_frame.h and republishes each payload on LCM on the
+channel its channel id names (ROBOT_STATE, SWARM_EVENT, SWARM_STATE, ...:
+the simulator's channels, so the same monitor, logger and tools work), with
+the robot's id: the id in the frame, or the one given with --id for that
+device, written into the message's robot_id field.
+
+It never stops on bad input: garbage bytes, truncated frames, bad stuffing,
+CRC errors, payloads that are not the channel's LCM type and unknown
+channel ids are counted and skipped; a device that disappears (read error,
+hang-up, removed node) is closed and opened again every --reopen seconds
+until it comes back.  Counts per device go to BRIDGE_STATUS
+(swarmlcm.bridge_status_t) every --status-every seconds and to stderr every
+--report-every seconds and at exit.
+
+    .venv/bin/python tools/telemetry/bridge.py /dev/rfcomm0 /dev/rfcomm1 \\
+        --lcm udpm://239.255.76.67:7667?ttl=0 --baud 115200
+"""
+import argparse
+import errno
+import os
+import select
+import signal
+import sys
+import termios
+import time
+import tty
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+from frames import CHANNEL_IDS, FrameDecoder  # noqa: E402
+
+READ_CHUNK = 4096
+
+
+class Device:
+    """One serial device: its file descriptor (or None while lost), its
+    decoder and counters."""
+
+    def __init__(self, path, baud=115200, robot_id=None):
+        self.path = path
+        self.baud = baud
+        self.id_override = robot_id
+        self.robot_id = -1 if robot_id is None else robot_id
+        self.fd = None
+        self.decoder = FrameDecoder()
+        self.opened = 0              # times opened
+        self.bad_payload = 0
+        self.unknown_channel = 0
+        self.lost = 0
+        self.republished = 0
+        self.next_try = 0.0
+        self.last_error = ""
+        self._last_seq = {}          # robot id -> last sequence number
+
+    @property
+    def connected(self):
+        return self.fd is not None
+
+    @property
+    def reconnects(self):
+        return max(0, self.opened - 1)
+
+    def open(self):
+        """Tries to open the device; returns True if it is open."""
+        try:
+            fd = os.open(self.path, os.O_RDONLY | os.O_NOCTTY | os.O_NONBLOCK)
+        except OSError as e:
+            self.last_error = e.strerror or str(e)
+            return False
+        try:
+            if os.isatty(fd):
+                tty.setraw(fd, termios.TCSANOW)   # keep what already arrived
+                attrs = termios.tcgetattr(fd)
+                speed = getattr(termios, f"B{self.baud}", None)
+                if speed is not None:
+                    attrs[4] = attrs[5] = speed
+                attrs[2] |= termios.CLOCAL | termios.CREAD
+                termios.tcsetattr(fd, termios.TCSANOW, attrs)
+        except (OSError, termios.error) as e:   # a tty that refuses: read it as it is
+            self.last_error = str(e)
+        self.fd = fd
+        self.opened += 1
+        self.decoder.reset()
+        return True
+
+    def close(self):
+        if self.fd is not None:
+            try:
+                os.close(self.fd)
+            except OSError:
+                pass
+        self.fd = None
+        self.decoder.reset()
+
+    def note_seq(self, robot_id, seq):
+        """Counts frames missing before `seq` (a restart resets silently)."""
+        last = self._last_seq.get(robot_id)
+        self._last_seq[robot_id] = seq
+        if last is not None:
+            gap = (seq - last - 1) & 0xFFFF
+            if gap < 0x8000:
+                self.lost += gap
+
+    def counters(self):
+        s = self.decoder.stats
+        return dict(bytes=s.bytes, frames=self.republished, crc_errors=s.crc_errors,
+                    framing_errors=s.framing_errors, oversize=s.oversize,
+                    bad_payload=self.bad_payload, unknown_channel=self.unknown_channel,
+                    lost=self.lost, reconnects=self.reconnects)
+
+
+class Bridge:
+    """Devices -> frames -> `publish(channel, data)`."""
+
+    def __init__(self, devices, publish, prefix="", reopen_s=1.0, clock=time.monotonic):
+        self.devices = devices
+        self.publish = publish
+        self.prefix = prefix
+        self.reopen_s = reopen_s
+        self.clock = clock
+        self.publish_errors = 0
+        self._types = {name: common.type_class(common.CHANNEL_TYPES[name]) for name in CHANNEL_IDS.values()}
+
+    def handle_frame(self, dev, frame):
+        """Republishes one good frame; returns (channel, data) or None."""
+        name = CHANNEL_IDS.get(frame.channel)
+        if name is None:
+            dev.unknown_channel += 1
+            return None
+        robot_id = dev.id_override if dev.id_override is not None else frame.robot_id
+        dev.robot_id = robot_id
+        dev.note_seq(frame.robot_id, frame.seq)
+        cls = self._types[name]
+        data = frame.payload
+        if data[:8] != cls._get_packed_fingerprint():
+            dev.bad_payload += 1
+            return None
+        try:
+            msg = cls.decode(data)
+            if hasattr(msg, "robot_id") and msg.robot_id != robot_id:
+                msg.robot_id = robot_id if robot_id < 0x8000 else robot_id - 0x10000
+                data = msg.encode()
+        except Exception:   # not a well-formed message of the channel's type
+            dev.bad_payload += 1
+            return None
+        channel = self.prefix + name
+        try:
+            self.publish(channel, data)
+        except Exception:
+            self.publish_errors += 1
+            return None
+        dev.republished += 1
+        return channel, data
+
+    def feed(self, dev, data):
+        """Decodes bytes read from `dev` and republishes its frames."""
+        out = []
+        for frame in dev.decoder.feed(data):
+            r = self.handle_frame(dev, frame)
+            if r is not None:
+                out.append(r)
+        return out
+
+    def reopen_due(self):
+        now = self.clock()
+        for dev in self.devices:
+            if dev.fd is None and now >= dev.next_try:
+                if not dev.open():
+                    dev.next_try = now + self.reopen_s
+
+    def lose(self, dev, why):
+        dev.last_error = why
+        dev.close()
+        dev.next_try = self.clock() + self.reopen_s
+
+    def poll(self, timeout):
+        """Waits up to `timeout` s for input, reads what is there."""
+        self.reopen_due()
+        fds = {dev.fd: dev for dev in self.devices if dev.fd is not None}
+        if not fds:
+            time.sleep(min(timeout, self.reopen_s))
+            return
+        try:
+            ready, _, broken = select.select(list(fds), [], list(fds), timeout)
+        except (OSError, ValueError):   # a descriptor went bad under us
+            ready, broken = list(fds), []
+        for fd in set(ready) | set(broken):
+            dev = fds[fd]
+            try:
+                data = os.read(fd, READ_CHUNK)
+            except BlockingIOError:
+                continue
+            except OSError as e:
+                # EIO: a pseudo-terminal's other end closed, a Bluetooth link dropped.
+                self.lose(dev, e.strerror or errno.errorcode.get(e.errno, str(e)))
+                continue
+            if not data:
+                self.lose(dev, "end of file (hang-up)")
+                continue
+            self.feed(dev, data)
+
+    def status_message(self, utime):
+        pkg = common.swarmlcm()
+        m = pkg.bridge_status_t()
+        m.utime = utime
+        for dev in self.devices:
+            d = pkg.bridge_device_t()
+            d.device = dev.path
+            d.robot_id = dev.robot_id if -0x8000 <= dev.robot_id < 0x8000 else -1
+            d.connected = dev.connected
+            for key, value in dev.counters().items():
+                setattr(d, key, value)
+            m.devices.append(d)
+        m.n_devices = len(m.devices)
+        return m
+
+    def report(self):
+        parts = []
+        for dev in self.devices:
+            c = dev.counters()
+            state = "up" if dev.connected else f"down ({dev.last_error})"
+            parts.append(f"{dev.path} robot {dev.robot_id}: {state}, {c['frames']} frames, "
+                         f"{c['crc_errors']} CRC errors, {c['framing_errors']} framing errors, "
+                         f"{c['oversize']} garbage runs, {c['bad_payload']} bad payloads, "
+                         f"{c['unknown_channel']} unknown channels, {c['lost']} lost, "
+                         f"{c['reconnects']} reconnects")
+        return "; ".join(parts)
+
+
+def parse_ids(items):
+    ids = {}
+    for item in items or []:
+        dev, sep, value = item.rpartition("=")
+        if not sep or not dev:
+            raise SystemExit(f"bridge: --id {item!r}: expected DEVICE=ID")
+        try:
+            ids[dev] = int(value, 0)
+        except ValueError:
+            raise SystemExit(f"bridge: --id {item!r}: {value!r} is not a robot id") from None
+        if not 0 <= ids[dev] <= 0xFFFF:
+            raise SystemExit(f"bridge: --id {item!r}: robot ids are 0..65535")
+    return ids
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("devices", nargs="+", help="serial devices (/dev/rfcomm0, /dev/ttyUSB0, a pty, ...)")
+    ap.add_argument("--lcm", default=common.DEFAULT_URL, help="LCM URL to publish on (default %(default)s)")
+    ap.add_argument("--baud", type=int, default=115200, help="serial speed (default %(default)s)")
+    ap.add_argument("--id", action="append", metavar="DEVICE=ID",
+                    help="robot id for a device's messages (default: the id in its frames)")
+    ap.add_argument("--prefix", default="", help="prefix for the republished channel names")
+    ap.add_argument("--reopen", type=float, default=1.0, help="seconds between tries to reopen a lost device")
+    ap.add_argument("--status-every", type=float, default=1.0, help="seconds between BRIDGE_STATUS messages")
+    ap.add_argument("--report-every", type=float, default=10.0, help="seconds between reports on stderr (0: at exit only)")
+    ap.add_argument("--duration", type=float, default=0.0, help="stop after this many seconds (0: run until interrupted)")
+    ap.add_argument("--quiet", action="store_true", help="no reports on stderr")
+    args = ap.parse_args(argv)
+
+    ids = parse_ids(args.id)
+    for dev in ids:
+        if dev not in args.devices:
+            raise SystemExit(f"bridge: --id names {dev!r}, which is not one of the devices")
+    lcm = common.lcm_module()
+    try:
+        bus = lcm.LCM(args.lcm)
+    except Exception as e:
+        raise SystemExit(f"bridge: cannot open LCM URL {args.lcm!r}: {e}") from None
+    devices = [Device(p, args.baud, ids.get(p)) for p in args.devices]
+    bridge = Bridge(devices, bus.publish, prefix=args.prefix, reopen_s=args.reopen)
+    status_channel = args.prefix + "BRIDGE_STATUS"
+
+    stop = []
+    signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
+    signal.signal(signal.SIGINT, lambda *_: stop.append(1))
+    t0 = time.monotonic()
+    next_status = t0
+    next_report = t0 + args.report_every if args.report_every > 0 else float("inf")
+    while not stop:
+        now = time.monotonic()
+        if args.duration and now - t0 >= args.duration:
+            break
+        bridge.poll(0.1)
+        now = time.monotonic()
+        if args.status_every > 0 and now >= next_status:
+            next_status = now + args.status_every
+            try:
+                bus.publish(status_channel, bridge.status_message(int(time.time() * 1e6)).encode())
+            except Exception:
+                bridge.publish_errors += 1
+        if now >= next_report:
+            next_report = now + args.report_every
+            if not args.quiet:
+                print(f"bridge: {bridge.report()}", file=sys.stderr, flush=True)
+    for dev in devices:
+        dev.close()
+    if not args.quiet:
+        print(f"bridge: {bridge.report()}", file=sys.stderr, flush=True)
+        if bridge.publish_errors:
+            print(f"bridge: {bridge.publish_errors} messages could not be published", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
