@@ -33,7 +33,10 @@ check_all() {
     need gcc-arm-none-eabi       command -v arm-none-eabi-gcc
     need libnewlib-arm-none-eabi hdr_arm
     need python3-venv     python3 -c 'import venv, ensurepip'
+    need libglib2.0-0     glib_runtime      # liblcm.a (the lcm wheel) calls GLib
+    need valgrind         command -v valgrind   # firmware CPU report (callgrind)
 }
+glib_runtime() { { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | grep -q 'libglib-2.0.so.0'; }
 hdr_avr() { printf '#include <stdint.h>\n' | avr-gcc -mmcu=atmega128 -E -x c - >/dev/null; }
 hdr_arm() { printf '#include <string.h>\n' | arm-none-eabi-gcc -mcpu=cortex-m4 -E -x c - >/dev/null; }
 
