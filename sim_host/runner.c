@@ -38,6 +38,7 @@ typedef struct job {
     atomic_ullong steps_done;
     atomic_int failed;
     pthread_mutex_t err_lock;
+    double t_end;                  /**< when the last worker finished (under err_lock) */
     char err[512];
 } job_t;
 
@@ -262,6 +263,14 @@ static void *worker(void *arg)
         run_rep(job, rep, &render);
     }
     render_destroy(render);
+    /* The wall time ends when the work does, not when the main thread's
+     * progress poll (every 100 ms) next looks. */
+    double t = now_s();
+    pthread_mutex_lock(&job->err_lock);
+    if (t > job->t_end) {
+        job->t_end = t;
+    }
+    pthread_mutex_unlock(&job->err_lock);
     return NULL;
 }
 
@@ -364,7 +373,7 @@ int runner_run(const run_options_t *opt, char err[512])
     for (uint32_t k = 0; k < started; k++) {
         pthread_join(tid[k], NULL);
     }
-    double wall = now_s() - t0;
+    double wall = (job.t_end > t0 ? job.t_end : now_s()) - t0;
     free(tid);
     if (shown) progress(&job, wall, 1);
 
