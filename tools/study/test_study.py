@@ -82,7 +82,7 @@ def synthetic_results(conditions=("base", "nr30"), policies=sd.POLICIES, reps=50
     """A results dict as run_study makes it, with made-up numbers."""
     rng = np.random.default_rng(42)
     res = {"format": sd.FORMAT, "command": ".venv/bin/python tools/study/study_drtm.py",
-           "cwd": "/work/main", "wall_time_s": 123.4, "generated_utc": "2026-01-01 00:00:00 UTC",
+           "cwd": "/srv/project", "wall_time_s": 123.4, "generated_utc": "2026-01-01 00:00:00 UTC",
            "source": "git abc1234",
            "machine": {"cores": 2, "cpu": "Test CPU @ 1 GHz", "platform": "Linux", "python": "3.11"},
            "settings": {"reps": reps, "first_seed": 1, "steps": None, "threads": 2, "quick": quick,
