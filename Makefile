@@ -109,8 +109,8 @@ asan-tests: $(TESTS_ASAN)
 cli-tests: $(BUILD)/swarmsim
 	@set -e; for t in $(sort $(wildcard tests/cli/*.sh)); do echo "== $$t"; bash $$t $(BUILD)/swarmsim; done
 
-firmware-hygiene: $(BUILD)/config.mk
-	@bash tests/firmware/hygiene.sh
+firmware-hygiene: $(BUILD)/config.mk lcm-types
+	@LCM_CFLAGS='$(LCM_CFLAGS)' LCM_C_DIR='$(BUILD)/lcm_c' bash tests/firmware/hygiene.sh
 
 test: unit-tests asan-tests cli-tests firmware-hygiene $(EXTRA_TESTS)
 	@echo "make test: all test groups passed"

@@ -9,16 +9,34 @@
  * too: APP_N_ROBOTS (N_r, 20) and APP_ARENA_L_MM (L, 4000 mm); everything
  * else is forager_default_params (seed 000's values).
  *
+ * Telemetry: once per simulated second (every APP_TELEMETRY_STEPS control
+ * steps) the controller's state goes out as an LCM swarmlcm.robot_state_t
+ * (lcm_types/robot_state_t.lcm, encoded by the lcm-gen C code in
+ * build/lcm_c/) in a telemetry frame on TELEMETRY_CH_ROBOT_STATE
+ * (telemetry_frame.h) through the Bluetooth UART; telemetry_tx_pump runs
+ * every step so a frame trickles out as the UART takes it.
+ * tools/telemetry/bridge.py republishes it on the LCM bus.  Field meanings
+ * follow the simulator's (sim_host/telemetry.c); a real robot has no pose
+ * (pose_known false) and no ground truth of the token (carried_item -2).
+ *
  * Static storage: an image is the one place where the firmware's state
  * lives in static variables (no heap on the robot, and main never
- * returns): the robot's struct hal, its two camera frames, and the
- * controller.  tests/firmware/hygiene.sh checks that an app has no other
- * writable statics.
+ * returns): the robot's struct hal, its two camera frames, the controller,
+ * and the telemetry sender with its buffers (app_telemetry).
+ * tests/firmware/hygiene.sh checks that an app has no other writable
+ * statics.
+ *
+ * The loop body is app_loop_once and the set-up app_setup, so that
+ * tests/firmware/test_app_telemetry.c can run the image against the stubs.
  */
+#include <math.h>
 #include <stdint.h>
 
 #include "forager.h"
 #include "hal_epuck.h"
+#include "swarmlcm_robot_state_t.h"
+#include "task_alloc.h"
+#include "telemetry_tx.h"
 
 #ifndef APP_FORAGER_POLICY
 #define APP_FORAGER_POLICY TA_DRTM
@@ -30,9 +48,21 @@
 #define APP_ARENA_L_MM 4000u
 #endif
 
+/** Control steps between two robot_state_t messages (1 s at 100 ms). */
+#define APP_TELEMETRY_STEPS 10u
+/** Largest encoded robot_state_t this image sends (about 125 bytes). */
+#define APP_STATE_PAYLOAD 160u
+
+typedef struct app_telemetry {
+    telemetry_tx_t tx;                    /**< frames waiting for the UART */
+    uint8_t payload[APP_STATE_PAYLOAD];   /**< the encoded message */
+    uint8_t countdown;                    /**< steps to the next message */
+} app_telemetry_t;
+
 static struct hal app_hal;
 static uint8_t camera_frames[2u * HAL_EPUCK_FRAME_BYTES];
 static forager_t app_forager;
+static app_telemetry_t app_telemetry;
 
 /* Timer-2 agenda, interrupt context: only counts the period. */
 static void app_tick(void)
@@ -50,7 +80,61 @@ static ta_policy_t choose_policy(uint8_t selector)
     }
 }
 
-int main(void)
+/* The robot's state as sim_host/telemetry.c fills it for a forager. */
+static void app_send_state(void)
+{
+    swarmlcm_robot_state_t m;
+    const forager_t *f = &app_forager;
+    uint16_t ir_best = 0u, amb_low = 0xFFFFu, v;
+    uint8_t k, ir_at = 0u;
+    int n;
+
+    m.utime = (int64_t)hal_time_ms(&app_hal) * 1000;
+    m.run = 0;
+    m.robot_id = (int16_t)hal_robot_id(&app_hal);
+    m.controller = (char *)"forager";
+    m.state = (char *)forager_state_name(f->state);
+    m.task_state = (int8_t)forager_paper_state(f->state);
+    m.policy = (char *)ta_policy_name(f->params.policy);
+    m.threshold = f->theta;
+    m.probability = f->P_s;
+    m.stimulus = f->S;
+    m.k = f->k;
+    m.mean_oae = f->M_A;
+    m.response_n = (int8_t)f->n;
+    m.energy = (f->beacon_known & FORAGER_KNOWS_FOOD) != 0u ? (float)f->beacon_food_q4 / 16.0f : NAN;
+    m.oae_count = (int32_t)f->walk.oae_count;
+    m.deposits = (int32_t)f->deposits;
+    m.carrying = f->carrying != 0u;
+    m.carried_item = -2;   /* no ground truth on a robot */
+    for (k = 0u; k < HAL_IR_COUNT; k++) {
+        v = hal_ir_proximity(&app_hal, k);
+        if (v > ir_best) {
+            ir_best = v;
+            ir_at = k;
+        }
+        v = hal_ir_ambient(&app_hal, k);
+        amb_low = v < amb_low ? v : amb_low;
+    }
+    m.ir_max = (int16_t)ir_best;
+    m.ir_max_index = (int8_t)ir_at;
+    m.ambient_min = (int16_t)amb_low;
+    m.blobs = -1;   /* not recomputed for telemetry */
+    /* The commands of this step: the image owns its struct hal. */
+    m.wheel_left = app_hal.speed_left;
+    m.wheel_right = app_hal.speed_right;
+    m.leds = (int16_t)app_hal.leds;
+    m.pose_known = 0;
+    m.x = m.y = m.theta = NAN;
+
+    n = swarmlcm_robot_state_t_encode(app_telemetry.payload, 0, (int)sizeof app_telemetry.payload, &m);
+    if (n > 0) {
+        (void)telemetry_tx_send(&app_telemetry.tx, &app_hal, (uint8_t)TELEMETRY_CH_ROBOT_STATE,
+                                app_telemetry.payload, (uint16_t)n);
+    }
+}
+
+static void app_setup(void)
 {
     hal_epuck_config_t cfg;
     forager_params_t params;
@@ -65,14 +149,31 @@ int main(void)
     params.arena_l_mm = (uint16_t)APP_ARENA_L_MM;
     hal_epuck_begin_step(&app_hal);   /* light readings for the seed */
     forager_init(&app_forager, &params, hal_epuck_seed(&app_hal));
+    telemetry_tx_init(&app_telemetry.tx);
+    app_telemetry.countdown = 0u;   /* first message at the first step */
+}
 
-    for (;;) {
-        if (hal_epuck_step_due(&app_hal) != 0u) {
-            hal_epuck_begin_step(&app_hal);
-            forager_step(&app_forager, &app_hal);
-            hal_epuck_end_step(&app_hal);
-        } else {
-            hal_epuck_poll(&app_hal);
+static void app_loop_once(void)
+{
+    if (hal_epuck_step_due(&app_hal) != 0u) {
+        hal_epuck_begin_step(&app_hal);
+        forager_step(&app_forager, &app_hal);
+        if (app_telemetry.countdown == 0u) {
+            app_telemetry.countdown = (uint8_t)APP_TELEMETRY_STEPS;
+            app_send_state();
         }
+        app_telemetry.countdown--;
+        (void)telemetry_tx_pump(&app_telemetry.tx, &app_hal);
+        hal_epuck_end_step(&app_hal);
+    } else {
+        hal_epuck_poll(&app_hal);
+    }
+}
+
+int main(void)
+{
+    app_setup();
+    for (;;) {
+        app_loop_once();
     }
 }

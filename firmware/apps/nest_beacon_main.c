@@ -8,13 +8,22 @@
  * from which T2 = L / (2 v) with seed 000's v = 0.05 m/s, in 100 ms steps:
  * L / 10 steps (400 for 4 m).  The rest is nest_beacon_default_params.
  *
- * Static storage: the robot's struct hal and the controller (see
- * forager_main.c).
+ * Telemetry as in forager_main.c: a swarmlcm.robot_state_t every
+ * APP_TELEMETRY_STEPS steps on TELEMETRY_CH_ROBOT_STATE, with the beacon's
+ * ledger as the simulator reports it (sim_host/telemetry.c): energy F(t)
+ * in tokens, M_A, the OAEs and deposits reported to it.  The beacon does
+ * not send swarm_state_t (its doubles are 32-bit under XC16).
+ *
+ * Static storage: the robot's struct hal, the controller and the
+ * telemetry sender with its buffers (app_telemetry; see forager_main.c).
  */
+#include <math.h>
 #include <stdint.h>
 
 #include "hal_epuck.h"
 #include "nest_beacon.h"
+#include "swarmlcm_robot_state_t.h"
+#include "telemetry_tx.h"
 
 #ifndef APP_N_ROBOTS
 #define APP_N_ROBOTS 20u
@@ -23,15 +32,68 @@
 #define APP_ARENA_L_MM 4000u
 #endif
 
+/** Control steps between two robot_state_t messages (1 s at 100 ms). */
+#define APP_TELEMETRY_STEPS 10u
+/** Largest encoded robot_state_t this image sends (about 125 bytes). */
+#define APP_STATE_PAYLOAD 160u
+
+typedef struct app_telemetry {
+    telemetry_tx_t tx;                    /**< frames waiting for the UART */
+    uint8_t payload[APP_STATE_PAYLOAD];   /**< the encoded message */
+    uint8_t countdown;                    /**< steps to the next message */
+} app_telemetry_t;
+
 static struct hal app_hal;
 static nest_beacon_t app_beacon;
+static app_telemetry_t app_telemetry;
 
 static void app_tick(void)
 {
     hal_epuck_tick(&app_hal);
 }
 
-int main(void)
+/* The beacon's state as sim_host/telemetry.c fills it. */
+static void app_send_state(void)
+{
+    swarmlcm_robot_state_t m;
+    const nest_beacon_t *b = &app_beacon;
+    uint16_t te = b->params.token_energy != 0u ? b->params.token_energy : 1u;
+    int n;
+
+    m.utime = (int64_t)hal_time_ms(&app_hal) * 1000;
+    m.run = 0;
+    m.robot_id = (int16_t)hal_robot_id(&app_hal);
+    m.controller = (char *)"nest_beacon";
+    m.state = (char *)nest_beacon_state_name(b->state);
+    m.task_state = (int8_t)'B';
+    m.policy = (char *)"";
+    m.threshold = m.probability = m.stimulus = m.k = NAN;
+    m.mean_oae = b->params.n_robots != 0u ? (float)b->m_t2 / (float)b->params.n_robots : 0.0f;
+    m.response_n = 0;
+    m.energy = (float)b->ledger_units / (float)te;
+    m.oae_count = (int32_t)b->oae_total;
+    m.deposits = (int32_t)b->deposits_total;
+    m.carrying = 0;
+    m.carried_item = -1;
+    m.ir_max = -1;         /* the beacon reads no sensor */
+    m.ir_max_index = -1;
+    m.ambient_min = -1;
+    m.blobs = -1;
+    /* The commands of this step: the image owns its struct hal. */
+    m.wheel_left = app_hal.speed_left;
+    m.wheel_right = app_hal.speed_right;
+    m.leds = (int16_t)app_hal.leds;
+    m.pose_known = 0;
+    m.x = m.y = m.theta = NAN;
+
+    n = swarmlcm_robot_state_t_encode(app_telemetry.payload, 0, (int)sizeof app_telemetry.payload, &m);
+    if (n > 0) {
+        (void)telemetry_tx_send(&app_telemetry.tx, &app_hal, (uint8_t)TELEMETRY_CH_ROBOT_STATE,
+                                app_telemetry.payload, (uint16_t)n);
+    }
+}
+
+static void app_setup(void)
 {
     hal_epuck_config_t cfg;
     nest_beacon_params_t params;
@@ -45,14 +107,31 @@ int main(void)
     params.n_robots = (uint16_t)APP_N_ROBOTS;
     params.t2_steps = (uint16_t)(APP_ARENA_L_MM / 10u);
     nest_beacon_init(&app_beacon, &params, 0u);
+    telemetry_tx_init(&app_telemetry.tx);
+    app_telemetry.countdown = 0u;   /* first message at the first step */
+}
 
-    for (;;) {
-        if (hal_epuck_step_due(&app_hal) != 0u) {
-            hal_epuck_begin_step(&app_hal);
-            nest_beacon_step(&app_beacon, &app_hal);
-            hal_epuck_end_step(&app_hal);
-        } else {
-            hal_epuck_poll(&app_hal);
+static void app_loop_once(void)
+{
+    if (hal_epuck_step_due(&app_hal) != 0u) {
+        hal_epuck_begin_step(&app_hal);
+        nest_beacon_step(&app_beacon, &app_hal);
+        if (app_telemetry.countdown == 0u) {
+            app_telemetry.countdown = (uint8_t)APP_TELEMETRY_STEPS;
+            app_send_state();
         }
+        app_telemetry.countdown--;
+        (void)telemetry_tx_pump(&app_telemetry.tx, &app_hal);
+        hal_epuck_end_step(&app_hal);
+    } else {
+        hal_epuck_poll(&app_hal);
+    }
+}
+
+int main(void)
+{
+    app_setup();
+    for (;;) {
+        app_loop_once();
     }
 }

@@ -12,6 +12,12 @@ it compiles every source warning-free (-std=c99 -pedantic -Wall -Wextra
 -Werror ...) with -fstack-usage, links the image against the stubs of the
 e-puck library functions (tests/firmware/stubs/) and measures:
 
+The images that publish telemetry (TELEMETRY_IMAGES) also link lcm-gen's C
+code of robot_state_t (--lcm-c-dir, from `make lcm-types`; headers of LCM
+from --lcm-cflags), compiled with the same warnings as ours; --gc-sections
+drops its decoder (malloc) and its publish/subscribe functions.  Its
+objects, and their hash cache, count as ours in the static RAM.
+
   static RAM   .data + .bss of OUR objects (firmware/, hal/), taken from the
                link map after --gc-sections, without the camera frames and
                without the stubs (they stand for the library) or the C
@@ -81,6 +87,11 @@ BACKEND_SOURCES = {
 }
 
 
+# Images that send robot_state_t, and the generated sources they link.
+TELEMETRY_IMAGES = ('forager', 'nest_beacon')
+LCM_TYPES_LINKED = ('robot_state_t',)
+
+
 def sh(cmd):
     return subprocess.run(cmd, shell=True, cwd=ROOT, capture_output=True, text=True)
 
@@ -97,11 +108,11 @@ def obj_path(build, target, src):
     return os.path.join(build, target, 'obj', src[:-2] + '.o')
 
 
-def compile_one(build, target, src):
+def compile_one(build, target, src, inc=INC):
     t = TARGETS[target]
     obj = obj_path(build, target, src)
     os.makedirs(os.path.join(ROOT, os.path.dirname(obj)), exist_ok=True)
-    cmd = f"{t['cc']} {t['cflags']} {WARN} {INC} {COMMON} -c {shlex.quote(src)} -o {shlex.quote(obj)}"
+    cmd = f"{t['cc']} {t['cflags']} {WARN} {inc} {COMMON} -c {shlex.quote(src)} -o {shlex.quote(obj)}"
     r = sh(cmd)
     return src, r.returncode, (r.stdout + r.stderr).strip()
 
@@ -359,6 +370,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--build', default='build/firmware')
     ap.add_argument('--jobs', type=int, default=os.cpu_count() or 2)
+    ap.add_argument('--lcm-c-dir', default='build/lcm_c',
+                    help="lcm-gen's C output (make lcm-types)")
+    ap.add_argument('--lcm-cflags', default='',
+                    help='flags that find <lcm/lcm_coretypes.h> (LCM_CFLAGS of build/config.mk)')
     ap.add_argument('images', nargs='+', help='IMAGE:BACKEND, e.g. forager:randb')
     args = ap.parse_args()
 
@@ -370,19 +385,27 @@ def main():
         images.append((image, backend))
 
     failures = []
+    inc = f"{INC} -I{shlex.quote(args.lcm_c_dir)} {args.lcm_cflags}"
+    lcm_srcs = [os.path.join(args.lcm_c_dir, f'swarmlcm_{t}.c') for t in LCM_TYPES_LINKED]
+    if any(i in TELEMETRY_IMAGES for i, _ in images):
+        for s in lcm_srcs:
+            if not os.path.exists(os.path.join(ROOT, s)):
+                sys.exit(f'image_gates: {s} not found: run make lcm-types')
     common = common_sources()
     stubs = ['tests/firmware/stubs/epuck_lib_stubs.c']
     srcs = set(common + stubs)
     for image, backend in images:
         srcs.add(f'firmware/apps/{image}_main.c')
         srcs.update(BACKEND_SOURCES[backend][0] + BACKEND_SOURCES[backend][1])
+        if image in TELEMETRY_IMAGES:
+            srcs.update(lcm_srcs)
     srcs = sorted(srcs)
 
     results = []
     checks = 0
     for target in TARGETS:
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as ex:
-            outs = list(ex.map(lambda s: compile_one(args.build, target, s), srcs))
+            outs = list(ex.map(lambda s: compile_one(args.build, target, s, inc), srcs))
         bad = [(s, msg) for s, rc, msg in outs if rc != 0]
         checks += len(outs)
         for s, msg in bad:
@@ -394,6 +417,8 @@ def main():
         for image, backend in images:
             own, stub = BACKEND_SOURCES[backend]
             sources = common + own + [f'firmware/apps/{image}_main.c'] + stubs + stub
+            if image in TELEMETRY_IMAGES:
+                sources += lcm_srcs
             res, err = link_image(args.build, target, image, backend, sources)
             checks += 1
             if res is None:

@@ -6,7 +6,10 @@
 #                         avr-gcc (XC16's data model) and arm-none-eabi-gcc
 #                         (Cortex-M4F); footprint table and the 2 KB static
 #                         RAM gate; host tests of hal/epuck; flasher tests
-#                         against a simulated bootloader; the CPU report.
+#                         against a simulated bootloader; the CPU report;
+#                         the forager image run against the stubs, its
+#                         telemetry frames decoded (robot_state_t).  Needs
+#                         lcm-types (lcm-gen's C for the images' telemetry).
 #                         Part of `make test`.
 #   make firmware-cpu     instructions per control step (valgrind callgrind)
 #                         and the dsPIC estimate: build/firmware/cpu.md
@@ -32,11 +35,20 @@ FW_OUT := $(BUILD)/firmware
 
 EXTRA_TESTS += firmware-check
 
-firmware-check: firmware-gates firmware-hal-tests firmware-flash-tests firmware-cpu
+# forager and nest_beacon send robot_state_t (firmware/apps/): they link
+# lcm-gen's C of that one type, as generated library code with our warnings
+# and -ffunction-sections, so --gc-sections drops its malloc-using decoder.
+FW_LCM_C_DIR := $(BUILD)/lcm_c
+FW_LCM_STAMP := $(FW_LCM_C_DIR)/.stamp
+FW_LCM_SRC := $(FW_LCM_C_DIR)/swarmlcm_robot_state_t.c
+FW_TELEMETRY_IMAGES := forager nest_beacon
+
+firmware-check: lcm-types firmware-gates firmware-hal-tests firmware-flash-tests firmware-cpu
 	@echo "firmware-check: all passed"
 
-firmware-gates: | $(BUILD)/config.mk
-	@python3 tests/firmware/image_gates.py --build $(FW_OUT) $(FW_IMAGE_SPECS)
+firmware-gates: lcm-types | $(BUILD)/config.mk
+	@python3 tests/firmware/image_gates.py --build $(FW_OUT) --lcm-c-dir $(FW_LCM_C_DIR) \
+	  --lcm-cflags '$(LCM_CFLAGS)' $(FW_IMAGE_SPECS)
 
 firmware-flash-tests:
 	@python3 tools/flash/test_flash.py
@@ -62,7 +74,21 @@ $(FW_HOST)/test_hal_epuck_libircom: $(FW_HAL_DEPS) hal/epuck/ircom_libircom.c \
 	$(CC) $(FW_HOST_CFLAGS) -DTEST_LIBIRCOM -o $@ tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) \
 	  hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c
 
-firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_libircom
+# The forager image itself (its main renamed) over the stubs: its telemetry
+# frames decoded.  --gc-sections drops the generated publish functions
+# (no liblcm here).
+FW_APP_TEST_SRC := $(sort $(wildcard firmware/*.c)) $(sort $(wildcard hal/*.c)) \
+  hal/epuck/hal_epuck.c hal/epuck/ircom_randb.c tests/firmware/stubs/epuck_lib_stubs.c \
+  tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c $(FW_LCM_SRC)
+$(FW_HOST)/test_app_telemetry: tests/firmware/test_app_telemetry.c firmware/apps/forager_main.c \
+    $(filter-out $(FW_LCM_SRC),$(FW_APP_TEST_SRC)) $(FW_LCM_STAMP) $(wildcard firmware/*.h hal/*.h hal/epuck/*.h) \
+    tests/firmware/stubs/epuck_stubs.h | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(CC) $(FW_HOST_CFLAGS) -I$(FW_LCM_C_DIR) $(LCM_CFLAGS) -ffunction-sections -Wl,--gc-sections \
+	  -o $@ tests/firmware/test_app_telemetry.c $(FW_APP_TEST_SRC) -lm
+
+firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_libircom \
+    $(FW_HOST)/test_app_telemetry
 	@set -e; for t in $^; do ASAN_OPTIONS=detect_leaks=1 $$t; done
 
 # ------------------------------------------------ CPU report
@@ -105,7 +131,7 @@ XC16_CC := $(XC16_BIN)/xc16-gcc
 FWX := $(FW_OUT)/xc16
 XC16_ARCH := -mcpu=30F6014A -omf=elf -mlarge-code -mlarge-data
 XC16_OURS := $(XC16_ARCH) -std=gnu99 -O1 -Wall -ffunction-sections -fdata-sections \
-  -Ihal -Ifirmware -Ihal/epuck
+  -Ihal -Ifirmware -Ihal/epuck -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
 XC16_LIBFLAGS := $(XC16_ARCH) -O1 -ffunction-sections -fdata-sections -I$(EPL) -I$(EPL)/uart \
   -I$(EPL)/motor_led -I$(EPL)/motor_led/advance_one_timer -I$(EPL)/I2C \
   -I$(EPL)/a_d/advance_ad_scan -I$(EPL)/camera/fast_2_timer -I$(EPL)/utility
@@ -141,8 +167,12 @@ FW_BACKEND_OBJ_randb := $(call fw_obj,hal/epuck/ircom_randb.c) $(FW_EPL_ADSCAN_O
 FW_BACKEND_OBJ_libircom := $(call fw_obj,hal/epuck/ircom_libircom.c) $(FW_IRCOM_OBJ)
 fw_backend = $(patsubst $(1):%,%,$(filter $(1):%,$(FW_IMAGE_SPECS)))
 FW_HEX := $(patsubst %,$(FWX)/%.hex,$(FIRMWARE_IMAGES))
+# lcm-gen's C, for the images that send telemetry (robot_state_t only: it
+# has no double, which is 32-bit under XC16).
+FW_LCM_OBJ := $(FWX)/lcm/swarmlcm_robot_state_t.o
+fw_lcm_objs = $(if $(filter $(1),$(FW_TELEMETRY_IMAGES)),$(FW_LCM_OBJ))
 
-$(FWX)/ours/%.o: %.c
+$(FWX)/ours/%.o: %.c | $(FW_LCM_STAMP)
 	@mkdir -p $(@D)
 	$(XC16_CC) $(XC16_OURS) $(if $(findstring apps/,$<),$(FW_APP_DEFS)) -c $< -o $@
 $(FWX)/epl/%.o: $(EPL)/%.c
@@ -151,6 +181,9 @@ $(FWX)/epl/%.o: $(EPL)/%.c
 $(FWX)/epl/%.o: $(EPL)/%.s
 	@mkdir -p $(@D)
 	$(XC16_CC) $(XC16_LIBFLAGS) -c $< -o $@
+$(FWX)/lcm/%.o: $(FW_LCM_C_DIR)/%.c $(FW_LCM_STAMP)
+	@mkdir -p $(@D)
+	$(XC16_CC) $(XC16_OURS) -c $< -o $@
 $(FWX)/randb/%.o: $(RANDB_DIR)/%.c
 	@mkdir -p $(@D)
 	$(XC16_CC) $(XC16_LIBFLAGS) -I$(RANDB_DIR) -c $< -o $@
@@ -161,7 +194,7 @@ $(FWX)/ircom/%.o: $(IRCOM_DIR)/%.c
 # One image: its app, our code, the common library modules, its backend.
 define FW_IMAGE_RULES
 $(FWX)/$(1).elf: $(call fw_obj,firmware/apps/$(1)_main.c) $(FW_OURS_OBJ) $(FW_EPL_COMMON_OBJ) \
-    $$(FW_BACKEND_OBJ_$(call fw_backend,$(1)))
+    $$(FW_BACKEND_OBJ_$(call fw_backend,$(1))) $(call fw_lcm_objs,$(1))
 	$$(XC16_CC) $$(XC16_LDFLAGS) -Wl,-Map=$(FWX)/$(1).map -o $$@ $$^
 $(FWX)/$(1).hex: $(FWX)/$(1).elf
 	$$(XC16_BIN)/xc16-bin2hex $$< -a -omf=elf

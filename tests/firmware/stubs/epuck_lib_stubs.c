@@ -91,6 +91,12 @@ void e_send_uart1_char(const char *buff, int length)
     epuck_stub.uart_buf = buff;
     epuck_stub.uart_len = length;
     epuck_stub.uart_sends++;
+    if (epuck_stub.uart_log != NULL) {
+        int i;
+        for (i = 0; i < length && epuck_stub.uart_log_len < epuck_stub.uart_log_size; i++) {
+            epuck_stub.uart_log[epuck_stub.uart_log_len++] = (unsigned char)buff[i];
+        }
+    }
 }
 
 int e_uart1_sending(void) { return epuck_stub.uart_busy; }

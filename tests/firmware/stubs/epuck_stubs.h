@@ -36,6 +36,9 @@ typedef struct epuck_stub_state {
     const char *uart_buf;
     int uart_len;
     int uart_sends;
+    unsigned char *uart_log;   /* when set, every byte sent is appended here */
+    int uart_log_size;
+    int uart_log_len;
     /* A/D */
     int prox[8];
     int ambient[8];
