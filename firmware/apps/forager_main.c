@@ -13,8 +13,9 @@
  * steps) the controller's state goes out as an LCM swarmlcm.robot_state_t
  * (lcm_types/robot_state_t.lcm, encoded by the lcm-gen C code in
  * build/lcm_c/) in a telemetry frame on TELEMETRY_CH_ROBOT_STATE
- * (telemetry_frame.h) through the Bluetooth UART; telemetry_tx_pump runs
- * every step so a frame trickles out as the UART takes it.
+ * (telemetry_frame.h) through the Bluetooth UART (app_telemetry.c, shared
+ * with the nest beacon's image); the sender is pumped every step so a frame
+ * trickles out as the UART takes it.
  * tools/telemetry/bridge.py republishes it on the LCM bus.  Field meanings
  * follow the simulator's (sim_host/telemetry.c); a real robot has no pose
  * (pose_known false) and no ground truth of the token (carried_item -2).
@@ -33,10 +34,9 @@
 #include <stdint.h>
 
 #include "forager.h"
+#include "app_telemetry.h"
 #include "hal_epuck.h"
-#include "swarmlcm_robot_state_t.h"
 #include "task_alloc.h"
-#include "telemetry_tx.h"
 
 #ifndef APP_FORAGER_POLICY
 #define APP_FORAGER_POLICY TA_DRTM
@@ -47,17 +47,6 @@
 #ifndef APP_ARENA_L_MM
 #define APP_ARENA_L_MM 4000u
 #endif
-
-/** Control steps between two robot_state_t messages (1 s at 100 ms). */
-#define APP_TELEMETRY_STEPS 10u
-/** Largest encoded robot_state_t this image sends (about 125 bytes). */
-#define APP_STATE_PAYLOAD 160u
-
-typedef struct app_telemetry {
-    telemetry_tx_t tx;                    /**< frames waiting for the UART */
-    uint8_t payload[APP_STATE_PAYLOAD];   /**< the encoded message */
-    uint8_t countdown;                    /**< steps to the next message */
-} app_telemetry_t;
 
 static struct hal app_hal;
 static uint8_t camera_frames[2u * HAL_EPUCK_FRAME_BYTES];
@@ -87,11 +76,7 @@ static void app_send_state(void)
     const forager_t *f = &app_forager;
     uint16_t ir_best = 0u, amb_low = 0xFFFFu, v;
     uint8_t k, ir_at = 0u;
-    int n;
 
-    m.utime = (int64_t)hal_time_ms(&app_hal) * 1000;
-    m.run = 0;
-    m.robot_id = (int16_t)hal_robot_id(&app_hal);
     m.controller = (char *)"forager";
     m.state = (char *)forager_state_name(f->state);
     m.task_state = (int8_t)forager_paper_state(f->state);
@@ -120,18 +105,7 @@ static void app_send_state(void)
     m.ir_max_index = (int8_t)ir_at;
     m.ambient_min = (int16_t)amb_low;
     m.blobs = -1;   /* not recomputed for telemetry */
-    /* The commands of this step: the image owns its struct hal. */
-    m.wheel_left = app_hal.speed_left;
-    m.wheel_right = app_hal.speed_right;
-    m.leds = (int16_t)app_hal.leds;
-    m.pose_known = 0;
-    m.x = m.y = m.theta = NAN;
-
-    n = swarmlcm_robot_state_t_encode(app_telemetry.payload, 0, (int)sizeof app_telemetry.payload, &m);
-    if (n > 0) {
-        (void)telemetry_tx_send(&app_telemetry.tx, &app_hal, (uint8_t)TELEMETRY_CH_ROBOT_STATE,
-                                app_telemetry.payload, (uint16_t)n);
-    }
+    app_telemetry_send(&app_telemetry, &app_hal, &m);
 }
 
 static void app_setup(void)
@@ -149,8 +123,7 @@ static void app_setup(void)
     params.arena_l_mm = (uint16_t)APP_ARENA_L_MM;
     hal_epuck_begin_step(&app_hal);   /* light readings for the seed */
     forager_init(&app_forager, &params, hal_epuck_seed(&app_hal));
-    telemetry_tx_init(&app_telemetry.tx);
-    app_telemetry.countdown = 0u;   /* first message at the first step */
+    app_telemetry_init(&app_telemetry);
 }
 
 static void app_loop_once(void)
@@ -158,12 +131,10 @@ static void app_loop_once(void)
     if (hal_epuck_step_due(&app_hal) != 0u) {
         hal_epuck_begin_step(&app_hal);
         forager_step(&app_forager, &app_hal);
-        if (app_telemetry.countdown == 0u) {
-            app_telemetry.countdown = (uint8_t)APP_TELEMETRY_STEPS;
+        if (app_telemetry_due(&app_telemetry) != 0u) {
             app_send_state();
         }
-        app_telemetry.countdown--;
-        (void)telemetry_tx_pump(&app_telemetry.tx, &app_hal);
+        app_telemetry_pump(&app_telemetry, &app_hal);
         hal_epuck_end_step(&app_hal);
     } else {
         hal_epuck_poll(&app_hal);

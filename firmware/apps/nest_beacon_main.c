@@ -20,10 +20,9 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "app_telemetry.h"
 #include "hal_epuck.h"
 #include "nest_beacon.h"
-#include "swarmlcm_robot_state_t.h"
-#include "telemetry_tx.h"
 
 #ifndef APP_N_ROBOTS
 #define APP_N_ROBOTS 20u
@@ -31,17 +30,6 @@
 #ifndef APP_ARENA_L_MM
 #define APP_ARENA_L_MM 4000u
 #endif
-
-/** Control steps between two robot_state_t messages (1 s at 100 ms). */
-#define APP_TELEMETRY_STEPS 10u
-/** Largest encoded robot_state_t this image sends (about 125 bytes). */
-#define APP_STATE_PAYLOAD 160u
-
-typedef struct app_telemetry {
-    telemetry_tx_t tx;                    /**< frames waiting for the UART */
-    uint8_t payload[APP_STATE_PAYLOAD];   /**< the encoded message */
-    uint8_t countdown;                    /**< steps to the next message */
-} app_telemetry_t;
 
 static struct hal app_hal;
 static nest_beacon_t app_beacon;
@@ -58,11 +46,7 @@ static void app_send_state(void)
     swarmlcm_robot_state_t m;
     const nest_beacon_t *b = &app_beacon;
     uint16_t te = b->params.token_energy != 0u ? b->params.token_energy : 1u;
-    int n;
 
-    m.utime = (int64_t)hal_time_ms(&app_hal) * 1000;
-    m.run = 0;
-    m.robot_id = (int16_t)hal_robot_id(&app_hal);
     m.controller = (char *)"nest_beacon";
     m.state = (char *)nest_beacon_state_name(b->state);
     m.task_state = (int8_t)'B';
@@ -79,18 +63,7 @@ static void app_send_state(void)
     m.ir_max_index = -1;
     m.ambient_min = -1;
     m.blobs = -1;
-    /* The commands of this step: the image owns its struct hal. */
-    m.wheel_left = app_hal.speed_left;
-    m.wheel_right = app_hal.speed_right;
-    m.leds = (int16_t)app_hal.leds;
-    m.pose_known = 0;
-    m.x = m.y = m.theta = NAN;
-
-    n = swarmlcm_robot_state_t_encode(app_telemetry.payload, 0, (int)sizeof app_telemetry.payload, &m);
-    if (n > 0) {
-        (void)telemetry_tx_send(&app_telemetry.tx, &app_hal, (uint8_t)TELEMETRY_CH_ROBOT_STATE,
-                                app_telemetry.payload, (uint16_t)n);
-    }
+    app_telemetry_send(&app_telemetry, &app_hal, &m);
 }
 
 static void app_setup(void)
@@ -107,8 +80,7 @@ static void app_setup(void)
     params.n_robots = (uint16_t)APP_N_ROBOTS;
     params.t2_steps = (uint16_t)(APP_ARENA_L_MM / 10u);
     nest_beacon_init(&app_beacon, &params, 0u);
-    telemetry_tx_init(&app_telemetry.tx);
-    app_telemetry.countdown = 0u;   /* first message at the first step */
+    app_telemetry_init(&app_telemetry);
 }
 
 static void app_loop_once(void)
@@ -116,12 +88,10 @@ static void app_loop_once(void)
     if (hal_epuck_step_due(&app_hal) != 0u) {
         hal_epuck_begin_step(&app_hal);
         nest_beacon_step(&app_beacon, &app_hal);
-        if (app_telemetry.countdown == 0u) {
-            app_telemetry.countdown = (uint8_t)APP_TELEMETRY_STEPS;
+        if (app_telemetry_due(&app_telemetry) != 0u) {
             app_send_state();
         }
-        app_telemetry.countdown--;
-        (void)telemetry_tx_pump(&app_telemetry.tx, &app_hal);
+        app_telemetry_pump(&app_telemetry, &app_hal);
         hal_epuck_end_step(&app_hal);
     } else {
         hal_epuck_poll(&app_hal);

@@ -90,6 +90,8 @@ BACKEND_SOURCES = {
 # Images that send robot_state_t, and the generated sources they link.
 TELEMETRY_IMAGES = ('forager', 'nest_beacon')
 LCM_TYPES_LINKED = ('robot_state_t',)
+# Shared by the telemetry images: the fields every robot reports, the sender.
+TELEMETRY_APP_SOURCES = ['firmware/apps/app_telemetry.c']
 
 
 def sh(cmd):
@@ -398,7 +400,7 @@ def main():
         srcs.add(f'firmware/apps/{image}_main.c')
         srcs.update(BACKEND_SOURCES[backend][0] + BACKEND_SOURCES[backend][1])
         if image in TELEMETRY_IMAGES:
-            srcs.update(lcm_srcs)
+            srcs.update(lcm_srcs + TELEMETRY_APP_SOURCES)
     srcs = sorted(srcs)
 
     results = []
@@ -418,7 +420,7 @@ def main():
             own, stub = BACKEND_SOURCES[backend]
             sources = common + own + [f'firmware/apps/{image}_main.c'] + stubs + stub
             if image in TELEMETRY_IMAGES:
-                sources += lcm_srcs
+                sources += lcm_srcs + TELEMETRY_APP_SOURCES
             res, err = link_image(args.build, target, image, backend, sources)
             checks += 1
             if res is None:

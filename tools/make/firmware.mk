@@ -79,8 +79,10 @@ $(FW_HOST)/test_hal_epuck_libircom: $(FW_HAL_DEPS) hal/epuck/ircom_libircom.c \
 # (no liblcm here).
 FW_APP_TEST_SRC := $(sort $(wildcard firmware/*.c)) $(sort $(wildcard hal/*.c)) \
   hal/epuck/hal_epuck.c hal/epuck/ircom_randb.c tests/firmware/stubs/epuck_lib_stubs.c \
-  tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c $(FW_LCM_SRC)
+  tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c firmware/apps/app_telemetry.c \
+  $(FW_LCM_SRC)
 $(FW_HOST)/test_app_telemetry: tests/firmware/test_app_telemetry.c firmware/apps/forager_main.c \
+    firmware/apps/app_telemetry.h \
     $(filter-out $(FW_LCM_SRC),$(FW_APP_TEST_SRC)) $(FW_LCM_STAMP) $(wildcard firmware/*.h hal/*.h hal/epuck/*.h) \
     tests/firmware/stubs/epuck_stubs.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
@@ -170,7 +172,8 @@ FW_HEX := $(patsubst %,$(FWX)/%.hex,$(FIRMWARE_IMAGES))
 # lcm-gen's C, for the images that send telemetry (robot_state_t only: it
 # has no double, which is 32-bit under XC16).
 FW_LCM_OBJ := $(FWX)/lcm/swarmlcm_robot_state_t.o
-fw_lcm_objs = $(if $(filter $(1),$(FW_TELEMETRY_IMAGES)),$(FW_LCM_OBJ))
+fw_lcm_objs = $(if $(filter $(1),$(FW_TELEMETRY_IMAGES)),$(FW_LCM_OBJ) \
+  $(call fw_obj,firmware/apps/app_telemetry.c))
 
 $(FWX)/ours/%.o: %.c | $(FW_LCM_STAMP)
 	@mkdir -p $(@D)
