@@ -11,14 +11,7 @@
 static const param_desc_t random_walk_param_descs[] = {
     { "speed_steps_s", PARAM_I16, RW_FIELD(speed_steps_s), 0, 1000, NULL,
       "forward wheel speed, steps/s (500 = 64.4 mm/s)" },
-    { "turn_speed_steps_s", PARAM_I16, RW_FIELD(turn_speed_steps_s), 1, 1000, NULL,
-      "wheel speed when turning in place, steps/s" },
-    { "turn_chance", PARAM_U16, RW_FIELD(turn_chance), 0, 65535, NULL,
-      "chance of a tumble per step, in 1/65536" },
-    { "avoid_enter", PARAM_U16, RW_FIELD(avoid_enter), 0, 4095, NULL,
-      "front IR proximity that starts an avoidance, counts" },
-    { "avoid_exit", PARAM_U16, RW_FIELD(avoid_exit), 0, 4095, NULL,
-      "front IR proximity below which avoidance ends, counts" },
+    RANDOM_WALK_TUNING_DESCS(RW_FIELD),
     PARAM_END
 };
 

@@ -38,6 +38,20 @@ typedef struct sim_controller {
     char (*task_state)(const void *state);
 } sim_controller_t;
 
+/** The random walk's tuning keys, for every controller that embeds a
+ *  random_walk_params_t: FIELD(f) gives the offset and size of its member
+ *  f in the controller's params struct.  (Its speed is listed by each
+ *  controller: the forager sets it from the task.) */
+#define RANDOM_WALK_TUNING_DESCS(FIELD)                                          \
+    { "turn_speed_steps_s", PARAM_I16, FIELD(turn_speed_steps_s), 1, 1000, NULL, \
+      "wheel speed when turning in place, steps/s" },                           \
+    { "turn_chance", PARAM_U16, FIELD(turn_chance), 0, 65535, NULL,              \
+      "random walk: chance of a tumble per step, in 1/65536" },                 \
+    { "avoid_enter", PARAM_U16, FIELD(avoid_enter), 0, 4095, NULL,               \
+      "front IR proximity that starts an avoidance (an OAE), counts" },         \
+    { "avoid_exit", PARAM_U16, FIELD(avoid_exit), 0, 4095, NULL,                 \
+      "front IR proximity below which avoidance ends, counts" }
+
 /** Seed 000's forager and nest beacon (controllers_foraging.c). */
 extern const sim_controller_t controller_forager;
 extern const sim_controller_t controller_nest_beacon;

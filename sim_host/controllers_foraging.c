@@ -16,6 +16,7 @@
 /* ---------------------------------------------------------- forager */
 
 #define FG(f) offsetof(forager_params_t, f), sizeof(((forager_params_t *)0)->f)
+#define FG_WALK(f) FG(walk.f)
 static const param_desc_t forager_param_descs[] = {
     { "alpha", PARAM_FLOAT, FG(alpha), 0, 1000, NULL, "DRTM eq 6 weight of k, per robot/m^2" },
     { "beta", PARAM_FLOAT, FG(beta), 0, 1000, NULL, "DRTM eq 6 weight of M_A, per OAE" },
@@ -41,14 +42,7 @@ static const param_desc_t forager_param_descs[] = {
     { "light_detect", PARAM_U16, FG(light_detect), 0, 4095, NULL,
       "ambient below this means the nest light is seen, counts" },
     { "deposit_steps", PARAM_U8, FG(deposit_steps), 1, 255, NULL, "steps of backing out of a deposited token" },
-    { "turn_chance", PARAM_U16, FG(walk.turn_chance), 0, 65535, NULL,
-      "random walk: chance of a tumble per step, in 1/65536" },
-    { "turn_speed_steps_s", PARAM_I16, FG(walk.turn_speed_steps_s), 1, 1000, NULL,
-      "wheel speed when turning in place, steps/s" },
-    { "avoid_enter", PARAM_U16, FG(walk.avoid_enter), 0, 4095, NULL,
-      "front IR proximity that starts an avoidance (an OAE), counts" },
-    { "avoid_exit", PARAM_U16, FG(walk.avoid_exit), 0, 4095, NULL,
-      "front IR proximity below which avoidance ends, counts" },
+    RANDOM_WALK_TUNING_DESCS(FG_WALK),
     PARAM_END
 };
 

@@ -276,6 +276,17 @@ int16_t hal_epuck_rad_to_mrad(float rad)
     return wrap_mrad((int32_t)(m >= 0.0f ? m + 0.5f : m - 0.5f));
 }
 
+uint16_t hal_epuck_clamp_raw(int v)
+{
+    if (v < 0) {
+        return 0u;
+    }
+    if (v > (int)HAL_RAW_MAX) {
+        return (uint16_t)HAL_RAW_MAX;
+    }
+    return (uint16_t)v;
+}
+
 uint8_t hal_epuck_nearest_sensor(int16_t bearing_mrad)
 {
     uint8_t best = 0u;

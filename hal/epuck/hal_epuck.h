@@ -227,6 +227,9 @@ uint8_t hal_epuck_inbox_push(hal_t *hal, const hal_ircom_msg_t *msg);
  *  `bearing_mrad` (any value; wrapped to (-pi, pi]). */
 uint8_t hal_epuck_nearest_sensor(int16_t bearing_mrad);
 
+/** A library A/D reading clamped to the contract's 0..HAL_RAW_MAX. */
+uint16_t hal_epuck_clamp_raw(int v);
+
 /** `rad` radians (any float) as mrad wrapped to (-3142, 3142]. */
 int16_t hal_epuck_rad_to_mrad(float rad);
 

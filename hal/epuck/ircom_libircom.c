@@ -22,17 +22,6 @@
 #define IRCOM_NONE (-1)
 #define IRCOM_OK 0
 
-static uint16_t clamp_raw(int v)
-{
-    if (v < 0) {
-        return 0u;
-    }
-    if (v > (int)HAL_RAW_MAX) {
-        return (uint16_t)HAL_RAW_MAX;
-    }
-    return (uint16_t)v;
-}
-
 void hal_epuck_ir_start(hal_t *hal)
 {
     (void)hal;
@@ -47,8 +36,8 @@ void hal_epuck_ir_sample(hal_t *hal)
 {
     uint8_t i;
     for (i = 0; i < HAL_IR_COUNT; i++) {
-        hal->prox[i] = clamp_raw(e_get_calibrated_prox((int)i));
-        hal->ambient[i] = clamp_raw(e_get_ambient_light((int)i));
+        hal->prox[i] = hal_epuck_clamp_raw(e_get_calibrated_prox((int)i));
+        hal->ambient[i] = hal_epuck_clamp_raw(e_get_ambient_light((int)i));
     }
 }
 
