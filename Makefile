@@ -17,7 +17,7 @@ $(BUILD)/config.mk: tools/deps.sh tools/requirements.txt
 
 WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 INC := -Ihal -Ifirmware -Isim_host
-CFLAGS_COMMON := $(WARN) $(INC) -g -O2 -fno-strict-aliasing
+CFLAGS_COMMON := $(WARN) $(INC) -g -O2 -fno-strict-aliasing -ffp-contract=off
 # Firmware and HAL helpers are C99; the simulator may use C11.
 FW_CFLAGS := -std=c99 -pedantic $(CFLAGS_COMMON)
 SIM_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(CFLAGS_COMMON) $(BOX2D_CFLAGS) $(PNG_CFLAGS)

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# golden.sh - regression pins in the style of Box2D's determinism test: every
+# shipped scenario, run for its full duration with its own seed, must end in
+# exactly the state hash pinned below, and its summary metrics must equal the
+# pinned tests/golden/<scenario>.metrics line for line.  (About 3 s.)
+#
+# Reference platform: x86-64 Linux, gcc 12.2 -O2 -ffp-contract=off (no fused
+# multiply-add, set in the Makefile), glibc 2.36's libm (sinf, cosf, atan2f
+# and friends differ between C libraries), Box2D 3.1.1 from the pinned
+# pyb2d3 wheel.  On another platform the hashes may legitimately differ; on
+# this one a change is a change of behaviour, made on purpose and explained
+# in the commit that updates this table.
+#
+# To re-pin after an intended change: tests/cli/golden.sh build/swarmsim --update
+set -u
+sim=${1:-build/swarmsim}
+update=${2:-}
+cd "$(dirname "$0")/../.."
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# scenario (sim_host/scenarios/)  state hash after its full duration
+pins=(
+    "random_walk     8f5ca44c91abbef0"
+    "foraging_base   08689bf30086b944"
+    "foraging_nf25   84bfe947dcd2d9f6"
+    "foraging_ea20   196183229b92590d"
+    "foraging_nr30   116b3d16c7b0e23a"
+    "foraging_l3     964c2238c4c6fc44"
+)
+
+pass=0 fail=0
+for pin in "${pins[@]}"; do
+    read -r name want <<<"$pin"
+    out="$tmp/$name"
+    if ! "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --out "$out"; then
+        echo "FAIL: $name: swarmsim exited with status $?"
+        fail=$((fail + 1))
+        continue
+    fi
+    summary="$out/run_1/summary.json"
+    got=$(sed -n 's/.*"state_hash": "\([0-9a-f]*\)".*/\1/p' "$summary")
+    sed -n '/"metrics"/,/}/p' "$summary" | grep -v '"metrics"\|^ *}' | sed 's/^ *//; s/,$//' > "$out/metrics"
+    if [ "$update" = --update ]; then
+        cp "$out/metrics" "tests/golden/$name.metrics"
+        echo "$name $got"
+        continue
+    fi
+    if [ "$got" != "$want" ]; then
+        echo "FAIL: $name: state hash $got, pinned $want"
+        fail=$((fail + 1))
+    else
+        pass=$((pass + 1))
+    fi
+    if ! diff -u "tests/golden/$name.metrics" "$out/metrics" > "$out/diff"; then
+        echo "FAIL: $name: summary metrics differ from tests/golden/$name.metrics:"
+        sed 's/^/    /' "$out/diff"
+        fail=$((fail + 1))
+    else
+        pass=$((pass + 1))
+    fi
+done
+[ "$update" = --update ] && exit 0
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
