@@ -16,15 +16,21 @@ $(BUILD)/config.mk: tools/deps.sh tools/requirements.txt
 	tools/deps.sh > $@.tmp && mv $@.tmp $@
 
 WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-INC := -Ihal -Ifirmware -Isim_host
-CFLAGS_COMMON := $(WARN) $(INC) -g -O2 -fno-strict-aliasing -ffp-contract=off
+# Layering: firmware sees only hal/ and firmware/ (tests/firmware/hygiene.sh
+# also checks its #include lines); the simulator sees everything.
+FW_INC := -Ihal -Ifirmware
+SIM_INC := $(FW_INC) -Isim_host
+CFLAGS_COMMON := $(WARN) -g -O2 -fno-strict-aliasing -ffp-contract=off
 # Firmware and HAL helpers are C99; the simulator may use C11.
-FW_CFLAGS := -std=c99 -pedantic $(CFLAGS_COMMON)
-SIM_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(CFLAGS_COMMON) $(BOX2D_CFLAGS) $(PNG_CFLAGS)
+FW_CFLAGS := -std=c99 -pedantic $(FW_INC) $(CFLAGS_COMMON)
+SIM_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(SIM_INC) $(CFLAGS_COMMON) $(BOX2D_CFLAGS) $(PNG_CFLAGS)
 LDLIBS_SIM := $(BOX2D_LIBS) $(YAML_LIBS) $(PNG_LIBS) $(GL_LIBS) -lpthread -lm
 
-FW_SRC := $(sort $(wildcard firmware/*.c)) $(sort $(wildcard hal/*.c))
-SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c)))
+# Controllers: firmware/<folder>/*.c (common/ and one folder per seed);
+# firmware/apps/ holds the robot images' mains, built by firmware.mk.
+FW_DIRS := $(filter-out firmware/apps,$(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c)))))
+FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c))
+SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/tasks/*/*.c)))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 
 # $(call objs,VARIANT,SOURCES)

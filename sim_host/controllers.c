@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#include "random_walk.h"
+#include "common/random_walk.h"
 
 /* ---------------------------------------------------------- random_walk */
 

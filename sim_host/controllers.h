@@ -12,8 +12,8 @@
 #include <stdint.h>
 
 #include "hal.h"
-#include "param.h"
-#include "scenario.h"
+#include "core/param.h"
+#include "core/scenario.h"
 
 typedef struct sim_controller {
     const char *name;            /**< scenario `controller.name` */

@@ -9,9 +9,9 @@
 #include <string.h>
 
 #include "controllers.h"
-#include "forager.h"
-#include "nest_beacon.h"
-#include "sim.h"
+#include "foraging/forager.h"
+#include "foraging/nest_beacon.h"
+#include "core/sim.h"
 
 /* ---------------------------------------------------------- forager */
 

@@ -12,9 +12,9 @@
 #include <unistd.h>
 
 #include "controllers.h"
-#include "runner.h"
-#include "scenario.h"
-#include "telemetry.h"
+#include "core/runner.h"
+#include "core/scenario.h"
+#include "core/telemetry.h"
 
 #define MAX_SETS 256
 

@@ -10,8 +10,8 @@
 #include <cmocka.h>
 
 #include "fake_hal.h"
-#include "forager.h"
-#include "nest_link.h"
+#include "foraging/forager.h"
+#include "foraging/nest_link.h"
 
 #define T1 50u
 #define SPEED 388

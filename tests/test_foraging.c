@@ -14,11 +14,11 @@
 
 #include <cmocka.h>
 
-#include "forager.h"
-#include "nest_beacon.h"
-#include "scenario.h"
-#include "sim.h"
-#include "sim_internal.h"
+#include "foraging/forager.h"
+#include "foraging/nest_beacon.h"
+#include "core/scenario.h"
+#include "core/sim.h"
+#include "core/sim_internal.h"
 
 #define BASE "../sim_host/scenarios/foraging_base.yaml"
 

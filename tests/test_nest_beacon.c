@@ -10,8 +10,8 @@
 #include <cmocka.h>
 
 #include "fake_hal.h"
-#include "nest_beacon.h"
-#include "nest_link.h"
+#include "foraging/nest_beacon.h"
+#include "foraging/nest_link.h"
 
 static hal_t H;
 static nest_beacon_t B;

@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "nest_link.h"
+#include "foraging/nest_link.h"
 
 static nest_link_frame_t decode_as(uint16_t frame, uint8_t type)
 {

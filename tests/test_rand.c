@@ -8,8 +8,8 @@
 
 #include <cmocka.h>
 
-#include "rand.h"
-#include "rng.h"
+#include "core/rand.h"
+#include "common/rng.h"
 
 static void test_normal_moments_and_tails(void **state)
 {

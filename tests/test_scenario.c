@@ -16,8 +16,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "random_walk.h"
-#include "scenario.h"
+#include "common/random_walk.h"
+#include "core/scenario.h"
 
 #define MAX_SETS 8
 

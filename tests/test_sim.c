@@ -13,9 +13,9 @@
 #include <cmocka.h>
 
 #include "hal.h"
-#include "scenario.h"
-#include "sim.h"
-#include "sim_internal.h"
+#include "core/scenario.h"
+#include "core/sim.h"
+#include "core/sim_internal.h"
 
 #define PI 3.14159265358979
 

@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "task_alloc.h"
+#include "foraging/task_alloc.h"
 
 /* Floats are 32-bit: compare to about 6 significant digits. */
 #define EPS 1e-5

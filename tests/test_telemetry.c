@@ -20,16 +20,16 @@
 
 #include <lcm/lcm.h>
 
-#include "foraging.h"
-#include "metrics.h"
-#include "scenario.h"
-#include "sim.h"
+#include "tasks/foraging/foraging.h"
+#include "core/metrics.h"
+#include "core/scenario.h"
+#include "core/sim.h"
 #include "swarmlcm_event_t.h"
 #include "swarmlcm_robot_state_t.h"
 #include "swarmlcm_run_info_t.h"
 #include "swarmlcm_run_summary_t.h"
 #include "swarmlcm_swarm_state_t.h"
-#include "telemetry.h"
+#include "core/telemetry.h"
 
 #define BASE "../sim_host/scenarios/foraging_base.yaml"
 #define WALK "../sim_host/scenarios/random_walk.yaml"

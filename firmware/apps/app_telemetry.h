@@ -15,7 +15,7 @@
 
 #include "hal_epuck.h"
 #include "swarmlcm_robot_state_t.h"
-#include "telemetry_tx.h"
+#include "common/telemetry_tx.h"
 
 /** Control steps between two robot_state_t messages (1 s at 100 ms). */
 #define APP_TELEMETRY_STEPS 10u

@@ -33,10 +33,10 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "forager.h"
+#include "foraging/forager.h"
 #include "app_telemetry.h"
 #include "hal_epuck.h"
-#include "task_alloc.h"
+#include "foraging/task_alloc.h"
 
 #ifndef APP_FORAGER_POLICY
 #define APP_FORAGER_POLICY TA_DRTM

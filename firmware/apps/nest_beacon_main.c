@@ -22,7 +22,7 @@
 
 #include "app_telemetry.h"
 #include "hal_epuck.h"
-#include "nest_beacon.h"
+#include "foraging/nest_beacon.h"
 
 #ifndef APP_N_ROBOTS
 #define APP_N_ROBOTS 20u

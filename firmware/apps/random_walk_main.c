@@ -11,7 +11,7 @@
 #include <stdint.h>
 
 #include "hal_epuck.h"
-#include "random_walk.h"
+#include "common/random_walk.h"
 
 static struct hal app_hal;
 static random_walk_t app_walk;

@@ -30,11 +30,11 @@
 #include <valgrind/callgrind.h>
 
 #include "blob_detect.h"
-#include "forager.h"
+#include "foraging/forager.h"
 #include "hal.h"
-#include "nest_beacon.h"
-#include "nest_link.h"
-#include "random_walk.h"
+#include "foraging/nest_beacon.h"
+#include "foraging/nest_link.h"
+#include "common/random_walk.h"
 
 #define INBOX 64u
 

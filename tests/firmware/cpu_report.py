@@ -16,8 +16,8 @@ The dsPIC figure is an ESTIMATE, not a measurement.  Assumptions:
   - plus software floating point: x86-64 does a float operation in one
     SSE instruction, XC16's library in ~100-400 cycles.  Only the
     forager's decision step (every T1 = 50 steps) uses floats: ~35
-    operations (eqs 2-7 and the roulette, counted in firmware/forager.c
-    and firmware/task_alloc.c), budgeted at 200 cycles each = 7,000 cycles
+    operations (eqs 2-7 and the roulette, counted in firmware/foraging/forager.c
+    and firmware/foraging/task_alloc.c), budgeted at 200 cycles each = 7,000 cycles
     on its maximum.
 Camera: on the robot a step that asks for blobs also runs blob_detect on
 the 40 x 20 frame; the "forager + camera" row adds its maximum.

@@ -23,7 +23,7 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
-srcs=$(ls firmware/*.c hal/*.c hal/epuck/*.c)
+srcs=$(ls firmware/*/*.c hal/*.c hal/epuck/*.c | grep -v '^firmware/apps/')
 flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Ifirmware -Ihal/epuck"
 
 # Writable static data in one object: prints what it finds.
@@ -66,7 +66,7 @@ for src in $apps; do
 done
 
 # Controllers: no #if/#ifdef other than the include guard of a header.
-for f in firmware/*.c firmware/*.h; do
+for f in $(ls firmware/*/*.[ch] | grep -v '^firmware/apps/'); do
     n=$(grep -cE '^\s*#\s*(if|ifdef|ifndef|elif)\b' "$f")
     guard=0
     case "$f" in *.h) guard=1 ;; esac

@@ -99,10 +99,16 @@ def sh(cmd):
 
 
 def common_sources():
+    """Every controller source (firmware/<folder>/*.c but the apps) and the
+    platform-neutral HAL helpers; --gc-sections keeps what an image uses."""
     out = []
-    for d in ('firmware', 'hal'):
-        out += sorted(os.path.join(d, f) for f in os.listdir(os.path.join(ROOT, d))
-                      if f.endswith('.c'))
+    fw = os.path.join(ROOT, 'firmware')
+    for d in sorted(os.listdir(fw)):
+        if d != 'apps' and os.path.isdir(os.path.join(fw, d)):
+            out += sorted(os.path.join('firmware', d, f) for f in os.listdir(os.path.join(fw, d))
+                          if f.endswith('.c'))
+    out += sorted(os.path.join('hal', f) for f in os.listdir(os.path.join(ROOT, 'hal'))
+                  if f.endswith('.c'))
     return out + ['hal/epuck/hal_epuck.c']
 
 

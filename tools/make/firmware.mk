@@ -77,13 +77,13 @@ $(FW_HOST)/test_hal_epuck_libircom: $(FW_HAL_DEPS) hal/epuck/ircom_libircom.c \
 # The forager image itself (its main renamed) over the stubs: its telemetry
 # frames decoded.  --gc-sections drops the generated publish functions
 # (no liblcm here).
-FW_APP_TEST_SRC := $(sort $(wildcard firmware/*.c)) $(sort $(wildcard hal/*.c)) \
+FW_APP_TEST_SRC := $(FW_SRC) \
   hal/epuck/hal_epuck.c hal/epuck/ircom_randb.c tests/firmware/stubs/epuck_lib_stubs.c \
   tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c firmware/apps/app_telemetry.c \
   $(FW_LCM_SRC)
 $(FW_HOST)/test_app_telemetry: tests/firmware/test_app_telemetry.c firmware/apps/forager_main.c \
     firmware/apps/app_telemetry.h \
-    $(filter-out $(FW_LCM_SRC),$(FW_APP_TEST_SRC)) $(FW_LCM_STAMP) $(wildcard firmware/*.h hal/*.h hal/epuck/*.h) \
+    $(filter-out $(FW_LCM_SRC),$(FW_APP_TEST_SRC)) $(FW_LCM_STAMP) $(wildcard firmware/*/*.h hal/*.h hal/epuck/*.h) \
     tests/firmware/stubs/epuck_stubs.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(CC) $(FW_HOST_CFLAGS) -I$(FW_LCM_C_DIR) $(LCM_CFLAGS) -ffunction-sections -Wl,--gc-sections \
@@ -94,12 +94,12 @@ firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_li
 	@set -e; for t in $^; do ASAN_OPTIONS=detect_leaks=1 $$t; done
 
 # ------------------------------------------------ CPU report
-FW_CPU_SRC := firmware/forager.c firmware/nest_beacon.c firmware/nest_link.c \
-  firmware/random_walk.c firmware/rng.c firmware/task_alloc.c hal/blob_detect.c \
+FW_CPU_SRC := firmware/foraging/forager.c firmware/foraging/nest_beacon.c firmware/foraging/nest_link.c \
+  firmware/common/random_walk.c firmware/common/rng.c firmware/foraging/task_alloc.c hal/blob_detect.c \
   hal/hal_common.c hal/units.c
 FW_CPU_STEPS ?= 2000
 
-$(FW_HOST)/cpu_harness: tests/firmware/cpu_harness.c $(FW_CPU_SRC) $(wildcard firmware/*.h hal/*.h) | $(BUILD)/config.mk
+$(FW_HOST)/cpu_harness: tests/firmware/cpu_harness.c $(FW_CPU_SRC) $(wildcard firmware/*/*.h hal/*.h) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(CC) -std=c99 -Wall -Wextra -Werror -g -O2 -Ihal -Ifirmware -o $@ tests/firmware/cpu_harness.c $(FW_CPU_SRC)
 
@@ -143,7 +143,7 @@ FW_POLICY_DEF := TA_$(shell echo '$(FORAGER_POLICY)' | tr a-z A-Z)
 FW_APP_DEFS := -DAPP_N_ROBOTS=$(FIRMWARE_N_ROBOTS)u -DAPP_ARENA_L_MM=$(FIRMWARE_ARENA_MM)u \
   -DAPP_FORAGER_POLICY=$(FW_POLICY_DEF)
 
-FW_OURS_SRC := $(sort $(wildcard firmware/*.c)) $(sort $(wildcard hal/*.c)) \
+FW_OURS_SRC := $(FW_SRC) \
   hal/epuck/hal_epuck.c hal/epuck/xc16/robot_id.c
 FW_EPL_COMMON := motor_led/e_init_port.c motor_led/advance_one_timer/e_agenda.c \
   motor_led/advance_one_timer/e_motors.c motor_led/advance_one_timer/e_led.c \

@@ -1,6 +1,6 @@
 # lcm.mk - LCM telemetry: message types (lcm_types/*.lcm) generated into C,
 # Python and (with a JDK) a Java jar for lcm-spy; the simulator's publisher
-# (sim_host/telemetry.c) linked against the wheel's liblcm; the tools of
+# (sim_host/core/telemetry.c) linked against the wheel's liblcm; the tools of
 # tools/telemetry/ and their tests.
 #
 #   make lcm-types     build/lcm_c/, build/lcm_python/, build/lcm_types.jar
@@ -55,7 +55,7 @@ $(BUILD)/asan/lcm/%.o: $(LCM_C_DIR)/%.c $(LCM_C_STAMP)
 	$(CC) $(LCM_GEN_CFLAGS) $(ASAN) -c $< -o $@
 
 # Sources that include generated headers wait for them.
-$(BUILD)/obj/sim_host/telemetry.o $(BUILD)/asan/sim_host/telemetry.o: $(LCM_C_STAMP)
+$(BUILD)/obj/sim_host/core/telemetry.o $(BUILD)/asan/sim_host/core/telemetry.o: $(LCM_C_STAMP)
 $(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_telemetry*.c)): $(LCM_C_STAMP)
 $(patsubst tests/%.c,$(BUILD)/tests/asan/%,$(wildcard tests/test_telemetry*.c)): $(LCM_C_STAMP)
 
@@ -89,13 +89,13 @@ endif
 monitor: $(LCM_PY_STAMP)
 	$(PYTHON) tools/telemetry/monitor.py $(if $(LCM_URL),--lcm '$(LCM_URL)')
 
-# The host side of the robots' framing (firmware/telemetry_frame.c) as a
+# The host side of the robots' framing (firmware/common/telemetry_frame.c) as a
 # shared library, so the Python tests check the bridge's decoder against the
 # very encoder the robots run.
 TELEMETRY_FRAME_SO := $(BUILD)/telemetry/libtelemetry_frame.so
-$(TELEMETRY_FRAME_SO): firmware/telemetry_frame.c firmware/telemetry_frame.h | $(BUILD)/config.mk
+$(TELEMETRY_FRAME_SO): firmware/common/telemetry_frame.c firmware/common/telemetry_frame.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ firmware/telemetry_frame.c
+	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ firmware/common/telemetry_frame.c
 
 # matplotlib for tools/telemetry/plot_run.py (pinned wheels).
 TELEMETRY_DEPS_STAMP := $(VENV)/.telemetry-installed

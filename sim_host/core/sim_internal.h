@@ -8,7 +8,7 @@
 #include <box2d/box2d.h>
 
 #include "controllers.h"
-#include "foraging.h"
+#include "tasks/foraging/foraging.h"
 #include "geometry.h"
 #include "grid.h"
 #include "hal.h"

@@ -44,8 +44,8 @@
 #include <stdint.h>
 
 #include "hal.h"
-#include "random_walk.h"
-#include "rng.h"
+#include "common/random_walk.h"
+#include "common/rng.h"
 #include "task_alloc.h"
 
 typedef struct forager_params {

@@ -7,7 +7,7 @@
 
 #include <math.h>
 
-#include "foraging.h"
+#include "tasks/foraging/foraging.h"
 
 static void put(metric_list_t *m, const char *name, double value)
 {

@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "nest_link.h"
-#include "sim_internal.h"
+#include "foraging/nest_link.h"
+#include "core/sim_internal.h"
 
 /* The gripper takes a token whose centre comes within its radius plus this
  * of the robot's front point, and holds it this far ahead of the lens. */

@@ -21,7 +21,7 @@
 
 #include <stdint.h>
 
-#include "rand.h"
+#include "core/rand.h"
 
 struct sim;
 

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "foraging.h"
+#include "tasks/foraging/foraging.h"
 
 int sim_render_png(const sim_t *sim, render_ctx_t *ctx, const char *png_path, char *err)
 {

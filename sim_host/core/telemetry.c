@@ -25,8 +25,8 @@
 
 #include <lcm/lcm.h>
 
-#include "forager.h"
-#include "nest_beacon.h"
+#include "foraging/forager.h"
+#include "foraging/nest_beacon.h"
 #include "sim_internal.h"
 #include "swarmlcm_event_t.h"
 #include "swarmlcm_robot_state_t.h"

@@ -34,7 +34,7 @@
 
 #include <stdint.h>
 
-#include "rng.h"
+#include "common/rng.h"
 
 /** Which threshold a forager uses in eq 7. */
 typedef enum { TA_DRTM = 0, TA_ARTM = 1, TA_FRTM = 2 } ta_policy_t;
