@@ -15,6 +15,13 @@
  * Reads are consistent within one control step: a platform samples a sensor
  * at most once per step, so two reads of the same channel in one step return
  * the same value.  No call blocks.
+ *
+ * Status: every call that can fail, or that a platform may lack, returns a
+ * hal_status_t, HAL_OK (0) or a negative HAL_ERR_*, and gives its result
+ * through a pointer.  Calls that cannot fail return their result directly:
+ * identity and time, the IR and ambient readings every e-puck has (an index
+ * out of range reads as "nothing there"), and counts (blobs found, bytes
+ * accepted).
  */
 #ifndef HAL_H
 #define HAL_H
@@ -23,6 +30,19 @@
 
 /** The robot a controller runs on.  Opaque: defined by the platform. */
 typedef struct hal hal_t;
+
+/** Result of a call that can fail: HAL_OK or one of HAL_ERR_*. */
+typedef int8_t hal_status_t;
+#define HAL_OK 0
+/** The platform has no such channel, or does not model it (no tracker on a
+ *  bare e-puck, no camera on an image built without frames). */
+#define HAL_ERR_UNAVAILABLE (-1)
+/** Busy: try again next step (one IR message per control period). */
+#define HAL_ERR_BUSY (-2)
+/** Nothing to read (an empty IR inbox). */
+#define HAL_ERR_EMPTY (-3)
+/** An argument out of range (a microphone or band that does not exist). */
+#define HAL_ERR_RANGE (-4)
 
 /* ------------------------------------------------------------------ */
 /* Identity and time                                                   */
@@ -60,9 +80,10 @@ uint16_t hal_ir_proximity(hal_t *hal, uint8_t index);
  *  returns HAL_RAW_MAX. */
 uint16_t hal_ir_ambient(hal_t *hal, uint8_t index);
 
-/** Bearing of IR sensor `index` in milliradians (CCW positive), so that
- *  controllers need not carry the table.  Out-of-range index returns 0. */
-int16_t hal_ir_bearing_mrad(uint8_t index);
+/** Bearing of IR sensor `index` on this robot in milliradians (CCW
+ *  positive), so that controllers need not carry the table.  Out-of-range
+ *  index returns 0. */
+int16_t hal_ir_bearing_mrad(hal_t *hal, uint8_t index);
 
 /* ------------------------------------------------------------------ */
 /* Camera colour blobs                                                 */
@@ -88,10 +109,15 @@ typedef struct hal_blob {
 /** Most blobs a platform reports per step. */
 #define HAL_MAX_BLOBS 8u
 
-/** Fills up to `max` blobs, largest first, and returns how many.  The
- *  frame behind them is the latest complete one (on the e-puck a capture
- *  runs in the background; the simulator computes it on request). */
+/** Fills up to `max` blobs, largest first, and returns how many (0 when
+ *  the robot has no camera).  The frame behind them is the latest complete
+ *  one (on the e-puck a capture runs in the background; the simulator
+ *  computes it on request). */
 uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max);
+
+/** Size of the frame the blobs come from, pixels (the e-puck image: 40 x
+ *  20): HAL_OK, or HAL_ERR_UNAVAILABLE without a camera. */
+hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px);
 
 /* ------------------------------------------------------------------ */
 /* Microphones and speaker                                             */
@@ -101,17 +127,15 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max);
 #define HAL_MIC_COUNT 3u
 /** Sound bands a controller can emit and listen to (band 0 is unused). */
 #define HAL_SOUND_BANDS 4u
-/** Returned by a sound call the platform does not model. */
-#define HAL_NOT_MODELLED (-1)
 
 /** Sound level heard by microphone `mic` (0..2) in frequency band `band`
- *  (1..HAL_SOUND_BANDS-1), in raw amplitude counts 0..32767, or
- *  HAL_NOT_MODELLED. */
-int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band);
+ *  (1..HAL_SOUND_BANDS-1), in raw amplitude counts 0..32767, into *level:
+ *  HAL_OK, HAL_ERR_RANGE, or HAL_ERR_UNAVAILABLE (not modelled yet). */
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level);
 
-/** Emits a tone in `band` (0 = silence) until changed.  Returns 0, or
- *  HAL_NOT_MODELLED. */
-int8_t hal_speaker_set(hal_t *hal, uint8_t band);
+/** Emits a tone in `band` (0 = silence) until changed: HAL_OK,
+ *  HAL_ERR_RANGE, or HAL_ERR_UNAVAILABLE (not modelled yet). */
+hal_status_t hal_speaker_set(hal_t *hal, uint8_t band);
 
 /* ------------------------------------------------------------------ */
 /* IR local communication                                              */
@@ -130,13 +154,13 @@ typedef struct hal_ircom_msg {
     uint16_t range_mm;     /**< estimated range to the sender */
 } hal_ircom_msg_t;
 
-/** Queues one message for transmission during this control period.
- *  Returns 0, or -1 if a message is already queued for this period. */
-int8_t hal_ircom_send(hal_t *hal, uint16_t value);
+/** Queues one message for transmission during this control period:
+ *  HAL_OK, or HAL_ERR_BUSY if one is already queued for this period. */
+hal_status_t hal_ircom_send(hal_t *hal, uint16_t value);
 
-/** Pops the oldest received message into `out`.  Returns 1 if a message
- *  was popped, 0 if the queue is empty. */
-uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out);
+/** Pops the oldest received message into `out`: HAL_OK, or HAL_ERR_EMPTY
+ *  when the inbox is empty. */
+hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out);
 
 /* ------------------------------------------------------------------ */
 /* Wheels (stepper motors)                                             */
@@ -166,6 +190,22 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on);
 void hal_set_body_led(hal_t *hal, uint8_t on);
 /** Switches the red front LED. */
 void hal_set_front_led(hal_t *hal, uint8_t on);
+
+/* ------------------------------------------------------------------ */
+/* Pose from an overhead tracker                                       */
+/* ------------------------------------------------------------------ */
+
+/** Where the robot is, as an external tracker sees it, in the arena's
+ *  frame (origin at the centre, x right, y up seen from above). */
+typedef struct hal_pose {
+    int32_t x_mm;
+    int32_t y_mm;
+    int16_t heading_mrad;  /**< CCW from +x, (-3142, 3142] */
+} hal_pose_t;
+
+/** The tracker's pose this step: HAL_OK, or HAL_ERR_UNAVAILABLE when there
+ *  is no tracker (a bare e-puck) or it lost the robot this step. */
+hal_status_t hal_pose(hal_t *hal, hal_pose_t *out);
 
 /* ------------------------------------------------------------------ */
 /* Telemetry                                                           */

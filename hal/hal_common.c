@@ -1,8 +1,9 @@
 /* Platform-neutral parts of the HAL contract. */
 #include "hal.h"
 
-int16_t hal_ir_bearing_mrad(uint8_t index)
+int16_t hal_ir_bearing_mrad(hal_t *hal, uint8_t index)
 {
+    (void)hal;   /* every e-puck has the same ring */
     /* -17, -50, -90, -150, +150, +90, +50, +17 degrees, in mrad.  A switch
      * rather than a table keeps the values in flash on every target. */
     switch (index) {

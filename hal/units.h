@@ -16,6 +16,16 @@
 /** Body diameter, micrometres (70 mm). */
 #define EPUCK_BODY_DIAMETER_UM 70000L
 
+/* The same facts in floating point, for the simulator and host tools (the
+ * firmware uses the integer forms above). */
+#define UNITS_PI 3.14159265358979323846
+/** Body radius, m. */
+#define EPUCK_BODY_RADIUS_M 0.035f
+/** Wheel travel per motor step, m (pi * 41 mm / 1000). */
+#define EPUCK_STEP_M (3.14159265358979 * 0.041 / 1000.0)
+/** Axle length (wheel separation), m. */
+#define EPUCK_AXLE_M 0.053
+
 /** Millimetres travelled by a wheel for `steps` motor steps
  *  (0.12881 mm per step), rounded toward zero.  |steps| <= 1,000,000. */
 int32_t units_steps_to_mm(int32_t steps);

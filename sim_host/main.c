@@ -11,7 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "controllers.h"
+#include "registry.h"
 #include "core/runner.h"
 #include "core/scenario.h"
 #include "core/telemetry.h"
@@ -37,8 +37,8 @@ static void usage(FILE *f)
 "  --out DIR       output folder (default out/<scenario name>); each run\n"
 "                  writes DIR/run_<seed>/{summary.json,timeseries.csv,\n"
 "                  telemetry.lcmlog}\n"
-"  --set K=V       override scenario key K (dotted path, e.g. robots.count=30,\n"
-"                  controller.params.speed_steps_s=300, objects.0.x=1.5);\n"
+"  --set K=V       override scenario key K (dotted path, e.g. robots.0.count=30,\n"
+"                  robots.0.params.speed_steps_s=300, objects.0.x=1.5);\n"
 "                  repeatable, applied in order after the file\n"
 "  --frames N      write a top-down PNG every N steps, and the last frame,\n"
 "                  to DIR/run_<seed>/frames/ (default 0: none)\n"
@@ -57,10 +57,15 @@ static void usage(FILE *f)
 "\n"
 "exit status: 0 ok, 1 a run failed, 2 bad arguments or scenario (nothing written)\n"
 "\n", f);
-    fputs("controllers (scenario key controller.name):\n", f);
-    for (size_t i = 0; controllers_at(i); i++) {
-        const sim_controller_t *c = controllers_at(i);
+    fputs("controllers (a group's `controller:`):\n", f);
+    for (size_t i = 0; registry_controller_at(i); i++) {
+        const controller_def_t *c = registry_controller_at(i);
         fprintf(f, "  %-14s %s\n", c->name, c->doc);
+    }
+    fputs("\ntasks (a scenario section of that name runs it):\n", f);
+    for (size_t i = 0; registry_task_at(i); i++) {
+        const task_def_t *t = registry_task_at(i);
+        fprintf(f, "  %-14s %s\n", t->name, t->doc);
     }
     fputc('\n', f);
     scenario_print_schema(f);

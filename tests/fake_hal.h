@@ -129,26 +129,46 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
     return n;
 }
 
-int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band)
+hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px)
 {
-    if (mic >= HAL_MIC_COUNT || band >= HAL_SOUND_BANDS) {
-        return 0;
-    }
-    return hal->mic[mic][band];
+    (void)hal;
+    *width_px = 40u;
+    *height_px = 20u;
+    return HAL_OK;
 }
 
-int8_t hal_speaker_set(hal_t *hal, uint8_t band)
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level)
 {
+    if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
+        *level = 0;
+        return HAL_ERR_RANGE;
+    }
+    *level = hal->mic[mic][band];
+    return HAL_OK;
+}
+
+hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
+{
+    if (band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
     hal->speaker_band = band;
-    return 0;
+    return HAL_OK;
+}
+
+hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
+{
+    (void)hal;
+    (void)out;
+    return HAL_ERR_UNAVAILABLE;
 }
 
 uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->payload_bits; }
 
-int8_t hal_ircom_send(hal_t *hal, uint16_t value)
+hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
     if (hal->sent_this_step != 0u) {
-        return -1;
+        return HAL_ERR_BUSY;
     }
     if (hal->payload_bits < 16u) {
         value = (uint16_t)(value & ((1u << hal->payload_bits) - 1u));
@@ -159,18 +179,18 @@ int8_t hal_ircom_send(hal_t *hal, uint16_t value)
     }
     hal->out_count++;
     hal->last_sent = value;
-    return 0;
+    return HAL_OK;
 }
 
-uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
+hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
 {
     if (hal->in_count == 0u) {
-        return 0u;
+        return HAL_ERR_EMPTY;
     }
     *out = hal->inbox[hal->in_head];
     hal->in_head = (hal->in_head + 1u) % FAKE_INBOX_MAX;
     hal->in_count--;
-    return 1u;
+    return HAL_OK;
 }
 
 void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s)

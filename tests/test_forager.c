@@ -516,8 +516,13 @@ static void test_names(void **state)
     assert_int_equal(forager_paper_state(FORAGER_SEARCH), 'S');
     assert_int_equal(forager_paper_state(FORAGER_RETURN), 'R');
     assert_int_equal(forager_paper_state(FORAGER_DEPOSIT), 'R');
-    assert_string_equal(forager_state_name(FORAGER_WAIT), "wait");
-    assert_string_equal(forager_state_name(FORAGER_DEPOSIT), "deposit");
+    {
+        forager_t probe;
+        probe.state = FORAGER_WAIT;
+        assert_string_equal(forager_state_name(&probe), "wait");
+        probe.state = FORAGER_DEPOSIT;
+        assert_string_equal(forager_state_name(&probe), "deposit");
+    }
     /* The walk runs at the forager's speed (0.05 m/s). */
     start(TA_DRTM);
     assert_int_equal(F.walk.params.speed_steps_s, SPEED);

@@ -14,25 +14,44 @@
 
 #include <cmocka.h>
 
-#include "foraging/forager.h"
-#include "foraging/nest_beacon.h"
 #include "core/scenario.h"
 #include "core/sim.h"
-#include "core/sim_internal.h"
+#include "foraging/forager.h"
+#include "foraging/nest_beacon.h"
+#include "tasks/foraging/foraging.h"
 
 #define BASE "../sim_host/scenarios/foraging_base.yaml"
 
+/* The base condition with `policy`; `info` global also drops the beacon
+ * group (robots.1). */
 static scenario_t *load(const char *policy, const char *info)
 {
     scenario_t *sc = malloc(sizeof *sc);
     char err[SCENARIO_ERROR_MAX], set_policy[64], set_info[64];
-    snprintf(set_policy, sizeof set_policy, "controller.policy=%s", policy);
+    snprintf(set_policy, sizeof set_policy, "robots.0.policy=%s", policy);
     snprintf(set_info, sizeof set_info, "foraging.information=%s", info);
-    scenario_override_t sets[2] = { { set_policy }, { set_info } };
+    scenario_override_t sets[3] = { { set_policy }, { set_info }, { "robots.1.count=0" } };
     assert_non_null(sc);
-    if (scenario_load(BASE, sets, 2, sc, err) != 0) fail_msg("%s", err);
+    if (scenario_load(BASE, sets, strcmp(info, "global") == 0 ? 3 : 2, sc, err) != 0) fail_msg("%s", err);
     return sc;
 }
+
+static const foraging_config_t *config(const scenario_t *sc)
+{
+    const foraging_config_t *c = scenario_task_config(sc, &foraging_task);
+    assert_non_null(c);
+    return c;
+}
+
+static foraging_truth_t truth(const sim_t *sim)
+{
+    foraging_truth_t t;
+    assert_int_equal(foraging_truth(sim, &t), 1);
+    return t;
+}
+
+/* Foragers are robots 0..N_r-1; the beacon, when there is one, comes next. */
+static uint32_t foragers(const scenario_t *sc) { return sc->groups[0].count; }
 
 static sim_t *make(const scenario_t *sc, uint64_t seed)
 {
@@ -50,35 +69,41 @@ static void test_base_run_collects_and_balances(void **state)
     (void)state;
     scenario_t *sc = load("drtm", "beacon");
     sim_t *sim = make(sc, 7);
-    const foraging_t *f = sim_foraging(sim);
-    const double E = sc->foraging.token_energy;
+    const foraging_config_t *c = config(sc);
+    const double E = c->token_energy;
     uint64_t forage_steps = 0, rises = 0;
-    double prev = sc->foraging.initial_food;
-    assert_non_null(f);
-    assert_true(fabs(f->food - 5.0) < 1e-12);
+    double prev = c->initial_food;
+    foraging_truth_t f = truth(sim);
+    assert_true(fabs(f.food - 5.0) < 1e-12);
     for (int k = 0; k < 3000; k++) {
-        uint64_t delivered = f->delivered;
+        uint64_t delivered = f.delivered;
         sim_step(sim);
-        for (uint32_t i = 0; i < sim_swarm_count(sim); i++) {
-            char st = sim_robot_task_state(sim, i);
+        f = truth(sim);
+        for (uint32_t i = 0; i < foragers(sc); i++) {
+            char st = forager_paper_state(((const forager_t *)sim_robot_controller(sim, i))->state);
             forage_steps += st == 'S' || st == 'R';
         }
-        if (f->delivered > delivered) {
+        if (f.delivered > delivered) {
             /* A delivery: +1 token, minus at most every robot's step cost
              * and a few OAEs and the nest's 5 units. */
-            double up = f->food - prev;
-            assert_true(up > 1.0 - (20 * 1 + 5 + 10 * 20) / E && up <= 1.0 * (double)(f->delivered - delivered));
+            double up = f.food - prev;
+            assert_true(up > 1.0 - (20 * 1 + 5 + 10 * 20) / E && up <= 1.0 * (double)(f.delivered - delivered));
             rises++;
         }
-        prev = f->food;
+        prev = f.food;
     }
-    assert_true(f->delivered >= 10);
+    assert_true(f.delivered >= 10);
     assert_true(rises >= 10);
     /* The ledger, recomputed here in energy units: to the unit. */
-    double nest = sc->foraging.consumption / 60.0 * 300.0 * E;                 /* 2 tokens/min, 5 min */
-    double spent = nest + forage_steps * sc->foraging.move_cost + sim_oae_total(sim) * sc->foraging.oae_energy;
-    double units = (sc->foraging.initial_food + (double)f->delivered) * E - spent;
-    assert_true(fabs(units - f->food * E) < 1e-6);
+    uint64_t oaes = 0;
+    for (uint32_t i = 0; i < foragers(sc); i++) {
+        oaes += ((const forager_t *)sim_robot_controller(sim, i))->walk.oae_count;
+    }
+    double nest = c->consumption / 60.0 * 300.0 * E;                 /* 2 tokens/min, 5 min */
+    double spent = nest + forage_steps * c->move_cost + oaes * c->oae_energy;
+    double units = (c->initial_food + (double)f.delivered) * E - spent;
+    assert_true(fabs(units - f.food * E) < 1e-6);
+    assert_true(fabs(foraging_balance(sim) - f.food) < 1e-12);
     assert_int_equal(nest, 15000.0);
     /* The robots' own deposit counts agree with the deliveries: a robot
      * still backing out counts its deposit a few steps later, and a robot
@@ -86,18 +111,19 @@ static void test_base_run_collects_and_balances(void **state)
      * token, filling its view, for its own (a belief; the metrics come from
      * the simulator's ground truth).  At most one such mistake in 20. */
     uint64_t deposits = 0, backing = 0;
-    for (uint32_t i = 0; i < sim_swarm_count(sim); i++) {
+    for (uint32_t i = 0; i < foragers(sc); i++) {
         const forager_t *fg = sim_robot_controller(sim, i);
         deposits += fg->deposits;
         backing += fg->state == FORAGER_DEPOSIT;
     }
-    uint64_t slack = f->delivered / 20 + 1;
-    if (!(deposits <= f->delivered + slack && deposits + backing + slack >= f->delivered))
-        fail_msg("robots counted %llu deposits (%llu backing), the nest got %llu, dropped %llu", (unsigned long long)deposits, (unsigned long long)backing, (unsigned long long)f->delivered, (unsigned long long)f->dropped);
-    /* The beacon's ledger estimates the true nest level from reports. */
-    const nest_beacon_t *b = sim_robot_controller(sim, (uint32_t)sim_beacon_index(sim));
+    uint64_t slack = f.delivered / 20 + 1;
+    if (!(deposits <= f.delivered + slack && deposits + backing + slack >= f.delivered))
+        fail_msg("robots counted %llu deposits (%llu backing), the nest got %llu, dropped %llu", (unsigned long long)deposits, (unsigned long long)backing, (unsigned long long)f.delivered, (unsigned long long)f.dropped);
+    /* The beacon (robot N_r) estimates the true nest level from reports. */
+    assert_ptr_equal(sim_robot_def(sim, foragers(sc)), &nest_beacon_def);
+    const nest_beacon_t *b = sim_robot_controller(sim, foragers(sc));
     double beacon_food = nest_beacon_food_q4(b) / 16.0;
-    assert_true(fabs(beacon_food - f->food) < 4.0);
+    assert_true(fabs(beacon_food - f.food) < 4.0);
     sim_destroy(sim);
     free(sc);
 }
@@ -111,9 +137,9 @@ static void test_lost_token_goes_back_to_search(void **state)
     int32_t carrier = -1;
     for (int k = 0; k < 6000 && carrier < 0; k++) {
         sim_step(sim);
-        for (uint32_t i = 0; i < sim_swarm_count(sim) && carrier < 0; i++) {
+        for (uint32_t i = 0; i < foragers(sc) && carrier < 0; i++) {
             const forager_t *fg = sim_robot_controller(sim, i);
-            if (fg->state == FORAGER_RETURN && sim->forage.carried[i] >= 0) {
+            if (fg->state == FORAGER_RETURN && foraging_carried(sim, i) >= 0) {
                 carrier = (int32_t)i;
             }
         }
@@ -125,7 +151,7 @@ static void test_lost_token_goes_back_to_search(void **state)
         sim_step(sim);
     }
     assert_int_equal(fg->state, FORAGER_SEARCH);
-    assert_int_equal(sim_foraging(sim)->dropped, 1);
+    assert_int_equal(truth(sim).dropped, 1);
     sim_destroy(sim);
     free(sc);
 }
@@ -138,11 +164,11 @@ static void test_everyone_leaves_at_first_decision(void **state)
     (void)state;
     scenario_t *sc = load("drtm", "global");
     sim_t *sim = make(sc, 9);
-    assert_int_equal(sim_beacon_index(sim), -1);
+    assert_int_equal(sim_robot_count(sim), 20);   /* no beacon */
     for (int k = 0; k < 49; k++) sim_step(sim);
-    assert_int_equal(sim_foraging(sim)->waiting, 20);
+    assert_int_equal(truth(sim).waiting, 20);
     for (int k = 0; k < 2; k++) sim_step(sim);
-    assert_int_equal(sim_foraging(sim)->waiting, 0);
+    assert_int_equal(truth(sim).waiting, 0);
     sim_destroy(sim);
     free(sc);
 }
@@ -154,12 +180,13 @@ static void test_full_nest_keeps_everyone_home(void **state)
     const char *policies[3] = { "drtm", "artm", "frtm" };
     for (int p = 0; p < 3; p++) {
         scenario_t *sc = load(policies[p], "beacon");
-        sc->foraging.initial_food = 40.0f;     /* 40 - 600 s x 2/min > 20 */
-        sc->foraging.consumption = 2.0f;
+        foraging_config_t *c = (foraging_config_t *)scenario_task_config(sc, &foraging_task);
+        c->initial_food = 40.0f;     /* 40 - 600 s x 2/min > 20 */
+        c->consumption = 2.0f;
         sim_t *sim = make(sc, 10);
         for (int k = 0; k < 3000; k++) {
             sim_step(sim);
-            assert_int_equal(sim_foraging(sim)->waiting, 20);
+            assert_int_equal(truth(sim).waiting, 20);
         }
         sim_destroy(sim);
         free(sc);

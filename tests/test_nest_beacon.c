@@ -361,7 +361,7 @@ static void test_never_moves(void **state)
     }
     assert_int_equal(H.wheel_calls, 50);
     assert_int_equal(B.state, NB_RUN);
-    assert_string_equal(nest_beacon_state_name(B.state), "run");
+    assert_string_equal(nest_beacon_state_name(&B), "run");
 }
 
 int main(void)

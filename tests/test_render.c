@@ -197,10 +197,17 @@ static void test_scene_colours(void **state)
          .angle_deg = 90.0f, .colour = 3},
     };
     render_light_t light = {.x = -0.3f, .y = -0.38f};
-    sc.nest_enabled = 1;
-    sc.nest_x = 0.25f;
-    sc.nest_y = -0.25f;
-    sc.nest_d = 0.2f;
+    /* A task's floor disc (a nest), a ring and a line over everything. */
+    draw_shape_t shapes[3] = {
+        {.kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = 0xB4B4B4u, .x = 0.25f, .y = -0.25f,
+         .radius = 0.1f},
+        {.kind = DRAW_RING, .layer = DRAW_OVER, .rgb = 0x102030u, .x = 0.0f, .y = 0.3f,
+         .radius = 0.1f, .line = 0.01f},
+        {.kind = DRAW_LINE, .layer = DRAW_OVER, .rgb = 0x405060u, .x = -0.4f, .y = -0.1f,
+         .x2 = -0.1f, .y2 = -0.1f, .line = 0.01f},
+    };
+    sc.shapes = shapes;
+    sc.shape_count = 3;
     sc.robots = &robot;
     sc.robot_count = 1;
     sc.objects = objs;
@@ -227,13 +234,17 @@ static void test_scene_colours(void **state)
                      RENDER_RGB_OBJ_BLUE);
     assert_int_equal(at_world(ctx, &sc, &pic, -0.25f + 0.06f, 0.2f),
                      RENDER_RGB_FLOOR);
-    /* Nest: grey inside, floor just outside its 10 cm radius. */
-    assert_int_equal(at_world(ctx, &sc, &pic, 0.25f, -0.25f),
-                     RENDER_RGB_NEST);
-    assert_int_equal(at_world(ctx, &sc, &pic, 0.25f + 0.09f, -0.25f),
-                     RENDER_RGB_NEST);
+    /* Floor disc: grey inside, floor just outside its 10 cm radius. */
+    assert_int_equal(at_world(ctx, &sc, &pic, 0.25f, -0.25f), 0xB4B4B4u);
+    assert_int_equal(at_world(ctx, &sc, &pic, 0.25f + 0.09f, -0.25f), 0xB4B4B4u);
     assert_int_equal(at_world(ctx, &sc, &pic, 0.25f + 0.12f, -0.25f),
                      RENDER_RGB_FLOOR);
+    /* Ring: on its circle, not at its centre; the line along its length. */
+    assert_int_equal(at_world(ctx, &sc, &pic, 0.1f, 0.3f), 0x102030u);
+    assert_int_equal(at_world(ctx, &sc, &pic, 0.0f, 0.4f), 0x102030u);
+    assert_int_equal(at_world(ctx, &sc, &pic, 0.0f, 0.3f), RENDER_RGB_FLOOR);
+    assert_int_equal(at_world(ctx, &sc, &pic, -0.25f, -0.1f), 0x405060u);
+    assert_int_equal(at_world(ctx, &sc, &pic, -0.25f, -0.13f), RENDER_RGB_FLOOR);
     /* Light marker. */
     assert_int_equal(at_world(ctx, &sc, &pic, -0.3f, -0.38f),
                      RENDER_RGB_LIGHT);
@@ -378,9 +389,9 @@ static void test_highlight_and_body_leds(void **state)
     render_ctx_t *ctx = *state;
     render_scene_t sc = empty_scene();
     render_robot_t rbs[3] = {
-        {.x = -0.25f, .y = 0.0f, .highlight = 2},
+        {.x = -0.25f, .y = 0.0f, .fill_rgb = RENDER_RGB_HL_GREEN},
         {.x = 0.0f, .y = 0.0f, .body_led = 1},
-        {.x = 0.25f, .y = 0.0f, .front_led = 1, .highlight = 4},
+        {.x = 0.25f, .y = 0.0f, .front_led = 1, .fill_rgb = RENDER_RGB_HL_YELLOW},
     };
     sc.robots = rbs;
     sc.robot_count = 3;
@@ -584,7 +595,8 @@ static void *worker_main(void *arg)
         render_scene_t sc = empty_scene();
         float side = wk->id == 0 ? -1.0f : 1.0f;
         render_robot_t rb = {.x = side * 0.25f, .y = -0.3f + 0.05f * (float)f,
-                             .theta = PI_F, .highlight = (uint8_t)(1 + wk->id),
+                             .theta = PI_F,
+                             .fill_rgb = wk->id == 0 ? RENDER_RGB_HL_RED : RENDER_RGB_HL_GREEN,
                              .leds = 0x10};
         sc.robots = &rb;
         sc.robot_count = 1;

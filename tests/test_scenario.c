@@ -1,10 +1,12 @@
 /*
- * test_scenario.c - the strict YAML scenario loader (sim_host/scenario.c):
- * defaults, a full file, every error class with its line, key path and
- * message, `--set` overrides, controller params and object validation.
+ * test_scenario.c - the strict YAML scenario loader (sim_host/core/scenario.c
+ * over schema.c): defaults, a full file, every error class with its line,
+ * key path and message, `--set` overrides, robot groups (controller,
+ * policy, params, placement), task sections and object validation.
  *
  * Each test writes its YAML into a private temporary directory.
  */
+#include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -18,6 +20,9 @@
 
 #include "common/random_walk.h"
 #include "core/scenario.h"
+#include "foraging/forager.h"
+#include "registry.h"
+#include "tasks/foraging/foraging.h"
 
 #define MAX_SETS 8
 
@@ -141,8 +146,11 @@ static void expect_set_error(fixture_t *fx, const char *yaml, const char *set, c
 
 static const random_walk_params_t *rw_params(const scenario_t *sc)
 {
-    return (const random_walk_params_t *)sc->controller.params.bytes;
+    return (const random_walk_params_t *)sc->groups[0].params.bytes;
 }
+
+/* A minimal group: the text of one entry of `robots:`. */
+#define RW "robots:\n  - controller: random_walk\n"
 
 /* ---------------------------------------------------------------- defaults */
 
@@ -157,13 +165,20 @@ static void test_defaults(void **state)
     assert_float_equal(sc->arena.width, 4.0, 1e-6);
     assert_float_equal(sc->arena.height, 4.0, 1e-6);
     assert_float_equal(sc->arena.wall_thickness, 0.05, 1e-6);
-    assert_int_equal(sc->nest.enabled, 0);
-    assert_int_equal(sc->robots.count, 20);
-    assert_int_equal(sc->robots.placement, PLACE_RANDOM);
-    assert_float_equal(sc->robots.min_spacing, 0.08, 1e-6);
+    assert_int_equal(sc->group_count, 1);
+    assert_int_equal(sc->groups[0].count, 20);
+    assert_int_equal(sc->groups[0].placement.shape, PLACE_RECTANGLE);
+    assert_float_equal(sc->groups[0].placement.width, 0.0, 1e-9);   /* the arena */
+    assert_true(isnan(sc->groups[0].heading));                       /* random */
+    assert_int_equal(sc->groups[0].moves, 1);
+    assert_float_equal(sc->groups[0].min_spacing, 0.08, 1e-6);
     assert_int_equal(sc->object_count, 0);
     assert_int_equal(sc->light_count, 0);
-    assert_string_equal(sc->controller.name, "random_walk");
+    assert_int_equal(sc->task_count, 0);
+    assert_int_equal(sc->tracker.enabled, 0);
+    assert_string_equal(sc->groups[0].controller, "random_walk");
+    assert_string_equal(sc->groups[0].name, "random_walk");
+    assert_ptr_equal(sc->groups[0].def, registry_controller("random_walk"));
     assert_int_equal(rw_params(sc)->speed_steps_s, 500);
     assert_int_equal(rw_params(sc)->avoid_exit, 150);
     assert_float_equal(sc->ir.aperture, 15.0, 1e-6);
@@ -237,15 +252,26 @@ static const char full_yaml[] =
     "  width: 6\n"
     "  height: 3.5\n"
     "  wall_thickness: 0.1\n"
-    "nest:\n"
-    "  enabled: true\n"
-    "  x: -2\n"
-    "  y: 1\n"
-    "  diameter: 1.2\n"
     "robots:\n"
-    "  count: 100000\n"
-    "  placement: nest\n"
-    "  min_spacing: 0.1\n"
+    "  - name: walkers\n"
+    "    count: 100000\n"
+    "    controller: random_walk\n"
+    "    params:\n"
+    "      speed_steps_s: 400\n"
+    "      turn_speed_steps_s: 200\n"
+    "      turn_chance: 655\n"
+    "      avoid_enter: 500\n"
+    "      avoid_exit: 250\n"
+    "    placement: {shape: circle, x: -2, y: 1, radius: 0.6}\n"
+    "    heading: 90\n"
+    "    min_spacing: 0.1\n"
+    "  - controller: forager\n"
+    "    policy: artm\n"
+    "    count: 2\n"
+    "    placement:\n"
+    "      shape: poses\n"
+    "      poses: [{x: 1, y: 1}, {x: -1, y: 1, heading: -45}]\n"
+    "    moves: false\n"
     "objects:\n"
     "  - shape: cylinder\n"
     "    x: 1\n"
@@ -257,14 +283,7 @@ static const char full_yaml[] =
     "lights:\n"
     "  - {x: 0.5, y: 0.25, height: 0.4, intensity: 2.5}\n"
     "  - {x: -1, y: -1}\n"
-    "controller:\n"
-    "  name: random_walk\n"
-    "  params:\n"
-    "    speed_steps_s: 400\n"
-    "    turn_speed_steps_s: 200\n"
-    "    turn_chance: 655\n"
-    "    avoid_enter: 500\n"
-    "    avoid_exit: 250\n"
+
     "ir:\n"
     "  aperture: 20\n"
     "  range: 0.07\n"
@@ -286,6 +305,12 @@ static const char full_yaml[] =
     "  range_noise_rel: 0.2\n"
     "  quantise_bearing: false\n"
     "  blocked_by_robots: True\n"
+    "  payload_bits: 16\n"
+    "tracker: {enabled: true, noise_mm: 5, noise_deg: 2, dropout: 0.1}\n"
+    "foraging:\n"
+    "  nest: {x: -2, y: 1, diameter: 1.2}\n"
+    "  food_count: 7\n"
+    "  information: global\n"
     "wheels:\n"
     "  speed_noise_rel: 0.05\n"
     "output:\n"
@@ -304,13 +329,28 @@ static void test_full_file(void **state)
     assert_float_equal(sc->arena.width, 6.0, 1e-6);
     assert_float_equal(sc->arena.height, 3.5, 1e-6);
     assert_float_equal(sc->arena.wall_thickness, 0.1, 1e-6);
-    assert_int_equal(sc->nest.enabled, 1);
-    assert_float_equal(sc->nest.x, -2.0, 1e-6);
-    assert_float_equal(sc->nest.y, 1.0, 1e-6);
-    assert_float_equal(sc->nest.diameter, 1.2, 1e-6);
-    assert_int_equal(sc->robots.count, 100000);
-    assert_int_equal(sc->robots.placement, PLACE_NEST);
-    assert_float_equal(sc->robots.min_spacing, 0.1, 1e-6);
+    assert_int_equal(sc->group_count, 2);
+    assert_string_equal(sc->groups[0].name, "walkers");
+    assert_int_equal(sc->groups[0].count, 100000);
+    assert_int_equal(sc->groups[0].placement.shape, PLACE_CIRCLE);
+    assert_float_equal(sc->groups[0].placement.x, -2.0, 1e-6);
+    assert_float_equal(sc->groups[0].placement.y, 1.0, 1e-6);
+    assert_float_equal(sc->groups[0].placement.radius, 0.6, 1e-6);
+    assert_float_equal(sc->groups[0].heading, 90.0, 1e-6);
+    assert_float_equal(sc->groups[0].min_spacing, 0.1, 1e-6);
+    assert_int_equal(sc->groups[0].moves, 1);
+    assert_string_equal(sc->groups[1].name, "forager");        /* its controller's */
+    assert_ptr_equal(sc->groups[1].def, &forager_def);
+    assert_string_equal(sc->groups[1].policy, "artm");
+    assert_int_equal(sc->groups[1].policy_index, 1);
+    assert_int_equal(sc->groups[1].moves, 0);
+    assert_int_equal(sc->groups[1].placement.shape, PLACE_POSES);
+    assert_int_equal(sc->groups[1].placement.pose_count, 2);
+    assert_float_equal(sc->groups[1].placement.poses[0].x, 1.0, 1e-6);
+    assert_true(isnan(sc->groups[1].placement.poses[0].heading));
+    assert_float_equal(sc->groups[1].placement.poses[1].heading, -45.0, 1e-6);
+    assert_int_equal(((const forager_params_t *)sc->groups[1].params.bytes)->t1_steps, 50);
+    assert_int_equal(scenario_robot_count(sc), 100002);
 
     assert_int_equal(sc->object_count, 2);
     assert_int_equal(sc->objects[0].shape, SHAPE_CYLINDER);
@@ -337,7 +377,7 @@ static void test_full_file(void **state)
     assert_float_equal(sc->lights[1].height, 0.1, 1e-6);    /* entry defaults */
     assert_float_equal(sc->lights[1].intensity, 1.0, 1e-6);
 
-    assert_string_equal(sc->controller.name, "random_walk");
+    assert_string_equal(sc->groups[0].controller, "random_walk");
     assert_int_equal(rw_params(sc)->speed_steps_s, 400);
     assert_int_equal(rw_params(sc)->turn_speed_steps_s, 200);
     assert_int_equal(rw_params(sc)->turn_chance, 655);
@@ -362,7 +402,19 @@ static void test_full_file(void **state)
     assert_int_equal(sc->ircom.quantise_bearing, 0);
     assert_int_equal(sc->ircom.blocked_by_robots, 1);
     assert_float_equal(sc->wheels.speed_noise_rel, 0.05, 1e-6);
+    assert_int_equal(sc->tracker.enabled, 1);
+    assert_float_equal(sc->tracker.noise_mm, 5.0, 1e-6);
+    assert_float_equal(sc->tracker.dropout, 0.1, 1e-6);
     assert_int_equal(sc->output.timeseries_every, 5);
+    assert_int_equal(sc->task_count, 1);
+    assert_ptr_equal(sc->tasks[0].def, &foraging_task);
+    const foraging_config_t *fc = scenario_task_config(sc, &foraging_task);
+    assert_non_null(fc);
+    assert_float_equal(fc->nest.x, -2.0, 1e-6);
+    assert_float_equal(fc->nest.diameter, 1.2, 1e-6);
+    assert_int_equal(fc->food_count, 7);
+    assert_float_equal(fc->token_energy, 1500.0, 1e-6);   /* default kept */
+    assert_int_equal(fc->information, FORAGING_INFO_GLOBAL);
 }
 
 /* ---------------------------------------------------------------- errors */
@@ -385,18 +437,18 @@ static void test_exact_message_format(void **state)
 {
     fixture_t *fx = *state;
     char want[1024];
-    assert_int_equal(load(fx, "seed: 4\nrobots:\n  count: 2.5\n"), -1);
-    snprintf(want, sizeof want, "%s:3: robots.count: expected an integer, got '2.5'", fx->path);
+    assert_int_equal(load(fx, "seed: 4\nrobots:\n  - controller: random_walk\n    count: 2.5\n"), -1);
+    snprintf(want, sizeof want, "%s:4: robots[0].count: expected an integer, got '2.5'", fx->path);
     assert_string_equal(fx->err, want);
 }
 
 static void test_syntax_errors(void **state)
 {
     static const bad_case_t cases[] = {
-        { "a: 1\nrobots:\n  count: [1, 2\n", 4, "YAML syntax error: " },
-        { "robots:\n  count: 5\n bad: 1\n", 3, "YAML syntax error: did not find expected key" },
-        { "robots:\n  count: 5\n  placement: \"grid\n", 4, "YAML syntax error: " },
-        { "robots:\n\tcount: 5\n", 2, "YAML syntax error: " },
+        { "a: 1\nrobots:\n  - count: [1, 2\n", 4, "YAML syntax error: " },
+        { "arena:\n  width: 5\n bad: 1\n", 3, "YAML syntax error: did not find expected key" },
+        { "arena:\n  width: 5\n  height: \"grid\n", 4, "YAML syntax error: " },
+        { "arena:\n\twidth: 5\n", 2, "YAML syntax error: " },
         { "seed: 1\n---\nseed: 2\n", 2, "only one YAML document is allowed" },
         { "a: &x 1\nb: *x\n", 2, "YAML aliases (*x) are not supported" },
         { "seed: 1\nname: !!str 5\n", 2, "YAML tags" },
@@ -408,15 +460,25 @@ static void test_syntax_errors(void **state)
 static void test_unknown_keys(void **state)
 {
     static const bad_case_t cases[] = {
-        { "seed: 1\nrobots:\n  cuont: 5\n", 3,
-          "robots.cuont: unknown key 'cuont' (did you mean 'count'?)" },
+        { "seed: 1\n" RW "    cuont: 5\n", 4,
+          "robots[0].cuont: unknown key 'cuont' (did you mean 'count'?)" },
         { "duraton: 5\n", 1, "duraton: unknown key 'duraton' (did you mean 'duration'?)" },
-        { "robots:\n  zzzzzz: 1\n", 2,
-          "robots.zzzzzz: unknown key 'zzzzzz' (valid keys: count, placement, min_spacing)" },
+        { RW "    zzzzzz: 1\n", 3,
+          "robots[0].zzzzzz: unknown key 'zzzzzz' (valid keys: name, count, controller, policy, "
+          "heading, min_spacing, moves, placement, params)" },
+        { RW "    placement: {shape: circle, radius: 1, centre: 0}\n", 3,
+          "robots[0].placement.centre: unknown key 'centre' (valid keys: shape, x, y," },
         { "objects:\n  - radius: 0.1\n  - radius: 0.1\n    colur: red\n", 4,
           "objects[1].colur: unknown key 'colur' (did you mean 'colour'?)" },
-        { "controller:\n  params:\n    speed: 3\n", 3,
-          "controller.params.speed: unknown key 'speed' (valid keys: speed_steps_s," },
+        { RW "    params:\n      speed: 3\n", 4,
+          "robots[0].params.speed: unknown key 'speed' (valid keys: speed_steps_s," },
+        { "foragign: {}\n", 1, "foragign: unknown key 'foragign' (did you mean 'foraging'?)" },
+        { "foraging:\n  nest: {diametre: 1}\n", 2,
+          "foraging.nest.diametre: unknown key 'diametre' (did you mean 'diameter'?)" },
+        { "controller: {name: forager}\n", 1,
+          "controller: unknown key 'controller': robots are groups now: robots: [{count: 20," },
+        { "nest: {enabled: true}\n", 1,
+          "nest: unknown key 'nest': the nest belongs to its task now" },
     };
     expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
 }
@@ -431,20 +493,25 @@ static void test_wrong_types(void **state)
         { "duration: 0x10\n", 1, "duration: expected a number, got '0x10'" },
         { "duration: 1.5s\n", 1, "duration: expected a number, got '1.5s'" },
         { "duration: \"10\"\n", 1, "duration: expected a number, got the string \"10\"" },
-        { "robots:\n  count: 2.5\n", 2, "robots.count: expected an integer, got '2.5'" },
-        { "robots:\n  count: 1e3\n", 2, "robots.count: expected an integer, got '1e3'" },
-        { "robots:\n  count: 12abc\n", 2, "robots.count: expected an integer, got '12abc'" },
-        { "robots:\n  count: [1]\n", 2, "robots.count: expected an integer, got a sequence" },
+        { RW "    count: 2.5\n", 3, "robots[0].count: expected an integer, got '2.5'" },
+        { RW "    count: 1e3\n", 3, "robots[0].count: expected an integer, got '1e3'" },
+        { RW "    count: 12abc\n", 3, "robots[0].count: expected an integer, got '12abc'" },
+        { RW "    count: [1]\n", 3, "robots[0].count: expected an integer, got a sequence" },
         { "seed: \"5\"\n", 1, "seed: expected an integer, got the string \"5\"" },
-        { "nest:\n  enabled: yes\n", 2, "nest.enabled: expected true/false, got 'yes'" },
-        { "nest:\n  enabled: 1\n", 2, "nest.enabled: expected true/false, got '1'" },
+        { RW "    moves: yes\n", 3, "robots[0].moves: expected true/false, got 'yes'" },
+        { "tracker:\n  enabled: 1\n", 2, "tracker.enabled: expected true/false, got '1'" },
+        { RW "    heading: north\n", 3,
+          "robots[0].heading: expected an angle in degrees or 'random', got 'north'" },
+        { "robots: {count: 5}\n", 1, "robots: expected a sequence of groups, got a mapping" },
+        { "robots:\n  - 5\n", 2, "robots[0]: expected a mapping, got '5'" },
         { "arena: 5\n", 1, "arena: expected a mapping, got '5'" },
         { "arena: [1, 2]\n", 1, "arena: expected a mapping, got a sequence" },
         { "objects:\n  shape: box\n", 2, "objects: expected a sequence, got a mapping" },
         { "objects:\n  - 5\n", 2, "objects[0]: expected a mapping, got '5'" },
         { "lights:\n  -\n", 2, "lights[0]: expected a mapping, got nothing" },
         { "name: [a]\n", 1, "name: expected a string, got a sequence" },
-        { "controller: random_walk\n", 1, "controller: expected a mapping, got 'random_walk'" },
+        { RW "    params: 5\n", 3, "robots[0].params: expected a mapping, got '5'" },
+        { "foraging: 5\n", 1, "foraging: expected a mapping, got '5'" },
         { "- a\n- b\n", 1, "expected a mapping of keys at the top level, got a sequence" },
     };
     expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
@@ -453,10 +520,13 @@ static void test_wrong_types(void **state)
 static void test_out_of_range(void **state)
 {
     static const bad_case_t cases[] = {
-        { "robots:\n  count: 200000\n", 2, "robots.count: 200000 is out of range [0, 100000]" },
-        { "robots:\n  count: -1\n", 2, "robots.count: -1 is out of range [0, 100000]" },
-        { "robots:\n  count: 99999999999999999999999\n", 2,
-          "robots.count: 99999999999999999999999 is out of range [0, 100000]" },
+        { RW "    count: 200000\n", 3, "robots[0].count: 200000 is out of range [0, 100000]" },
+        { RW "    count: -1\n", 3, "robots[0].count: -1 is out of range [0, 100000]" },
+        { RW "    count: 99999999999999999999999\n", 3,
+          "robots[0].count: 99999999999999999999999 is out of range [0, 100000]" },
+        { RW "    heading: 400\n", 3, "robots[0].heading: 400 is out of range [-360, 360]" },
+        { "foraging:\n  robot_speed: 1\n", 2,
+          "foraging.robot_speed: 1 is out of range [0.001, 0.128]" },
         { "seed: 18446744073709551616\n", 1,
           "seed: 18446744073709551616 is out of range [0, 18446744073709551615]" },
         { "seed: -1\n", 1, "seed: -1 is out of range [0, 18446744073709551615]" },
@@ -477,28 +547,32 @@ static void test_out_of_range(void **state)
 static void test_number_forms(void **state)
 {
     fixture_t *fx = *state;
-    assert_int_equal(load(fx, "seed: 007\nduration: +2\nrobots:\n  count: +5\n"
+    assert_int_equal(load(fx, "seed: 007\nduration: +2\n" RW "    count: +5\n"
                               "arena:\n  width: .5e1\n  height: 3.\n"),
                      0);
     assert_int_equal(fx->sc->seed, 7);
     assert_float_equal(fx->sc->duration, 2.0, 1e-9);
-    assert_int_equal(fx->sc->robots.count, 5);
+    assert_int_equal(fx->sc->groups[0].count, 5);
     assert_float_equal(fx->sc->arena.width, 5.0, 1e-6);
     assert_float_equal(fx->sc->arena.height, 3.0, 1e-6);
-    assert_int_equal(load(fx, "seed: -0\nnest:\n  enabled: FALSE\n"), 0);
+    assert_int_equal(load(fx, "seed: -0\n" RW "    moves: FALSE\n    heading: random\n"), 0);
     assert_int_equal(fx->sc->seed, 0);
-    assert_int_equal(fx->sc->nest.enabled, 0);
+    assert_int_equal(fx->sc->groups[0].moves, 0);
+    assert_true(isnan(fx->sc->groups[0].heading));
 }
 
 static void test_bad_enum(void **state)
 {
     static const bad_case_t cases[] = {
-        { "robots:\n  placement: spiral\n", 2,
-          "robots.placement: expected one of random|nest|grid, got 'spiral'" },
-        { "robots:\n  placement: gird\n", 2,
-          "robots.placement: expected one of random|nest|grid, got 'gird' (did you mean 'grid'?)" },
-        { "robots:\n  placement: [grid]\n", 2,
-          "robots.placement: expected one of random|nest|grid, got a sequence" },
+        { RW "    placement: {shape: spiral}\n", 3,
+          "robots[0].placement.shape: expected one of rectangle|circle|ring|grid|poses, got 'spiral'" },
+        { RW "    placement: {shape: gird}\n", 3,
+          "robots[0].placement.shape: expected one of rectangle|circle|ring|grid|poses, got 'gird' "
+          "(did you mean 'grid'?)" },
+        { RW "    placement: {shape: [grid]}\n", 3,
+          "robots[0].placement.shape: expected one of rectangle|circle|ring|grid|poses, got a sequence" },
+        { "foraging: {information: ideal}\n", 1,
+          "foraging.information: expected one of beacon|global, got 'ideal'" },
         { "objects:\n  - shape: sphere\n", 2,
           "objects[0].shape: expected one of cylinder|box, got 'sphere'" },
         { "objects:\n  - radius: 1\n    colour: purple\n", 3,
@@ -510,8 +584,9 @@ static void test_bad_enum(void **state)
 static void test_duplicate_keys(void **state)
 {
     static const bad_case_t cases[] = {
-        { "seed: 1\nrobots:\n  count: 2\n  count: 3\n", 4,
-          "robots.count: duplicate key 'count' (first on line 3)" },
+        { "seed: 1\n" RW "    count: 2\n    count: 3\n", 5,
+          "robots[0].count: duplicate key 'count' (first on line 4)" },
+        { "foraging: {}\nseed: 2\nforaging: {}\n", 3, "foraging: duplicate key 'foraging' (first on line 1)" },
         { "seed: 1\nseed: 2\n", 2, "seed: duplicate key 'seed' (first on line 1)" },
         { "objects:\n  - {radius: 1, radius: 2}\n", 2,
           "objects[0].radius: duplicate key 'radius'" },
@@ -596,7 +671,7 @@ static void test_hostile_inputs(void **state)
     expect_load_error(fx, "robots: {count: 5}: 3\n", 1, "YAML syntax error");
     expect_load_error(fx, "&a [*a]\n", 1, "YAML aliases (*a) are not supported");
     expect_load_error(fx, "'unterminated\n", 2, "YAML syntax error");
-    expect_load_error(fx, "robots: &r {count: 5}\nnest: *r\n", 2, "YAML aliases (*r)");
+    expect_load_error(fx, "arena: &r {width: 5}\nwheels: *r\n", 2, "YAML aliases (*r)");
 }
 
 /* ---------------------------------------------------------------- objects */
@@ -628,18 +703,14 @@ static void test_objects_inside_arena(void **state)
         { "arena:\n  height: 1\nobjects:\n  - {y: -0.6, radius: 0.2}\n", 4,
           "objects[0]: the cylinder reaches outside the arena (x in [-2, 2], y in [-0.5, 0.5] m)" },
         { "lights:\n  - {x: 3, y: 0}\n", 2, "lights[0]: the light is outside the arena" },
-        { "nest:\n  enabled: true\n  x: 1.9\n  diameter: 0.5\n", 2,
-          "nest: the nest circle reaches outside the arena" },
-        { "robots:\n  count: 5\n  placement: nest\n", 3,
-          "robots.placement: 'nest' needs nest.enabled: true" },
+        { "robots: []\nforaging:\n  information: global\n  nest:\n    x: 1.9\n    diameter: 0.5\n", 5,
+          "foraging.nest: the nest circle reaches outside the arena" },
     };
     fixture_t *fx = *state;
     expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
-    /* Touching a wall is fine; a rotated box is checked by its footprint;
-     * a disabled nest is not checked. */
+    /* Touching a wall is fine; a rotated box is checked by its footprint. */
     assert_int_equal(load(fx, "objects:\n  - {x: 1.9, radius: 0.1}\n"
-                              "  - {shape: box, x: -1.9, width: 1, depth: 0.1, angle: 90}\n"
-                              "nest: {enabled: false, x: 5}\n"),
+                              "  - {shape: box, x: -1.9, width: 1, depth: 0.1, angle: 90}\n"),
                      0);
     assert_int_equal(fx->sc->object_count, 2);
     assert_float_equal(fx->sc->objects[1].angle, 90.0, 1e-6);
@@ -650,13 +721,16 @@ static void test_objects_inside_arena(void **state)
 static void test_override_existing_and_absent(void **state)
 {
     static const char *const sets[] = {
-        "robots.count=7", "nest.enabled=true", "controller.params.speed_steps_s=300",
-        "name='with space'", "duration=30", NULL,
+        "robots.0.count=7", "tracker.enabled=true", "robots.0.params.speed_steps_s=300",
+        "name='with space'", "duration=30", "robots.1.controller=idle", NULL,
     };
     fixture_t *fx = *state;
-    assert_int_equal(load_sets(fx, "s.yaml", "robots:\n  count: 5\nduration: 10\n", sets), 0);
-    assert_int_equal(fx->sc->robots.count, 7);
-    assert_int_equal(fx->sc->nest.enabled, 1);
+    assert_int_equal(load_sets(fx, "s.yaml", RW "    count: 5\nduration: 10\n", sets), 0);
+    assert_int_equal(fx->sc->groups[0].count, 7);
+    assert_int_equal(fx->sc->group_count, 2);                /* appended */
+    assert_string_equal(fx->sc->groups[1].controller, "idle");
+    assert_int_equal(fx->sc->groups[1].count, 1);            /* entry default */
+    assert_int_equal(fx->sc->tracker.enabled, 1);
     assert_int_equal(rw_params(fx->sc)->speed_steps_s, 300);
     assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);  /* default kept */
     assert_string_equal(fx->sc->name, "with space");
@@ -665,11 +739,11 @@ static void test_override_existing_and_absent(void **state)
 
 static void test_override_later_wins_and_fixes_file(void **state)
 {
-    static const char *const sets[] = { "robots.count=abc", "robots.count=9", NULL };
+    static const char *const sets[] = { "robots.0.count=abc", "robots.0.count=9", NULL };
     fixture_t *fx = *state;
     /* The file's bad value is replaced before the check. */
-    assert_int_equal(load_sets(fx, "s.yaml", "robots:\n  count: nope\n", sets), 0);
-    assert_int_equal(fx->sc->robots.count, 9);
+    assert_int_equal(load_sets(fx, "s.yaml", RW "    count: nope\n", sets), 0);
+    assert_int_equal(fx->sc->groups[0].count, 9);
 }
 
 static void test_override_sequences(void **state)
@@ -699,66 +773,146 @@ static void test_override_errors(void **state)
     fixture_t *fx = *state;
     static const char two[] = "objects:\n  - radius: 0.1\n  - radius: 0.1\n";
     char want[1024];
-    const char *sets[] = { "robots.count=abc", NULL };
-    assert_int_equal(load_sets(fx, "s.yaml", "robots:\n  count: 5\n", sets), -1);
-    assert_string_equal(fx->err, "--set robots.count=abc: robots.count: expected an integer, "
+    const char *sets[] = { "robots.0.count=abc", NULL };
+    assert_int_equal(load_sets(fx, "s.yaml", RW "    count: 5\n", sets), -1);
+    assert_string_equal(fx->err, "--set robots.0.count=abc: robots[0].count: expected an integer, "
                                  "got 'abc'");
-    expect_set_error(fx, "", "robots.count", "expected key.path=value");
-    expect_set_error(fx, "", "robots.cuont=5",
-                     "robots.cuont: unknown key 'cuont' (did you mean 'count'?)");
+    expect_set_error(fx, "", "robots.0.count", "expected key.path=value");
+    expect_set_error(fx, RW, "robots.0.cuont=5",
+                     "robots[0].cuont: unknown key 'cuont' (did you mean 'count'?)");
     expect_set_error(fx, "", "foo.bar=1", "foo: unknown key 'foo'");
-    expect_set_error(fx, "", "robots.count=200000",
-                     "robots.count: 200000 is out of range [0, 100000]");
+    expect_set_error(fx, RW, "robots.0.count=200000",
+                     "robots[0].count: 200000 is out of range [0, 100000]");
     expect_set_error(fx, two, "objects.5.x=1",
                      "objects[5]: index out of range (the sequence has 2 entries)");
     expect_set_error(fx, two, "objects.x=1", "objects: expected an index into the sequence");
     expect_set_error(fx, two, "objects.2.x=1", "objects[2].radius: a cylinder needs radius > 0");
-    expect_set_error(fx, "robots:\n  count: 5\n", "robots.count.x=1",
-                     "robots.count: expected a mapping, got '5'");
-    expect_set_error(fx, "robots:\n  count: 5\n", "robots[0]=1",
-                     "robots: expected a sequence, got a mapping");
-    expect_set_error(fx, "robots:\n  count: 5\n", "robots.0=1", "robots.0: unknown key '0'");
-    expect_set_error(fx, "", "robots.0=1", "robots: expected a mapping, got a sequence");
+    expect_set_error(fx, "arena:\n  width: 5\n", "arena.width.x=1",
+                     "arena.width: expected a mapping, got '5'");
+    expect_set_error(fx, "arena:\n  width: 5\n", "arena[0]=1",
+                     "arena: expected a sequence, got a mapping");
+    expect_set_error(fx, "arena:\n  width: 5\n", "arena.0=1", "arena.0: unknown key '0'");
+    expect_set_error(fx, "", "arena.0=1", "arena: expected a mapping, got a sequence");
     expect_set_error(fx, "", "a..b=1", "malformed key path 'a..b'");
     expect_set_error(fx, "", "=5", "malformed key path ''");
     expect_set_error(fx, "", "robots.=5", "malformed key path");
     expect_set_error(fx, "", "objects[x].radius=1", "malformed key path");
     expect_set_error(fx, "", "name=[", "value: YAML syntax error");
     expect_set_error(fx, "", "name=", "name: expected a string, got nothing");
-    expect_set_error(fx, "", "controller.name=foo",
-                     "controller.name: unknown controller 'foo' (valid: random_walk");
+    expect_set_error(fx, RW, "robots.0.controller=foo",
+                     "robots[0].controller: unknown controller 'foo' (valid: random_walk");
     /* A file error keeps its file line even with valid overrides. */
     sets[0] = "seed=2";
-    assert_int_equal(load_sets(fx, "s.yaml", "seed: 1\nrobots:\n  count: x\n", sets), -1);
-    snprintf(want, sizeof want, "%s:3: robots.count: expected an integer, got 'x'", fx->path);
+    assert_int_equal(load_sets(fx, "s.yaml", "seed: 1\n" RW "    count: x\n", sets), -1);
+    snprintf(want, sizeof want, "%s:4: robots[0].count: expected an integer, got 'x'", fx->path);
     assert_string_equal(fx->err, want);
 }
 
-/* ---------------------------------------------------------------- controller */
+/* ---------------------------------------------------------------- groups */
 
-static void test_controller_params(void **state)
+static void test_group_params(void **state)
 {
     fixture_t *fx = *state;
-    static const char *const sets[] = { "controller.params.turn_chance=70000", NULL };
-    /* params before name: still the named controller's keys and defaults. */
-    assert_int_equal(load(fx, "controller:\n  params:\n    speed_steps_s: 200\n"
-                              "  name: random_walk\n"),
+    static const char *const sets[] = { "robots.0.params.turn_chance=70000", NULL };
+    /* params before controller: still the named controller's keys and defaults. */
+    assert_int_equal(load(fx, "robots:\n  - params:\n      speed_steps_s: 200\n"
+                              "    controller: random_walk\n"),
                      0);
     assert_int_equal(rw_params(fx->sc)->speed_steps_s, 200);
     assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);
     assert_int_equal(rw_params(fx->sc)->turn_chance, 1311);
-    expect_load_error(fx, "controller:\n  name: nosuch\n", 2,
-                      "controller.name: unknown controller 'nosuch' (valid: random_walk");
-    expect_load_error(fx, "controller:\n  params:\n    turn_speed_steps_s: 0\n", 3,
-                      "controller.params.turn_speed_steps_s: 0 is out of range [1, 1000]");
-    expect_load_error(fx, "controller:\n  params: 5\n", 2,
-                      "controller.params: expected a mapping, got '5'");
-    expect_load_error(fx, "controller:\n  nmae: random_walk\n", 2,
-                      "controller.nmae: unknown key 'nmae' (did you mean 'name'?)");
-    assert_int_equal(load_sets(fx, "s.yaml", "", sets), -1);
-    assert_string_equal(fx->err, "--set controller.params.turn_chance=70000: "
-                                 "controller.params.turn_chance: 70000 is out of range "
+    expect_load_error(fx, "robots:\n  - controller: nosuch\n", 2,
+                      "robots[0].controller: unknown controller 'nosuch' (valid: random_walk");
+    expect_load_error(fx, "robots:\n  - controller: forgaer\n", 2,
+                      "robots[0].controller: unknown controller 'forgaer' (did you mean 'forager'?)");
+    expect_load_error(fx, "robots:\n  - count: 3\n", 2,
+                      "robots[0].controller: every group needs a controller (one of random_walk");
+    expect_load_error(fx, RW "    params:\n      turn_speed_steps_s: 0\n", 4,
+                      "robots[0].params.turn_speed_steps_s: 0 is out of range [1, 1000]");
+    expect_load_error(fx, RW "    contoller: idle\n", 3,
+                      "robots[0].contoller: unknown key 'contoller' (did you mean 'controller'?)");
+    assert_int_equal(load_sets(fx, "s.yaml", RW, sets), -1);
+    assert_string_equal(fx->err, "--set robots.0.params.turn_chance=70000: "
+                                 "robots[0].params.turn_chance: 70000 is out of range "
                                  "[0, 65535]");
+}
+
+static void test_group_policy(void **state)
+{
+    fixture_t *fx = *state;
+    assert_int_equal(load(fx, "ircom: {payload_bits: 16}\nrobots:\n  - controller: forager\n"), 0);
+    assert_string_equal(fx->sc->groups[0].policy, "drtm");     /* the first */
+    assert_int_equal(fx->sc->groups[0].policy_index, 0);
+    expect_load_error(fx, "ircom: {payload_bits: 16}\nrobots:\n  - controller: forager\n"
+                          "    policy: xtrm\n", 4,
+                      "robots[0].policy: unknown policy 'xtrm' for controller 'forager' "
+                      "(valid: drtm, artm, frtm)");
+    expect_load_error(fx, RW "    policy: drtm\n", 3,
+                      "robots[0].policy: controller 'random_walk' has no policies");
+}
+
+/* Group names: the controller's by default, numbered when taken; a given
+ * name must be unique. */
+static void test_group_names(void **state)
+{
+    fixture_t *fx = *state;
+    assert_int_equal(load(fx, RW "  - controller: random_walk\n  - {controller: idle, name: x}\n"), 0);
+    assert_string_equal(fx->sc->groups[0].name, "random_walk");
+    assert_string_equal(fx->sc->groups[1].name, "random_walk_1");
+    assert_string_equal(fx->sc->groups[2].name, "x");
+    expect_load_error(fx, "robots:\n  - {controller: idle, name: a}\n  - {controller: idle, name: a}\n",
+                      3, "robots[1].name: 'a' already names robots[0]");
+}
+
+static void test_placements(void **state)
+{
+    static const bad_case_t cases[] = {
+        { RW "    placement: {shape: circle}\n", 3,
+          "robots[0].placement.radius: a circle placement needs radius > 0" },
+        { RW "    placement: {shape: ring, inner: 1, outer: 0.5}\n", 3,
+          "robots[0].placement.outer: a ring placement needs outer > inner (0.5 <= 1)" },
+        { RW "    count: 3\n    placement:\n      shape: poses\n      poses: [{x: 0, y: 0}]\n", 6,
+          "robots[0].placement.poses: 1 poses for a group of 3 robots (give one per robot)" },
+        { RW "    placement:\n      poses: [{x: 0, y: 0, heading: left}]\n", 4,
+          "robots[0].placement.poses[0].heading: expected an angle in degrees or 'random'" },
+    };
+    fixture_t *fx = *state;
+    expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
+    /* A group of 0 robots needs no poses. */
+    assert_int_equal(load(fx, RW "    count: 0\n    placement: {shape: poses}\n"), 0);
+}
+
+/* A controller that sends 16-bit messages on an 8-bit platform is a load
+ * error, not a run where the foragers never leave the nest. */
+static void test_controller_needs(void **state)
+{
+    fixture_t *fx = *state;
+    expect_load_error(fx, "robots:\n  - controller: random_walk\n  - controller: forager\n", 3,
+                      "robots[1].controller: controller 'forager' sends 16-bit IR messages but "
+                      "ircom.payload_bits is 8 (set ircom.payload_bits: 16");
+    assert_int_equal(load(fx, "robots:\n  - controller: forager\n    count: 0\n"), 0);
+}
+
+/* A task runs when its section is there; its own checks name its keys. */
+static void test_task_sections(void **state)
+{
+    static const bad_case_t cases[] = {
+        { "ircom: {payload_bits: 16}\nrobots:\n  - controller: forager\nforaging:\n  food_count: 3\n",
+          5, "foraging.information: 'beacon' needs one robot running nest_beacon at the nest "
+          "(the scenario has 0)" },
+        { "ircom: {payload_bits: 16}\nrobots:\n  - {controller: nest_beacon}\n"
+          "foraging:\n  information: global\n", 5,
+          "foraging.information: 'global' replaces the nest beacon by the simulator" },
+    };
+    fixture_t *fx = *state;
+    expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
+    assert_int_equal(load(fx, "seed: 2\n"), 0);
+    assert_int_equal(fx->sc->task_count, 0);
+    assert_null(scenario_task_config(fx->sc, &foraging_task));
+    assert_int_equal(load(fx, "robots: []\nforaging: {information: global}\n"), 0);
+    assert_int_equal(fx->sc->task_count, 1);
+    assert_int_equal(fx->sc->group_count, 0);
+    assert_non_null(scenario_task_config(fx->sc, &foraging_task));
 }
 
 /* ---------------------------------------------------------------- --help */
@@ -766,9 +920,11 @@ static void test_controller_params(void **state)
 static void test_print_schema(void **state)
 {
     static const char *const wanted[] = {
-        "seed", "robots.count", "[0, 100000]", "random|nest|grid", "objects[].radius",
-        "lights[].intensity", "controller.params.speed_steps_s", "ircom.quantise_bearing",
-        "output.timeseries_every", "arena.width", "0.05",
+        "seed", "robots[].count", "[0, 100000]", "rectangle|circle|ring|grid|poses",
+        "robots[].placement.poses[].heading", "objects[].radius", "lights[].intensity",
+        "robots[].params.speed_steps_s", "when controller is forager", "ircom.quantise_bearing",
+        "output.timeseries_every", "arena.width", "0.05", "foraging.nest.diameter",
+        "foraging.information", "beacon|global", "tracker.dropout",
     };
     char *text = NULL;
     size_t len = 0, i;
@@ -814,7 +970,12 @@ int main(void)
         T(test_override_later_wins_and_fixes_file),
         T(test_override_sequences),
         T(test_override_errors),
-        T(test_controller_params),
+        T(test_group_params),
+        T(test_group_policy),
+        T(test_group_names),
+        T(test_placements),
+        T(test_controller_needs),
+        T(test_task_sections),
         T(test_print_schema),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);

@@ -12,7 +12,10 @@
 
 #include <cmocka.h>
 
+#include "common/random_walk.h"
 #include "hal.h"
+#include "registry.h"
+#include "units.h"
 #include "core/scenario.h"
 #include "core/sim.h"
 #include "core/sim_internal.h"
@@ -25,9 +28,11 @@ static scenario_t *idle_scenario(uint32_t robots, float arena)
     scenario_t *sc = calloc(1, sizeof *sc);
     assert_non_null(sc);
     scenario_defaults(sc);
-    strcpy(sc->controller.name, "idle");
-    sc->robots.count = robots;
-    sc->robots.placement = PLACE_GRID;
+    strcpy(sc->groups[0].controller, "idle");
+    strcpy(sc->groups[0].name, "idle");
+    sc->groups[0].def = &idle_def;
+    sc->groups[0].count = robots;
+    sc->groups[0].placement.shape = PLACE_GRID;
     sc->arena.width = sc->arena.height = arena;
     return sc;
 }
@@ -86,7 +91,7 @@ static void test_ir_bearing_left_is_ir5(void **state)
     sc->object_count = 1;
     sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.035f + 0.01f + 0.05f,
                                      .radius = 0.05f, .height = 0.05f };
-    sc->robots.placement = PLACE_RANDOM;
+    sc->groups[0].placement.shape = PLACE_RECTANGLE;
     sim_t *sim = make(sc, 2);
     /* Robot at the origin heading +x: the cylinder is at +90 deg (left). */
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
@@ -238,7 +243,7 @@ static void test_motion_rotation_in_place(void **state)
         prev = t;
     }
     /* omega = 2 v / axle = 2 x 300 x 0.12881 mm / 53 mm = 1.458 rad/s. */
-    double expect = 2.0 * 300 * SIM_STEP_M / SIM_AXLE_M;
+    double expect = 2.0 * 300 * EPUCK_STEP_M / EPUCK_AXLE_M;
     assert_true(fabs(turned - expect) < 0.02 * expect);
     assert_true(hypot(x, y) < 1e-3);
     sim_destroy(sim);
@@ -258,7 +263,7 @@ static void test_speed_is_clamped_and_counters_wrap(void **state)
     assert_int_equal(l, (int16_t)(uint16_t)40000u);
     double x, y, t;
     sim_robot_pose(sim, 0, &x, &y, &t);
-    assert_true(fabs((x + 9.0) - 40 * 1000 * SIM_STEP_M) < 0.02 * 40 * 1000 * SIM_STEP_M);
+    assert_true(fabs((x + 9.0) - 40 * 1000 * EPUCK_STEP_M) < 0.02 * 40 * 1000 * EPUCK_STEP_M);
     sim_destroy(sim);
     free(sc);
 }
@@ -306,7 +311,11 @@ static void test_twenty_robots_100k_steps_stay_inside(void **state)
     /* Box2D resolves contacts to within its linear slop (5 mm): never a
      * deeper overlap with a wall. */
     if (m->min_wall_clearance_m < -0.005) fail_msg("overlap %.4f m", m->min_wall_clearance_m);
-    assert_true(sim_oae_total(sim) > 0);
+    uint64_t oaes = 0;
+    for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+        oaes += ((const random_walk_t *)sim_robot_controller(sim, i))->oae_count;
+    }
+    assert_true(oaes > 0);
     assert_true(m->distance_m > 20 * 100.0);   /* they really moved */
     sim_destroy(sim);
     free(sc);
@@ -349,36 +358,36 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     /* Sender 0.15 m to the left of the receiver (heading +x): IR5. */
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
-    assert_int_equal(hal_ircom_send(sim_robot_hal(sim, 1), 0xA5), 0);
-    assert_int_equal(hal_ircom_send(sim_robot_hal(sim, 1), 0x11), -1);   /* one per step */
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);  /* not before the step */
+    assert_int_equal(hal_ircom_send(sim_robot_hal(sim, 1), 0xA5), HAL_OK);
+    assert_int_equal(hal_ircom_send(sim_robot_hal(sim, 1), 0x11), HAL_ERR_BUSY);   /* one per step */
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_ERR_EMPTY);  /* not before the step */
     sim_step(sim);
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 1);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_OK);
     assert_int_equal(m.value, 0xA5);
     assert_int_equal(m.sensor, 5);
     assert_int_equal(m.bearing_mrad, 1571);
     assert_true(m.range_mm > 75 && m.range_mm < 225);
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 1), &m), 0);  /* not to itself */
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 1), &m), HAL_ERR_EMPTY);  /* not to itself */
 
     /* 8-bit payloads (libIrcom) drop the high byte; 16-bit keep it. */
     assert_int_equal(hal_ircom_payload_bits(sim_robot_hal(sim, 1)), 8);
     hal_ircom_send(sim_robot_hal(sim, 1), 0x1234);
     sim_step(sim);
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 1);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_OK);
     assert_int_equal(m.value, 0x34);
 
     /* Out of range (0.25 m). */
     sim_set_robot_pose(sim, 1, 0.0, 0.4, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 1);
     sim_step(sim);
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_ERR_EMPTY);
 
     /* Blocked by the cylinder between them. */
     sim_set_robot_pose(sim, 0, 0.5, 0.4, 0.0);
     sim_set_robot_pose(sim, 1, 0.5, 0.6, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 2);
     sim_step(sim);
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_ERR_EMPTY);
     sim_destroy(sim);
 
     /* 16-bit payload (range-and-bearing turret). */
@@ -388,7 +397,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 0xBEEF);
     sim_step(sim);
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 1);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_OK);
     assert_int_equal(m.value, 0xBEEF);
     sim_destroy(sim);
 
@@ -400,7 +409,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 3);
     sim_step(sim);
-    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), 0);
+    assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_ERR_EMPTY);
     sim_destroy(sim);
     free(sc);
 }
@@ -409,7 +418,7 @@ static void test_placement_failure_is_reported(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(500, 0.5f);
-    sc->robots.placement = PLACE_RANDOM;
+    sc->groups[0].placement.shape = PLACE_RECTANGLE;
     char err[256] = "";
     sim_t *sim = sim_create(sc, 1, err);
     assert_null(sim);

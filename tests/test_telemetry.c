@@ -20,20 +20,25 @@
 
 #include <lcm/lcm.h>
 
-#include "tasks/foraging/foraging.h"
+#include "common/random_walk.h"
 #include "core/metrics.h"
 #include "core/scenario.h"
 #include "core/sim.h"
+#include "core/telemetry.h"
+#include "foraging/forager.h"
 #include "swarmlcm_event_t.h"
 #include "swarmlcm_robot_state_t.h"
 #include "swarmlcm_run_info_t.h"
 #include "swarmlcm_run_summary_t.h"
+#include "swarmlcm_schema_t.h"
 #include "swarmlcm_swarm_state_t.h"
-#include "core/telemetry.h"
+#include "tasks/foraging/foraging.h"
 
 #define BASE "../sim_host/scenarios/foraging_base.yaml"
 #define WALK "../sim_host/scenarios/random_walk.yaml"
 #define MAX_ROBOTS 64
+#define MAX_VALUES 64
+#define NAME 40
 
 static scenario_t *load(const char *path)
 {
@@ -52,24 +57,42 @@ static sim_t *make(const scenario_t *sc, uint64_t seed)
     return sim;
 }
 
+/* Event kinds counted by name. */
+static const char *const kinds[] = {
+    "oae", "deposits", "state", "escaped", "pickup", "deposit", "token_dropped", "token_lost", NULL
+};
+
+/* A schema as a subscriber assembles it. */
+typedef struct schema_seen {
+    char kind[NAME], name[NAME];
+    int n;
+    char names[MAX_VALUES][NAME];
+    int8_t counters[MAX_VALUES];
+} schema_seen_t;
+
 /* What a memq subscriber saw. */
 typedef struct seen {
-    uint32_t info, swarm, robot, event, summary;
+    uint32_t info, swarm, robot, event, summary, schema;
     uint32_t robot_by_id[MAX_ROBOTS];
-    uint32_t events_by_kind[8];
-    uint32_t token_lost, escaped, dropped;
+    uint32_t events_by_kind[8], events_other;
+    schema_seen_t schemas[8];
+    int n_schemas;
     swarmlcm_robot_state_t last_robot[MAX_ROBOTS];
-    char last_state[MAX_ROBOTS][32], last_controller[MAX_ROBOTS][32];
-    swarmlcm_swarm_state_t last_swarm;
+    float last_values[MAX_ROBOTS][MAX_VALUES];
+    char last_state[MAX_ROBOTS][32], last_controller[MAX_ROBOTS][32], last_group[MAX_ROBOTS][32];
     int64_t last_swarm_step;
+    int last_swarm_values;
+    double swarm_values[MAX_VALUES];
     int swarm_steps_in_order;
+    int bad_version;
     double summary_values[METRICS_MAX];
     char summary_names[METRICS_MAX][32];
     int summary_count;
     char summary_hash[17];
     int64_t summary_steps;
     int64_t info_steps;
-    int64_t utime_min_event;
+    int info_groups;
+    char info_group0[32];
     uint32_t event_bad_time;
     int64_t now;   /* the utime the sim is at, set by the test */
     swarmlcm_run_info_t_subscription_t *sub_info;
@@ -77,6 +100,7 @@ typedef struct seen {
     swarmlcm_robot_state_t_subscription_t *sub_robot;
     swarmlcm_event_t_subscription_t *sub_event;
     swarmlcm_run_summary_t_subscription_t *sub_summary;
+    swarmlcm_schema_t_subscription_t *sub_schema;
 } seen_t;
 
 static void on_info(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_run_info_t *m, void *u)
@@ -86,6 +110,30 @@ static void on_info(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_run
     seen_t *s = u;
     s->info++;
     s->info_steps = m->steps;
+    s->info_groups = m->n_groups;
+    snprintf(s->info_group0, sizeof s->info_group0, "%s", m->n_groups ? m->group_names[0] : "");
+    s->bad_version |= m->version != SWARMLCM_RUN_INFO_T_VERSION;
+}
+
+static void on_schema(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_schema_t *m, void *u)
+{
+    (void)rb;
+    (void)ch;
+    seen_t *s = u;
+    int k = 0;
+    s->schema++;
+    s->bad_version |= m->version != SWARMLCM_SCHEMA_T_VERSION;
+    while (k < s->n_schemas && strcmp(s->schemas[k].name, m->name) != 0) k++;
+    if (k == s->n_schemas && k < 8) s->n_schemas++;
+    if (k == 8) return;
+    schema_seen_t *sc = &s->schemas[k];
+    snprintf(sc->kind, NAME, "%s", m->kind);
+    snprintf(sc->name, NAME, "%s", m->name);
+    sc->n = m->total;
+    for (int i = 0; i < m->n && m->first + i < MAX_VALUES; i++) {
+        snprintf(sc->names[m->first + i], NAME, "%s", m->names[i]);
+        sc->counters[m->first + i] = m->counters[i];
+    }
 }
 
 static void on_swarm(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_swarm_state_t *m, void *u)
@@ -96,9 +144,9 @@ static void on_swarm(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_sw
     if (s->swarm && m->step <= s->last_swarm_step) s->swarm_steps_in_order = 0;
     s->swarm++;
     s->last_swarm_step = m->step;
-    s->last_swarm = *m;   /* scalars only are read */
-    s->last_swarm.state_names = NULL;
-    s->last_swarm.state_counts = NULL;
+    s->last_swarm_values = m->n_values;
+    for (int k = 0; k < m->n_values && k < MAX_VALUES; k++) s->swarm_values[k] = m->values[k];
+    s->bad_version |= m->version != SWARMLCM_SWARM_STATE_T_VERSION;
 }
 
 static void on_robot(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_robot_state_t *m, void *u)
@@ -107,11 +155,15 @@ static void on_robot(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_ro
     (void)ch;
     seen_t *s = u;
     s->robot++;
+    s->bad_version |= m->version != SWARMLCM_ROBOT_STATE_T_VERSION;
     if (m->robot_id >= 0 && m->robot_id < MAX_ROBOTS) {
         s->robot_by_id[m->robot_id]++;
         s->last_robot[m->robot_id] = *m;
+        s->last_robot[m->robot_id].values = NULL;
+        for (int k = 0; k < m->n_values && k < MAX_VALUES; k++) s->last_values[m->robot_id][k] = m->values[k];
         snprintf(s->last_state[m->robot_id], 32, "%s", m->state);
         snprintf(s->last_controller[m->robot_id], 32, "%s", m->controller);
+        snprintf(s->last_group[m->robot_id], 32, "%s", m->group);
     }
 }
 
@@ -120,14 +172,13 @@ static void on_event(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_ev
     (void)rb;
     (void)ch;
     seen_t *s = u;
+    int k = 0;
     s->event++;
-    if (m->kind > 0 && m->kind < 8) s->events_by_kind[m->kind]++;
-    if (m->kind == SWARMLCM_EVENT_T_FAILURE) {
-        s->token_lost += strcmp(m->detail, "token_lost") == 0;
-        s->escaped += strcmp(m->detail, "escaped") == 0;
-        s->dropped += strcmp(m->detail, "token_dropped") == 0;
-    }
+    while (kinds[k] && strcmp(kinds[k], m->kind) != 0) k++;
+    if (kinds[k]) s->events_by_kind[k]++;
+    else s->events_other++;
     if (m->utime != s->now) s->event_bad_time++;
+    s->bad_version |= m->version != SWARMLCM_EVENT_T_VERSION;
 }
 
 static void on_summary(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_run_summary_t *m, void *u)
@@ -152,6 +203,7 @@ static void subscribe_all(lcm_t *lcm, seen_t *s)
     s->sub_robot = swarmlcm_robot_state_t_subscribe(lcm, TELEMETRY_CHANNEL_ROBOT_STATE, on_robot, s);
     s->sub_event = swarmlcm_event_t_subscribe(lcm, TELEMETRY_CHANNEL_EVENT, on_event, s);
     s->sub_summary = swarmlcm_run_summary_t_subscribe(lcm, TELEMETRY_CHANNEL_RUN_SUMMARY, on_summary, s);
+    s->sub_schema = swarmlcm_schema_t_subscribe(lcm, TELEMETRY_CHANNEL_SCHEMA, on_schema, s);
 }
 
 /* Unsubscribes and closes `t`, expecting success. */
@@ -164,6 +216,7 @@ static void close_memq(telemetry_t *t, seen_t *s)
     swarmlcm_robot_state_t_unsubscribe(lcm, s->sub_robot);
     swarmlcm_event_t_unsubscribe(lcm, s->sub_event);
     swarmlcm_run_summary_t_unsubscribe(lcm, s->sub_summary);
+    swarmlcm_schema_t_unsubscribe(lcm, s->sub_schema);
     assert_int_equal(telemetry_close(t, 1, err), 0);
 }
 
@@ -209,8 +262,36 @@ static void run(sim_t *sim, telemetry_t *t, seen_t *s, uint64_t steps)
     if (lcm) drain(lcm);
 }
 
+static int count_of(const seen_t *s, const char *kind)
+{
+    for (int k = 0; kinds[k]; k++) {
+        if (strcmp(kinds[k], kind) == 0) return (int)s->events_by_kind[k];
+    }
+    return -1;
+}
+
+static const schema_seen_t *schema_named(const seen_t *s, const char *name)
+{
+    for (int k = 0; k < s->n_schemas; k++) {
+        if (strcmp(s->schemas[k].name, name) == 0) return &s->schemas[k];
+    }
+    fail_msg("no schema named %s", name);
+    return NULL;
+}
+
+/* Index of value `name` in a schema (fails the test if absent). */
+static int column(const schema_seen_t *sc, const char *name)
+{
+    for (int k = 0; k < sc->n; k++) {
+        if (strcmp(sc->names[k], name) == 0) return k;
+    }
+    fail_msg("schema %s has no %s", sc->name, name);
+    return -1;
+}
+
 /* The base foraging condition for 2000 steps at the default rates: counts,
- * values and events against the simulation's ground truth. */
+ * values and events against the simulation's ground truth, named by the
+ * schemas. */
 static void test_memq_foraging_run(void **state)
 {
     (void)state;
@@ -225,45 +306,68 @@ static void test_memq_foraging_run(void **state)
 
     uint32_t n = sim_robot_count(sim);   /* 20 foragers and the beacon */
     assert_int_equal(n, 21);
-    /* RUN_INFO at 0 and every 10 s (100 steps); SWARM_STATE every step
-     * (10 Hz at 100 ms), 0..2000; ROBOT_STATE every robot every 10 steps. */
+    /* RUN_INFO at 0 and every 10 s (100 steps), each with the schemas of
+     * forager, nest_beacon and the swarm; SWARM_STATE every step (10 Hz at
+     * 100 ms), 0..2000; ROBOT_STATE every robot every 10 steps. */
     assert_int_equal(s->info, 1 + steps / 100);
+    assert_int_equal(s->schema, 3 * (1 + steps / 100));
     assert_int_equal(s->info_steps, steps);
+    assert_int_equal(s->info_groups, 2);
+    assert_string_equal(s->info_group0, "foragers");
     assert_int_equal(s->swarm, steps + 1);
     assert_true(s->swarm_steps_in_order);
     assert_int_equal(s->robot, n * (steps / 10 + 1));
     for (uint32_t i = 0; i < n; i++) assert_int_equal(s->robot_by_id[i], steps / 10 + 1);
     assert_int_equal(s->summary, 1);
+    assert_false(s->bad_version);
 
-    /* The last states are the simulation's. */
-    const foraging_t *f = sim_foraging(sim);
-    assert_int_equal(s->last_swarm.step, steps);
-    assert_true(s->last_swarm.time_s == steps * 0.1);
-    assert_true(s->last_swarm.food_nest == f->food);
-    assert_int_equal(s->last_swarm.food_collected, f->delivered);
-    assert_int_equal(s->last_swarm.oae_total, sim_oae_total(sim));
-    assert_int_equal(s->last_swarm.waiting + s->last_swarm.searching + s->last_swarm.returning, 20);
-    assert_true(s->last_swarm.beacon);
+    /* The last states are the simulation's, found by the schemas' names. */
+    foraging_truth_t f;
+    assert_int_equal(foraging_truth(sim, &f), 1);
+    uint64_t oaes = 0;
+    for (uint32_t i = 0; i < 20; i++) oaes += ((const forager_t *)sim_robot_controller(sim, i))->walk.oae_count;
+    const schema_seen_t *sw = schema_named(s, "swarm");
+    assert_string_equal(sw->kind, "swarm");
+    assert_int_equal(s->last_swarm_step, steps);
+    assert_int_equal(s->last_swarm_values, sw->n);
+    assert_true(s->swarm_values[column(sw, "time_s")] == steps * 0.1);
+    assert_true(s->swarm_values[column(sw, "food_nest")] == f.food);
+    assert_true(s->swarm_values[column(sw, "food_collected")] == (double)f.delivered);
+    assert_true(s->swarm_values[column(sw, "oae_total")] == (double)oaes);
+    assert_true(s->swarm_values[column(sw, "waiting")] + s->swarm_values[column(sw, "searching")]
+                + s->swarm_values[column(sw, "returning")] == 20.0);
+    const schema_seen_t *fs = schema_named(s, "forager");
+    assert_string_equal(fs->kind, "controller");
+    assert_int_equal(fs->counters[column(fs, "oae")], 1);
+    assert_int_equal(fs->counters[column(fs, "threshold")], 0);
     for (uint32_t i = 0; i < n; i++) {
         double x, y, th;
         sim_robot_pose(sim, i, &x, &y, &th);
         assert_true(s->last_robot[i].x == (float)x && s->last_robot[i].y == (float)y);
         assert_int_equal(s->last_robot[i].utime, (int64_t)steps * 100000);
-        assert_int_equal(s->last_robot[i].task_state, sim_robot_task_state(sim, i));
         assert_string_equal(s->last_controller[i], i < 20 ? "forager" : "nest_beacon");
-        assert_int_equal(s->last_robot[i].carried_item, f->carried[i]);
+        assert_string_equal(s->last_group[i], i < 20 ? "foragers" : "nest_beacon");
+        assert_string_equal(s->last_state[i], sim_robot_state_name(sim, i));
+        if (i < 20) {
+            const forager_t *fg = sim_robot_controller(sim, i);
+            assert_int_equal(s->last_robot[i].n_values, fs->n);
+            assert_true(s->last_values[i][column(fs, "oae")] == (float)fg->walk.oae_count);
+            assert_true(s->last_values[i][column(fs, "threshold")] == fg->theta);
+            assert_true(s->last_values[i][column(fs, "n")] == (float)fg->n);
+        }
     }
 
     /* Events: every OAE, pick-up and deposit, told once at its step. */
     assert_int_equal(s->event_bad_time, 0);
-    assert_int_equal(s->events_by_kind[SWARMLCM_EVENT_T_OAE], sim_oae_total(sim));
-    assert_int_equal(s->events_by_kind[SWARMLCM_EVENT_T_DEPOSIT], f->delivered);
-    assert_int_equal(s->dropped, f->dropped);
+    assert_int_equal(count_of(s, "oae"), oaes);
+    assert_int_equal(count_of(s, "deposit"), f.delivered);
+    assert_int_equal(count_of(s, "token_dropped"), f.dropped);
     uint32_t carrying = 0;
-    for (uint32_t i = 0; i < 20; i++) carrying += f->carried[i] >= 0;
-    assert_int_equal(s->events_by_kind[SWARMLCM_EVENT_T_PICKUP], f->delivered + f->dropped + carrying);
-    assert_true(f->delivered >= 5);
-    assert_true(s->events_by_kind[SWARMLCM_EVENT_T_STATE_CHANGE] >= 2 * f->delivered);
+    for (uint32_t i = 0; i < 20; i++) carrying += foraging_carried(sim, i) >= 0;
+    assert_int_equal(count_of(s, "pickup"), f.delivered + f.dropped + carrying);
+    assert_true(f.delivered >= 5);
+    assert_true(count_of(s, "state") >= (int)(2 * f.delivered));
+    assert_int_equal(s->events_other, 0);
 
     /* The summary is metrics_final's, with the state hash. */
     metric_list_t final;
@@ -284,7 +388,8 @@ static void test_memq_foraging_run(void **state)
     free(sc);
 }
 
-/* Rates: 2 Hz robot states and 1 Hz swarm states, or none at all. */
+/* Rates: 2 Hz robot states and 1 Hz swarm states, or none at all; a
+ * controller with one counter and states, and no task. */
 static void test_memq_rates(void **state)
 {
     (void)state;
@@ -297,17 +402,21 @@ static void test_memq_rates(void **state)
         subscribe_all(telemetry_lcm(t), s);
         run(sim, t, s, steps);
         uint32_t n = sim_robot_count(sim);
+        uint64_t oaes = 0;
+        for (uint32_t i = 0; i < n; i++) oaes += ((const random_walk_t *)sim_robot_controller(sim, i))->oae_count;
         assert_int_equal(s->robot, pass ? 0 : n * (steps / 5 + 1));
         assert_int_equal(s->swarm, pass ? 0 : steps / 10 + 1);
         assert_int_equal(s->info, 1 + steps / 100);
         assert_int_equal(s->summary, 1);
-        assert_int_equal(s->events_by_kind[SWARMLCM_EVENT_T_OAE], sim_oae_total(sim));
-        assert_int_equal(s->events_by_kind[SWARMLCM_EVENT_T_STATE_CHANGE], 0);   /* no task states */
+        assert_int_equal(count_of(s, "oae"), oaes);
+        assert_true(count_of(s, "state") > 0);            /* forward, tumble, avoid */
+        assert_int_equal(count_of(s, "pickup"), 0);
         if (!pass) {
-            assert_true(isnan(s->last_swarm.food_nest));
-            assert_false(s->last_swarm.foraging);
-            assert_true(isnan(s->last_robot[0].threshold));
+            const schema_seen_t *sw = schema_named(s, "swarm");
+            assert_int_equal(sw->n, 6);   /* step, time_s, oae_total, contacts x2, distance: no task */
             assert_string_equal(s->last_controller[0], "random_walk");
+            assert_int_equal(s->last_robot[0].n_values, 1);
+            assert_true(s->last_values[0][0] == (float)((const random_walk_t *)sim_robot_controller(sim, 0))->oae_count);
         }
         close_memq(t, s);
         sim_destroy(sim);

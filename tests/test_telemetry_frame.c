@@ -270,19 +270,12 @@ static void test_lcm_message_through_a_frame(void **state)
     m.robot_id = 7;
     m.controller = (char *)"forager";
     m.state = (char *)"return";
-    m.task_state = 'R';
-    m.policy = (char *)"drtm";
-    m.threshold = 2.5f;
-    m.probability = 0.75f;
-    m.stimulus = 14.0f;
-    m.k = 0.5f;
-    m.mean_oae = 0.25f;
-    m.response_n = 4;
-    m.energy = 6.0f;
-    m.oae_count = 12;
-    m.deposits = 3;
-    m.carrying = 1;
-    m.carried_item = -2;
+    m.version = SWARMLCM_ROBOT_STATE_T_VERSION;
+    m.group = (char *)"";
+    /* The forager's ten values (forager_def.c). */
+    float values[10] = { 12.0f, 3.0f, 2.5f, 0.75f, 14.0f, 0.5f, 0.25f, 4.0f, 6.0f, 1.0f };
+    m.n_values = 10;
+    m.values = values;
     m.ir_max = 301;
     m.ir_max_index = 7;
     m.ambient_min = 3100;
@@ -304,8 +297,9 @@ static void test_lcm_message_through_a_frame(void **state)
     assert_string_equal(back.controller, "forager");
     assert_string_equal(back.state, "return");
     assert_int_equal(back.robot_id, 7);
-    assert_int_equal(back.oae_count, 12);
-    assert_true(back.threshold == 2.5f && back.leds == 0x101 && isnan(back.x));
+    assert_int_equal(back.n_values, 10);
+    assert_true(back.values[0] == 12.0f && back.values[2] == 2.5f);
+    assert_true(back.leds == 0x101 && isnan(back.x));
     swarmlcm_robot_state_t_decode_cleanup(&back);
 }
 

@@ -120,9 +120,9 @@ void random_walk_step(random_walk_t *self, hal_t *hal)
     }
 }
 
-const char *random_walk_state_name(uint8_t state)
+const char *random_walk_state_name(const random_walk_t *self)
 {
-    switch (state) {
+    switch (self->state) {
     case RW_FORWARD: return "forward";
     case RW_TUMBLE: return "tumble";
     case RW_AVOID: return "avoid";

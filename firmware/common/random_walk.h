@@ -18,7 +18,8 @@
 #include <stdint.h>
 
 #include "hal.h"
-#include "rng.h"
+#include "common/controller.h"
+#include "common/rng.h"
 
 typedef struct random_walk_params {
     int16_t speed_steps_s;       /**< forward wheel speed, steps/s (500 = 64.4 mm/s) */
@@ -44,23 +45,34 @@ typedef struct random_walk {
     uint32_t oae_count;       /**< obstacle-avoidance events so far */
 } random_walk_t;
 
-/** speed 500 steps/s, tumble chance 2 % per step (mean run 5 s at 10 Hz),
- *  turn speed 300 steps/s, avoidance at 300 counts (~25 mm) until 150. */
-void random_walk_default_params(random_walk_params_t *params);
-
-/** Copies `params`, keeps `seed`, and resets. */
-void random_walk_init(random_walk_t *self, const random_walk_params_t *params, uint32_t seed);
-
-/** Back to driving forward with the OAE count at 0 and the seeded stream. */
-void random_walk_reset(random_walk_t *self);
-
-/** One control step: reads the IR sensors and sets the wheel speeds. */
-void random_walk_step(random_walk_t *self, hal_t *hal);
+/* The controller contract (controller.h):
+ *   default_params  speed 500 steps/s, tumble chance 2 % per step (mean run
+ *                   5 s at 10 Hz), turn speed 300 steps/s, avoidance at 300
+ *                   counts (~25 mm) until 150;
+ *   init            copies params, keeps seed, resets;
+ *   reset           driving forward, OAE count 0, the seeded stream anew;
+ *   step            reads the IR sensors and sets the wheel speeds;
+ *   state_name      "forward", "tumble", "avoid". */
+CONTROLLER_API(random_walk);
 
 /** Largest proximity of the four front sensors (IR0, IR1, IR6, IR7). */
 uint16_t random_walk_front_proximity(hal_t *hal);
 
-/** Name of a random_walk_state_t. */
-const char *random_walk_state_name(uint8_t state);
+/** Its description for the simulator (random_walk_def.c). */
+extern const controller_def_t random_walk_def;
+
+/** The walk's tuning keys in params struct T, whose members are reached by
+ *  prefix P (empty for random_walk_params_t itself, `walk.` for a
+ *  controller embedding one as `walk`).  Its speed is listed by each
+ *  controller: the forager's comes from its task. */
+#define RANDOM_WALK_TUNING_PARAMS(T, P)                                              \
+    { .key = "turn_speed_steps_s", PARAM_FIELD(T, P turn_speed_steps_s, int16_t),   \
+      .min = 1, .max = 1000, .doc = "wheel speed when turning in place, steps/s" }, \
+    { .key = "turn_chance", PARAM_FIELD(T, P turn_chance, uint16_t), .min = 0,       \
+      .max = 65535, .doc = "random walk: chance of a tumble per step, in 1/65536" }, \
+    { .key = "avoid_enter", PARAM_FIELD(T, P avoid_enter, uint16_t), .min = 0,       \
+      .max = 4095, .doc = "front IR proximity that starts an avoidance (an OAE), counts" }, \
+    { .key = "avoid_exit", PARAM_FIELD(T, P avoid_exit, uint16_t), .min = 0,         \
+      .max = 4095, .doc = "front IR proximity below which avoidance ends, counts" }
 
 #endif

@@ -102,7 +102,7 @@ static void read_inbox(forager_t *self, hal_t *hal)
     const forager_params_t *p = &self->params;
     uint16_t inside = (p->nest_radius_mm > p->nest_margin_mm)
                       ? (uint16_t)(p->nest_radius_mm - p->nest_margin_mm) : 0u;
-    while (hal_ircom_receive(hal, &msg) != 0u) {
+    while (hal_ircom_receive(hal, &msg) == HAL_OK) {
         if (nest_link_decode(msg.value, &f) != NL_BEACON) {
             continue;   /* other robots' reports */
         }
@@ -190,7 +190,7 @@ static uint8_t phototaxis(const forager_t *self, hal_t *hal)
     if (best >= self->params.light_detect) {
         return 0u;
     }
-    bearing = hal_ir_bearing_mrad(best_i);
+    bearing = hal_ir_bearing_mrad(hal, best_i);
     if (bearing > QUARTER_TURN_MRAD) {
         hal_set_wheel_speeds(hal, (int16_t)-w, w);   /* behind on the left: turn CCW */
     } else if (bearing < -QUARTER_TURN_MRAD) {
@@ -282,7 +282,7 @@ static void send_report(forager_t *self, hal_t *hal)
     uint16_t frame = (self->report_oaes != 0u)
                      ? nest_link_encode_oaes(id, self->walk.oae_count)
                      : nest_link_encode_deposits(id, self->deposits);
-    if (hal_ircom_send(hal, frame) == 0) {
+    if (hal_ircom_send(hal, frame) == HAL_OK) {
         self->report_oaes ^= 1u;
     }
 }
@@ -404,9 +404,9 @@ char forager_paper_state(uint8_t state)
     }
 }
 
-const char *forager_state_name(uint8_t state)
+const char *forager_state_name(const forager_t *self)
 {
-    switch (state) {
+    switch (self->state) {
     case FORAGER_WAIT: return "wait";
     case FORAGER_SEARCH: return "search";
     case FORAGER_RETURN: return "return";

@@ -44,6 +44,7 @@
 #include <stdint.h>
 
 #include "hal.h"
+#include "common/controller.h"
 #include "common/random_walk.h"
 #include "common/rng.h"
 #include "task_alloc.h"
@@ -125,24 +126,21 @@ typedef struct forager {
     uint8_t report_oaes;         /**< next report: 0 deposits, 1 OAEs */
 } forager_t;
 
-/** Defaults of seed 000 (values in forager_params_t's comments), DRTM. */
-void forager_default_params(forager_params_t *params);
-
-/** Copies `params`, keeps `seed`, and resets. */
-void forager_init(forager_t *self, const forager_params_t *params, uint32_t seed);
-
-/** WAIT with t1 = 0, nothing heard or deposited, theta at its start (DRTM:
- *  eq 6 with k = M_A = 0, i.e. 0; ARTM, FRTM: theta0), n drawn afresh
- *  from the seeded stream, the walk reset (OAE count 0). */
-void forager_reset(forager_t *self);
-
-/** One control step. */
-void forager_step(forager_t *self, hal_t *hal);
+/* The controller contract (controller.h):
+ *   default_params  seed 000's values (forager_params_t's comments), DRTM;
+ *   init            copies params, keeps seed, resets;
+ *   reset           WAIT with t1 = 0, nothing heard or deposited, theta at
+ *                   its start (DRTM: eq 6 with k = M_A = 0, i.e. 0; ARTM,
+ *                   FRTM: theta0), n drawn afresh from the seeded stream,
+ *                   the walk reset (OAE count 0);
+ *   step            one control step;
+ *   state_name      "wait", "search", "return", "deposit". */
+CONTROLLER_API(forager);
 
 /** Seed 000's name of a forager_state_t: 'W', 'S' or 'R' ('?' if unknown). */
 char forager_paper_state(uint8_t state);
 
-/** Name of a forager_state_t: "wait", "search", "return", "deposit". */
-const char *forager_state_name(uint8_t state);
+/** Its description for the simulator (forager_def.c). */
+extern const controller_def_t forager_def;
 
 #endif

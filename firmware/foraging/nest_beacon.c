@@ -39,6 +39,7 @@ void nest_beacon_reset(nest_beacon_t *self)
 
     self->state = NB_START;
     self->ledger_units = (int32_t)self->params.f0_tokens * (int32_t)self->params.token_energy;
+    self->food_q4 = nest_beacon_food_q4(self);
     self->n_waiting = 0u;
     self->m_t2 = 0u;
     self->deposits_total = 0u;
@@ -136,7 +137,7 @@ static void read_reports(nest_beacon_t *self, hal_t *hal)
 {
     hal_ircom_msg_t msg;
     nest_link_frame_t f;
-    while (hal_ircom_receive(hal, &msg) != 0u) {
+    while (hal_ircom_receive(hal, &msg) == HAL_OK) {
         uint8_t diff;
         switch (nest_link_decode(msg.value, &f)) {
         case NL_DEPOSITS:
@@ -205,6 +206,7 @@ static void keep_ledger(nest_beacon_t *self, hal_t *hal)
 
     broadcast(self, hal);
     self->bin_step++;
+    self->food_q4 = nest_beacon_food_q4(self);
 }
 
 void nest_beacon_step(nest_beacon_t *self, hal_t *hal)
@@ -226,9 +228,9 @@ void nest_beacon_step(nest_beacon_t *self, hal_t *hal)
     }
 }
 
-const char *nest_beacon_state_name(uint8_t state)
+const char *nest_beacon_state_name(const nest_beacon_t *self)
 {
-    switch (state) {
+    switch (self->state) {
     case NB_START: return "start";
     case NB_RUN: return "run";
     default: return "?";

@@ -48,6 +48,7 @@
 #include <stdint.h>
 
 #include "hal.h"
+#include "common/controller.h"
 #include "nest_link.h"
 
 /** Steps per bin of the OAE window. */
@@ -83,6 +84,7 @@ typedef struct nest_beacon {
 
     /* Telemetry. */
     int32_t ledger_units;          /**< nest energy, units (F(t) * token_energy) */
+    int32_t food_q4;               /**< F(t) = ledger / token_energy, 1/16 token */
     uint16_t n_waiting;            /**< N_W, ids heard within the timeout */
     uint32_t m_t2;                 /**< M_T2, OAEs reported in the last T2 */
     uint32_t deposits_total;       /**< deposits reported since reset */
@@ -106,18 +108,13 @@ typedef struct nest_beacon {
     uint8_t next_kind;             /**< nest_link_kind_t broadcast next */
 } nest_beacon_t;
 
-/** N_r 20, F0 5 tokens, 1500 units per token, 2 tokens/min, move cost 1,
- *  E_a 10, T2 400 steps (40 s), wait timeout 5 steps. */
-void nest_beacon_default_params(nest_beacon_params_t *params);
-
-/** Copies `params`, keeps `seed`, and resets. */
-void nest_beacon_init(nest_beacon_t *self, const nest_beacon_params_t *params, uint32_t seed);
-
-/** Ledger at F0, every id unheard with totals 0, empty OAE window. */
-void nest_beacon_reset(nest_beacon_t *self);
-
-/** One control step: reads the reports, updates the ledger, broadcasts. */
-void nest_beacon_step(nest_beacon_t *self, hal_t *hal);
+/* The controller contract (controller.h): default_params N_r 20, F0 5
+ * tokens, 1500 units per token, 2 tokens/min, move cost 1, E_a 10, T2 400
+ * steps (40 s), wait timeout 5 steps; init
+ * copies params, keeps seed, resets; reset: ledger at F0, every id unheard
+ * with totals 0, empty OAE window; step reads the reports, updates the
+ * ledger, broadcasts; state_name "start", "run". */
+CONTROLLER_API(nest_beacon);
 
 /** F(t) in 1/16 token, rounded to nearest (what kind-0 frames carry before
  *  saturation). */
@@ -127,7 +124,7 @@ int32_t nest_beacon_food_q4(const nest_beacon_t *self);
  *  before saturation). */
 uint32_t nest_beacon_mean_oae_q8(const nest_beacon_t *self);
 
-/** Name of a nest_beacon_state_t. */
-const char *nest_beacon_state_name(uint8_t state);
+/** Its description for the simulator (nest_beacon_def.c). */
+extern const controller_def_t nest_beacon_def;
 
 #endif

@@ -93,12 +93,9 @@ float ta_artm_update(float theta, float S, float S_prev, float delta,
     return theta;
 }
 
+const char *const ta_policy_names[TA_POLICY_COUNT + 1] = { TA_POLICY_NAMES, 0 };
+
 const char *ta_policy_name(ta_policy_t policy)
 {
-    switch (policy) {
-    case TA_DRTM: return "drtm";
-    case TA_ARTM: return "artm";
-    case TA_FRTM: return "frtm";
-    default: return "?";
-    }
+    return (unsigned)policy < (unsigned)TA_POLICY_COUNT ? ta_policy_names[policy] : "?";
 }

@@ -37,7 +37,15 @@
 #include "common/rng.h"
 
 /** Which threshold a forager uses in eq 7. */
-typedef enum { TA_DRTM = 0, TA_ARTM = 1, TA_FRTM = 2 } ta_policy_t;
+typedef enum { TA_DRTM = 0, TA_ARTM = 1, TA_FRTM = 2, TA_POLICY_COUNT = 3 } ta_policy_t;
+
+/** The policies' names, in ta_policy_t order: the one list (the forager's
+ *  `policy:` values in a scenario, its telemetry, `make firmware
+ *  FORAGER_POLICY=`, which reads this line). */
+#define TA_POLICY_NAMES "drtm", "artm", "frtm"
+
+/** TA_POLICY_NAMES and a NULL. */
+extern const char *const ta_policy_names[TA_POLICY_COUNT + 1];
 
 /** Eq 2: stimulus S = F_d - F, in tokens (positive: the nest lacks food). */
 float ta_stimulus(float F_d_tokens, float F_tokens);

@@ -1,6 +1,8 @@
 #include "geometry.h"
 
-#define PI_F 3.14159265358979f
+#include "units.h"
+
+#define PI_F ((float)UNITS_PI)
 
 float geom_wrap(float angle)
 {

@@ -14,6 +14,7 @@
 #include <math.h>
 
 #include "sim_internal.h"
+#include "units.h"
 
 #define IRCOM_MAX_NEAR 256
 
@@ -35,12 +36,12 @@ static int blocked(struct sim *sim, uint32_t from, uint32_t to)
         }
     }
     if (sim->sc->ircom.blocked_by_robots) {
-        n = sim_gather_robots(sim, fminf(p.x, q.x) - SIM_ROBOT_RADIUS, fminf(p.y, q.y) - SIM_ROBOT_RADIUS,
-                              fmaxf(p.x, q.x) + SIM_ROBOT_RADIUS, fmaxf(p.y, q.y) + SIM_ROBOT_RADIUS,
+        n = sim_gather_robots(sim, fminf(p.x, q.x) - EPUCK_BODY_RADIUS_M, fminf(p.y, q.y) - EPUCK_BODY_RADIUS_M,
+                              fmaxf(p.x, q.x) + EPUCK_BODY_RADIUS_M, fmaxf(p.y, q.y) + EPUCK_BODY_RADIUS_M,
                               near, IRCOM_MAX_NEAR);
         for (uint32_t k = 0; k < n; k++) {
             const sim_robot_t *c = &sim->robots[near[k]];
-            if (near[k] != from && near[k] != to && geom_segment_hits_circle(p, q, v2(c->x, c->y), SIM_ROBOT_RADIUS)) {
+            if (near[k] != from && near[k] != to && geom_segment_hits_circle(p, q, v2(c->x, c->y), EPUCK_BODY_RADIUS_M)) {
                 return 1;
             }
         }
@@ -62,15 +63,15 @@ static void receive(struct sim *sim, uint32_t to, uint32_t from, uint16_t value)
     uint8_t sensor = 0;
     float best = INFINITY;
     for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-        float off = fabsf(geom_wrap(bearing - hal_ir_bearing_mrad(k) / 1000.0f));
+        float off = fabsf(geom_wrap(bearing - hal_ir_bearing_mrad(&r->hal, k) / 1000.0f));
         if (off < best) {
             best = off;
             sensor = k;
         }
     }
     float est = sc->ircom.quantise_bearing
-        ? hal_ir_bearing_mrad(sensor) / 1000.0f
-        : geom_wrap(bearing + sc->ircom.bearing_noise * 3.14159265f / 180.0f * (float)sim_rand_normal(&r->ircom_rand));
+        ? hal_ir_bearing_mrad(&r->hal, sensor) / 1000.0f
+        : geom_wrap(bearing + sc->ircom.bearing_noise * (float)UNITS_PI / 180.0f * (float)sim_rand_normal(&r->ircom_rand));
     double range = sqrt((double)dx * dx + (double)dy * dy);
     range *= 1.0 + sc->ircom.range_noise_rel * sim_rand_normal(&r->ircom_rand);
     if (range < 0.0) range = 0.0;

@@ -14,7 +14,11 @@ typedef struct sim_rand {
 } sim_rand_t;
 
 /** Purposes, so that streams of one robot never overlap. */
-enum { RAND_PLACEMENT = 1, RAND_SENSORS = 2, RAND_IRCOM = 3, RAND_WHEELS = 4, RAND_CONTROLLER = 5, RAND_FOOD = 6 };
+enum {
+    RAND_PLACEMENT = 1, RAND_SENSORS = 2, RAND_IRCOM = 3, RAND_WHEELS = 4, RAND_CONTROLLER = 5,
+    RAND_TASK = 6,      /**< a task's streams (sim_task_rand_seed) */
+    RAND_TRACKER = 7    /**< the overhead tracker's noise and dropout */
+};
 
 /** Seeds a stream from the run seed, an index (robot id) and a purpose. */
 void sim_rand_seed(sim_rand_t *r, uint64_t seed, uint64_t index, uint64_t purpose);

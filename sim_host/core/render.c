@@ -255,17 +255,6 @@ static uint32_t object_rgb(int c)
     }
 }
 
-static uint32_t highlight_rgb(uint8_t h)
-{
-    switch (h) {
-    case 0: return RENDER_RGB_ROBOT;
-    case 1: return RENDER_RGB_HL_RED;
-    case 2: return RENDER_RGB_HL_GREEN;
-    case 3: return RENDER_RGB_HL_BLUE;
-    case 4: return RENDER_RGB_HL_YELLOW;
-    default: return RENDER_RGB_HL_OTHER;
-    }
-}
 
 static void draw_arena(const frame_t *f, const render_scene_t *sc)
 {
@@ -281,14 +270,58 @@ static void draw_arena(const frame_t *f, const render_scene_t *sc)
     rect(f->cx - hw, f->cy - hh, f->cx + hw, f->cy + hh);
 }
 
-static void draw_nest(const frame_t *f, const render_scene_t *sc)
+/* A segment of width w pixels (at least one) from (x0, y0) to (x1, y1). */
+static void thick_line(float x0, float y0, float x1, float y1, float w)
 {
-    if (!sc->nest_enabled || !finite2(sc->nest_x, sc->nest_y) ||
-        !isfinite(sc->nest_d) || sc->nest_d <= 0.0f)
+    float dx = x1 - x0, dy = y1 - y0, len = sqrtf(dx * dx + dy * dy);
+    if (len <= 0.0f)
         return;
-    colour(RENDER_RGB_NEST);
-    disc(f->cx + sc->nest_x * f->s, f->cy + sc->nest_y * f->s,
-         0.5f * sc->nest_d * f->s);
+    box(0.5f * (x0 + x1), 0.5f * (y0 + y1), 0.5f * len, 0.5f * fmaxf(w, 1.0f),
+        atan2f(dy, dx));
+}
+
+/* One shape of a task's drawing (drawing.h); labels are not drawn yet. */
+static void draw_shape(const frame_t *f, const draw_shape_t *d)
+{
+    float x = f->cx + d->x * f->s, y = f->cy + d->y * f->s;
+    if (!finite2(d->x, d->y))
+        return;
+    colour(d->rgb);
+    switch (d->kind) {
+    case DRAW_DISC:
+        if (isfinite(d->radius) && d->radius > 0.0f)
+            disc(x, y, fmaxf(d->radius * f->s, 1.0f));
+        break;
+    case DRAW_RING: {
+        if (!isfinite(d->radius) || d->radius <= 0.0f)
+            break;
+        float r = d->radius * f->s, w = fmaxf(isfinite(d->line) ? d->line * f->s : 0.0f, 1.0f);
+        for (int k = 0; k < 48; k++) {
+            float a0 = 2.0f * PI_F * (float)k / 48.0f, a1 = 2.0f * PI_F * (float)(k + 1) / 48.0f;
+            thick_line(x + r * cosf(a0), y + r * sinf(a0), x + r * cosf(a1), y + r * sinf(a1), w);
+        }
+        break;
+    }
+    case DRAW_RECT:
+        if (finite2(d->w, d->h) && d->w > 0.0f && d->h > 0.0f)
+            rect(x - 0.5f * d->w * f->s, y - 0.5f * d->h * f->s, x + 0.5f * d->w * f->s,
+                 y + 0.5f * d->h * f->s);
+        break;
+    case DRAW_LINE:
+        if (finite2(d->x2, d->y2))
+            thick_line(x, y, f->cx + d->x2 * f->s, f->cy + d->y2 * f->s,
+                       isfinite(d->line) ? d->line * f->s : 0.0f);
+        break;
+    default:
+        break;
+    }
+}
+
+static void draw_shapes(const frame_t *f, const render_scene_t *sc, int layer)
+{
+    for (uint32_t i = 0; sc->shapes && i < sc->shape_count; i++)
+        if ((sc->shapes[i].layer == DRAW_FLOOR) == (layer == DRAW_FLOOR))
+            draw_shape(f, &sc->shapes[i]);
 }
 
 static void draw_object(const frame_t *f, const render_object_t *o)
@@ -344,7 +377,7 @@ static void draw_robot(const frame_t *f, const render_robot_t *rb, float r)
 
     colour(RENDER_RGB_OUTLINE);
     disc(x, y, r);
-    colour(highlight_rgb(rb->highlight));
+    colour(rb->fill_rgb ? rb->fill_rgb : RENDER_RGB_ROBOT);
     disc(x, y, r - rim);
     if (rb->body_led) {
         colour(RENDER_RGB_LED_GREEN);
@@ -398,7 +431,7 @@ static void draw_scene(const render_ctx_t *ctx, const render_scene_t *sc,
     glClear(GL_COLOR_BUFFER_BIT);
 
     draw_arena(&f, sc);
-    draw_nest(&f, sc);
+    draw_shapes(&f, sc, DRAW_FLOOR);
     for (uint32_t i = 0; i < sc->object_count; i++)
         draw_object(&f, &sc->objects[i]);
     /* Lights beneath the robots, so a robot under a lamp stays visible. */
@@ -410,6 +443,7 @@ static void draw_scene(const render_ctx_t *ctx, const render_scene_t *sc,
     float r = fmaxf(rr * s, RENDER_MIN_ROBOT_RADIUS_PX);
     for (uint32_t i = 0; i < sc->robot_count; i++)
         draw_robot(&f, &sc->robots[i], r);
+    draw_shapes(&f, sc, DRAW_OVER);
 }
 
 /* ------------------------------------------------------------------ */

@@ -24,6 +24,8 @@
 
 #include <stdint.h>
 
+#include "drawing.h"
+
 /** Size of the `err` buffers the functions below write to. */
 #define RENDER_ERR_MAX 256
 
@@ -47,7 +49,6 @@
 #define RENDER_RGB_BACKGROUND   0xFFFFFFu /**< margin outside the walls */
 #define RENDER_RGB_FLOOR        0xEEEBE0u /**< arena floor */
 #define RENDER_RGB_WALL         0x3C3C46u /**< walls */
-#define RENDER_RGB_NEST         0xB4B4B4u /**< nest floor circle */
 #define RENDER_RGB_OBJ_NONE     0x6E6E73u /**< obstacle without colour */
 #define RENDER_RGB_OBJ_RED      0xD22828u
 #define RENDER_RGB_OBJ_GREEN    0x28AA3Cu
@@ -59,11 +60,11 @@
 #define RENDER_RGB_HEADING      0x1E1E28u /**< heading bar, centre to front */
 #define RENDER_RGB_LED_RED      0xFF1010u /**< ring LED and front LED, on */
 #define RENDER_RGB_LED_GREEN    0x10E610u /**< body LED, on */
-#define RENDER_RGB_HL_RED       0xF08C8Cu /**< highlight 1 */
-#define RENDER_RGB_HL_GREEN     0x8CDC8Cu /**< highlight 2 */
-#define RENDER_RGB_HL_BLUE      0x8CA0F0u /**< highlight 3 */
-#define RENDER_RGB_HL_YELLOW    0xF0DC5Au /**< highlight 4 */
-#define RENDER_RGB_HL_OTHER     0xDC78DCu /**< any other highlight value */
+/* Suggested robot fills for callers that mark robots (render_robot_t.fill_rgb). */
+#define RENDER_RGB_HL_RED       0xF08C8Cu
+#define RENDER_RGB_HL_GREEN     0x8CDC8Cu
+#define RENDER_RGB_HL_BLUE      0x8CA0F0u
+#define RENDER_RGB_HL_YELLOW    0xF0DC5Au
 
 /** One robot.  The ring LEDs sit on the rim: LED0 at the front, LED i at
  *  -45*i degrees from the heading (clockwise seen from above). */
@@ -73,8 +74,7 @@ typedef struct render_robot {
     uint8_t leds;      /**< bit i set = ring LED i on (drawn red) */
     uint8_t body_led;  /**< non-zero: green body LED on (centre dot) */
     uint8_t front_led; /**< non-zero: red front LED on (dot on the heading) */
-    uint8_t highlight; /**< body fill: 0 normal, 1 red, 2 green, 3 blue,
-                            4 yellow, others magenta */
+    uint32_t fill_rgb; /**< body fill 0xRRGGBB; 0: RENDER_RGB_ROBOT */
 } render_robot_t;
 
 /** One static obstacle. */
@@ -101,9 +101,10 @@ typedef struct render_scene {
                                    0,0; both > 0 */
     float wall;               /**< wall thickness, m, drawn outside the floor;
                                    0 draws a 2-pixel border */
-    uint8_t nest_enabled;     /**< non-zero: draw the nest */
-    float nest_x, nest_y;     /**< nest centre, m */
-    float nest_d;             /**< nest diameter, m */
+    const draw_shape_t *shapes;     /**< shape_count entries (drawing.h): floor marks
+                                         under the obstacles, the rest over
+                                         everything (NULL if 0) */
+    uint32_t shape_count;
     const render_robot_t *robots;   /**< robot_count entries (NULL if 0) */
     uint32_t robot_count;
     float robot_radius;       /**< m; 0 = RENDER_DEFAULT_ROBOT_RADIUS */

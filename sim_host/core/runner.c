@@ -18,16 +18,17 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "controllers.h"
 #include "metrics.h"
 #include "sim.h"
 #include "sim_render.h"
+#include "task.h"
 
 #define PATH_MAX_LEN 1024
 
 typedef struct rep_result {
     metric_list_t metrics;
     uint64_t state_hash;
+    uint64_t steps;                /**< done: fewer than asked when a task stopped the run */
     int failed;
 } rep_result_t;
 
@@ -96,6 +97,28 @@ static void json_number(FILE *f, double v)
     else fprintf(f, "%.10g", v);
 }
 
+/* "groups": [{name, controller, policy, count}, ...], "tasks": [...] */
+static void write_groups_and_tasks(FILE *f, const scenario_t *sc)
+{
+    fputs("  \"groups\": [", f);
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        const robot_group_t *grp = &sc->groups[g];
+        fputs(g ? ",\n    {\"name\": " : "\n    {\"name\": ", f);
+        json_string(f, grp->name);
+        fputs(", \"controller\": ", f);
+        json_string(f, grp->controller);
+        fputs(", \"policy\": ", f);
+        json_string(f, grp->policy);
+        fprintf(f, ", \"count\": %u}", grp->count);
+    }
+    fputs(sc->group_count ? "\n  ],\n  \"tasks\": [" : "],\n  \"tasks\": [", f);
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        if (t) fputs(", ", f);
+        json_string(f, sc->tasks[t].def->name);
+    }
+    fputs("],\n", f);
+}
+
 static void write_run_summary(FILE *f, const run_options_t *opt, uint64_t seed, const rep_result_t *r)
 {
     const scenario_t *sc = opt->scenario;
@@ -103,10 +126,10 @@ static void write_run_summary(FILE *f, const run_options_t *opt, uint64_t seed, 
     json_string(f, sc->name);
     fputs(",\n  \"scenario_file\": ", f);
     json_string(f, sc->path);
-    fprintf(f, ",\n  \"seed\": %llu,\n  \"controller\": ", (unsigned long long)seed);
-    json_string(f, sc->controller.name);
-    fprintf(f, ",\n  \"robots\": %u,\n  \"steps\": %llu,\n  \"control_period_ms\": %u,\n",
-            sc->robots.count, (unsigned long long)opt->steps, sc->control_period_ms);
+    fprintf(f, ",\n  \"seed\": %llu,\n", (unsigned long long)seed);
+    write_groups_and_tasks(f, sc);
+    fprintf(f, "  \"robots\": %u,\n  \"steps\": %llu,\n  \"control_period_ms\": %u,\n",
+            scenario_robot_count(sc), (unsigned long long)r->steps, sc->control_period_ms);
     fprintf(f, "  \"state_hash\": \"%016llx\",\n  \"metrics\": {\n", (unsigned long long)r->state_hash);
     for (unsigned k = 0; k < r->metrics.count; k++) {
         fprintf(f, "    \"%s\": ", r->metrics.name[k]);
@@ -211,7 +234,8 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
 
     uint32_t every = sc->output.timeseries_every;
     int ok = 1;
-    for (uint64_t s = 0; s < opt->steps && ok && !atomic_load(&job->failed); s++) {
+    uint64_t s = 0;
+    for (; s < opt->steps && ok && !sim_done(sim) && !atomic_load(&job->failed); s++) {
         if (s % every == 0) {
             metrics_sample(sim, &row);
             write_row(ts, &row);
@@ -223,6 +247,9 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         telemetry_step(tel, sim);
         atomic_fetch_add(&job->steps_done, 1);
     }
+    /* A run a task stopped early counts its remaining steps as done. */
+    atomic_fetch_add(&job->steps_done, opt->steps - s);
+    res->steps = sim_step_count(sim);
     if (ok && !atomic_load(&job->failed)) {
         metrics_sample(sim, &row);
         write_row(ts, &row);
@@ -299,9 +326,9 @@ static int write_aggregate(const run_options_t *opt, const rep_result_t *res, FI
         if (!o) continue;
         fputs("{\n  \"scenario\": ", o);
         json_string(o, opt->scenario->name);
-        fputs(",\n  \"controller\": ", o);
-        json_string(o, opt->scenario->controller.name);
-        fprintf(o, ",\n  \"reps\": %u,\n  \"first_seed\": %llu,\n  \"steps\": %llu,\n  \"metrics\": {\n",
+        fputs(",\n", o);
+        write_groups_and_tasks(o, opt->scenario);
+        fprintf(o, "  \"reps\": %u,\n  \"first_seed\": %llu,\n  \"steps\": %llu,\n  \"metrics\": {\n",
                 opt->reps, (unsigned long long)opt->seed, (unsigned long long)opt->steps);
         const metric_list_t *m0 = &res[0].metrics;
         for (unsigned k = 0; k < m0->count; k++) {
@@ -396,14 +423,14 @@ int runner_run(const run_options_t *opt, char err[512])
             if (f) fclose(f);
         }
         if (!opt->quiet && rc == 0) {
-            double robot_steps = (double)opt->reps * (double)opt->steps * opt->scenario->robots.count;
+            double robot_steps = (double)opt->reps * (double)opt->steps * scenario_robot_count(opt->scenario);
             double sim_time = (double)opt->reps * (double)opt->steps * opt->scenario->control_period_ms / 1000.0;
             printf("outputs: %s/ (run_<seed>/summary.json, timeseries.csv%s%s)\n", opt->out_dir,
                    opt->frames_every ? ", frames/*.png" : "",
                    opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
             fprintf(stderr, "swarmsim: %u run(s) x %llu steps x %u robots in %.3f s wall on %u thread(s): "
                     "%.0f robot-steps/s, %.0fx real time\n", opt->reps, (unsigned long long)opt->steps,
-                    opt->scenario->robots.count, wall, nthreads, robot_steps / wall, sim_time / wall);
+                    scenario_robot_count(opt->scenario), wall, nthreads, robot_steps / wall, sim_time / wall);
         }
     }
     pthread_mutex_destroy(&job.err_lock);

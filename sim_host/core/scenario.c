@@ -1,416 +1,281 @@
 /*
- * scenario.c - the strict scenario loader: every key's type, range, unit and
- * default as descriptor tables (param_desc_t), and the check of a YAML tree
- * (yaml_tree.c: parsing and --set overrides) against them.
+ * scenario.c - the scenario's schema: every key's type, range, unit and
+ * default as descriptor tables, robot groups (whose `params:` follow their
+ * controller), the tasks' sections, and the checks across keys.  The strict
+ * loading itself is schema.c; parsing and --set are yaml_tree.c.
  *
- * Decisions:
+ * Decisions (besides schema.h's):
  *  - An empty file (or one with only comments, or a null document) gives the
- *    defaults; so does an empty section (`robots:` with nothing after it).
- *  - Integers are decimal with an optional sign: "2.5", "1e3", "0x10", "5m"
- *    and quoted "5" are errors, as is a value outside the key's range or its
- *    C type.  Numbers accept integers, decimals and exponents but not
- *    nan/inf/.inf, hex or trailing garbage.  Booleans are true/false (any
- *    case YAML 1.2 allows), not yes/no/on/off/1/0.
- *  - Strings may be plain or quoted but not empty or null.
- *  - Every object and light must be a mapping; absent keys take the entry
- *    defaults below.  A cylinder needs radius > 0, a box width and depth > 0;
- *    keys of the other shape are ignored.  Objects must lie wholly inside the
- *    arena (the inside of the walls), lights and the nest likewise.
+ *    defaults: one group of 20 random walkers, no task.
+ *  - Every object, light and group must be a mapping; absent keys take the
+ *    entry defaults below.  A cylinder needs radius > 0, a box width and
+ *    depth > 0; keys of the other shape are ignored.  Objects and lights
+ *    must lie wholly inside the arena (the inside of the walls).
+ *  - A group names its controller; its policy defaults to the controller's
+ *    first, its name to the controller's (with its index when taken).  A
+ *    `poses` placement gives one pose per robot.
+ *  - A task runs when its section is present (`foraging:`), in registry
+ *    order whatever the file's order.
  */
 #include "scenario.h"
 
-#include <errno.h>
-#include <inttypes.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "controllers.h"
+#include "registry.h"
+#include "schema.h"
+#include "task.h"
+#include "units.h"
 #include "yaml_tree.h"
 
-#define PATH_BUF 256
 #define DEFAULT_CONTROLLER "random_walk"
 /* Objects may touch the walls: rounding must not reject them. */
 #define ARENA_EPS 1e-6
-/* M_PI is not in strict C11/POSIX. */
-#define DEG_TO_RAD (3.14159265358979323846 / 180.0)
-
-/* ---------------------------------------------------------------- errors */
-
-typedef struct loader {
-    const char *file;
-    char *err;  /* SCENARIO_ERROR_MAX bytes */
-} loader_t;
-
-/* snprintf that may cut: messages and key paths are bounded on purpose
- * (and, unlike snprintf, GCC does not warn about it). */
-__attribute__((format(printf, 3, 4)))
-static void format_into(char *buf, size_t len, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, len, fmt, ap);
-    va_end(ap);
-}
-
-/* "FILE:LINE: path: message", or "--set TEXT: path: message" for a value
- * that an override wrote.  Always returns -1. */
-__attribute__((format(printf, 4, 5)))
-static int fail(const loader_t *ld, const ynode_t *node, const char *path, const char *fmt, ...)
-{
-    char msg[SCENARIO_ERROR_MAX], where[SCENARIO_PATH_MAX + 32];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (node != NULL && node->origin != NULL) {
-        format_into(where, sizeof where, "--set %s", node->origin);
-    } else if (node != NULL && node->line > 0) {
-        format_into(where, sizeof where, "%s:%d", ld->file, node->line);
-    } else {
-        format_into(where, sizeof where, "%s", ld->file);
-    }
-    if (path[0] != '\0') {
-        format_into(ld->err, SCENARIO_ERROR_MAX, "%s: %s: %s", where, path, msg);
-    } else {
-        format_into(ld->err, SCENARIO_ERROR_MAX, "%s: %s", where, msg);
-    }
-    return -1;
-}
-
-static int wrong_type(const loader_t *ld, const ynode_t *v, const char *path, const char *expected)
-{
-    char got[64];
-    ytree_describe(v, got, sizeof got);
-    return fail(ld, v, path, "expected %s, got %s", expected, got);
-}
-
-/* "parent.key" (or "key" at the top level); a long unknown key is cut so
- * that the message stays readable. */
-static void join(char out[PATH_BUF], const char *parent, const char *key)
-{
-    if (parent[0] == '\0') {
-        format_into(out, PATH_BUF, "%.64s", key);
-    } else {
-        format_into(out, PATH_BUF, "%s.%.64s", parent, key);
-    }
-}
-
-/* Integral values print without a fraction, others with %g. */
-static void format_number(double v, char *buf, size_t len)
-{
-    if (fabs(v) < 1e15 && v == (double)(long long)v) {
-        snprintf(buf, len, "%.0f", v);
-    } else {
-        snprintf(buf, len, "%g", v);
-    }
-}
-
-static void format_range(const param_desc_t *d, char *buf, size_t len)
-{
-    char lo[32], hi[32];
-    size_t used = 0;
-    const char *const *c;
-    switch (d->type) {
-    case PARAM_BOOL:
-        snprintf(buf, len, "true|false");
-        return;
-    case PARAM_STRING:
-        snprintf(buf, len, "<= %zu chars", d->size - 1);
-        return;
-    case PARAM_ENUM:
-        buf[0] = '\0';
-        for (c = d->choices; *c != NULL && used < len; c++) {
-            used += (size_t)snprintf(buf + used, len - used, "%s%s", c == d->choices ? "" : "|", *c);
-        }
-        return;
-    default:
-        format_number(d->min, lo, sizeof lo);
-        if (d->type == PARAM_U64 && d->max >= (double)UINT64_MAX) {
-            snprintf(hi, sizeof hi, "%" PRIu64, UINT64_MAX);
-        } else {
-            format_number(d->max, hi, sizeof hi);
-        }
-        snprintf(buf, len, "[%s, %s]", lo, hi);
-    }
-}
-
-static int out_of_range(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                        const char *path)
-{
-    char range[64];
-    format_range(d, range, sizeof range);
-    return fail(ld, v, path, "%.40s is out of range %s", v->text, range);
-}
-
-/* Optimal string alignment distance (typos: one edit or swap is 1). */
-static size_t edit_distance(const char *a, const char *b)
-{
-    unsigned char d[33][33];
-    size_t la = strlen(a), lb = strlen(b), i, j;
-    if (la > 32 || lb > 32) {
-        return 99;
-    }
-    for (i = 0; i <= la; i++) {
-        for (j = 0; j <= lb; j++) {
-            size_t best;
-            if (i == 0 || j == 0) {
-                d[i][j] = (unsigned char)(i + j);
-                continue;
-            }
-            best = (size_t)d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-            if ((size_t)d[i - 1][j] + 1 < best) best = (size_t)d[i - 1][j] + 1;
-            if ((size_t)d[i][j - 1] + 1 < best) best = (size_t)d[i][j - 1] + 1;
-            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
-                (size_t)d[i - 2][j - 2] + 1 < best) {
-                best = (size_t)d[i - 2][j - 2] + 1;
-            }
-            d[i][j] = (unsigned char)best;
-        }
-    }
-    return d[la][lb];
-}
-
-/* Keeps in *best the candidate closest to `word` within distance 2. */
-static void consider(const char *word, const char *candidate, const char **best, size_t *dist)
-{
-    size_t d = edit_distance(word, candidate);
-    if (d <= 2 && d < *dist) {
-        *best = candidate;
-        *dist = d;
-    }
-}
-
-/* ---------------------------------------------------------------- schema */
-
-typedef struct schema schema_t;
-typedef struct seq_desc seq_desc_t;
-
-typedef enum child_kind {
-    CHILD_MAPPING,     /* a nested struct of scenario_t */
-    CHILD_SEQUENCE,    /* objects, lights */
-    CHILD_CONTROLLER,  /* controller: its name decides the params schema */
-    CHILD_DEFERRED     /* controller.params: checked by CHILD_CONTROLLER */
-} child_kind_t;
-
-/* A key whose value is a mapping or a sequence.  CHILD_SEQUENCE and
- * CHILD_CONTROLLER appear only where the base is the scenario_t itself. */
-typedef struct child {
-    const char *key;
-    child_kind_t kind;
-    const schema_t *schema;  /* CHILD_MAPPING, CHILD_CONTROLLER */
-    const seq_desc_t *seq;   /* CHILD_SEQUENCE */
-    const char *doc;
-} child_t;
-
-struct schema {
-    const param_desc_t *params;  /* scalar keys, offsets from the base */
-    const child_t *children;     /* NULL, or ends with a NULL key */
-};
-
-typedef int (*elem_check_fn)(const loader_t *ld, const ynode_t *item, const char *path,
-                             const void *elem);
-
-struct seq_desc {
-    const char *noun;      /* "objects" */
-    size_t max;
-    size_t elem_size;
-    const void *defaults;  /* one element with every default */
-    const schema_t *schema;
-    size_t array_offset;   /* of the array in scenario_t */
-    size_t count_offset;   /* of its uint32_t count in scenario_t */
-    elem_check_fn check;   /* or NULL */
-};
-
-#define CHILD_END { NULL, CHILD_MAPPING, NULL, NULL, NULL }
-/* offsetof and size of a member, possibly nested ("arena.width"). */
-#define SC(m) offsetof(scenario_t, m), sizeof(((scenario_t *)0)->m)
-#define OBJ(m) offsetof(object_def_t, m), sizeof(((object_def_t *)0)->m)
-#define LIGHT(m) offsetof(light_def_t, m), sizeof(((light_def_t *)0)->m)
 /* Positions: the arena is at most 1000 m wide, centred on 0,0. */
 #define POS_MIN -500.0
 #define POS_MAX 500.0
 
-static const char *const placement_choices[] = { "random", "nest", "grid", NULL };
+/* ---------------------------------------------------------------- tables */
+
+#define SC scenario_t
+#define OBJ object_def_t
+#define LIGHT light_def_t
+#define GRP robot_group_t
+
 static const char *const shape_choices[] = { "cylinder", "box", NULL };
 static const char *const colour_choices[] = { "none", "red", "green", "blue", NULL };
+static const char *const placement_choices[] = { "rectangle", "circle", "ring", "grid", "poses", NULL };
 
 static const param_desc_t top_params[] = {
-    { "name", PARAM_STRING, SC(name), 0, 0, NULL,
-      "scenario name (default: the file name without its extension)" },
-    { "seed", PARAM_U64, SC(seed), 0, (double)UINT64_MAX, NULL,
-      "base random seed; repetition r uses seed + r" },
-    { "duration", PARAM_DOUBLE, SC(duration), 0.001, 1e7, NULL, "simulated time, s" },
-    { "control_period_ms", PARAM_U16, SC(control_period_ms), 1, 10000, NULL,
-      "one controller step, ms" },
-    { "physics_substeps", PARAM_U16, SC(physics_substeps), 1, 64, NULL,
-      "physics sub-steps per control step" },
+    { .key = "name", PARAM_STRING_FIELD(SC, name),
+      .doc = "scenario name (default: the file name without its extension)" },
+    { .key = "seed", PARAM_FIELD(SC, seed, uint64_t), .min = 0, .max = (double)UINT64_MAX,
+      .doc = "base random seed; repetition r uses seed + r" },
+    { .key = "duration", PARAM_FIELD(SC, duration, double), .min = 0.001, .max = 1e7,
+      .doc = "simulated time, s" },
+    { .key = "control_period_ms", PARAM_FIELD(SC, control_period_ms, uint16_t), .min = 1,
+      .max = 10000, .doc = "one controller step, ms" },
+    { .key = "physics_substeps", PARAM_FIELD(SC, physics_substeps, uint16_t), .min = 1, .max = 64,
+      .doc = "physics sub-steps per control step" },
     PARAM_END
 };
 
 static const param_desc_t arena_params[] = {
-    { "width", PARAM_FLOAT, SC(arena.width), 0.1, 1000, NULL,
-      "inside size along x of the walled rectangle centred on 0,0, m" },
-    { "height", PARAM_FLOAT, SC(arena.height), 0.1, 1000, NULL, "inside size along y, m" },
-    { "wall_thickness", PARAM_FLOAT, SC(arena.wall_thickness), 0.001, 10, NULL,
-      "wall thickness (outside the width x height), m" },
+    { .key = "width", PARAM_FIELD(SC, arena.width, float), .min = 0.1, .max = 1000,
+      .doc = "inside size along x of the walled rectangle centred on 0,0, m" },
+    { .key = "height", PARAM_FIELD(SC, arena.height, float), .min = 0.1, .max = 1000,
+      .doc = "inside size along y, m" },
+    { .key = "wall_thickness", PARAM_FIELD(SC, arena.wall_thickness, float), .min = 0.001,
+      .max = 10, .doc = "wall thickness (outside the width x height), m" },
     PARAM_END
 };
 
-static const param_desc_t nest_params[] = {
-    { "enabled", PARAM_BOOL, SC(nest.enabled), 0, 1, NULL, "draw the grey nest circle" },
-    { "x", PARAM_FLOAT, SC(nest.x), POS_MIN, POS_MAX, NULL, "nest centre x, m" },
-    { "y", PARAM_FLOAT, SC(nest.y), POS_MIN, POS_MAX, NULL, "nest centre y, m" },
-    { "diameter", PARAM_FLOAT, SC(nest.diameter), 0.01, 1000, NULL, "nest diameter, m" },
+static const param_desc_t group_params[] = {
+    { .key = "name", PARAM_STRING_FIELD(GRP, name),
+      .doc = "label in outputs (default: the controller's name)" },
+    { .key = "count", PARAM_FIELD(GRP, count, uint32_t), .min = 0, .max = 100000,
+      .doc = "robots in the group" },
+    { .key = "controller", PARAM_STRING_FIELD(GRP, controller),
+      .doc = "registered controller (swarmsim --help lists them)" },
+    { .key = "policy", PARAM_STRING_FIELD(GRP, policy),
+      .doc = "variant of the controller (forager: drtm, artm, frtm; default its first)" },
+    { .key = "heading", PARAM_ANGLE_FIELD(GRP, heading), .min = -360, .max = 360,
+      .doc = "start heading, deg CCW from +x, or random" },
+    { .key = "min_spacing", PARAM_FIELD(GRP, min_spacing, float), .min = 0.07, .max = 10,
+      .doc = "centre-to-centre distance to robots placed before, m (the body is 0.07 m)" },
+    { .key = "moves", PARAM_BOOL_FIELD(GRP, moves),
+      .doc = "false: a static body nothing can push (a beacon, a landmark)" },
     PARAM_END
 };
 
-static const param_desc_t robots_params[] = {
-    { "count", PARAM_U32, SC(robots.count), 0, 100000, NULL, "number of e-pucks" },
-    { "placement", PARAM_ENUM, SC(robots.placement), 0, 0, placement_choices,
-      "start positions: anywhere, in the nest, or on a grid" },
-    { "min_spacing", PARAM_FLOAT, SC(robots.min_spacing), 0.07, 10, NULL,
-      "centre-to-centre distance when placing, m (the body is 0.07 m)" },
+static const param_desc_t placement_params[] = {
+    { .key = "shape", PARAM_ENUM_FIELD(GRP, placement.shape, placement_choices),
+      .doc = "region the robots start in (bodies inside it)" },
+    { .key = "x", PARAM_FIELD(GRP, placement.x, float), .min = POS_MIN, .max = POS_MAX,
+      .doc = "centre of the region, m" },
+    { .key = "y", PARAM_FIELD(GRP, placement.y, float), .min = POS_MIN, .max = POS_MAX,
+      .doc = "centre of the region, m" },
+    { .key = "width", PARAM_FIELD(GRP, placement.width, float), .min = 0, .max = 1000,
+      .doc = "rectangle, grid: size along x, m (0: the arena's)" },
+    { .key = "height", PARAM_FIELD(GRP, placement.height, float), .min = 0, .max = 1000,
+      .doc = "rectangle, grid: size along y, m (0: the arena's)" },
+    { .key = "radius", PARAM_FIELD(GRP, placement.radius, float), .min = 0, .max = 500,
+      .doc = "circle: radius, m" },
+    { .key = "inner", PARAM_FIELD(GRP, placement.inner, float), .min = 0, .max = 500,
+      .doc = "ring: inner radius, m" },
+    { .key = "outer", PARAM_FIELD(GRP, placement.outer, float), .min = 0, .max = 500,
+      .doc = "ring: outer radius, m" },
+    PARAM_END
+};
+
+static const param_desc_t pose_params[] = {
+    { .key = "x", PARAM_FIELD(pose_def_t, x, float), .min = POS_MIN, .max = POS_MAX, .doc = "m" },
+    { .key = "y", PARAM_FIELD(pose_def_t, y, float), .min = POS_MIN, .max = POS_MAX, .doc = "m" },
+    { .key = "heading", PARAM_ANGLE_FIELD(pose_def_t, heading), .min = -360, .max = 360,
+      .doc = "deg CCW from +x, or random (default: the group's heading)" },
     PARAM_END
 };
 
 static const param_desc_t object_params[] = {
-    { "shape", PARAM_ENUM, OBJ(shape), 0, 0, shape_choices, "obstacle shape" },
-    { "x", PARAM_FLOAT, OBJ(x), POS_MIN, POS_MAX, NULL, "centre x, m" },
-    { "y", PARAM_FLOAT, OBJ(y), POS_MIN, POS_MAX, NULL, "centre y, m" },
-    { "radius", PARAM_FLOAT, OBJ(radius), 0, 500, NULL, "cylinder radius, m (cylinder: > 0)" },
-    { "width", PARAM_FLOAT, OBJ(width), 0, 1000, NULL, "box size along its x, m (box: > 0)" },
-    { "depth", PARAM_FLOAT, OBJ(depth), 0, 1000, NULL, "box size along its y, m (box: > 0)" },
-    { "angle", PARAM_FLOAT, OBJ(angle), -360, 360, NULL, "box rotation, deg counter-clockwise" },
-    { "height", PARAM_FLOAT, OBJ(height), 0.001, 100, NULL, "height, m (camera, pictures)" },
-    { "colour", PARAM_ENUM, OBJ(colour), 0, 0, colour_choices, "colour the camera sees" },
+    { .key = "shape", PARAM_ENUM_FIELD(OBJ, shape, shape_choices), .doc = "obstacle shape" },
+    { .key = "x", PARAM_FIELD(OBJ, x, float), .min = POS_MIN, .max = POS_MAX, .doc = "centre x, m" },
+    { .key = "y", PARAM_FIELD(OBJ, y, float), .min = POS_MIN, .max = POS_MAX, .doc = "centre y, m" },
+    { .key = "radius", PARAM_FIELD(OBJ, radius, float), .min = 0, .max = 500,
+      .doc = "cylinder radius, m (cylinder: > 0)" },
+    { .key = "width", PARAM_FIELD(OBJ, width, float), .min = 0, .max = 1000,
+      .doc = "box size along its x, m (box: > 0)" },
+    { .key = "depth", PARAM_FIELD(OBJ, depth, float), .min = 0, .max = 1000,
+      .doc = "box size along its y, m (box: > 0)" },
+    { .key = "angle", PARAM_FIELD(OBJ, angle, float), .min = -360, .max = 360,
+      .doc = "box rotation, deg counter-clockwise" },
+    { .key = "height", PARAM_FIELD(OBJ, height, float), .min = 0.001, .max = 100,
+      .doc = "height, m (camera, pictures)" },
+    { .key = "colour", PARAM_ENUM_FIELD(OBJ, colour, colour_choices), .doc = "colour the camera sees" },
     PARAM_END
 };
 
 static const param_desc_t light_params[] = {
-    { "x", PARAM_FLOAT, LIGHT(x), POS_MIN, POS_MAX, NULL, "lamp x, m" },
-    { "y", PARAM_FLOAT, LIGHT(y), POS_MIN, POS_MAX, NULL, "lamp y, m" },
-    { "height", PARAM_FLOAT, LIGHT(height), 0, 100, NULL, "lamp height above the floor, m" },
-    { "intensity", PARAM_FLOAT, LIGHT(intensity), 0, 1e6, NULL,
-      "relative: 1 gives irradiance 1 at 1 m" },
-    PARAM_END
-};
-
-static const param_desc_t controller_params[] = {
-    { "name", PARAM_STRING, SC(controller.name), 0, 0, NULL,
-      "registered controller (see controller.params below)" },
-    { "policy", PARAM_STRING, SC(controller.policy), 0, 0, NULL,
-      "variant of the controller (forager: drtm, artm, frtm; default the first)" },
-    PARAM_END
-};
-
-static const char *const information_choices[] = { "beacon", "global", NULL };
-
-static const param_desc_t foraging_params[] = {
-    { "enabled", PARAM_BOOL, SC(foraging.enabled), 0, 1, NULL,
-      "seed 000's foraging task: food tokens, nest ledger, energy metrics" },
-    { "food_count", PARAM_U32, SC(foraging.food_count), 0, 10000, NULL,
-      "N_f, food tokens kept in the arena (one respawns per delivery)" },
-    { "token_radius", PARAM_FLOAT, SC(foraging.token_radius), 0.005, 0.5, NULL, "token radius, m" },
-    { "token_height", PARAM_FLOAT, SC(foraging.token_height), 0.005, 1, NULL, "token height, m" },
-    { "token_energy", PARAM_FLOAT, SC(foraging.token_energy), 1, 1e9, NULL,
-      "energy units per food token" },
-    { "initial_food", PARAM_FLOAT, SC(foraging.initial_food), -1e6, 1e6, NULL,
-      "F(0), food tokens in the nest at the start" },
-    { "desired_food", PARAM_FLOAT, SC(foraging.desired_food), -1e6, 1e6, NULL,
-      "F_d, desired food tokens in the nest" },
-    { "consumption", PARAM_FLOAT, SC(foraging.consumption), 0, 1e6, NULL,
-      "C_rate, food the nest consumes, tokens/min" },
-    { "move_cost", PARAM_FLOAT, SC(foraging.move_cost), 0, 1e9, NULL,
-      "energy units per step per foraging robot" },
-    { "oae_energy", PARAM_FLOAT, SC(foraging.oae_energy), 0, 1e9, NULL,
-      "E_a, energy units per obstacle-avoidance event" },
-    { "robot_speed", PARAM_FLOAT, SC(foraging.robot_speed), 0.001, 0.128, NULL,
-      "v, forager speed, m/s (seed 000: 0.05); sets T2 = L/(2v)" },
-    { "information", PARAM_ENUM, SC(foraging.information), 0, 0, information_choices,
-      "beacon: a nest-beacon e-puck keeps the ledger; global: ideal information" },
+    { .key = "x", PARAM_FIELD(LIGHT, x, float), .min = POS_MIN, .max = POS_MAX, .doc = "lamp x, m" },
+    { .key = "y", PARAM_FIELD(LIGHT, y, float), .min = POS_MIN, .max = POS_MAX, .doc = "lamp y, m" },
+    { .key = "height", PARAM_FIELD(LIGHT, height, float), .min = 0, .max = 100,
+      .doc = "lamp height above the floor, m" },
+    { .key = "intensity", PARAM_FIELD(LIGHT, intensity, float), .min = 0, .max = 1e6,
+      .doc = "relative: 1 gives irradiance 1 at 1 m" },
     PARAM_END
 };
 
 static const param_desc_t ir_params[] = {
-    { "aperture", PARAM_FLOAT, SC(ir.aperture), 0.1, 90, NULL,
-      "half-angle of the sensing cone, deg" },
-    { "range", PARAM_FLOAT, SC(ir.range), 0.001, 1, NULL, "beyond this a sensor reads ~0, m" },
-    { "noise_rel", PARAM_FLOAT, SC(ir.noise_rel), 0, 1, NULL,
-      "relative Gaussian sd of the value" },
-    { "noise_abs", PARAM_FLOAT, SC(ir.noise_abs), 0, 4095, NULL,
-      "additive Gaussian sd, raw counts" },
+    { .key = "aperture", PARAM_FIELD(SC, ir.aperture, float), .min = 0.1, .max = 90,
+      .doc = "half-angle of the sensing cone, deg" },
+    { .key = "range", PARAM_FIELD(SC, ir.range, float), .min = 0.001, .max = 1,
+      .doc = "beyond this a sensor reads ~0, m" },
+    { .key = "noise_rel", PARAM_FIELD(SC, ir.noise_rel, float), .min = 0, .max = 1,
+      .doc = "relative Gaussian sd of the value" },
+    { .key = "noise_abs", PARAM_FIELD(SC, ir.noise_abs, float), .min = 0, .max = 4095,
+      .doc = "additive Gaussian sd, raw counts" },
     PARAM_END
 };
 
 static const param_desc_t ambient_params[] = {
-    { "dark", PARAM_FLOAT, SC(ambient.dark), 0, 4095, NULL, "raw reading in the dark, counts" },
-    { "half", PARAM_FLOAT, SC(ambient.half), 1e-6, 1e6, NULL,
-      "irradiance at which the reading halves (1 = unit lamp at 1 m)" },
-    { "noise_rel", PARAM_FLOAT, SC(ambient.noise_rel), 0, 1, NULL, "relative Gaussian sd" },
+    { .key = "dark", PARAM_FIELD(SC, ambient.dark, float), .min = 0, .max = 4095,
+      .doc = "raw reading in the dark, counts" },
+    { .key = "half", PARAM_FIELD(SC, ambient.half, float), .min = 1e-6, .max = 1e6,
+      .doc = "irradiance at which the reading halves (1 = unit lamp at 1 m)" },
+    { .key = "noise_rel", PARAM_FIELD(SC, ambient.noise_rel, float), .min = 0, .max = 1,
+      .doc = "relative Gaussian sd" },
     PARAM_END
 };
 
 static const param_desc_t camera_params[] = {
-    { "fov", PARAM_FLOAT, SC(camera.fov), 1, 179, NULL, "horizontal field of view, deg" },
-    { "range", PARAM_FLOAT, SC(camera.range), 0.01, 100, NULL,
-      "objects farther away are not seen, m" },
-    { "width_px", PARAM_U16, SC(camera.width_px), 1, 640, NULL, "frame width, pixels" },
-    { "height_px", PARAM_U16, SC(camera.height_px), 1, 480, NULL, "frame height, pixels" },
+    { .key = "fov", PARAM_FIELD(SC, camera.fov, float), .min = 1, .max = 179,
+      .doc = "horizontal field of view, deg" },
+    { .key = "range", PARAM_FIELD(SC, camera.range, float), .min = 0.01, .max = 100,
+      .doc = "objects farther away are not seen, m" },
+    { .key = "width_px", PARAM_FIELD(SC, camera.width_px, uint16_t), .min = 1, .max = 640,
+      .doc = "the robot's frame width, pixels" },
+    { .key = "height_px", PARAM_FIELD(SC, camera.height_px, uint16_t), .min = 1, .max = 480,
+      .doc = "the robot's frame height, pixels" },
     PARAM_END
 };
 
 static const param_desc_t ircom_params[] = {
-    { "range", PARAM_FLOAT, SC(ircom.range), 0, 10, NULL, "centre-to-centre reach, m" },
-    { "loss", PARAM_FLOAT, SC(ircom.loss), 0, 1, NULL, "probability a message is lost" },
-    { "bearing_noise", PARAM_FLOAT, SC(ircom.bearing_noise), 0, 180, NULL,
-      "Gaussian sd added to the bearing, deg" },
-    { "range_noise_rel", PARAM_FLOAT, SC(ircom.range_noise_rel), 0, 1, NULL,
-      "relative Gaussian sd of the range" },
-    { "quantise_bearing", PARAM_BOOL, SC(ircom.quantise_bearing), 0, 1, NULL,
-      "report the receiving sensor's bearing" },
-    { "blocked_by_robots", PARAM_BOOL, SC(ircom.blocked_by_robots), 0, 1, NULL,
-      "robots also block line of sight" },
-    { "payload_bits", PARAM_U8, SC(ircom.payload_bits), 8, 16, NULL,
-      "data bits per message: 8 libIrcom, 16 range-and-bearing turret" },
+    { .key = "range", PARAM_FIELD(SC, ircom.range, float), .min = 0, .max = 10,
+      .doc = "centre-to-centre reach, m" },
+    { .key = "loss", PARAM_FIELD(SC, ircom.loss, float), .min = 0, .max = 1,
+      .doc = "probability a message is lost" },
+    { .key = "bearing_noise", PARAM_FIELD(SC, ircom.bearing_noise, float), .min = 0, .max = 180,
+      .doc = "Gaussian sd added to the bearing, deg" },
+    { .key = "range_noise_rel", PARAM_FIELD(SC, ircom.range_noise_rel, float), .min = 0, .max = 1,
+      .doc = "relative Gaussian sd of the range" },
+    { .key = "quantise_bearing", PARAM_BOOL_FIELD(SC, ircom.quantise_bearing),
+      .doc = "report the receiving sensor's bearing" },
+    { .key = "blocked_by_robots", PARAM_BOOL_FIELD(SC, ircom.blocked_by_robots),
+      .doc = "robots also block line of sight" },
+    { .key = "payload_bits", PARAM_FIELD(SC, ircom.payload_bits, uint8_t), .min = 8, .max = 16,
+      .doc = "data bits per message: 8 libIrcom, 16 range-and-bearing turret" },
     PARAM_END
 };
 
 static const param_desc_t wheels_params[] = {
-    { "speed_noise_rel", PARAM_FLOAT, SC(wheels.speed_noise_rel), 0, 1, NULL,
-      "per-wheel relative speed noise (sd)" },
+    { .key = "speed_noise_rel", PARAM_FIELD(SC, wheels.speed_noise_rel, float), .min = 0, .max = 1,
+      .doc = "per-wheel relative speed noise (sd)" },
+    PARAM_END
+};
+
+static const param_desc_t tracker_params[] = {
+    { .key = "enabled", PARAM_BOOL_FIELD(SC, tracker.enabled),
+      .doc = "an overhead tracker gives every robot its pose (hal_pose)" },
+    { .key = "noise_mm", PARAM_FIELD(SC, tracker.noise_mm, float), .min = 0, .max = 10000,
+      .doc = "Gaussian sd of the tracked x and y, mm" },
+    { .key = "noise_deg", PARAM_FIELD(SC, tracker.noise_deg, float), .min = 0, .max = 180,
+      .doc = "Gaussian sd of the tracked heading, deg" },
+    { .key = "dropout", PARAM_FIELD(SC, tracker.dropout, float), .min = 0, .max = 1,
+      .doc = "probability the tracker loses a robot for a step" },
     PARAM_END
 };
 
 static const param_desc_t output_params[] = {
-    { "timeseries_every", PARAM_U32, SC(output.timeseries_every), 1, 1e9, NULL,
-      "control steps between time-series CSV rows" },
+    { .key = "timeseries_every", PARAM_FIELD(SC, output.timeseries_every, uint32_t), .min = 1,
+      .max = 1e9, .doc = "control steps between time-series CSV rows" },
     PARAM_END
 };
+
+#undef SC
+#undef OBJ
+#undef LIGHT
 
 static const object_def_t object_default = {
     SHAPE_CYLINDER, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.05f, 0 /* HAL_COLOUR_NONE */
 };
 static const light_def_t light_default = { 0.0f, 0.0f, 0.1f, 1.0f };
+static const pose_def_t pose_default = { 0.0f, 0.0f, NAN };
+/* A group entry before its keys: one robot anywhere in the arena, random
+ * heading; it must name its controller. */
+static const robot_group_t group_default = {
+    .count = 1, .heading = NAN, .min_spacing = 0.08f, .moves = 1,
+    .placement = { .shape = PLACE_RECTANGLE },
+};
 
-static int check_object(const loader_t *ld, const ynode_t *item, const char *path,
-                        const void *elem);
+static int check_object(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
+static int check_group(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
+static int fill_task(const loader_t *ld, const ypair_t *pair, const char *path, void *base);
+static const char *task_key(size_t i);
 
-#define MAPPING_SCHEMA(name) static const schema_t name##_schema = { name##_params, NULL }
+#define MAPPING_SCHEMA(name) static const schema_t name##_schema = { name##_params, NULL, NULL, NULL }
 MAPPING_SCHEMA(arena);
-MAPPING_SCHEMA(nest);
-MAPPING_SCHEMA(robots);
 MAPPING_SCHEMA(object);
 MAPPING_SCHEMA(light);
+MAPPING_SCHEMA(pose);
 MAPPING_SCHEMA(ir);
 MAPPING_SCHEMA(ambient);
 MAPPING_SCHEMA(camera);
 MAPPING_SCHEMA(ircom);
 MAPPING_SCHEMA(wheels);
+MAPPING_SCHEMA(tracker);
 MAPPING_SCHEMA(output);
-MAPPING_SCHEMA(foraging);
 
+static const seq_desc_t poses_seq = {
+    "poses", SCENARIO_MAX_POSES, sizeof(pose_def_t), &pose_default, &pose_schema,
+    offsetof(robot_group_t, placement.poses), offsetof(robot_group_t, placement.pose_count), NULL
+};
+static const child_t placement_children[] = {
+    { "poses", CHILD_SEQUENCE, NULL, &poses_seq, "poses: one {x, y, heading} per robot" },
+    CHILD_END
+};
+static const schema_t placement_schema = { placement_params, placement_children, NULL, NULL };
+
+static const child_t group_children[] = {
+    { "placement", CHILD_MAPPING, &placement_schema, NULL, "where the robots start" },
+    { "params", CHILD_DEFERRED, NULL, NULL, "the controller's parameters" },
+    CHILD_END
+};
+static const schema_t group_schema = { group_params, group_children, NULL, NULL };
+
+static const seq_desc_t groups_seq = {
+    "groups", SCENARIO_MAX_GROUPS, sizeof(robot_group_t), &group_default, &group_schema,
+    offsetof(scenario_t, groups), offsetof(scenario_t, group_count), check_group
+};
 static const seq_desc_t objects_seq = {
     "objects", SCENARIO_MAX_OBJECTS, sizeof(object_def_t), &object_default, &object_schema,
     offsetof(scenario_t, objects), offsetof(scenario_t, object_count), check_object
@@ -420,38 +285,33 @@ static const seq_desc_t lights_seq = {
     offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL
 };
 
-static const child_t controller_children[] = {
-    { "params", CHILD_DEFERRED, NULL, NULL, "the controller's parameters" },
-    CHILD_END
-};
-static const schema_t controller_schema = { controller_params, controller_children };
-
 static const child_t top_children[] = {
     { "arena", CHILD_MAPPING, &arena_schema, NULL, "walled rectangle" },
-    { "nest", CHILD_MAPPING, &nest_schema, NULL, "grey floor circle" },
-    { "robots", CHILD_MAPPING, &robots_schema, NULL, "the swarm" },
+    { "robots", CHILD_SEQUENCE, NULL, &groups_seq, "groups of robots (at most 16)" },
     { "objects", CHILD_SEQUENCE, NULL, &objects_seq, "static obstacles (at most 4096)" },
     { "lights", CHILD_SEQUENCE, NULL, &lights_seq, "point lights (at most 16)" },
-    { "controller", CHILD_CONTROLLER, &controller_schema, NULL, "robot controller" },
     { "ir", CHILD_MAPPING, &ir_schema, NULL, "IR proximity sensors" },
     { "ambient", CHILD_MAPPING, &ambient_schema, NULL, "ambient light sensors" },
     { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
     { "ircom", CHILD_MAPPING, &ircom_schema, NULL, "IR communication" },
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
+    { "tracker", CHILD_MAPPING, &tracker_schema, NULL, "overhead tracker (hal_pose)" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
-    { "foraging", CHILD_MAPPING, &foraging_schema, NULL, "seed 000 foraging task" },
     CHILD_END
 };
-static const schema_t top_schema = { top_params, top_children };
+static const schema_t top_schema = { top_params, top_children, fill_task, task_key };
 
 /* ---------------------------------------------------------------- defaults */
 
-static void controller_defaults(scenario_t *sc, const sim_controller_t *ctrl)
+static void group_defaults(robot_group_t *g, const controller_def_t *def)
 {
-    memset(sc->controller.params.bytes, 0, sizeof sc->controller.params.bytes);
-    if (ctrl != NULL && ctrl->default_params != NULL &&
-        ctrl->params_size <= sizeof sc->controller.params.bytes) {
-        ctrl->default_params(sc->controller.params.bytes);
+    *g = group_default;
+    if (def != NULL) {
+        snprintf(g->controller, sizeof g->controller, "%s", def->name);
+        g->def = def;
+        if (def->default_params != NULL && def->params_size <= sizeof g->params.bytes) {
+            def->default_params(g->params.bytes);
+        }
     }
 }
 
@@ -465,13 +325,10 @@ void scenario_defaults(scenario_t *out)
     out->arena.width = 4.0f;
     out->arena.height = 4.0f;
     out->arena.wall_thickness = 0.05f;
-    out->nest.enabled = 0;
-    out->nest.diameter = 0.5f;
-    out->robots.count = 20;
-    out->robots.placement = PLACE_RANDOM;
-    out->robots.min_spacing = 0.08f;
-    snprintf(out->controller.name, sizeof out->controller.name, "%s", DEFAULT_CONTROLLER);
-    controller_defaults(out, controllers_find(DEFAULT_CONTROLLER));
+    out->group_count = 1;
+    group_defaults(&out->groups[0], registry_controller(DEFAULT_CONTROLLER));
+    out->groups[0].count = 20;
+    snprintf(out->groups[0].name, sizeof out->groups[0].name, "%s", DEFAULT_CONTROLLER);
     out->ir.aperture = 15.0f;
     out->ir.range = 0.1f;
     out->ir.noise_rel = 0.01f;
@@ -491,394 +348,43 @@ void scenario_defaults(scenario_t *out)
     out->ircom.blocked_by_robots = 0;
     out->ircom.payload_bits = 8;
     out->wheels.speed_noise_rel = 0.0f;
+    out->tracker.enabled = 0;
     out->output.timeseries_every = 10;
-    out->foraging.enabled = 0;
-    out->foraging.food_count = 20;
-    out->foraging.token_radius = 0.0175f;
-    out->foraging.token_height = 0.042f;
-    out->foraging.token_energy = 1500.0f;
-    out->foraging.initial_food = 5.0f;
-    out->foraging.desired_food = 20.0f;
-    out->foraging.consumption = 2.0f;
-    out->foraging.move_cost = 1.0f;
-    out->foraging.oae_energy = 10.0f;
-    out->foraging.robot_speed = 0.05f;
-    out->foraging.information = INFO_BEACON;
 }
 
-/* ---------------------------------------------------------------- scalars */
-
-static int all_digits(const char *s)
+uint32_t scenario_robot_count(const scenario_t *sc)
 {
-    const char *p = s;
-    while (*p >= '0' && *p <= '9') {
-        p++;
+    uint32_t n = 0;
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        n += sc->groups[g].count;
     }
-    return p != s && *p == '\0';
+    return n;
 }
 
-static int is_plain(const ynode_t *v)
+const void *scenario_task_config(const scenario_t *sc, const struct task_def *def)
 {
-    return v != NULL && v->kind == YNODE_SCALAR && !v->quoted;
-}
-
-static int fill_bool(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                     const char *path, void *dst)
-{
-    static const char *const words[] = { "false", "False", "FALSE", "true", "True", "TRUE" };
-    size_t i;
-    (void)d;
-    for (i = 0; is_plain(v) && i < sizeof words / sizeof words[0]; i++) {
-        if (strcmp(v->text, words[i]) == 0) {
-            uint8_t b = i >= 3;
-            memcpy(dst, &b, sizeof b);
-            return 0;
-        }
-    }
-    return wrong_type(ld, v, path, "true/false");
-}
-
-/* Stores `i` as the C type of `d`; returns -1 if it does not fit. */
-static int store_int(const param_desc_t *d, intmax_t i, void *dst)
-{
-    uint8_t u8 = (uint8_t)i;
-    uint16_t u16 = (uint16_t)i;
-    int16_t i16 = (int16_t)i;
-    uint32_t u32 = (uint32_t)i;
-    if (d->type == PARAM_U8 && i >= 0 && i <= UINT8_MAX) {
-        memcpy(dst, &u8, sizeof u8);
-    } else if (d->type == PARAM_U16 && i >= 0 && i <= UINT16_MAX) {
-        memcpy(dst, &u16, sizeof u16);
-    } else if (d->type == PARAM_I16 && i >= INT16_MIN && i <= INT16_MAX) {
-        memcpy(dst, &i16, sizeof i16);
-    } else if (d->type == PARAM_U32 && i >= 0 && i <= (intmax_t)UINT32_MAX) {
-        memcpy(dst, &u32, sizeof u32);
-    } else {
-        return -1;
-    }
-    return 0;
-}
-
-static int fill_u64(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                    const char *path, void *dst)
-{
-    const char *s = v->text;
-    uintmax_t u;
-    uint64_t x;
-    /* strtoumax accepts "-5" and wraps it; only "-0" is in range. */
-    if (s[0] == '-' && strspn(s + 1, "0") != strlen(s + 1)) {
-        return out_of_range(ld, d, v, path);
-    }
-    errno = 0;
-    u = strtoumax(s, NULL, 10);
-    if (errno == ERANGE || u > UINT64_MAX || (double)u < d->min || (double)u > d->max) {
-        return out_of_range(ld, d, v, path);
-    }
-    x = (uint64_t)u;
-    memcpy(dst, &x, sizeof x);
-    return 0;
-}
-
-static int fill_integer(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                        const char *path, void *dst)
-{
-    intmax_t i;
-    if (!is_plain(v) || !all_digits(v->text + (v->text[0] == '-' || v->text[0] == '+'))) {
-        return wrong_type(ld, v, path, "an integer");
-    }
-    if (d->type == PARAM_U64) {
-        return fill_u64(ld, d, v, path, dst);
-    }
-    errno = 0;
-    i = strtoimax(v->text, NULL, 10);
-    if (errno == ERANGE || (double)i < d->min || (double)i > d->max ||
-        store_int(d, i, dst) != 0) {
-        return out_of_range(ld, d, v, path);
-    }
-    return 0;
-}
-
-static int fill_real(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                     const char *path, void *dst)
-{
-    const char *s = v != NULL ? v->text : NULL;
-    char *end;
-    double x;
-    /* strtod would also take hex, "nan", "inf" and leading blanks. */
-    if (!is_plain(v) || strspn(s, "0123456789+-.eE") != strlen(s) ||
-        strpbrk(s, "0123456789") == NULL) {
-        return wrong_type(ld, v, path, "a number");
-    }
-    errno = 0;
-    x = strtod(s, &end);
-    if (*end != '\0') {
-        return wrong_type(ld, v, path, "a number");
-    }
-    if (!isfinite(x) || x < d->min || x > d->max) {
-        return out_of_range(ld, d, v, path);
-    }
-    if (d->type == PARAM_FLOAT) {
-        float f = (float)x;
-        memcpy(dst, &f, sizeof f);
-    } else {
-        memcpy(dst, &x, sizeof x);
-    }
-    return 0;
-}
-
-static int fill_string(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                       const char *path, void *dst)
-{
-    size_t len;
-    if (v == NULL || v->kind != YNODE_SCALAR || ytree_is_null(v)) {
-        return wrong_type(ld, v, path, "a string");
-    }
-    len = strlen(v->text);
-    if (len == 0) {
-        return fail(ld, v, path, "expected a non-empty string");
-    }
-    if (len >= d->size) {
-        return fail(ld, v, path, "'%.40s...' is longer than %zu characters", v->text,
-                    d->size - 1);
-    }
-    memcpy(dst, v->text, len + 1);
-    return 0;
-}
-
-static int fill_enum(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                     const char *path, void *dst)
-{
-    char range[120], choices[128], got[64];
-    const char *best = NULL;
-    size_t dist = 3;
-    int i;
-    format_range(d, range, sizeof range);
-    format_into(choices, sizeof choices, "one of %s", range);
-    if (v == NULL || v->kind != YNODE_SCALAR) {
-        return wrong_type(ld, v, path, choices);
-    }
-    for (i = 0; d->choices[i] != NULL; i++) {
-        if (strcmp(v->text, d->choices[i]) == 0) {
-            memcpy(dst, &i, sizeof i);
-            return 0;
-        }
-        consider(v->text, d->choices[i], &best, &dist);
-    }
-    ytree_describe(v, got, sizeof got);
-    if (best != NULL) {
-        return fail(ld, v, path, "expected %s, got %s (did you mean '%s'?)", choices, got, best);
-    }
-    return fail(ld, v, path, "expected %s, got %s", choices, got);
-}
-
-static int fill_scalar(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                       const char *path, void *base)
-{
-    void *dst = (char *)base + d->offset;
-    switch (d->type) {
-    case PARAM_BOOL:
-        return fill_bool(ld, d, v, path, dst);
-    case PARAM_FLOAT:
-    case PARAM_DOUBLE:
-        return fill_real(ld, d, v, path, dst);
-    case PARAM_STRING:
-        return fill_string(ld, d, v, path, dst);
-    case PARAM_ENUM:
-        return fill_enum(ld, d, v, path, dst);
-    default:
-        return fill_integer(ld, d, v, path, dst);
-    }
-}
-
-/* ---------------------------------------------------------------- mappings */
-
-static const param_desc_t *find_param(const param_desc_t *d, const char *key)
-{
-    for (; d != NULL && d->key != NULL; d++) {
-        if (strcmp(d->key, key) == 0) {
-            return d;
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        if (sc->tasks[t].def == def) {
+            return sc->tasks[t].config.bytes;
         }
     }
     return NULL;
 }
 
-static const child_t *find_child(const child_t *c, const char *key)
-{
-    for (; c != NULL && c->key != NULL; c++) {
-        if (strcmp(c->key, key) == 0) {
-            return c;
-        }
-    }
-    return NULL;
-}
-
-/* Appends `key` to the list in buf. */
-static void list_key(char *buf, size_t len, const char *key)
-{
-    size_t used = strlen(buf);
-    if (used < len) {
-        snprintf(buf + used, len - used, "%s%s", used ? ", " : "", key);
-    }
-}
-
-static int unknown_key(const loader_t *ld, const ynode_t *key, const char *path,
-                       const schema_t *schema)
-{
-    char valid[320] = "";
-    const char *best = NULL;
-    size_t dist = 3;
-    const param_desc_t *d;
-    const child_t *c;
-    for (d = schema->params; d != NULL && d->key != NULL; d++) {
-        consider(key->text, d->key, &best, &dist);
-        list_key(valid, sizeof valid, d->key);
-    }
-    for (c = schema->children; c != NULL && c->key != NULL; c++) {
-        consider(key->text, c->key, &best, &dist);
-        list_key(valid, sizeof valid, c->key);
-    }
-    if (best != NULL) {
-        return fail(ld, key, path, "unknown key '%.64s' (did you mean '%s'?)", key->text, best);
-    }
-    if (valid[0] == '\0') {
-        return fail(ld, key, path, "unknown key '%.64s' (no keys are allowed here)", key->text);
-    }
-    return fail(ld, key, path, "unknown key '%.64s' (valid keys: %s)", key->text, valid);
-}
-
-static int fill_mapping(const loader_t *ld, const ynode_t *node, const char *path,
-                        const schema_t *schema, void *base);
-static int fill_sequence(const loader_t *ld, const ynode_t *node, const char *path,
-                         const seq_desc_t *seq, void *base);
-static int fill_controller(const loader_t *ld, const ynode_t *node, const char *path,
-                           scenario_t *sc);
-
-static int fill_entry(const loader_t *ld, const ypair_t *pair, const char *path,
-                      const schema_t *schema, void *base)
-{
-    const param_desc_t *d = find_param(schema->params, pair->key->text);
-    const child_t *c;
-    if (d != NULL) {
-        return fill_scalar(ld, d, pair->value, path, base);
-    }
-    c = find_child(schema->children, pair->key->text);
-    if (c == NULL) {
-        return unknown_key(ld, pair->key, path, schema);
-    }
-    switch (c->kind) {
-    case CHILD_MAPPING:
-        return fill_mapping(ld, pair->value, path, c->schema, base);
-    case CHILD_SEQUENCE:
-        return fill_sequence(ld, pair->value, path, c->seq, base);
-    case CHILD_CONTROLLER:
-        return fill_controller(ld, pair->value, path, base);
-    default:
-        return 0;
-    }
-}
-
-static int duplicate_key(const loader_t *ld, const ynode_t *map, size_t i, const char *path)
-{
-    const ynode_t *key = map->pairs[i].key;
-    size_t j;
-    for (j = 0; j < i; j++) {
-        const ynode_t *first = map->pairs[j].key;
-        if (strcmp(first->text, key->text) == 0) {
-            if (first->line > 0) {
-                return fail(ld, key, path, "duplicate key '%.64s' (first on line %d)", key->text,
-                            first->line);
-            }
-            return fail(ld, key, path, "duplicate key '%.64s'", key->text);
-        }
-    }
-    return 0;
-}
-
-/* Fills the keys present in `node`; absent keys keep their value.  A null
- * node (an empty section) changes nothing. */
-static int fill_mapping(const loader_t *ld, const ynode_t *node, const char *path,
-                        const schema_t *schema, void *base)
-{
-    size_t i;
-    if (ytree_is_null(node)) {
-        return 0;
-    }
-    if (node->kind != YNODE_MAPPING) {
-        return wrong_type(ld, node, path, "a mapping");
-    }
-    for (i = 0; i < node->count; i++) {
-        char child[PATH_BUF];
-        join(child, path, node->pairs[i].key->text);
-        if (duplicate_key(ld, node, i, child) != 0 ||
-            fill_entry(ld, &node->pairs[i], child, schema, base) != 0) {
-            return -1;
-        }
-    }
-    return 0;
-}
-
-/* ---------------------------------------------------------------- sequences */
-
-static void index_path(char out[PATH_BUF], const char *path, size_t i)
-{
-    format_into(out, PATH_BUF, "%s[%zu]", path, i);
-}
-
-/* A given sequence replaces the default (empty) one; each entry starts from
- * the entry defaults. */
-static int fill_sequence(const loader_t *ld, const ynode_t *node, const char *path,
-                         const seq_desc_t *seq, void *base)
-{
-    char *array = (char *)base + seq->array_offset;
-    uint32_t count = 0;
-    size_t n = 0;
-    if (!ytree_is_null(node)) {
-        if (node->kind != YNODE_SEQUENCE) {
-            return wrong_type(ld, node, path, "a sequence");
-        }
-        n = node->count;
-    }
-    for (; count < n; count++) {
-        const ynode_t *item = node->items[count];
-        void *elem = array + (size_t)count * seq->elem_size;
-        char ipath[PATH_BUF];
-        index_path(ipath, path, count);
-        if (count >= seq->max) {
-            return fail(ld, item, ipath, "too many %s (at most %zu)", seq->noun, seq->max);
-        }
-        if (item == NULL || item->kind != YNODE_MAPPING) {
-            return wrong_type(ld, item, ipath, "a mapping");
-        }
-        memcpy(elem, seq->defaults, seq->elem_size);
-        if (fill_mapping(ld, item, ipath, seq->schema, elem) != 0 ||
-            (seq->check != NULL && seq->check(ld, item, ipath, elem) != 0)) {
-            return -1;
-        }
-    }
-    memcpy((char *)base + seq->count_offset, &count, sizeof count);
-    return 0;
-}
-
-/* The value node of `key` in `item` if present, else `item` (for the line). */
-static const ynode_t *node_of(const ynode_t *item, const char *key)
-{
-    const ynode_t *v = ytree_get(item, key);
-    return v != NULL ? v : item;
-}
+/* ---------------------------------------------------------------- groups */
 
 static int need_positive(const loader_t *ld, const ynode_t *item, const char *path,
                          const char *key, float value, const char *shape)
 {
-    char p[PATH_BUF];
+    char p[SCHEMA_PATH_MAX];
     if (value > 0.0f) {
         return 0;
     }
-    join(p, path, key);
-    return fail(ld, node_of(item, key), p, "a %s needs %s > 0", shape, key);
+    schema_join(p, path, key);
+    return schema_fail(ld, schema_node_of(item, key), p, "a %s needs %s > 0", shape, key);
 }
 
-static int check_object(const loader_t *ld, const ynode_t *item, const char *path,
-                        const void *elem)
+static int check_object(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
 {
     const object_def_t *o = elem;
     if (o->shape == SHAPE_CYLINDER) {
@@ -890,76 +396,236 @@ static int check_object(const loader_t *ld, const ynode_t *item, const char *pat
     return need_positive(ld, item, path, "depth", o->depth, "box");
 }
 
-/* ---------------------------------------------------------------- controller */
-
-static int fill_params(const loader_t *ld, const ynode_t *node, const char *path,
-                       const sim_controller_t *ctrl, scenario_t *sc)
+/* The controller a group names, with the list of valid ones if unknown. */
+static int resolve_controller(const loader_t *ld, const ynode_t *item, const char *path,
+                              robot_group_t *g)
 {
-    schema_t schema;
-    if (ctrl->params_size > sizeof sc->controller.params.bytes) {
-        return fail(ld, node, path, "controller '%s' has %zu bytes of parameters (at most %zu)",
-                    ctrl->name, ctrl->params_size, sizeof sc->controller.params.bytes);
+    char p[SCHEMA_PATH_MAX], valid[256] = "";
+    const controller_def_t *def;
+    schema_join(p, path, "controller");
+    if (g->controller[0] == '\0') {
+        for (size_t i = 0; (def = registry_controller_at(i)) != NULL; i++) {
+            schema_list_key(valid, sizeof valid, def->name);
+        }
+        return schema_fail(ld, item, p, "every group needs a controller (one of %s)", valid);
     }
-    controller_defaults(sc, ctrl);
-    schema.params = ctrl->params;
-    schema.children = NULL;
-    return fill_mapping(ld, node, path, &schema, sc->controller.params.bytes);
+    def = registry_controller(g->controller);
+    if (def == NULL) {
+        const char *best = NULL;
+        size_t dist = 3;
+        for (size_t i = 0; (def = registry_controller_at(i)) != NULL; i++) {
+            schema_list_key(valid, sizeof valid, def->name);
+            schema_consider(g->controller, def->name, &best, &dist);
+        }
+        if (best != NULL) {
+            return schema_fail(ld, schema_node_of(item, "controller"), p,
+                               "unknown controller '%s' (did you mean '%s'?)", g->controller, best);
+        }
+        return schema_fail(ld, schema_node_of(item, "controller"), p,
+                           "unknown controller '%s' (valid: %s)", g->controller, valid);
+    }
+    if (def->params_size > sizeof g->params.bytes) {
+        return schema_fail(ld, schema_node_of(item, "controller"), p,
+                           "controller '%s' has %zu bytes of parameters (at most %zu)", def->name,
+                           def->params_size, sizeof g->params.bytes);
+    }
+    g->def = def;
+    return 0;
 }
 
-/* controller.policy must be one of the controller's; empty means its first. */
-static int check_policy(const loader_t *ld, const ynode_t *node, const char *path,
-                        const sim_controller_t *ctrl, scenario_t *sc)
+/* The group's policy must be one of its controller's; empty means its first. */
+static int resolve_policy(const loader_t *ld, const ynode_t *item, const char *path, robot_group_t *g)
 {
-    char p[PATH_BUF], valid[256] = "";
-    size_t i;
-    join(p, path, "policy");
-    if (ctrl->policies == NULL || ctrl->policies[0] == NULL) {
-        if (sc->controller.policy[0] != '\0') {
-            return fail(ld, node_of(node, "policy"), p, "controller '%s' has no policies",
-                        ctrl->name);
+    char p[SCHEMA_PATH_MAX], valid[256] = "";
+    const char *const *pol = g->def->policies;
+    schema_join(p, path, "policy");
+    if (pol == NULL || pol[0] == NULL) {
+        if (g->policy[0] != '\0') {
+            return schema_fail(ld, schema_node_of(item, "policy"), p, "controller '%s' has no policies",
+                               g->def->name);
         }
         return 0;
     }
-    if (sc->controller.policy[0] == '\0') {
-        snprintf(sc->controller.policy, sizeof sc->controller.policy, "%s", ctrl->policies[0]);
-        return 0;
+    if (g->policy[0] == '\0') {
+        snprintf(g->policy, sizeof g->policy, "%s", pol[0]);
     }
-    for (i = 0; ctrl->policies[i] != NULL; i++) {
-        if (strcmp(ctrl->policies[i], sc->controller.policy) == 0) {
+    for (uint8_t i = 0; pol[i] != NULL; i++) {
+        if (strcmp(pol[i], g->policy) == 0) {
+            g->policy_index = i;
             return 0;
         }
-        list_key(valid, sizeof valid, ctrl->policies[i]);
+        schema_list_key(valid, sizeof valid, pol[i]);
     }
-    return fail(ld, node_of(node, "policy"), p, "unknown policy '%s' for controller '%s' (valid: %s)",
-                sc->controller.policy, ctrl->name, valid);
+    return schema_fail(ld, schema_node_of(item, "policy"), p,
+                       "unknown policy '%s' for controller '%s' (valid: %s)", g->policy, g->def->name,
+                       valid);
 }
 
-/* The keys and the name first (params are deferred), then the params of the
- * named controller over its defaults, whatever order the file uses. */
-static int fill_controller(const loader_t *ld, const ynode_t *node, const char *path,
-                           scenario_t *sc)
+static int check_placement(const loader_t *ld, const ynode_t *item, const char *path,
+                           const robot_group_t *g)
 {
-    const sim_controller_t *ctrl;
-    char p[PATH_BUF];
-    if (fill_mapping(ld, node, path, &controller_schema, sc) != 0) {
+    const placement_def_t *pl = &g->placement;
+    const ynode_t *node = ytree_get(item, "placement");
+    char p[SCHEMA_PATH_MAX];
+    schema_join(p, path, "placement");
+    if (pl->shape == PLACE_CIRCLE) {
+        return need_positive(ld, node ? node : item, p, "radius", pl->radius, "circle placement");
+    }
+    if (pl->shape == PLACE_RING && !(pl->outer > pl->inner)) {
+        char q[SCHEMA_PATH_MAX];
+        schema_join(q, p, "outer");
+        return schema_fail(ld, schema_node_of(node ? node : item, "outer"), q,
+                           "a ring placement needs outer > inner (%g <= %g)", (double)pl->outer,
+                           (double)pl->inner);
+    }
+    if (pl->shape == PLACE_POSES && g->count != 0 && pl->pose_count != g->count) {
+        char q[SCHEMA_PATH_MAX];
+        schema_join(q, p, "poses");
+        return schema_fail(ld, schema_node_of(node ? node : item, "poses"), q,
+                           "%u poses for a group of %u robots (give one per robot)",
+                           pl->pose_count, g->count);
+    }
+    return 0;
+}
+
+/* After a group's keys: its controller, policy and params (over the
+ * controller's defaults), placement. */
+static int check_group(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
+{
+    robot_group_t *g = elem;
+    char p[SCHEMA_PATH_MAX];
+    schema_t params_schema = { NULL, NULL, NULL, NULL };
+    if (resolve_controller(ld, item, path, g) != 0 || resolve_policy(ld, item, path, g) != 0) {
         return -1;
     }
-    ctrl = controllers_find(sc->controller.name);
-    if (ctrl == NULL) {
-        char valid[256] = "";
-        size_t i;
-        for (i = 0; controllers_at(i) != NULL; i++) {
-            list_key(valid, sizeof valid, controllers_at(i)->name);
+    memset(g->params.bytes, 0, sizeof g->params.bytes);
+    if (g->def->default_params != NULL) {
+        g->def->default_params(g->params.bytes);
+    }
+    params_schema.params = g->def->params;
+    schema_join(p, path, "params");
+    if (schema_fill_mapping(ld, ytree_get(item, "params"), p, &params_schema, g->params.bytes) != 0) {
+        return -1;
+    }
+    return check_placement(ld, item, path, g);
+}
+
+/* Default names: the controller's, or controller_<index> when taken. */
+static int name_groups(const loader_t *ld, const ynode_t *root, scenario_t *sc)
+{
+    const ynode_t *seq = ytree_get(root, "robots");
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        robot_group_t *grp = &sc->groups[g];
+        int given = grp->name[0] != '\0';
+        char own[sizeof grp->name];
+        if (!given) {
+            /* Both fields hold at most 31 characters. */
+            memcpy(grp->name, grp->controller, sizeof grp->name);
         }
-        join(p, path, "name");
-        return fail(ld, node_of(node, "name"), p, "unknown controller '%s' (valid: %s)",
-                    sc->controller.name, valid);
+        for (uint32_t h = 0; h < g; h++) {
+            if (strcmp(sc->groups[h].name, grp->name) != 0) {
+                continue;
+            }
+            if (given) {
+                char p[SCHEMA_PATH_MAX], q[SCHEMA_PATH_MAX];
+                schema_index_path(q, "robots", g);
+                schema_join(p, q, "name");
+                const ynode_t *item = seq && seq->kind == YNODE_SEQUENCE && g < seq->count ? seq->items[g] : root;
+                return schema_fail(ld, schema_node_of(item, "name"), p,
+                                   "'%s' already names robots[%u]; give each group its own name",
+                                   grp->name, h);
+            }
+            snprintf(own, sizeof own, "%.20s_%u", grp->controller, g);
+            memcpy(grp->name, own, sizeof own);
+        }
     }
-    if (check_policy(ld, node, path, ctrl, sc) != 0) {
-        return -1;
+    return 0;
+}
+
+/* ---------------------------------------------------------------- tasks */
+
+static const char *task_key(size_t i)
+{
+    const task_def_t *t = registry_task_at(i);
+    return t != NULL ? t->name : NULL;
+}
+
+static size_t task_index(const task_def_t *def)
+{
+    size_t i = 0;
+    while (registry_task_at(i) != NULL && registry_task_at(i) != def) {
+        i++;
     }
-    join(p, path, "params");
-    return fill_params(ld, ytree_get(node, "params"), p, ctrl, sc);
+    return i;
+}
+
+/* A task's section: its scalar keys and nested mappings (param_section_t). */
+static int fill_task(const loader_t *ld, const ypair_t *pair, const char *path, void *base)
+{
+    scenario_t *sc = base;
+    const task_def_t *def = registry_task(pair->key->text);
+    child_t children[9];
+    schema_t sections[8];
+    schema_t schema = { NULL, children, NULL, NULL };
+    size_t n = 0;
+    if (def == NULL) {
+        return 0;
+    }
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        if (sc->tasks[t].def == def) {
+            return schema_fail(ld, pair->key, path, "the task appears twice");
+        }
+    }
+    if (sc->task_count == SCENARIO_MAX_TASKS) {
+        return schema_fail(ld, pair->key, path, "more than %d tasks", SCENARIO_MAX_TASKS);
+    }
+    if (def->config_size > SCENARIO_TASK_CONFIG_MAX) {
+        return schema_fail(ld, pair->key, path, "task '%s' has %zu bytes of config (at most %d)",
+                           def->name, def->config_size, SCENARIO_TASK_CONFIG_MAX);
+    }
+    task_config_t *tc = &sc->tasks[sc->task_count++];
+    memset(tc, 0, sizeof *tc);
+    tc->def = def;
+    if (def->default_config != NULL) {
+        def->default_config(tc->config.bytes);
+    }
+    schema.params = def->params;
+    for (const param_section_t *s = def->sections; s != NULL && s->key != NULL && n < 8; s++, n++) {
+        sections[n] = (schema_t){ s->params, NULL, NULL, NULL };
+        children[n] = (child_t){ s->key, CHILD_MAPPING, &sections[n], NULL, s->doc };
+    }
+    children[n] = (child_t)CHILD_END;
+    return schema_fill_mapping(ld, pair->value, path, &schema, tc->config.bytes) == 0 ? 1 : -1;
+}
+
+/* Registry order, whatever the file's. */
+static void order_tasks(scenario_t *sc)
+{
+    for (uint32_t i = 1; i < sc->task_count; i++) {
+        for (uint32_t j = i; j > 0 && task_index(sc->tasks[j - 1].def) > task_index(sc->tasks[j].def); j--) {
+            task_config_t tmp = sc->tasks[j - 1];
+            sc->tasks[j - 1] = sc->tasks[j];
+            sc->tasks[j] = tmp;
+        }
+    }
+}
+
+static int check_tasks(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+{
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        const task_def_t *def = sc->tasks[t].def;
+        char key[64] = "", msg[256] = "", path[SCHEMA_PATH_MAX];
+        if (def->check == NULL || def->check(sc->tasks[t].config.bytes, sc, key, msg) == 0) {
+            continue;
+        }
+        if (key[0] != '\0') {
+            schema_join(path, def->name, key);
+        } else {
+            snprintf(path, sizeof path, "%s", def->name);
+        }
+        return schema_fail(ld, schema_find(root, path), path, "%s", msg);
+    }
+    return 0;
 }
 
 /* ---------------------------------------------------------------- cross checks */
@@ -973,75 +639,75 @@ static int inside_arena(const scenario_t *sc, double x, double y, double hx, dou
 static int outside(const loader_t *ld, const ynode_t *node, const char *path, const char *what,
                    const scenario_t *sc)
 {
-    return fail(ld, node, path, "%s outside the arena (x in [%g, %g], y in [%g, %g] m)", what,
-                -sc->arena.width / 2.0, sc->arena.width / 2.0, -sc->arena.height / 2.0,
-                sc->arena.height / 2.0);
-}
-
-static int check_objects_inside(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
-{
-    const ynode_t *seq = ytree_get(root, "objects");
-    uint32_t i;
-    for (i = 0; i < sc->object_count; i++) {
-        const object_def_t *o = &sc->objects[i];
-        double hx = o->radius, hy = o->radius;
-        char path[PATH_BUF];
-        if (o->shape == SHAPE_BOX) {
-            /* Half-extents of the rotated box's bounding rectangle. */
-            double a = o->angle * DEG_TO_RAD, c = fabs(cos(a)), s = fabs(sin(a));
-            hx = (c * o->width + s * o->depth) / 2.0;
-            hy = (s * o->width + c * o->depth) / 2.0;
-        }
-        if (!inside_arena(sc, o->x, o->y, hx, hy)) {
-            index_path(path, "objects", i);
-            return outside(ld, seq->items[i], path,
-                           o->shape == SHAPE_BOX ? "the box reaches" : "the cylinder reaches", sc);
-        }
-    }
-    return 0;
+    return schema_fail(ld, node, path, "%s outside the arena (x in [%g, %g], y in [%g, %g] m)", what,
+                       -sc->arena.width / 2.0, sc->arena.width / 2.0, -sc->arena.height / 2.0,
+                       sc->arena.height / 2.0);
 }
 
 static int check_inside(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
 {
-    const ynode_t *lights = ytree_get(root, "lights");
-    uint32_t i;
-    if (check_objects_inside(ld, root, sc) != 0) {
-        return -1;
-    }
-    for (i = 0; i < sc->light_count; i++) {
-        char path[PATH_BUF];
-        if (!inside_arena(sc, sc->lights[i].x, sc->lights[i].y, 0.0, 0.0)) {
-            index_path(path, "lights", i);
-            return outside(ld, lights->items[i], path, "the light is", sc);
+    const ynode_t *seq = ytree_get(root, "objects"), *lights = ytree_get(root, "lights");
+    char path[SCHEMA_PATH_MAX];
+    for (uint32_t i = 0; i < sc->object_count; i++) {
+        const object_def_t *o = &sc->objects[i];
+        double hx = o->radius, hy = o->radius;
+        if (o->shape == SHAPE_BOX) {
+            /* Half-extents of the rotated box's bounding rectangle. */
+            double a = o->angle * UNITS_PI / 180.0, c = fabs(cos(a)), s = fabs(sin(a));
+            hx = (c * o->width + s * o->depth) / 2.0;
+            hy = (s * o->width + c * o->depth) / 2.0;
+        }
+        if (!inside_arena(sc, o->x, o->y, hx, hy)) {
+            schema_index_path(path, "objects", i);
+            return outside(ld, seq->items[i], path,
+                           o->shape == SHAPE_BOX ? "the box reaches" : "the cylinder reaches", sc);
         }
     }
-    if (sc->nest.enabled &&
-        !inside_arena(sc, sc->nest.x, sc->nest.y, sc->nest.diameter / 2.0,
-                      sc->nest.diameter / 2.0)) {
-        return outside(ld, ytree_get(root, "nest"), "nest", "the nest circle reaches", sc);
+    for (uint32_t i = 0; i < sc->light_count; i++) {
+        if (!inside_arena(sc, sc->lights[i].x, sc->lights[i].y, 0.0, 0.0)) {
+            schema_index_path(path, "lights", i);
+            return outside(ld, lights->items[i], path, "the light is", sc);
+        }
     }
     return 0;
 }
 
-static int cross_check(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+/* What a controller needs of the platform the scenario models. */
+static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
 {
-    const ynode_t *robots = ytree_get(root, "robots");
-    if (sc->robots.placement == PLACE_NEST && !sc->nest.enabled) {
-        return fail(ld, node_of(robots, "placement"), "robots.placement",
-                    "'nest' needs nest.enabled: true");
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        const robot_group_t *grp = &sc->groups[g];
+        if (grp->count > 0 && grp->def->ircom_bits > sc->ircom.payload_bits) {
+            char path[SCHEMA_PATH_MAX];
+            snprintf(path, sizeof path, "robots.%u.controller", g);
+            const ynode_t *node = schema_find(root, path);
+            char at[SCHEMA_PATH_MAX];
+            schema_index_path(at, "robots", g);
+            schema_join(path, at, "controller");
+            return schema_fail(ld, node, path,
+                               "controller '%s' sends %u-bit IR messages but ircom.payload_bits is %u "
+                               "(set ircom.payload_bits: %u, the range-and-bearing turret)",
+                               grp->def->name, grp->def->ircom_bits, sc->ircom.payload_bits,
+                               grp->def->ircom_bits);
+        }
     }
-    if (sc->foraging.enabled && !sc->nest.enabled) {
-        const ynode_t *f = ytree_get(root, "foraging");
-        return fail(ld, node_of(f, "enabled"), "foraging.enabled",
-                    "the foraging task needs a nest (nest.enabled: true)");
-    }
+    return 0;
+}
+
+static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
+{
     if (sc->duration * 1000.0 < sc->control_period_ms) {
         const ynode_t *d = ytree_get(root, "duration");
-        return fail(ld, d != NULL ? d : root, "duration",
-                    "%g s is shorter than one control period (%g s)", sc->duration,
-                    sc->control_period_ms / 1000.0);
+        return schema_fail(ld, d != NULL ? d : root, "duration",
+                           "%g s is shorter than one control period (%g s)", sc->duration,
+                           sc->control_period_ms / 1000.0);
     }
-    return check_inside(ld, root, sc);
+    if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0
+        || check_inside(ld, root, sc) != 0) {
+        return -1;
+    }
+    order_tasks(sc);
+    return check_tasks(ld, root, sc);
 }
 
 /* ---------------------------------------------------------------- loading */
@@ -1052,7 +718,7 @@ static int set_path_and_name(const loader_t *ld, const char *path, scenario_t *o
     const char *dot;
     size_t len;
     if (strlen(path) >= sizeof out->path) {
-        return fail(ld, NULL, "", "path longer than %zu characters", sizeof out->path - 1);
+        return schema_fail(ld, NULL, "", "path longer than %zu characters", sizeof out->path - 1);
     }
     memcpy(out->path, path, strlen(path) + 1);
     base = base != NULL ? base + 1 : path;
@@ -1072,10 +738,37 @@ static int check_root(const loader_t *ld, ynode_t **root)
     if (ytree_is_null(*root)) {
         ytree_free(*root);
         *root = ytree_new_mapping(0, NULL);
-        return *root != NULL ? 0 : fail(ld, NULL, "", "out of memory");
+        return *root != NULL ? 0 : schema_fail(ld, NULL, "", "out of memory");
     }
     if ((*root)->kind != YNODE_MAPPING) {
-        return wrong_type(ld, *root, "", "a mapping of keys at the top level");
+        return schema_wrong_type(ld, *root, "", "a mapping of keys at the top level");
+    }
+    return 0;
+}
+
+/* Keys of the scenario format before robot groups: say what replaced them. */
+static int old_syntax(const loader_t *ld, const ynode_t *root)
+{
+    static const char *const moved[][2] = {
+        { "controller", "robots are groups now: robots: [{count: 20, controller: NAME, policy: P, "
+                        "params: {...}, placement: {...}}]" },
+        { "nest", "the nest belongs to its task now (foraging: {nest: {x, y, diameter}})" },
+    };
+    for (size_t i = 0; i < sizeof moved / sizeof moved[0]; i++) {
+        const ynode_t *v = ytree_get(root, moved[i][0]);
+        if (v != NULL) {
+            for (size_t k = 0; k < root->count; k++) {
+                if (root->pairs[k].value == v) {
+                    return schema_fail(ld, root->pairs[k].key, moved[i][0], "unknown key '%s': %s",
+                                       moved[i][0], moved[i][1]);
+                }
+            }
+        }
+    }
+    const ynode_t *robots = ytree_get(root, "robots");
+    if (robots != NULL && robots->kind == YNODE_MAPPING) {
+        return schema_fail(ld, robots, "robots", "expected a sequence of groups, got a mapping "
+                           "(robots: [{count: 20, controller: random_walk}])");
     }
     return 0;
 }
@@ -1083,26 +776,26 @@ static int check_root(const loader_t *ld, ynode_t **root)
 int scenario_load(const char *path, const scenario_override_t *overrides,
                   size_t override_count, scenario_t *out, char err[SCENARIO_ERROR_MAX])
 {
-    loader_t ld;
+    loader_t ld = { path != NULL ? path : "(null)", err, SCENARIO_ERROR_MAX };
     ynode_t *root = NULL;
-    size_t i;
     int rc;
-    ld.file = path != NULL ? path : "(null)";
-    ld.err = err;
     err[0] = '\0';
     scenario_defaults(out);
     if (path == NULL || set_path_and_name(&ld, path, out) != 0) {
-        return path == NULL ? fail(&ld, NULL, "", "no scenario file") : -1;
+        return path == NULL ? schema_fail(&ld, NULL, "", "no scenario file") : -1;
     }
     if (ytree_parse_file(path, &root, err, SCENARIO_ERROR_MAX) != 0) {
         return -1;
     }
     rc = check_root(&ld, &root);
-    for (i = 0; rc == 0 && i < override_count; i++) {
+    for (size_t i = 0; rc == 0 && i < override_count; i++) {
         rc = ytree_apply_override(&root, overrides[i].text, err, SCENARIO_ERROR_MAX);
     }
     if (rc == 0) {
-        rc = fill_mapping(&ld, root, "", &top_schema, out);
+        rc = old_syntax(&ld, root);
+    }
+    if (rc == 0) {
+        rc = schema_fill_mapping(&ld, root, "", &top_schema, out);
     }
     if (rc == 0) {
         rc = cross_check(&ld, root, out);
@@ -1113,97 +806,31 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
 
 /* ---------------------------------------------------------------- --help */
 
-static const char *type_name(param_type_t t)
+static void print_group_params(FILE *f, const char *prefix)
 {
-    switch (t) {
-    case PARAM_BOOL: return "bool";
-    case PARAM_FLOAT:
-    case PARAM_DOUBLE: return "number";
-    case PARAM_STRING: return "string";
-    case PARAM_ENUM: return "enum";
-    default: return "int";
-    }
-}
-
-static void format_value(const param_desc_t *d, const void *base, char *buf, size_t len)
-{
-    const char *p = (const char *)base + d->offset;
-    union { uint8_t u8; uint16_t u16; int16_t i16; uint32_t u32; uint64_t u64; float f;
-            double d; int i; } v;
-    memcpy(&v, p, d->type == PARAM_STRING ? 0 : d->size);
-    switch (d->type) {
-    case PARAM_BOOL: snprintf(buf, len, "%s", v.u8 ? "true" : "false"); break;
-    case PARAM_U8: snprintf(buf, len, "%u", (unsigned)v.u8); break;
-    case PARAM_U16: snprintf(buf, len, "%u", (unsigned)v.u16); break;
-    case PARAM_I16: snprintf(buf, len, "%d", (int)v.i16); break;
-    case PARAM_U32: snprintf(buf, len, "%" PRIu32, v.u32); break;
-    case PARAM_U64: snprintf(buf, len, "%" PRIu64, v.u64); break;
-    case PARAM_FLOAT: format_number(v.f, buf, len); break;
-    case PARAM_DOUBLE: format_number(v.d, buf, len); break;
-    case PARAM_STRING: snprintf(buf, len, "%s", p[0] ? p : "-"); break;
-    case PARAM_ENUM: snprintf(buf, len, "%s", d->choices[v.i]); break;
-    }
-}
-
-static void print_params(FILE *f, const char *prefix, const param_desc_t *d, const void *base)
-{
-    for (; d != NULL && d->key != NULL; d++) {
-        char path[PATH_BUF], def[48], range[128];
-        join(path, prefix, d->key);
-        format_value(d, base, def, sizeof def);
-        format_range(d, range, sizeof range);
-        fprintf(f, "  %-34s %-6s %-12s %-22s %s\n", path, type_name(d->type), def, range, d->doc);
-    }
-}
-
-static void print_controller_params(FILE *f, const char *prefix)
-{
-    const sim_controller_t *ctrl;
-    size_t i;
-    for (i = 0; (ctrl = controllers_at(i)) != NULL; i++) {
-        union { uint8_t bytes[SCENARIO_CONTROLLER_PARAMS_MAX]; double d; uint64_t u; } buf;
-        if (ctrl->params_size > sizeof buf.bytes) {
+    const controller_def_t *def;
+    for (size_t i = 0; (def = registry_controller_at(i)) != NULL; i++) {
+        scenario_params_t buf;
+        if (def->params_size > sizeof buf.bytes) {
             continue;
         }
         memset(&buf, 0, sizeof buf);
-        if (ctrl->default_params != NULL) {
-            ctrl->default_params(buf.bytes);
+        if (def->default_params != NULL) {
+            def->default_params(buf.bytes);
         }
-        if (ctrl->params == NULL || ctrl->params[0].key == NULL) {
-            fprintf(f, "  %s: none when controller.name is %s\n", prefix, ctrl->name);
+        if (def->params == NULL || def->params[0].key == NULL) {
+            fprintf(f, "  %s: none when controller is %s\n", prefix, def->name);
             continue;
         }
-        fprintf(f, "  %s when controller.name is %s (%s):\n", prefix, ctrl->name, ctrl->doc);
-        print_params(f, prefix, ctrl->params, buf.bytes);
-    }
-}
-
-static void print_schema(FILE *f, const char *prefix, const schema_t *schema, const void *base)
-{
-    const child_t *c;
-    print_params(f, prefix, schema->params, base);
-    for (c = schema->children; c != NULL && c->key != NULL; c++) {
-        char path[PATH_BUF], elem[PATH_BUF];
-        join(path, prefix, c->key);
-        switch (c->kind) {
-        case CHILD_SEQUENCE:
-            fprintf(f, "  %-34s %-6s %-12s <= %-19zu %s; each entry:\n", path, "list", "empty",
-                    c->seq->max, c->doc);
-            format_into(elem, sizeof elem, "%s[]", path);
-            print_schema(f, elem, c->seq->schema, c->seq->defaults);
-            break;
-        case CHILD_DEFERRED:
-            print_controller_params(f, path);
-            break;
-        default:
-            print_schema(f, path, c->schema, base);
-        }
+        fprintf(f, "  %s when controller is %s (%s):\n", prefix, def->name, def->doc);
+        schema_print_params(f, prefix, def->params, buf.bytes);
     }
 }
 
 void scenario_print_schema(FILE *file)
 {
     scenario_t *def = malloc(sizeof *def);
+    const task_def_t *task;
     if (def == NULL) {
         return;
     }
@@ -1211,8 +838,26 @@ void scenario_print_schema(FILE *file)
     fprintf(file, "Scenario keys (YAML; lengths in m, angles in deg, times in s; "
                   "the arena is centred on 0,0):\n");
     fprintf(file, "  %-34s %-6s %-12s %-22s %s\n", "key", "type", "default", "range", "meaning");
-    print_schema(file, "", &top_schema, def);
+    schema_print(file, "", &top_schema, def, print_group_params);
+    for (size_t i = 0; (task = registry_task_at(i)) != NULL; i++) {
+        union { uint8_t bytes[SCENARIO_TASK_CONFIG_MAX]; double d; uint64_t u; } cfg;
+        memset(&cfg, 0, sizeof cfg);
+        if (task->config_size > sizeof cfg.bytes) {
+            continue;
+        }
+        if (task->default_config != NULL) {
+            task->default_config(cfg.bytes);
+        }
+        fprintf(file, "  %-34s %-6s %-12s %-22s task: %s (runs when the section is present)\n",
+                task->name, "map", "-", "", task->doc);
+        schema_print_params(file, task->name, task->params, cfg.bytes);
+        for (const param_section_t *s = task->sections; s != NULL && s->key != NULL; s++) {
+            char prefix[SCHEMA_PATH_MAX];
+            schema_join(prefix, task->name, s->key);
+            schema_print_params(file, prefix, s->params, cfg.bytes);
+        }
+    }
     fprintf(file, "Override any key with --set key.path=value "
-                  "(e.g. --set robots.count=50 --set objects.0.x=1.5).\n");
+                  "(e.g. --set robots.0.count=50 --set objects.0.x=1.5).\n");
     free(def);
 }

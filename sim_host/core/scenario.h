@@ -1,10 +1,11 @@
 /*
- * scenario.h - a simulation scenario: arena, robots, objects, lights, the
- * controller and its parameters, noise, duration and seed.
+ * scenario.h - a simulation scenario: arena, obstacles, lights, groups of
+ * robots (each a controller with its parameters and a placement), the
+ * sensor and actuator models, the tasks, duration and seed.
  *
- * Scenario files are YAML with a strict schema (see scenario.c for every key,
- * its unit and range).  Lengths are metres, angles degrees, times seconds
- * unless a key's name says otherwise.
+ * Scenario files are YAML with a strict schema (scenario.c has every key,
+ * its unit and range; `swarmsim --help` prints them).  Lengths are metres,
+ * angles degrees, times seconds unless a key's name says otherwise.
  */
 #ifndef SIM_SCENARIO_H
 #define SIM_SCENARIO_H
@@ -13,14 +14,21 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "param.h"
+#include "common/controller.h"
+#include "common/param.h"
 
 #define SCENARIO_NAME_MAX 64
 #define SCENARIO_PATH_MAX 512
 #define SCENARIO_ERROR_MAX 512
 #define SCENARIO_MAX_OBJECTS 4096
 #define SCENARIO_MAX_LIGHTS 16
+#define SCENARIO_MAX_GROUPS 16
+#define SCENARIO_MAX_POSES 256
+#define SCENARIO_MAX_TASKS 4
 #define SCENARIO_CONTROLLER_PARAMS_MAX 512
+#define SCENARIO_TASK_CONFIG_MAX 1024
+
+struct task_def;
 
 typedef enum object_shape { SHAPE_CYLINDER = 0, SHAPE_BOX = 1 } object_shape_t;
 
@@ -42,13 +50,61 @@ typedef struct light_def {
     float intensity;    /**< relative: 1 gives irradiance 1 at 1 m */
 } light_def_t;
 
-/** Where robots in the nest learn the nest's state (seed 000, 3.2). */
-typedef enum foraging_info {
-    INFO_BEACON = 0,  /**< a nest-beacon e-puck keeps the ledger, IR broadcast */
-    INFO_GLOBAL = 1   /**< ideal: the simulator broadcasts the true values */
-} foraging_info_t;
+/** Where a group's robots start (placement.c). */
+typedef enum placement_shape {
+    PLACE_RECTANGLE = 0,  /**< uniform in a rectangle (default: the arena) */
+    PLACE_CIRCLE = 1,     /**< uniform in a disc */
+    PLACE_RING = 2,       /**< uniform in an annulus */
+    PLACE_GRID = 3,       /**< rows and columns over a rectangle, one spot per robot */
+    PLACE_POSES = 4       /**< one explicit pose per robot */
+} placement_shape_t;
 
-typedef enum placement { PLACE_RANDOM = 0, PLACE_NEST = 1, PLACE_GRID = 2 } placement_t;
+typedef struct pose_def {
+    float x, y;         /**< m */
+    float heading;      /**< deg CCW from +x; NaN ("random"): the group's heading */
+} pose_def_t;
+
+typedef struct placement_def {
+    int shape;                  /**< placement_shape_t */
+    float x, y;                 /**< centre of the region, m */
+    float width, height;        /**< rectangle, grid; 0: the arena's */
+    float radius;               /**< circle, m */
+    float inner, outer;         /**< ring radii, m */
+    uint32_t pose_count;
+    pose_def_t poses[SCENARIO_MAX_POSES];
+} placement_def_t;
+
+/** A controller's params block (aligned for any member type). */
+typedef union scenario_params {
+    uint8_t bytes[SCENARIO_CONTROLLER_PARAMS_MAX];
+    double align_double;
+    uint64_t align_u64;
+} scenario_params_t;
+
+/** Robots that run one controller with one set of parameters. */
+typedef struct robot_group {
+    char name[32];              /**< label in outputs (default: the controller's name) */
+    uint32_t count;             /**< robots; ids are consecutive, group after group */
+    char controller[32];        /**< a controller registered in sim_host/registry.c */
+    const controller_def_t *def;/**< the controller (resolved when loading) */
+    char policy[16];            /**< one of the controller's policies (default: its first) */
+    uint8_t policy_index;
+    scenario_params_t params;   /**< the controller's params, defaults then `params:` */
+    placement_def_t placement;
+    float heading;              /**< start heading, deg; NaN: random */
+    float min_spacing;          /**< centre-to-centre distance to every robot placed before, m */
+    uint8_t moves;              /**< 0: a static body that nothing pushes (a beacon, a landmark) */
+} robot_group_t;
+
+/** A task's section, parsed into the task's own config struct. */
+typedef struct task_config {
+    const struct task_def *def;
+    union {
+        uint8_t bytes[SCENARIO_TASK_CONFIG_MAX];
+        double align_double;
+        uint64_t align_u64;
+    } config;
+} task_config_t;
 
 typedef struct scenario {
     char name[SCENARIO_NAME_MAX];
@@ -64,35 +120,14 @@ typedef struct scenario {
         float wall_thickness;      /**< m */
     } arena;
 
-    struct {
-        uint8_t enabled;
-        float x, y, diameter;      /**< grey floor circle, m */
-    } nest;
-
-    struct {
-        uint32_t count;
-        int placement;             /**< placement_t */
-        float min_spacing;         /**< centre-to-centre when placing, m */
-    } robots;
+    uint32_t group_count;
+    robot_group_t groups[SCENARIO_MAX_GROUPS];
 
     uint32_t object_count;
     object_def_t objects[SCENARIO_MAX_OBJECTS];
 
     uint32_t light_count;
     light_def_t lights[SCENARIO_MAX_LIGHTS];
-
-    struct {
-        char name[32];             /**< a name registered in controllers.c */
-        char policy[16];           /**< variant, for controllers that have some
-                                        (forager: drtm, artm, frtm) */
-        /** The controller's params struct, filled from its defaults and then
-         *  from `controller.params`; interpreted by the controller. */
-        union {
-            uint8_t bytes[SCENARIO_CONTROLLER_PARAMS_MAX];
-            double align_double;
-            uint64_t align_u64;
-        } params;
-    } controller;
 
     struct {
         float aperture;            /**< half-angle of the sensing cone, deg */
@@ -110,7 +145,7 @@ typedef struct scenario {
     struct {
         float fov;                 /**< horizontal field of view, deg */
         float range;               /**< objects farther away are not seen, m */
-        uint16_t width_px, height_px; /**< frame the blob pixels refer to */
+        uint16_t width_px, height_px; /**< the robot's frame, pixels (blob sizes refer to it) */
     } camera;
 
     struct {
@@ -128,25 +163,18 @@ typedef struct scenario {
     } wheels;
 
     struct {
+        uint8_t enabled;           /**< an overhead tracker gives hal_pose */
+        float noise_mm;            /**< Gaussian sd of x and y, mm */
+        float noise_deg;           /**< Gaussian sd of the heading, deg */
+        float dropout;             /**< probability a step has no pose */
+    } tracker;
+
+    struct {
         uint32_t timeseries_every; /**< control steps between CSV rows */
     } output;
 
-    /** The foraging task of seed 000 (section 2.3-2.4, 3.1).  Amounts of
-     *  food are in tokens; energy in units (one token = token_energy). */
-    struct {
-        uint8_t enabled;
-        uint32_t food_count;       /**< N_f tokens kept in the arena */
-        float token_radius;        /**< m (seed: 3.5 cm diameter) */
-        float token_height;        /**< m (seed: 4.2 cm) */
-        float token_energy;        /**< units per token (1500) */
-        float initial_food;        /**< F(0), tokens in the nest at start */
-        float desired_food;        /**< F_d, tokens */
-        float consumption;         /**< nest consumption C_rate, tokens/min */
-        float move_cost;           /**< units per step per foraging robot */
-        float oae_energy;          /**< E_a, units per obstacle-avoidance event */
-        float robot_speed;         /**< v, m/s: foragers drive at it; T2 = L/(2v) */
-        int information;           /**< foraging_info_t */
-    } foraging;
+    uint32_t task_count;
+    task_config_t tasks[SCENARIO_MAX_TASKS];  /**< in registry order */
 } scenario_t;
 
 /** One `--set key.path=value` override. */
@@ -154,19 +182,27 @@ typedef struct scenario_override {
     const char *text;              /**< "key.path=value" as given */
 } scenario_override_t;
 
-/** Fills `out` with every default (no file). */
+/** Fills `out` with every default (no file): one group of 20 random
+ *  walkers anywhere in a 4 x 4 m arena, no task. */
 void scenario_defaults(scenario_t *out);
 
 /**
  * Reads `path`, applies `overrides` in order, validates, and fills `out`.
  * Returns 0, or -1 with a message in `err` that names the file, the line
- * and the key ("x.yaml:12: robots.count: expected an integer, got '2.5'").
+ * and the key ("x.yaml:12: robots[0].count: expected an integer, got '2.5'").
  * On error `out` is unspecified.  The caller owns `out` (it is large:
  * allocate it on the heap).
  */
 int scenario_load(const char *path, const scenario_override_t *overrides,
                   size_t override_count, scenario_t *out,
                   char err[SCENARIO_ERROR_MAX]);
+
+/** Every robot of every group. */
+uint32_t scenario_robot_count(const scenario_t *sc);
+
+/** The config of task `def` in `sc`, or NULL when the scenario has no such
+ *  section. */
+const void *scenario_task_config(const scenario_t *sc, const struct task_def *def);
 
 /** Writes every key with its default, unit and range to `f` (for --help). */
 void scenario_print_schema(FILE *file);

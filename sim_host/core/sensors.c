@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "sim_internal.h"
+#include "units.h"
 
 /* IR sensors sit on a 33 mm radius, 33 mm above the floor; the camera
  * looks forward from the front of the body [? height]. */
@@ -76,7 +77,7 @@ void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
     float range = sc->ir.range;
     float reach = IR_MOUNT_RADIUS + range;
     uint32_t near_robot[IR_MAX_NEAR], near_obst[IR_MAX_NEAR];
-    float R = reach + SIM_ROBOT_RADIUS;
+    float R = reach + EPUCK_BODY_RADIUS_M;
     uint32_t nr = sim_gather_robots(sim, r->x - R, r->y - R, r->x + R, r->y + R, near_robot, IR_MAX_NEAR);
     uint32_t no = sim_gather_obstacles(sim, r->x - reach, r->y - reach, r->x + reach, r->y + reach,
                                        near_obst, IR_MAX_NEAR);
@@ -90,7 +91,7 @@ void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
     if (r->y - reach < -hh) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(hw, -hh); nw++; }
 
     float ch = cosf(r->theta), sh = sinf(r->theta);
-    float half = sc->ir.aperture * 3.14159265f / 180.0f, cos_half = cosf(half), sin_half = sinf(half);
+    float half = sc->ir.aperture * (float)UNITS_PI / 180.0f, cos_half = cosf(half), sin_half = sinf(half);
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
         float d = INFINITY;
         if (nr > 1 || no > 0 || nw > 0) {
@@ -100,7 +101,7 @@ void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
             for (uint32_t j = 0; j < nr; j++) {
                 if (near_robot[j] != i) {
                     const sim_robot_t *q = &sim->robots[near_robot[j]];
-                    d = fminf(d, geom_cone_circle(&k, v2(q->x, q->y), SIM_ROBOT_RADIUS));
+                    d = fminf(d, geom_cone_circle(&k, v2(q->x, q->y), EPUCK_BODY_RADIUS_M));
                 }
             }
             for (uint32_t j = 0; j < no; j++) {
@@ -187,7 +188,7 @@ static int box_interval(vec2_t cam, float heading, const obstacle_t *o, interval
         vec2_t n = v2_sub(geom_closest_on_segment(cam, o->corner[e], o->corner[(e + 1) & 3]), cam);
         near = fminf(near, v2_len(n));
     }
-    if (near <= 0.0f || hi - lo >= 3.14159265f) {
+    if (near <= 0.0f || hi - lo >= (float)UNITS_PI) {
         return 0;   /* camera inside or against the box */
     }
     float m = geom_wrap(mid - heading);
@@ -198,7 +199,11 @@ static int box_interval(vec2_t cam, float heading, const obstacle_t *o, interval
 }
 
 #define CAM_MAX_PIECES 16
-#define CAM_TOKEN 0x80000000u   /* occluder_object flag: a food token index */
+/* occluder_object of a task's item: the flag, the task in bits 24-30, the
+ * item's index below. */
+#define CAM_ITEM 0x80000000u
+#define CAM_ITEM_TASK_SHIFT 24
+#define CAM_ITEM_INDEX 0x00FFFFFFu
 #define CAM_MAX_BLOBS 64
 
 /* Removes [lo, hi] from a set of disjoint pieces. */
@@ -236,11 +241,11 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     const scenario_t *sc = sim->sc;
     sim_robot_t *r = &sim->robots[i];
     float heading = r->theta, range = sc->camera.range;
-    float half = sc->camera.fov * 3.14159265f / 360.0f;
+    float half = sc->camera.fov * (float)UNITS_PI / 360.0f;
     float col = 2.0f * half / sc->camera.width_px;        /* rad per column */
     float vfov = 2.0f * half * sc->camera.height_px / sc->camera.width_px;
     vec2_t dir = v2(cosf(heading), sinf(heading));
-    vec2_t cam = v2(r->x + SIM_ROBOT_RADIUS * dir.x, r->y + SIM_ROBOT_RADIUS * dir.y);
+    vec2_t cam = v2(r->x + EPUCK_BODY_RADIUS_M * dir.x, r->y + EPUCK_BODY_RADIUS_M * dir.y);
     view_t vw = { cam, heading, dir, range };
 
     uint32_t *obst = sim->cam_scratch.obstacles, *rob = sim->cam_scratch.robots;
@@ -248,14 +253,14 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     interval_t *occ = (interval_t *)sim->cam_scratch.intervals;
     uint32_t no = sim_gather_obstacles(sim, cam.x - range, cam.y - range, cam.x + range, cam.y + range,
                                        obst, SIM_CAMERA_MAX_NEAR);
-    uint32_t nr = sim_gather_robots(sim, cam.x - range - SIM_ROBOT_RADIUS, cam.y - range - SIM_ROBOT_RADIUS,
-                                    cam.x + range + SIM_ROBOT_RADIUS, cam.y + range + SIM_ROBOT_RADIUS,
+    uint32_t nr = sim_gather_robots(sim, cam.x - range - EPUCK_BODY_RADIUS_M, cam.y - range - EPUCK_BODY_RADIUS_M,
+                                    cam.x + range + EPUCK_BODY_RADIUS_M, cam.y + range + EPUCK_BODY_RADIUS_M,
                                     rob, SIM_CAMERA_MAX_NEAR);
     /* Everything that can hide something: other robots and all obstacles. */
     uint32_t nocc = 0;
     for (uint32_t j = 0; j < nr; j++) {
         if (rob[j] != i && disc_interval(&vw, v2(sim->robots[rob[j]].x, sim->robots[rob[j]].y),
-                                         SIM_ROBOT_RADIUS, &occ[nocc])) {
+                                         EPUCK_BODY_RADIUS_M, &occ[nocc])) {
             nocc++;
         }
     }
@@ -268,25 +273,31 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
             occ_obj[nocc++] = obst[j];
         }
     }
-    /* Food tokens (foraging): red, seen and hiding like any object.  The one
-     * a robot carries sits just ahead of its lens and fills the view. */
-    uint32_t n_tokens = sim->foraging_on ? sim->forage.n_tokens : 0;
-    for (uint32_t k = 0; k < n_tokens && nocc < 2 * SIM_CAMERA_MAX_NEAR; k++) {
-        const food_token_t *tok = &sim->forage.tokens[k];
-        float dx = tok->x - cam.x, dy = tok->y - cam.y;
-        if (dx * dx + dy * dy <= range * range + 0.01f
-            && disc_interval(&vw, v2(tok->x, tok->y), sc->foraging.token_radius, &occ[nocc])) {
-            occ_obj[nocc++] = CAM_TOKEN | k;
+    /* The tasks' items (tokens, targets): seen and hiding like any object.
+     * An item a robot carries sits just ahead of its lens and fills the view. */
+    const sim_item_t *items[SCENARIO_MAX_TASKS] = { NULL };
+    for (uint32_t t = 0; t < sim->n_tasks; t++) {
+        const sim_task_run_t *run = &sim->tasks[t];
+        uint32_t n_items = run->def->items ? run->def->items(run->self, &items[t]) : 0;
+        for (uint32_t k = 0; k < n_items && k <= CAM_ITEM_INDEX && nocc < 2 * SIM_CAMERA_MAX_NEAR; k++) {
+            const sim_item_t *it = &items[t][k];
+            float dx = it->x - cam.x, dy = it->y - cam.y;
+            if (dx * dx + dy * dy <= range * range + 0.01f
+                && disc_interval(&vw, v2(it->x, it->y), it->radius, &occ[nocc])) {
+                occ_obj[nocc++] = CAM_ITEM | (t << CAM_ITEM_TASK_SHIFT) | k;
+            }
         }
     }
 
     hal_blob_t blobs[CAM_MAX_BLOBS];
     uint32_t nb = 0;
     for (uint32_t t = first_obstacle; t < nocc && nb < CAM_MAX_BLOBS; t++) {
-        int is_token = (occ_obj[t] & CAM_TOKEN) != 0;
-        const obstacle_t *o = is_token ? NULL : &sim->obstacles[occ_obj[t]];
-        int colour = is_token ? HAL_COLOUR_RED : o->colour;
-        float height = is_token ? sc->foraging.token_height : o->height;
+        uint32_t what = occ_obj[t];
+        const sim_item_t *item = (what & CAM_ITEM)
+            ? &items[(what & ~CAM_ITEM) >> CAM_ITEM_TASK_SHIFT][what & CAM_ITEM_INDEX] : NULL;
+        const obstacle_t *o = item ? NULL : &sim->obstacles[what];
+        int colour = item ? item->colour : o->colour;
+        float height = item ? item->height : o->height;
         interval_t it = occ[t];
         if (colour == HAL_COLOUR_NONE || it.near > range) {
             continue;

@@ -1,6 +1,7 @@
 /*
- * sim.c - one run: builds robots, obstacles and the world from a scenario,
- * and advances it one control period at a time.
+ * sim.c - one run: builds the groups' robots, obstacles, the world and the
+ * tasks from a scenario, and advances it one control period at a time in
+ * the phases task.h describes.
  */
 #include <math.h>
 #include <stdio.h>
@@ -8,8 +9,7 @@
 #include <string.h>
 
 #include "sim_internal.h"
-
-#define PI 3.14159265358979
+#include "units.h"
 
 static void build_obstacles(struct sim *sim)
 {
@@ -28,7 +28,7 @@ static void build_obstacles(struct sim *sim)
             o->aabb[2] = d->x + d->radius;
             o->aabb[3] = d->y + d->radius;
         } else {
-            float a = d->angle * (float)PI / 180.0f, c = cosf(a), s = sinf(a);
+            float a = d->angle * (float)UNITS_PI / 180.0f, c = cosf(a), s = sinf(a);
             float hx = d->width / 2, hy = d->depth / 2;
             const float ux[4] = { -hx, hx, hx, -hx }, uy[4] = { -hy, -hy, hy, hy };
             o->r = sqrtf(hx * hx + hy * hy);
@@ -45,87 +45,100 @@ static void build_obstacles(struct sim *sim)
     }
 }
 
-/* Gap between a robot at p and obstacle o (negative when they overlap). */
-static float obstacle_gap(const obstacle_t *o, vec2_t p)
-{
-    if (o->shape == SHAPE_CYLINDER) {
-        return v2_len(v2_sub(p, o->c)) - o->r - SIM_ROBOT_RADIUS;
-    }
-    /* Inside the box? (corners are counter-clockwise) */
-    int inside = 1;
-    float best = INFINITY;
-    for (int e = 0; e < 4; e++) {
-        vec2_t a = o->corner[e], b = o->corner[(e + 1) & 3];
-        if (v2_cross(v2_sub(b, a), v2_sub(p, a)) < 0) inside = 0;
-        best = fminf(best, v2_len(v2_sub(p, geom_closest_on_segment(p, a, b))));
-    }
-    return inside ? -best - SIM_ROBOT_RADIUS : best - SIM_ROBOT_RADIUS;
-}
-
-static int place_robots(struct sim *sim, char err[256])
+/* Every group's controller states, params (the scenario's, then its
+ * policy, then what the tasks tell it) and robots. */
+static int build_robots(struct sim *sim, char err[256])
 {
     const scenario_t *sc = sim->sc;
-    sim_rand_t rnd;
-    sim_rand_seed(&rnd, sim->seed, 0, RAND_PLACEMENT);
-    float margin = SIM_ROBOT_RADIUS + 0.005f;
-    float spacing = fmaxf(sc->robots.min_spacing, 2 * SIM_ROBOT_RADIUS);
-    uint32_t cols = (uint32_t)ceil(sqrt((double)sim->n_swarm * sim->hw / sim->hh));
-    if (cols == 0) cols = 1;
-
-    /* The nest beacon stands still at the nest centre; place it first so
-     * the others keep clear of it. */
-    if (sim->beacon >= 0) {
-        sim_robot_t *b = &sim->robots[sim->beacon];
-        b->x = sc->nest.x;
-        b->y = sc->nest.y;
-        b->theta = 0.0f;
-    }
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
-        sim_robot_t *r = &sim->robots[i];
-        int placed = 0;
-        for (int attempt = 0; attempt < 20000 && !placed; attempt++) {
-            float x, y;
-            if (sc->robots.placement == PLACE_GRID) {
-                uint32_t rows = (sim->n_swarm + cols - 1) / cols;
-                x = -sim->hw + (2 * sim->hw) * ((float)(i % cols) + 0.5f) / (float)cols;
-                y = -sim->hh + (2 * sim->hh) * ((float)(i / cols) + 0.5f) / (float)rows;
-                attempt = 20000;   /* one position only */
-            } else if (sc->robots.placement == PLACE_NEST && sc->nest.enabled) {
-                double rad = sc->nest.diameter / 2 - SIM_ROBOT_RADIUS;
-                double u = sqrt(sim_rand_uniform(&rnd)) * (rad > 0 ? rad : 0);
-                double a = 2 * PI * sim_rand_uniform(&rnd);
-                x = (float)(sc->nest.x + u * cos(a));
-                y = (float)(sc->nest.y + u * sin(a));
-            } else {
-                x = (float)((2 * sim_rand_uniform(&rnd) - 1) * (sim->hw - margin));
-                y = (float)((2 * sim_rand_uniform(&rnd) - 1) * (sim->hh - margin));
-            }
-            int ok = fabsf(x) <= sim->hw - margin && fabsf(y) <= sim->hh - margin;
-            for (uint32_t j = 0; ok && j < i; j++) {
-                float dx = sim->robots[j].x - x, dy = sim->robots[j].y - y;
-                ok = dx * dx + dy * dy >= spacing * spacing;
-            }
-            if (ok && sim->beacon >= 0) {
-                float dx = sim->robots[sim->beacon].x - x, dy = sim->robots[sim->beacon].y - y;
-                ok = dx * dx + dy * dy >= spacing * spacing;
-            }
-            for (uint32_t k = 0; ok && k < sim->n_obstacles; k++) {
-                ok = obstacle_gap(&sim->obstacles[k], v2(x, y)) >= 0.005f;
-            }
-            if (ok) {
-                r->x = x;
-                r->y = y;
-                r->theta = (float)(2 * PI * sim_rand_uniform(&rnd) - PI);
-                placed = 1;
+    uint32_t i = 0;
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        const robot_group_t *grp = &sc->groups[g];
+        const controller_def_t *def = grp->def;
+        scenario_params_t *params = &sim->group_params[g];
+        *params = grp->params;
+        if (def->set_policy) {
+            def->set_policy(params->bytes, grp->policy_index);
+        }
+        for (uint32_t t = 0; t < sc->task_count; t++) {
+            const task_def_t *task = sc->tasks[t].def;
+            if (task->configure) {
+                task->configure(sc->tasks[t].config.bytes, sc, grp, params->bytes);
             }
         }
-        if (!placed) {
-            snprintf(err, 256, "cannot place robot %u of %u (placement %s): no free spot; "
-                     "enlarge the arena or nest, or use fewer robots",
-                     i + 1, sim->n_swarm, sc->robots.placement == PLACE_GRID ? "grid"
-                     : sc->robots.placement == PLACE_NEST ? "nest" : "random");
+        /* Each state on its own 16-byte boundary. */
+        size_t stride = (def->state_size + 15u) & ~(size_t)15u;
+        if (stride && grp->count) {
+            sim->ctrl_blocks[g] = calloc(grp->count, stride);
+            if (!sim->ctrl_blocks[g]) {
+                snprintf(err, 256, "out of memory for the controllers of group %u", g);
+                return -1;
+            }
+        }
+        for (uint32_t k = 0; k < grp->count; k++, i++) {
+            sim_robot_t *r = &sim->robots[i];
+            r->hal.sim = sim;
+            r->hal.index = i;
+            r->ircom_tx = -1;
+            r->group = g;
+            r->def = def;
+            r->moves = grp->moves;
+            r->ctrl = stride ? (uint8_t *)sim->ctrl_blocks[g] + (size_t)k * stride : NULL;
+            sim_rand_seed(&r->noise, sim->seed, i, RAND_SENSORS);
+            sim_rand_seed(&r->ircom_rand, sim->seed, i, RAND_IRCOM);
+            sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
+            sim_rand_seed(&r->tracker_rand, sim->seed, i, RAND_TRACKER);
+        }
+    }
+    return 0;
+}
+
+/* Every distinct counter name the groups' controllers declare, in order. */
+static void find_counters(struct sim *sim)
+{
+    const scenario_t *sc = sim->sc;
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        const controller_def_t *def = sc->groups[g].def;
+        for (const observable_t *o = def->observables; o && o->name; o++) {
+            uint32_t k = 0;
+            while (k < sim->n_counters && strcmp(sim->counters[k].name, o->name) != 0) {
+                k++;
+            }
+            if (o->kind != OBS_COUNTER || k < sim->n_counters || k == SIM_MAX_COUNTERS) {
+                continue;
+            }
+            sim_counter_t *c = &sim->counters[sim->n_counters++];
+            c->name = o->name;
+            c->unit = o->unit ? o->unit : "";
+            c->doc = o->doc ? o->doc : "";
+            snprintf(c->total_key, sizeof c->total_key, "%.40s_total", o->name);
+            snprintf(c->per_robot_key, sizeof c->per_robot_key, "%.40s_per_robot", o->name);
+        }
+    }
+}
+
+static void init_controllers(struct sim *sim)
+{
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_robot_t *r = &sim->robots[i];
+        if (r->ctrl) {
+            r->def->init(r->ctrl, sim->group_params[r->group].bytes,
+                         sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
+        }
+    }
+}
+
+static int create_tasks(struct sim *sim, char err[256])
+{
+    const scenario_t *sc = sim->sc;
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        const task_def_t *def = sc->tasks[t].def;
+        sim_task_run_t *run = &sim->tasks[sim->n_tasks];
+        run->def = def;
+        run->self = def->create ? def->create(sim, sc->tasks[t].config.bytes, err) : NULL;
+        if (def->create && !run->self) {
             return -1;
         }
+        sim->n_tasks++;
     }
     return 0;
 }
@@ -142,54 +155,32 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     sim->dt = sc->control_period_ms / 1000.0f;
     sim->hw = sc->arena.width / 2;
     sim->hh = sc->arena.height / 2;
-    sim->n_swarm = sc->robots.count;
-    sim->beacon = -1;
+    sim->n = scenario_robot_count(sc);
     sim->n_obstacles = sc->object_count;
-    sim->ctrl = controllers_find(sc->controller.name);
     sim->metrics.min_wall_clearance_m = INFINITY;
-    sim->foraging_on = sc->foraging.enabled;
-    if (sim->foraging_on && sc->foraging.information == INFO_BEACON) {
-        sim->beacon_ctrl = controllers_find("nest_beacon");
-        sim->beacon = (int32_t)sim->n_swarm;
-    }
-    sim->n = sim->n_swarm + (sim->beacon >= 0 ? 1u : 0u);
-    if (!sim->ctrl || (sim->beacon >= 0 && !sim->beacon_ctrl)) {
-        snprintf(err, 256, "unknown controller '%s'", sim->ctrl ? "nest_beacon" : sc->controller.name);
-        free(sim);
-        return NULL;
-    }
-    /* Each robot's params: the scenario's, then what the task tells it. */
-    memcpy(sim->params.bytes, sc->controller.params.bytes, sizeof sim->params.bytes);
-    if (sim->ctrl->configure) {
-        sim->ctrl->configure(sim->params.bytes, sc);
-    }
-    if (sim->beacon_ctrl) {
-        sim->beacon_ctrl->default_params(sim->beacon_params.bytes);
-        if (sim->beacon_ctrl->configure) {
-            sim->beacon_ctrl->configure(sim->beacon_params.bytes, sc);
-        }
-    }
     size_t n = sim->n ? sim->n : 1, no = sim->n_obstacles ? sim->n_obstacles : 1;
+    size_t ng = sc->group_count ? sc->group_count : 1;
     sim->robots = calloc(n, sizeof *sim->robots);
-    size_t state_size = sim->ctrl->state_size;
-    if (sim->beacon_ctrl && sim->beacon_ctrl->state_size > state_size) {
-        state_size = sim->beacon_ctrl->state_size;
-    }
-    state_size = (state_size + 15u) & ~(size_t)15u;   /* keep every state aligned */
-    sim->ctrl_states = calloc(n, state_size ? state_size : 1);
+    sim->group_params = calloc(ng, sizeof *sim->group_params);
+    sim->ctrl_blocks = calloc(ng, sizeof *sim->ctrl_blocks);
+    sim->step_order = calloc(n, sizeof *sim->step_order);
     sim->px = calloc(n, sizeof *sim->px);
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
     sim->obstacle_mark = calloc(no, sizeof *sim->obstacle_mark);
     /* Cells a little larger than the IR reach: an IR query touches at
      * most 3 x 3 cells. */
-    float cell = fmaxf(0.5f, 2 * SIM_ROBOT_RADIUS + sc->ir.range + 0.04f);
-    if (!sim->robots || !sim->ctrl_states || !sim->px || !sim->py || !sim->obstacles || !sim->obstacle_mark
+    float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
+    if (!sim->robots || !sim->group_params || !sim->ctrl_blocks || !sim->step_order || !sim->px
+        || !sim->py || !sim->obstacles || !sim->obstacle_mark
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
         snprintf(err, 256, "out of memory for %u robots", sim->n);
         sim_destroy(sim);
         return NULL;
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim->step_order[i] = i;
     }
     build_obstacles(sim);
     float (*boxes)[4] = calloc(no, sizeof *boxes);
@@ -204,30 +195,18 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
         sim_destroy(sim);
         return NULL;
     }
-    if (place_robots(sim, err) != 0) {
+    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0) {
         sim_destroy(sim);
         return NULL;
     }
     for (uint32_t i = 0; i < sim->n; i++) {
-        sim_robot_t *r = &sim->robots[i];
-        r->hal.sim = sim;
-        r->hal.index = i;
-        r->ircom_tx = -1;
-        sim->px[i] = r->x;
-        sim->py[i] = r->y;
-        sim_rand_seed(&r->noise, seed, i, RAND_SENSORS);
-        sim_rand_seed(&r->ircom_rand, seed, i, RAND_IRCOM);
-        sim_rand_seed(&r->wheel_rand, seed, i, RAND_WHEELS);
-        int is_beacon = (int32_t)i == sim->beacon;
-        r->ctrl_desc = is_beacon ? sim->beacon_ctrl : sim->ctrl;
-        r->ctrl = r->ctrl_desc->state_size ? sim->ctrl_states + (size_t)i * state_size : NULL;
-        if (r->ctrl) {
-            r->ctrl_desc->init(r->ctrl, is_beacon ? sim->beacon_params.bytes : sim->params.bytes,
-                               sim_rand_seed32(seed, i, RAND_CONTROLLER));
-        }
+        sim->px[i] = sim->robots[i].x;
+        sim->py[i] = sim->robots[i].y;
     }
+    init_controllers(sim);
+    find_counters(sim);
     if (world_create(sim, err) != 0 || grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0
-        || (sim->foraging_on && foraging_init(sim, err) != 0)) {
+        || create_tasks(sim, err) != 0) {
         sim_destroy(sim);
         return NULL;
     }
@@ -239,43 +218,67 @@ void sim_destroy(sim_t *sim)
     if (!sim) {
         return;
     }
+    for (uint32_t t = sim->n_tasks; t-- > 0;) {
+        if (sim->tasks[t].def->destroy) {
+            sim->tasks[t].def->destroy(sim->tasks[t].self);
+        }
+    }
     world_destroy(sim);
-    foraging_free(sim);
     grid_free(&sim->robot_grid);
     grid_free(&sim->obstacle_grid);
+    for (uint32_t g = 0; sim->ctrl_blocks && g < sim->sc->group_count; g++) {
+        free(sim->ctrl_blocks[g]);
+    }
+    free(sim->ctrl_blocks);
+    free(sim->group_params);
     free(sim->robots);
-    free(sim->ctrl_states);
+    free(sim->step_order);
     free(sim->px);
     free(sim->py);
     free(sim->obstacles);
     free(sim->obstacle_mark);
+    free(sim->events);
     free(sim);
 }
 
 void sim_step(sim_t *sim)
 {
-    if (sim->foraging_on && sim->beacon < 0) {
-        foraging_broadcast_truth(sim);
+    sim->n_events = 0;
+    for (uint32_t t = 0; t < sim->n_tasks; t++) {
+        if (sim->tasks[t].def->before_control) {
+            sim->tasks[t].def->before_control(sim->tasks[t].self, sim);
+        }
     }
-    for (uint32_t i = 0; i < sim->n; i++) {
-        sim_robot_t *r = &sim->robots[i];
+    for (uint32_t k = 0; k < sim->n; k++) {
+        sim_robot_t *r = &sim->robots[sim->step_order[k]];
         if (r->ctrl) {
-            r->ctrl_desc->step(r->ctrl, &r->hal);
+            r->def->step(r->ctrl, &r->hal);
         }
     }
     ircom_deliver(sim);
-    if (sim->foraging_on) {
-        foraging_release(sim);
+    for (uint32_t t = 0; t < sim->n_tasks; t++) {
+        if (sim->tasks[t].def->after_control) {
+            sim->tasks[t].def->after_control(sim->tasks[t].self, sim);
+        }
     }
     world_drive(sim);
     world_advance(sim);
     world_read_poses(sim);
     grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
-    if (sim->foraging_on) {
-        foraging_update(sim);
+    for (uint32_t t = 0; t < sim->n_tasks; t++) {
+        if (sim->tasks[t].def->after_physics) {
+            sim->tasks[t].def->after_physics(sim->tasks[t].self, sim);
+        }
     }
     sim->step++;
+    for (uint32_t t = 0; t < sim->n_tasks && !sim->done; t++) {
+        if (sim->tasks[t].def->done) {
+            sim->done = sim->tasks[t].def->done(sim->tasks[t].self, sim) != 0;
+        }
+    }
 }
+
+int sim_done(const sim_t *sim) { return sim->done; }
 
 uint32_t sim_gather_obstacles(struct sim *sim, float minx, float miny, float maxx, float maxy,
                               uint32_t *out, uint32_t max)
@@ -332,16 +335,27 @@ uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float 
     return n;
 }
 
+/* ---------------------------------------------------------------- accessors */
+
 uint64_t sim_step_count(const sim_t *sim) { return sim->step; }
-uint32_t sim_robot_count(const sim_t *sim) { return sim->n; }
-uint32_t sim_swarm_count(const sim_t *sim) { return sim->n_swarm; }
-int32_t sim_beacon_index(const sim_t *sim) { return sim->beacon; }
+double sim_time_s(const sim_t *sim) { return (double)sim->step * sim->sc->control_period_ms / 1000.0; }
+uint64_t sim_seed(const sim_t *sim) { return sim->seed; }
 const scenario_t *sim_scenario(const sim_t *sim) { return sim->sc; }
-hal_t *sim_robot_hal(sim_t *sim, uint32_t i) { return &sim->robots[i].hal; }
-void *sim_robot_controller(sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
 const sim_metrics_t *sim_metrics(const sim_t *sim) { return &sim->metrics; }
-const struct foraging *sim_foraging(const sim_t *sim) { return sim->foraging_on ? &sim->forage : NULL; }
+uint32_t sim_robot_count(const sim_t *sim) { return sim->n; }
+uint32_t sim_robot_group(const sim_t *sim, uint32_t i) { return sim->robots[i].group; }
+const controller_def_t *sim_robot_def(const sim_t *sim, uint32_t i) { return sim->robots[i].def; }
+void *sim_robot_controller(sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
+const void *sim_robot_controller_const(const sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
+hal_t *sim_robot_hal(sim_t *sim, uint32_t i) { return &sim->robots[i].hal; }
 uint16_t sim_robot_leds(const sim_t *sim, uint32_t i) { return sim->robots[i].leds; }
+uint32_t sim_obstacle_count(const sim_t *sim) { return sim->n_obstacles; }
+
+const char *sim_robot_state_name(const sim_t *sim, uint32_t i)
+{
+    const sim_robot_t *r = &sim->robots[i];
+    return r->ctrl ? r->def->state_name(r->ctrl) : "idle";
+}
 
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta)
 {
@@ -349,6 +363,12 @@ void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *
     *x = r->x;
     *y = r->y;
     *theta = r->theta;
+}
+
+void sim_robot_wheels(const sim_t *sim, uint32_t i, int16_t *left, int16_t *right)
+{
+    *left = sim->robots[i].cmd_left;
+    *right = sim->robots[i].cmd_right;
 }
 
 void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta)
@@ -362,27 +382,91 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     b2Body_SetTransform(r->body, (b2Vec2){ r->x, r->y }, b2MakeRot(r->theta));
     grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
     /* Sensors must see the new pose even within this step. */
-    r->ir_stamp = r->ambient_stamp = r->camera_stamp = 0;
+    r->ir_stamp = r->ambient_stamp = r->camera_stamp = r->pose_stamp = 0;
 }
 
-char sim_robot_task_state(const sim_t *sim, uint32_t i)
+int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg)
 {
-    const sim_robot_t *r = &sim->robots[i];
-    if ((int32_t)i == sim->beacon) {
-        return 'B';
+    sim_robot_t *r = &sim->robots[i];
+    if (r->rx_count >= SIM_IRCOM_QUEUE) {
+        return -1;
     }
-    return (r->ctrl && r->ctrl_desc->task_state) ? r->ctrl_desc->task_state(r->ctrl) : 0;
+    r->rx[(r->rx_head + r->rx_count) % SIM_IRCOM_QUEUE] = *msg;
+    r->rx_count++;
+    return 0;
 }
 
-uint64_t sim_oae_total(const sim_t *sim)
+void sim_arena_half(const sim_t *sim, float *hw, float *hh)
 {
-    uint64_t total = 0;
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
-        if (sim->robots[i].ctrl && sim->ctrl->oae_count) {
-            total += sim->ctrl->oae_count(sim->robots[i].ctrl);
+    *hw = sim->hw;
+    *hh = sim->hh;
+}
+
+void sim_obstacle_bounds(const sim_t *sim, uint32_t k, float out[4])
+{
+    memcpy(out, sim->obstacles[k].aabb, 4 * sizeof out[0]);
+}
+
+void *sim_task(const sim_t *sim, const struct task_def *def)
+{
+    for (uint32_t t = 0; t < sim->n_tasks; t++) {
+        if (sim->tasks[t].def == def) {
+            return sim->tasks[t].self;
         }
     }
-    return total;
+    return NULL;
+}
+
+void sim_task_rand_seed(const sim_t *sim, const struct task_def *def, uint64_t index,
+                        struct sim_rand *out)
+{
+    uint64_t slot = 0;
+    for (uint32_t t = 0; t < sim->sc->task_count; t++) {
+        if (sim->sc->tasks[t].def == def) {
+            slot = t;
+        }
+    }
+    sim_rand_seed(out, sim->seed, (slot << 32) | index, RAND_TASK);
+}
+
+void sim_event(sim_t *sim, uint32_t robot, const char *kind, const char *detail, int32_t value)
+{
+    if (sim->n_events == sim->events_cap) {
+        uint32_t cap = sim->events_cap ? 2 * sim->events_cap : 64;
+        sim_event_rec_t *e = realloc(sim->events, cap * sizeof *e);
+        if (!e) {
+            return;   /* telemetry only: losing an event cannot change the run */
+        }
+        sim->events = e;
+        sim->events_cap = cap;
+    }
+    sim_event_rec_t *e = &sim->events[sim->n_events++];
+    e->robot = robot;
+    e->kind = kind;
+    e->detail = detail;
+    e->value = value;
+}
+
+uint32_t sim_events(const sim_t *sim, const sim_event_rec_t **events)
+{
+    *events = sim->events;
+    return sim->n_events;
+}
+
+void sim_set_step_order(sim_t *sim, int order, uint64_t key)
+{
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim->step_order[i] = order == 1 ? sim->n - 1 - i : i;
+    }
+    if (order == 2) {   /* Fisher-Yates */
+        sim_rand_t r;
+        sim_rand_seed(&r, key, 0, RAND_PLACEMENT);
+        for (uint32_t i = sim->n; i > 1; i--) {
+            uint32_t j = (uint32_t)(sim_rand_u64(&r) % i), t = sim->step_order[i - 1];
+            sim->step_order[i - 1] = sim->step_order[j];
+            sim->step_order[j] = t;
+        }
+    }
 }
 
 static uint64_t fnv(uint64_t h, const void *p, size_t n)

@@ -1,27 +1,24 @@
 /*
- * sim.h - one simulation run: a Box2D world of e-pucks, each running its
- * firmware controller through the simulator's hal_t.
+ * sim.h - one simulation run: a Box2D world of e-pucks in groups, each
+ * robot running its firmware controller through the simulator's hal_t, and
+ * the scenario's tasks around them (task.h says how one step runs).
  *
- * Ownership: sim_create copies nothing it does not need; the scenario must
- * outlive the sim.  Not thread-safe: one sim is stepped by one thread, but
- * different sims run concurrently without sharing anything.
+ * Ownership: the scenario must outlive the sim.  Not thread-safe: one sim
+ * is stepped by one thread, but different sims run concurrently without
+ * sharing anything.
  */
 #ifndef SIM_SIM_H
 #define SIM_SIM_H
 
 #include <stdint.h>
 
+#include "common/controller.h"
 #include "hal.h"
 #include "scenario.h"
 
 typedef struct sim sim_t;
-
-/** e-puck body radius, m (70 mm diameter). */
-#define SIM_ROBOT_RADIUS 0.035f
-/** Wheel travel per motor step, m (pi * 41 mm / 1000). */
-#define SIM_STEP_M (3.14159265358979 * 0.041 / 1000.0)
-/** Axle length (wheel separation), m. */
-#define SIM_AXLE_M 0.053
+struct task_def;
+struct sim_rand;
 
 /** Ground-truth observations of a run (never the robots' beliefs). */
 typedef struct sim_metrics {
@@ -37,46 +34,89 @@ typedef struct sim_metrics {
 sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256]);
 void sim_destroy(sim_t *sim);
 
-/** One control period: every controller steps (in robot-id order), IR
- *  messages are delivered, then physics advances. */
+/** One control period (task.h lists its phases). */
 void sim_step(sim_t *sim);
 
-uint64_t sim_step_count(const sim_t *sim);
-/** All robots, the nest beacon included (it is the last one). */
-uint32_t sim_robot_count(const sim_t *sim);
-/** Robots running the scenario's controller: indices 0 .. count-1. */
-uint32_t sim_swarm_count(const sim_t *sim);
-/** Index of the nest-beacon robot, or -1. */
-int32_t sim_beacon_index(const sim_t *sim);
-const scenario_t *sim_scenario(const sim_t *sim);
+/** Non-zero once a task's stop condition holds (checked after each step). */
+int sim_done(const sim_t *sim);
 
+uint64_t sim_step_count(const sim_t *sim);
+/** Simulated time, s: steps x control period. */
+double sim_time_s(const sim_t *sim);
+uint64_t sim_seed(const sim_t *sim);
+const scenario_t *sim_scenario(const sim_t *sim);
+const sim_metrics_t *sim_metrics(const sim_t *sim);
+
+/* ---------------------------------------------------------------- robots */
+
+/** Every robot; ids 0 .. count-1, group after group. */
+uint32_t sim_robot_count(const sim_t *sim);
+/** Index into the scenario's groups of robot `i`. */
+uint32_t sim_robot_group(const sim_t *sim, uint32_t i);
+/** The controller robot `i` runs. */
+const controller_def_t *sim_robot_def(const sim_t *sim, uint32_t i);
+/** Its controller state (a task may read the state of its seed's own
+ *  controllers; tests do).  NULL for a controller without state. */
+void *sim_robot_controller(sim_t *sim, uint32_t i);
+const void *sim_robot_controller_const(const sim_t *sim, uint32_t i);
+/** The current state name of its controller ("idle" without state). */
+const char *sim_robot_state_name(const sim_t *sim, uint32_t i);
 /** The hal_t of robot `i`, to drive a robot from a test. */
 hal_t *sim_robot_hal(sim_t *sim, uint32_t i);
-/** The controller state of robot `i` (NULL for the idle controller). */
-void *sim_robot_controller(sim_t *sim, uint32_t i);
 
 /** Pose of robot `i`: m, m, rad (CCW from +x). */
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta);
 /** Teleports robot `i` (tests and placement). */
 void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta);
+/** Commanded wheel speeds of robot `i`, steps/s. */
+void sim_robot_wheels(const sim_t *sim, uint32_t i, int16_t *left, int16_t *right);
 /** LED state of robot `i`: bit k = ring LED k; bit 8 body; bit 9 front. */
 uint16_t sim_robot_leds(const sim_t *sim, uint32_t i);
 
-/** Seed 000's task state of robot `i`: 'W', 'S', 'R', or 0 (none);
- *  'B' for the nest beacon. */
-char sim_robot_task_state(const sim_t *sim, uint32_t i);
+/** Puts `msg` in robot `i`'s IR inbox, as if received this step (a task
+ *  standing in for a robot, e.g. ideal information).  Returns 0, or -1 when
+ *  the inbox is full. */
+int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg);
 
-/** Sum of the swarm robots' own obstacle-avoidance counts. */
-uint64_t sim_oae_total(const sim_t *sim);
+/* ---------------------------------------------------------------- world */
 
-const sim_metrics_t *sim_metrics(const sim_t *sim);
+/** Half the arena's width and height, m. */
+void sim_arena_half(const sim_t *sim, float *hw, float *hh);
+uint32_t sim_obstacle_count(const sim_t *sim);
+/** Bounding box of obstacle `k`: min x, min y, max x, max y, m. */
+void sim_obstacle_bounds(const sim_t *sim, uint32_t k, float out[4]);
 
-struct foraging;
-/** The foraging task's ground truth (foraging.h), or NULL when disabled. */
-const struct foraging *sim_foraging(const sim_t *sim);
+/* ---------------------------------------------------------------- tasks */
+
+/** The state of the running task `def` (task_def_t.create's result), or
+ *  NULL when the scenario does not run it. */
+void *sim_task(const sim_t *sim, const struct task_def *def);
+
+/** Seeds a random stream of task `def` for this run: a pure function of the
+ *  run seed, the task and `index` (the task's choice of stream). */
+void sim_task_rand_seed(const sim_t *sim, const struct task_def *def, uint64_t index,
+                        struct sim_rand *out);
+
+/** Records an event of robot `robot` this step ("pickup", "deposit", ...)
+ *  for the telemetry.  `kind` and `detail` must be string literals or
+ *  outlive the step. */
+void sim_event(sim_t *sim, uint32_t robot, const char *kind, const char *detail, int32_t value);
+
+typedef struct sim_event_rec {
+    uint32_t robot;
+    const char *kind, *detail;
+    int32_t value;
+} sim_event_rec_t;
+
+/** The events recorded during the last step. */
+uint32_t sim_events(const sim_t *sim, const sim_event_rec_t **events);
 
 /** FNV-1a hash of every robot's pose bits and counters: equal hashes mean
  *  bit-identical runs. */
 uint64_t sim_state_hash(const sim_t *sim);
+
+/** Test hook: the order robots step in (phase 2 of task.h).  0 ascending
+ *  ids (the default), 1 descending, 2 a shuffle drawn from `key`. */
+void sim_set_step_order(sim_t *sim, int order, uint64_t key);
 
 #endif

@@ -3,7 +3,10 @@
  * controller gets its own hal_t; sensors are computed lazily, once per
  * control step, from the pose at the start of the step.
  */
+#include <math.h>
+
 #include "sim_internal.h"
+#include "units.h"
 
 static sim_robot_t *robot(hal_t *hal) { return &hal->sim->robots[hal->index]; }
 static uint64_t stamp(const hal_t *hal) { return hal->sim->step + 1; }
@@ -57,45 +60,53 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
     return n;
 }
 
-/* Sound is modelled with the RepAtt work (seed 002); until then the
- * contract answers "not modelled". */
-int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band)
+hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px)
 {
-    (void)hal;
-    (void)mic;
-    (void)band;
-    return HAL_NOT_MODELLED;
+    *width_px = hal->sim->sc->camera.width_px;
+    *height_px = hal->sim->sc->camera.height_px;
+    return HAL_OK;
 }
 
-int8_t hal_speaker_set(hal_t *hal, uint8_t band)
+/* Sound is modelled with the RepAtt work (seed 002); until then the
+ * contract answers "unavailable". */
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level)
 {
     (void)hal;
-    (void)band;
-    return HAL_NOT_MODELLED;
+    *level = 0;
+    if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
+    return HAL_ERR_UNAVAILABLE;
+}
+
+hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
+{
+    (void)hal;
+    return band >= HAL_SOUND_BANDS ? HAL_ERR_RANGE : HAL_ERR_UNAVAILABLE;
 }
 
 uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->sim->sc->ircom.payload_bits; }
 
-int8_t hal_ircom_send(hal_t *hal, uint16_t value)
+hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
     sim_robot_t *r = robot(hal);
     if (r->ircom_tx >= 0) {
-        return -1;
+        return HAL_ERR_BUSY;
     }
     r->ircom_tx = (int32_t)(value & (uint16_t)((1u << hal->sim->sc->ircom.payload_bits) - 1u));
-    return 0;
+    return HAL_OK;
 }
 
-uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
+hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
 {
     sim_robot_t *r = robot(hal);
     if (r->rx_count == 0) {
-        return 0;
+        return HAL_ERR_EMPTY;
     }
     *out = r->rx[r->rx_head];
     r->rx_head = (uint8_t)((r->rx_head + 1) % SIM_IRCOM_QUEUE);
     r->rx_count--;
-    return 1;
+    return HAL_OK;
 }
 
 static int16_t clamp_speed(int16_t v)
@@ -132,6 +143,34 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
 
 void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, 8, on); }
 void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, 9, on); }
+
+/* The overhead tracker: ground truth, with Gaussian noise and dropout from
+ * the robot's own stream (drawn only when the tracker is on, so a run
+ * without it is unchanged). */
+hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
+{
+    sim_robot_t *r = robot(hal);
+    const scenario_t *sc = hal->sim->sc;
+    if (!sc->tracker.enabled) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    if (r->pose_stamp != stamp(hal)) {
+        r->pose_stamp = stamp(hal);
+        r->pose_status = HAL_ERR_UNAVAILABLE;
+        if (sc->tracker.dropout <= 0.0f || sim_rand_uniform(&r->tracker_rand) >= sc->tracker.dropout) {
+            double x = 1000.0 * r->x + sc->tracker.noise_mm * sim_rand_normal(&r->tracker_rand);
+            double y = 1000.0 * r->y + sc->tracker.noise_mm * sim_rand_normal(&r->tracker_rand);
+            double h = r->theta + sc->tracker.noise_deg * UNITS_PI / 180.0 * sim_rand_normal(&r->tracker_rand);
+            h = atan2(sin(h), cos(h));
+            r->pose.x_mm = (int32_t)lround(x);
+            r->pose.y_mm = (int32_t)lround(y);
+            r->pose.heading_mrad = (int16_t)lround(1000.0 * h);
+            r->pose_status = HAL_OK;
+        }
+    }
+    *out = r->pose;
+    return r->pose_status;
+}
 
 uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)
 {

@@ -1,19 +1,19 @@
 /*
- * sim_internal.h - the state shared by the simulator's modules (world,
- * sensors, IR communication, HAL).  Not a public header.
+ * sim_internal.h - the state shared by the simulator core's modules (world,
+ * placement, sensors, IR communication, HAL).  Not a public header: tasks
+ * use sim.h.
  */
 #ifndef SIM_INTERNAL_H
 #define SIM_INTERNAL_H
 
 #include <box2d/box2d.h>
 
-#include "controllers.h"
-#include "tasks/foraging/foraging.h"
 #include "geometry.h"
 #include "grid.h"
 #include "hal.h"
 #include "rand.h"
 #include "sim.h"
+#include "task.h"
 
 /** libIrcom keeps a queue of 20 received messages. */
 #define SIM_IRCOM_QUEUE 20u
@@ -33,11 +33,13 @@ typedef struct sim_robot {
     uint16_t leds;                 /**< bits 0-7 ring, 8 body, 9 front */
 
     /* Sensor caches, valid when *_stamp == sim->step + 1. */
-    uint64_t ir_stamp, ambient_stamp, camera_stamp;
+    uint64_t ir_stamp, ambient_stamp, camera_stamp, pose_stamp;
     uint16_t ir[HAL_IR_COUNT];
     uint16_t ambient[HAL_IR_COUNT];
     hal_blob_t blobs[HAL_MAX_BLOBS];
     uint8_t blob_count;
+    int8_t pose_status;            /**< of the tracker this step */
+    hal_pose_t pose;
 
     int32_t ircom_tx;              /**< message to send this step, or -1 */
     hal_ircom_msg_t rx[SIM_IRCOM_QUEUE];
@@ -47,8 +49,11 @@ typedef struct sim_robot {
     sim_rand_t noise;              /**< sensor noise */
     sim_rand_t ircom_rand;         /**< loss and estimate noise at this receiver */
     sim_rand_t wheel_rand;         /**< actuation noise */
-    const sim_controller_t *ctrl_desc; /**< what runs on this robot */
-    void *ctrl;                    /**< controller state, or NULL when idle */
+    sim_rand_t tracker_rand;       /**< the overhead tracker's noise and dropout */
+    uint32_t group;                /**< index into the scenario's groups */
+    const controller_def_t *def;   /**< what runs on this robot */
+    void *ctrl;                    /**< controller state, or NULL when it has none */
+    uint8_t moves;                 /**< 0: a static body */
     uint8_t escaped;
 } sim_robot_t;
 
@@ -68,31 +73,37 @@ typedef struct sim_interval { float lo, hi, near; } sim_interval_t;
 /** Most robots or obstacles the camera considers within its range. */
 #define SIM_CAMERA_MAX_NEAR 1024u
 
-/** A controller's params block (aligned for any member type). */
-typedef union sim_params {
-    uint8_t bytes[SCENARIO_CONTROLLER_PARAMS_MAX];
-    double align_double;
-    uint64_t align_u64;
-} sim_params_t;
+/** A counter the run's controllers declare (observable.h), and its keys in
+ *  the summary and time series. */
+#define SIM_MAX_COUNTERS 16
+typedef struct sim_counter {
+    const char *name;
+    const char *unit, *doc;
+    char total_key[48];        /**< "<name>_total" */
+    char per_robot_key[56];    /**< "<name>_per_robot" */
+} sim_counter_t;
+
+/** A running task. */
+typedef struct sim_task_run {
+    const task_def_t *def;
+    void *self;
+} sim_task_run_t;
 
 struct sim {
     const scenario_t *sc;
-    const sim_controller_t *ctrl;  /**< the swarm's controller */
-    const sim_controller_t *beacon_ctrl; /**< the nest beacon's, or NULL */
-    sim_params_t params, beacon_params;
     uint64_t seed;
     uint64_t step;
     float dt;                      /**< control period, s */
     float hw, hh;                  /**< half width and height of the arena, m */
     b2WorldId world;
 
-    uint32_t n;                    /**< all robots, the beacon included */
-    uint32_t n_swarm;              /**< robots running the scenario's controller: 0..n_swarm-1 */
-    int32_t beacon;                /**< index of the nest beacon robot, or -1 */
+    uint32_t n;                    /**< robots */
     sim_robot_t *robots;
-    uint8_t *ctrl_states;
+    scenario_params_t *group_params; /**< per group: what its robots were initialised with */
+    void **ctrl_blocks;            /**< per group: its robots' controller states */
     float *px, *py;                /**< robot centres, for the grid */
     grid_t robot_grid;
+    uint32_t *step_order;          /**< robots in the order they step (phase 2) */
 
     uint32_t n_obstacles;
     obstacle_t *obstacles;
@@ -107,9 +118,17 @@ struct sim {
         sim_interval_t intervals[2 * SIM_CAMERA_MAX_NEAR];
     } cam_scratch;
 
+    uint32_t n_tasks;
+    sim_task_run_t tasks[SCENARIO_MAX_TASKS];
+    int done;                      /**< a task's stop condition held */
+
+    uint32_t n_counters;
+    sim_counter_t counters[SIM_MAX_COUNTERS];
+
+    sim_event_rec_t *events;       /**< of the current step */
+    uint32_t n_events, events_cap;
+
     sim_metrics_t metrics;
-    uint8_t foraging_on;
-    foraging_t forage;
 };
 
 /* world.c: Box2D bodies */
@@ -118,6 +137,11 @@ void world_destroy(struct sim *sim);
 void world_drive(struct sim *sim);
 void world_advance(struct sim *sim);
 void world_read_poses(struct sim *sim);
+
+/* placement.c: start poses of every group */
+int placement_run(struct sim *sim, char err[256]);
+/** Gap between a robot at p and obstacle o (negative when they overlap). */
+float placement_obstacle_gap(const obstacle_t *o, vec2_t p);
 
 /* sensors.c */
 /** Noise-free calibrated proximity at distance d (m) from a surface. */

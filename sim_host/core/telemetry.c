@@ -25,13 +25,12 @@
 
 #include <lcm/lcm.h>
 
-#include "foraging/forager.h"
-#include "foraging/nest_beacon.h"
 #include "sim_internal.h"
 #include "swarmlcm_event_t.h"
 #include "swarmlcm_robot_state_t.h"
 #include "swarmlcm_run_info_t.h"
 #include "swarmlcm_run_summary_t.h"
+#include "swarmlcm_schema_t.h"
 #include "swarmlcm_swarm_state_t.h"
 
 /** Distinct controller states counted in SWARM_STATE. */
@@ -62,10 +61,8 @@ struct telemetry {
 
     /* Per robot, as of the previous step: what events are told against. */
     uint32_t n;
-    uint32_t *prev_oae;
-    int32_t *prev_carried;
-    float *prev_token_x, *prev_token_y;
-    char *prev_task;
+    uint32_t n_counters;         /* counter observables of the robot with the most */
+    float *prev_counter;         /* n x n_counters, in each robot's table order */
     const char **prev_state;
     uint8_t *prev_escaped;
 
@@ -73,11 +70,6 @@ struct telemetry {
     uint16_t n_states;
     const char *state_names[MAX_STATES];
     int16_t state_counts[MAX_STATES];
-
-    /* metrics_sample columns by name, resolved once. */
-    const char *metric_name[METRICS_MAX];
-    int col_step, col_time, col_oae, col_robot_contacts, col_static_contacts, col_distance,
-        col_food, col_collected, col_waiting, col_searching, col_returning, col_active;
 };
 
 void telemetry_default_options(telemetry_options_t *opt)
@@ -143,6 +135,7 @@ static void compute_hashes(void)
     (void)__swarmlcm_event_t_get_hash();
     (void)__swarmlcm_run_info_t_get_hash();
     (void)__swarmlcm_run_summary_t_get_hash();
+    (void)__swarmlcm_schema_t_get_hash();
 }
 
 int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char *log_path,
@@ -160,16 +153,18 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
         t->n = sim->n;
         t->buf_size = 4096;
         t->buf = malloc(t->buf_size);
-        t->prev_oae = calloc(n, sizeof *t->prev_oae);
-        t->prev_carried = calloc(n, sizeof *t->prev_carried);
-        t->prev_token_x = calloc(n, sizeof *t->prev_token_x);
-        t->prev_token_y = calloc(n, sizeof *t->prev_token_y);
-        t->prev_task = calloc(n, sizeof *t->prev_task);
+        for (uint32_t i = 0; i < sim->n; i++) {
+            uint32_t c = 0;
+            for (const observable_t *o = sim->robots[i].def->observables; o && o->name; o++) {
+                c += o->kind == OBS_COUNTER;
+            }
+            t->n_counters = c > t->n_counters ? c : t->n_counters;
+        }
+        t->prev_counter = calloc((size_t)n * (t->n_counters ? t->n_counters : 1), sizeof *t->prev_counter);
         t->prev_state = calloc(n, sizeof *t->prev_state);
         t->prev_escaped = calloc(n, sizeof *t->prev_escaped);
     }
-    if (!t || !t->buf || !t->prev_oae || !t->prev_carried || !t->prev_token_x || !t->prev_token_y
-        || !t->prev_task || !t->prev_state || !t->prev_escaped) {
+    if (!t || !t->buf || !t->prev_counter || !t->prev_state || !t->prev_escaped) {
         snprintf(err, 256, "telemetry: out of memory");
         telemetry_close(t, 0, err);
         return -1;
@@ -181,7 +176,6 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
     t->swarm_every = every_steps(opt->swarm_hz, sim->sc->control_period_ms);
     t->info_every = every_steps(1.0 / INFO_PERIOD_S, sim->sc->control_period_ms);
     t->realtime = opt->realtime;
-    t->col_step = -1;
     if (opt->url) {
         t->lcm = lcm_create(opt->url);
         if (!t->lcm) {
@@ -276,52 +270,23 @@ static uint8_t *reserve(telemetry_t *t, int size)
 
 /* ------------------------------------------------------------ robot state */
 
-static const char *state_of(const sim_robot_t *r)
-{
-    return r->ctrl ? r->ctrl_desc->state_name(r->ctrl) : "idle";
-}
+/* Most values a controller declares that telemetry sends. */
+#define MAX_VALUES 64
 
-static void robot_message(const telemetry_t *t, const struct sim *sim, uint32_t i, swarmlcm_robot_state_t *m)
+static void robot_message(const telemetry_t *t, const struct sim *sim, uint32_t i,
+                          swarmlcm_robot_state_t *m, float *values)
 {
     const sim_robot_t *r = &sim->robots[i];
-    const sim_controller_t *d = r->ctrl_desc;
+    m->version = SWARMLCM_ROBOT_STATE_T_VERSION;
     m->utime = utime_of(sim);
     m->run = (int64_t)t->seed;
     m->robot_id = (int16_t)i;
-    m->controller = (char *)d->name;
-    m->state = (char *)state_of(r);
-    m->task_state = (int8_t)sim_robot_task_state(sim, i);
-    m->policy = (char *)"";
-    m->threshold = m->probability = m->stimulus = m->k = m->mean_oae = m->energy = NAN;
-    m->response_n = 0;
-    m->oae_count = 0;
-    m->deposits = 0;
-    m->carrying = 0;
-    if (d == &controller_forager && r->ctrl) {
-        const forager_t *f = r->ctrl;
-        m->policy = (char *)ta_policy_name(f->params.policy);
-        m->threshold = f->theta;
-        m->probability = f->P_s;
-        m->stimulus = f->S;
-        m->k = f->k;
-        m->mean_oae = f->M_A;
-        m->response_n = (int8_t)f->n;
-        m->energy = (f->beacon_known & FORAGER_KNOWS_FOOD) ? (float)f->beacon_food_q4 / 16.0f : NAN;
-        m->oae_count = (int32_t)f->walk.oae_count;
-        m->deposits = (int32_t)f->deposits;
-        m->carrying = f->carrying != 0;
-    } else if (d == &controller_nest_beacon && r->ctrl) {
-        const nest_beacon_t *b = r->ctrl;
-        uint16_t te = b->params.token_energy ? b->params.token_energy : 1u;
-        m->energy = (float)((double)b->ledger_units / te);
-        m->mean_oae = b->params.n_robots ? (float)b->m_t2 / (float)b->params.n_robots : 0.0f;
-        m->oae_count = (int32_t)b->oae_total;
-        m->deposits = (int32_t)b->deposits_total;
-    } else if (r->ctrl && d->oae_count) {
-        m->oae_count = (int32_t)d->oae_count(r->ctrl);
-    }
-    m->carried_item = sim->foraging_on ? sim->forage.carried[i] : -1;
-
+    m->group = (char *)sim->sc->groups[r->group].name;
+    m->controller = (char *)r->def->name;
+    m->state = (char *)sim_robot_state_name(sim, i);
+    m->wheel_left = r->cmd_left;
+    m->wheel_right = r->cmd_right;
+    m->leds = (int16_t)r->leds;
     m->ir_max = -1;
     m->ir_max_index = -1;
     if (r->ir_stamp) {
@@ -345,20 +310,23 @@ static void robot_message(const telemetry_t *t, const struct sim *sim, uint32_t 
         m->ambient_min = (int16_t)low;
     }
     m->blobs = r->camera_stamp ? (int8_t)r->blob_count : -1;
-    m->wheel_left = r->cmd_left;
-    m->wheel_right = r->cmd_right;
-    m->leds = (int16_t)r->leds;
     m->pose_known = 1;
     m->x = r->x;
     m->y = r->y;
     m->theta = r->theta;
+    m->n_values = 0;
+    m->values = values;
+    for (const observable_t *o = r->def->observables; r->ctrl && o && o->name && m->n_values < MAX_VALUES; o++) {
+        values[m->n_values++] = observable_read(o, r->ctrl);
+    }
 }
 
 static void send_robots(telemetry_t *t, const struct sim *sim)
 {
     swarmlcm_robot_state_t m;
+    float values[MAX_VALUES];
     for (uint32_t i = 0; i < sim->n; i++) {
-        robot_message(t, sim, i, &m);
+        robot_message(t, sim, i, &m, values);
         SEND(t, swarmlcm_robot_state_t, TELEMETRY_CHANNEL_ROBOT_STATE, &m, m.utime);
     }
     t->robot_sent_step = sim->step + 1;
@@ -366,56 +334,13 @@ static void send_robots(telemetry_t *t, const struct sim *sim)
 
 /* ------------------------------------------------------------ swarm state */
 
-static int column(const metric_list_t *row, const char *name)
-{
-    for (unsigned k = 0; k < row->count; k++) {
-        if (strcmp(row->name[k], name) == 0) {
-            return (int)k;
-        }
-    }
-    return -1;
-}
-
-/* Finds the columns of metrics_sample once (its names are literals, so the
- * same pointers come back every time; a change of layout is noticed). */
-static void resolve_columns(telemetry_t *t, const metric_list_t *row)
-{
-    int same = t->col_step >= 0;
-    for (unsigned k = 0; same && k < row->count; k++) {
-        same = row->name[k] == t->metric_name[k];
-    }
-    if (same) {
-        return;
-    }
-    for (unsigned k = 0; k < row->count; k++) {
-        t->metric_name[k] = row->name[k];
-    }
-    t->col_step = column(row, "step");
-    t->col_time = column(row, "time_s");
-    t->col_oae = column(row, "oae_total");
-    t->col_robot_contacts = column(row, "robot_contacts");
-    t->col_static_contacts = column(row, "static_contacts");
-    t->col_distance = column(row, "distance_m");
-    t->col_food = column(row, "food_nest");
-    t->col_collected = column(row, "food_collected");
-    t->col_waiting = column(row, "waiting");
-    t->col_searching = column(row, "searching");
-    t->col_returning = column(row, "returning");
-    t->col_active = column(row, "active");
-}
-
-static double value(const metric_list_t *row, int col, double none)
-{
-    return col >= 0 ? row->value[col] : none;
-}
-
 static void count_states(telemetry_t *t, const struct sim *sim)
 {
     for (uint16_t s = 0; s < t->n_states; s++) {
         t->state_counts[s] = 0;
     }
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
-        const char *name = state_of(&sim->robots[i]);
+    for (uint32_t i = 0; i < sim->n; i++) {
+        const char *name = sim_robot_state_name(sim, i);
         uint16_t s = 0;
         while (s < t->n_states && t->state_names[s] != name) {
             s++;
@@ -439,96 +364,132 @@ static void count_states(telemetry_t *t, const struct sim *sim)
 
 static void send_swarm(telemetry_t *t, const struct sim *sim)
 {
-    const scenario_t *sc = sim->sc;
     metric_list_t row;
     swarmlcm_swarm_state_t m;
     metrics_sample(sim, &row);
-    resolve_columns(t, &row);
     count_states(t, sim);
+    m.version = SWARMLCM_SWARM_STATE_T_VERSION;
     m.utime = utime_of(sim);
     m.run = (int64_t)t->seed;
-    m.step = (int64_t)value(&row, t->col_step, (double)sim->step);
-    m.time_s = value(&row, t->col_time, NAN);
-    m.robots = (int32_t)sim->n_swarm;
+    m.step = (int64_t)sim->step;
+    m.robots = (int32_t)sim->n;
     m.n_states = (int16_t)t->n_states;
     m.state_names = (char **)t->state_names;
     m.state_counts = t->state_counts;
-    m.oae_total = (int64_t)value(&row, t->col_oae, 0);
-    m.robot_contacts = (int64_t)value(&row, t->col_robot_contacts, 0);
-    m.static_contacts = (int64_t)value(&row, t->col_static_contacts, 0);
-    m.distance_m = value(&row, t->col_distance, NAN);
-    m.foraging = sim->foraging_on;
-    m.food_nest = value(&row, t->col_food, NAN);
-    m.food_desired = sim->foraging_on ? sc->foraging.desired_food : NAN;
-    m.food_collected = (int64_t)value(&row, t->col_collected, 0);
-    m.food_dropped = sim->foraging_on ? (int64_t)sim->forage.dropped : 0;
-    m.waiting = (int16_t)value(&row, t->col_waiting, 0);
-    m.searching = (int16_t)value(&row, t->col_searching, 0);
-    m.returning = (int16_t)value(&row, t->col_returning, 0);
-    m.active = (int16_t)value(&row, t->col_active, 0);
-    m.k = NAN;
-    m.mean_oae = NAN;
-    if (sim->foraging_on && sim->n_swarm > 0) {
-        double area = (double)sc->arena.width * sc->arena.width;
-        m.k = (float)(((double)sim->n_swarm - sim->forage.waiting) / area);
-        m.mean_oae = (float)((double)sim->forage.window_sum / sim->n_swarm);
-    }
-    m.beacon = sim->beacon >= 0 && sim->robots[sim->beacon].ctrl;
-    m.beacon_food = NAN;
-    m.beacon_waiting = -1;
-    m.beacon_mean_oae = NAN;
-    if (m.beacon) {
-        const nest_beacon_t *b = sim->robots[sim->beacon].ctrl;
-        uint16_t te = b->params.token_energy ? b->params.token_energy : 1u;
-        m.beacon_food = (float)((double)b->ledger_units / te);
-        m.beacon_waiting = (int16_t)b->n_waiting;
-        m.beacon_mean_oae = b->params.n_robots ? (float)b->m_t2 / (float)b->params.n_robots : 0.0f;
-    }
+    m.n_values = (int16_t)row.count;
+    m.values = row.value;
     SEND(t, swarmlcm_swarm_state_t, TELEMETRY_CHANNEL_SWARM_STATE, &m, m.utime);
     t->swarm_sent_step = sim->step + 1;
 }
 
-/* ------------------------------------------------------------ run info */
+/* ------------------------------------------------------------ run info and schemas */
+
+static void send_schema(telemetry_t *t, const struct sim *sim, const char *kind, const char *name,
+                        int16_t n, char **names, char **units, int8_t *counters, char **docs)
+{
+    swarmlcm_schema_t m;
+    m.version = SWARMLCM_SCHEMA_T_VERSION;
+    m.utime = utime_of(sim);
+    m.run = (int64_t)t->seed;
+    m.kind = (char *)kind;
+    m.name = (char *)name;
+    m.total = n;
+    m.first = 0;
+    m.n = n;
+    m.names = names;
+    m.units = units;
+    m.counters = counters;
+    m.docs = docs;
+    SEND(t, swarmlcm_schema_t, TELEMETRY_CHANNEL_SCHEMA, &m, m.utime);
+}
+
+/* One schema per controller the groups run, and the swarm's. */
+static void send_schemas(telemetry_t *t, const struct sim *sim)
+{
+    const scenario_t *sc = sim->sc;
+    char *names[METRICS_MAX > MAX_VALUES ? METRICS_MAX : MAX_VALUES];
+    char *units[METRICS_MAX > MAX_VALUES ? METRICS_MAX : MAX_VALUES];
+    char *docs[METRICS_MAX > MAX_VALUES ? METRICS_MAX : MAX_VALUES];
+    int8_t counters[METRICS_MAX > MAX_VALUES ? METRICS_MAX : MAX_VALUES];
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        const controller_def_t *def = sc->groups[g].def;
+        uint32_t h = 0;
+        while (h < g && sc->groups[h].def != def) {
+            h++;
+        }
+        if (h < g) {
+            continue;   /* sent with an earlier group */
+        }
+        int16_t n = 0;
+        for (const observable_t *o = def->observables; def->state_size && o && o->name && n < MAX_VALUES; o++, n++) {
+            names[n] = (char *)o->name;
+            units[n] = (char *)(o->unit ? o->unit : "");
+            docs[n] = (char *)(o->doc ? o->doc : "");
+            counters[n] = o->kind == OBS_COUNTER;
+        }
+        send_schema(t, sim, "controller", def->name, n, names, units, counters, docs);
+    }
+    metric_list_t row;
+    metrics_sample(sim, &row);
+    for (unsigned k = 0; k < row.count; k++) {
+        names[k] = (char *)row.name[k];
+        units[k] = (char *)row.unit[k];
+        docs[k] = (char *)row.doc[k];
+        counters[k] = 0;
+    }
+    send_schema(t, sim, "swarm", "swarm", (int16_t)row.count, names, units, counters, docs);
+}
 
 static void send_info(telemetry_t *t, const struct sim *sim)
 {
     const scenario_t *sc = sim->sc;
     swarmlcm_run_info_t m;
+    char *gnames[SCENARIO_MAX_GROUPS], *gctrl[SCENARIO_MAX_GROUPS], *gpol[SCENARIO_MAX_GROUPS];
+    int32_t gcount[SCENARIO_MAX_GROUPS];
+    char *tasks[SCENARIO_MAX_TASKS];
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        gnames[g] = (char *)sc->groups[g].name;
+        gctrl[g] = (char *)sc->groups[g].controller;
+        gpol[g] = (char *)sc->groups[g].policy;
+        gcount[g] = (int32_t)sc->groups[g].count;
+    }
+    for (uint32_t k = 0; k < sc->task_count; k++) {
+        tasks[k] = (char *)sc->tasks[k].def->name;
+    }
+    m.version = SWARMLCM_RUN_INFO_T_VERSION;
     m.utime = utime_of(sim);
     m.run = (int64_t)t->seed;
     m.scenario = (char *)sc->name;
     m.scenario_file = (char *)sc->path;
-    m.controller = (char *)sc->controller.name;
-    m.policy = (char *)(sim->ctrl && sim->ctrl->policies ? sc->controller.policy : "");
-    m.robots = (int32_t)sim->n_swarm;
-    m.beacon = sim->beacon >= 0;
     m.steps = (int64_t)t->steps;
     m.control_period_ms = sc->control_period_ms;
     m.arena_width = sc->arena.width;
     m.arena_height = sc->arena.height;
-    m.nest = sc->nest.enabled;
-    m.nest_x = sc->nest.x;
-    m.nest_y = sc->nest.y;
-    m.nest_diameter = sc->nest.diameter;
-    m.foraging = sim->foraging_on;
-    m.food_initial = sim->foraging_on ? sc->foraging.initial_food : NAN;
-    m.food_desired = sim->foraging_on ? sc->foraging.desired_food : NAN;
-    m.food_items = sim->foraging_on ? (int32_t)sc->foraging.food_count : 0;
+    m.robots = (int32_t)sim->n;
+    m.n_groups = (int16_t)sc->group_count;
+    m.group_names = gnames;
+    m.group_controllers = gctrl;
+    m.group_policies = gpol;
+    m.group_counts = gcount;
+    m.n_tasks = (int16_t)sc->task_count;
+    m.tasks = tasks;
     m.robot_state_hz = (float)t->robot_hz;
     m.swarm_state_hz = (float)t->swarm_hz;
     SEND(t, swarmlcm_run_info_t, TELEMETRY_CHANNEL_RUN_INFO, &m, m.utime);
+    send_schemas(t, sim);
 }
 
 /* ------------------------------------------------------------ events */
 
-static void send_event(telemetry_t *t, const struct sim *sim, uint32_t i, int8_t kind,
+static void send_event(telemetry_t *t, const struct sim *sim, uint32_t i, const char *kind,
                        const char *detail, int32_t val)
 {
     swarmlcm_event_t e;
+    e.version = SWARMLCM_EVENT_T_VERSION;
     e.utime = utime_of(sim);
     e.run = (int64_t)t->seed;
     e.robot_id = (int16_t)i;
-    e.kind = kind;
+    e.kind = (char *)kind;
     e.detail = (char *)detail;
     e.value = val;
     e.pose_known = 1;
@@ -537,31 +498,19 @@ static void send_event(telemetry_t *t, const struct sim *sim, uint32_t i, int8_t
     SEND(t, swarmlcm_event_t, TELEMETRY_CHANNEL_EVENT, &e, e.utime);
 }
 
-/* The nest test of foraging.c, on the same floats: a token let go here is
- * delivered. */
-static int in_nest(const struct sim *sim, float x, float y)
-{
-    float dx = x - sim->sc->nest.x, dy = y - sim->sc->nest.y, r = sim->sc->nest.diameter / 2.0f;
-    return dx * dx + dy * dy < r * r;
-}
-
 /* Robot i's state now, to tell the next step's events against. */
 static void remember(telemetry_t *t, const struct sim *sim, uint32_t i)
 {
     const sim_robot_t *r = &sim->robots[i];
-    t->prev_oae[i] = (r->ctrl && r->ctrl_desc->oae_count) ? r->ctrl_desc->oae_count(r->ctrl) : 0;
-    t->prev_task[i] = sim_robot_task_state(sim, i);
-    t->prev_state[i] = state_of(r);
-    t->prev_escaped[i] = r->escaped;
-    t->prev_carried[i] = -1;
-    if (sim->foraging_on) {
-        int32_t k = sim->forage.carried[i];
-        t->prev_carried[i] = k;
-        if (k >= 0) {
-            t->prev_token_x[i] = sim->forage.tokens[k].x;
-            t->prev_token_y[i] = sim->forage.tokens[k].y;
+    float *prev = t->prev_counter + (size_t)i * t->n_counters;
+    uint32_t c = 0;
+    for (const observable_t *o = r->def->observables; r->ctrl && o && o->name; o++) {
+        if (o->kind == OBS_COUNTER) {
+            prev[c++] = observable_read(o, r->ctrl);
         }
     }
+    t->prev_state[i] = sim_robot_state_name(sim, i);
+    t->prev_escaped[i] = r->escaped;
 }
 
 /* The events of robot i in the last step, each told once: what changed
@@ -569,47 +518,28 @@ static void remember(telemetry_t *t, const struct sim *sim, uint32_t i)
 static void robot_events(telemetry_t *t, const struct sim *sim, uint32_t i)
 {
     const sim_robot_t *r = &sim->robots[i];
-    const sim_controller_t *d = r->ctrl_desc;
+    float *prev = t->prev_counter + (size_t)i * t->n_counters;
     char detail[DETAIL_MAX];
-    uint32_t oae = (r->ctrl && d->oae_count) ? d->oae_count(r->ctrl) : 0;
-    for (uint32_t k = t->prev_oae[i]; k < oae; k++) {
-        send_event(t, sim, i, SWARMLCM_EVENT_T_OAE, "", (int32_t)(k + 1));
+    uint32_t c = 0;
+    for (const observable_t *o = r->def->observables; r->ctrl && o && o->name; o++) {
+        if (o->kind != OBS_COUNTER) {
+            continue;
+        }
+        float now = observable_read(o, r->ctrl);
+        for (float k = prev[c] + 1.0f; k <= now; k += 1.0f) {
+            send_event(t, sim, i, o->name, "", (int32_t)k);
+        }
+        prev[c++] = now;
     }
-    t->prev_oae[i] = oae;
-    if (sim->foraging_on) {
-        int32_t was = t->prev_carried[i], now = sim->forage.carried[i];
-        if (was >= 0 && now != was) {
-            if (in_nest(sim, t->prev_token_x[i], t->prev_token_y[i])) {
-                send_event(t, sim, i, SWARMLCM_EVENT_T_DEPOSIT, "", was);
-            } else {
-                send_event(t, sim, i, SWARMLCM_EVENT_T_FAILURE, "token_dropped", was);
-            }
-        }
-        if (now >= 0 && now != was) {
-            send_event(t, sim, i, SWARMLCM_EVENT_T_PICKUP, "", now);
-        }
-        t->prev_carried[i] = now;
-        if (now >= 0) {
-            t->prev_token_x[i] = sim->forage.tokens[now].x;
-            t->prev_token_y[i] = sim->forage.tokens[now].y;
-        }
+    const char *state = sim_robot_state_name(sim, i);
+    if (state != t->prev_state[i] && strcmp(state, t->prev_state[i]) != 0) {
+        snprintf(detail, sizeof detail, "%s->%s", t->prev_state[i], state);
+        send_event(t, sim, i, "state", detail, 0);
     }
-    if (r->ctrl && d->task_state) {
-        char task = d->task_state(r->ctrl), was_task = t->prev_task[i];
-        const char *state = d->state_name(r->ctrl);
-        if (task != was_task && task && was_task) {
-            snprintf(detail, sizeof detail, "%s->%s", t->prev_state[i], state);
-            send_event(t, sim, i, SWARMLCM_EVENT_T_STATE_CHANGE, detail, task);
-            if (was_task == 'R' && task == 'S') {
-                send_event(t, sim, i, SWARMLCM_EVENT_T_FAILURE, "token_lost", task);
-            }
-        }
-        t->prev_task[i] = task;
-        t->prev_state[i] = state;
-    }
+    t->prev_state[i] = state;
     if (r->escaped != t->prev_escaped[i]) {
         if (r->escaped) {
-            send_event(t, sim, i, SWARMLCM_EVENT_T_FAILURE, "escaped", 0);
+            send_event(t, sim, i, "escaped", "", 0);
         }
         t->prev_escaped[i] = r->escaped;
     }
@@ -648,10 +578,15 @@ static void pace(telemetry_t *t, const struct sim *sim)
 void telemetry_step(telemetry_t *t, const sim_t *simp)
 {
     const struct sim *sim = simp;
+    const sim_event_rec_t *ev;
     if (!t) {
         return;
     }
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
+    uint32_t n_ev = sim_events(simp, &ev);
+    for (uint32_t k = 0; k < n_ev; k++) {
+        send_event(t, sim, ev[k].robot, ev[k].kind, ev[k].detail, ev[k].value);
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
         robot_events(t, sim, i);
     }
     if (t->info_every && sim->step % t->info_every == 0) send_info(t, sim);
@@ -678,13 +613,12 @@ void telemetry_end(telemetry_t *t, const sim_t *simp, const metric_list_t *final
         values[k] = final->value[k];
     }
     swarmlcm_run_summary_t m;
+    m.version = SWARMLCM_RUN_SUMMARY_T_VERSION;
     m.utime = utime_of(sim);
     m.run = (int64_t)t->seed;
     m.scenario = (char *)sc->name;
     m.scenario_file = (char *)sc->path;
-    m.controller = (char *)sc->controller.name;
-    m.policy = (char *)(sim->ctrl && sim->ctrl->policies ? sc->controller.policy : "");
-    m.robots = (int32_t)sim->n_swarm;
+    m.robots = (int32_t)sim->n;
     m.steps = (int64_t)sim->step;
     m.control_period_ms = sc->control_period_ms;
     m.state_hash = hash;
@@ -724,11 +658,7 @@ int telemetry_close(telemetry_t *t, int keep, char err[256])
         lcm_destroy(t->lcm);
     }
     free(t->buf);
-    free(t->prev_oae);
-    free(t->prev_carried);
-    free(t->prev_token_x);
-    free(t->prev_token_y);
-    free(t->prev_task);
+    free(t->prev_counter);
     free(t->prev_state);
     free(t->prev_escaped);
     free(t);

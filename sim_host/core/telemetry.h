@@ -4,10 +4,12 @@
  * Publishes the message types of lcm_types/ (package swarmlcm) on these
  * channels:
  *   RUN_INFO     run_info_t      at step 0, then every 10 s of simulated time
+ *   TELEMETRY_SCHEMA schema_t    with every RUN_INFO: the names, units and kinds of
+ *                                each controller's values and of the swarm's
  *   SWARM_STATE  swarm_state_t   every 1/swarm_hz simulated seconds (and the last step)
  *   ROBOT_STATE  robot_state_t   every robot every 1/robot_hz simulated seconds (and the last step)
- *   SWARM_EVENT  event_t         as they happen: pick-ups, deposits, OAEs,
- *                                failures, task state changes
+ *   SWARM_EVENT  event_t         as they happen: counters going up, state
+ *                                changes, escapes, and the tasks' own events
  *   RUN_SUMMARY  run_summary_t   once, at the end (the metrics of summary.json)
  * to an LCM provider URL (udpm://, tcpq://, memq://, file://, ...) or, by
  * default, to an LCM log file in the run folder (LCM's log format, byte for
@@ -35,6 +37,7 @@
 #define TELEMETRY_CHANNEL_ROBOT_STATE "ROBOT_STATE"
 #define TELEMETRY_CHANNEL_EVENT "SWARM_EVENT"
 #define TELEMETRY_CHANNEL_RUN_SUMMARY "RUN_SUMMARY"
+#define TELEMETRY_CHANNEL_SCHEMA "TELEMETRY_SCHEMA"
 
 /** Default rates, per simulated second: 1 state per robot (20 robots: 20
  *  messages/s), and the swarm state at the 10 Hz control rate. */

@@ -13,9 +13,10 @@
 #include <stdio.h>
 
 #include "sim_internal.h"
+#include "units.h"
 
 /* 150 g on a 70 mm disc. */
-#define ROBOT_DENSITY (0.150f / (3.14159265f * SIM_ROBOT_RADIUS * SIM_ROBOT_RADIUS))
+#define ROBOT_DENSITY (0.150f / ((float)UNITS_PI * EPUCK_BODY_RADIUS_M * EPUCK_BODY_RADIUS_M))
 /* Plastic on plastic and painted walls: low friction so robots slide
  * along walls instead of sticking to them. */
 #define ROBOT_FRICTION 0.1f
@@ -49,7 +50,7 @@ static void create_static(struct sim *sim)
             b2CreateCircleShape(ground, &sd, &c);
         } else {
             add_box(ground, d->width / 2, d->depth / 2, (b2Vec2){ o->c.x, o->c.y },
-                    d->angle * 3.14159265f / 180.0f);
+                    d->angle * (float)UNITS_PI / 180.0f);
         }
     }
 }
@@ -77,7 +78,9 @@ int world_create(struct sim *sim, char err[256])
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_robot_t *r = &sim->robots[i];
         b2BodyDef bd = b2DefaultBodyDef();
-        bd.type = b2_dynamicBody;
+        /* A group that does not move (a beacon, a landmark) is a static
+         * body: robots bump into it but cannot push it. */
+        bd.type = r->moves ? b2_dynamicBody : b2_staticBody;
         bd.position = (b2Vec2){ r->x, r->y };
         bd.rotation = b2MakeRot(r->theta);
         bd.userData = (void *)(uintptr_t)(i + 1);
@@ -87,7 +90,7 @@ int world_create(struct sim *sim, char err[256])
         sd.material.friction = ROBOT_FRICTION;
         sd.enableContactEvents = true;
         sd.userData = (void *)(uintptr_t)(i + 1);
-        b2Circle c = { { 0.0f, 0.0f }, SIM_ROBOT_RADIUS };
+        b2Circle c = { { 0.0f, 0.0f }, EPUCK_BODY_RADIUS_M };
         b2CreateCircleShape(r->body, &sd, &c);
     }
     return 0;
@@ -111,12 +114,15 @@ void world_drive(struct sim *sim)
         /* Motor steps are counted as commanded: a blocked stepper still steps. */
         r->steps_left += l * sim->dt;
         r->steps_right += rr * sim->dt;
+        if (!r->moves) {
+            continue;
+        }
         if (noise > 0.0) {
             l *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
             rr *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
         }
-        double v = 0.5 * (l + rr) * SIM_STEP_M;
-        double w = (rr - l) * SIM_STEP_M / SIM_AXLE_M;
+        double v = 0.5 * (l + rr) * EPUCK_STEP_M;
+        double w = (rr - l) * EPUCK_STEP_M / EPUCK_AXLE_M;
         b2Body_SetLinearVelocity(r->body, (b2Vec2){ (float)(v * cos(r->theta)), (float)(v * sin(r->theta)) });
         b2Body_SetAngularVelocity(r->body, (float)w);
     }
@@ -151,7 +157,7 @@ void world_read_poses(struct sim *sim)
         r->theta = b2Rot_GetAngle(b2Body_GetRotation(r->body));
         sim->px[i] = p.x;
         sim->py[i] = p.y;
-        double gap = fmin(sim->hw - fabs(p.x), sim->hh - fabs(p.y)) - SIM_ROBOT_RADIUS;
+        double gap = fmin(sim->hw - fabs(p.x), sim->hh - fabs(p.y)) - EPUCK_BODY_RADIUS_M;
         if (gap < clearance) {
             clearance = gap;
         }

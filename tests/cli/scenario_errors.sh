@@ -52,28 +52,28 @@ expect_error "YAML syntax error" \
     "swarmsim: $d/syntax_error.yaml:6: YAML syntax error: " \
     "$d/syntax_error.yaml"
 expect_error "unknown key with a suggestion" \
-    "swarmsim: $d/unknown_key.yaml:4: robots.cuont: unknown key 'cuont' (did you mean 'count'?)" \
+    "swarmsim: $d/unknown_key.yaml:5: robots[0].cuont: unknown key 'cuont' (did you mean 'count'?)" \
     "$d/unknown_key.yaml"
 expect_error "integer expected" \
-    "swarmsim: $d/wrong_type_int.yaml:3: robots.count: expected an integer, got '2.5'" \
+    "swarmsim: $d/wrong_type_int.yaml:3: robots[0].count: expected an integer, got '2.5'" \
     "$d/wrong_type_int.yaml"
 expect_error "number expected" \
     "swarmsim: $d/wrong_type_number.yaml:3: arena.width: expected a number, got 'wide'" \
     "$d/wrong_type_number.yaml"
 expect_error "boolean expected" \
-    "swarmsim: $d/wrong_type_bool.yaml:3: nest.enabled: expected true/false, got 'yes'" \
+    "swarmsim: $d/wrong_type_bool.yaml:4: robots[0].moves: expected true/false, got 'yes'" \
     "$d/wrong_type_bool.yaml"
 expect_error "mapping expected" \
     "swarmsim: $d/wrong_type_mapping.yaml:2: arena: expected a mapping, got '4'" \
     "$d/wrong_type_mapping.yaml"
 expect_error "out of range" \
-    "swarmsim: $d/out_of_range.yaml:3: robots.count: 200000 is out of range [0, 100000]" \
+    "swarmsim: $d/out_of_range.yaml:3: robots[0].count: 200000 is out of range [0, 100000]" \
     "$d/out_of_range.yaml"
 expect_error "bad enum value" \
-    "swarmsim: $d/bad_enum.yaml:4: robots.placement: expected one of random|nest|grid, got 'spiral'" \
+    "swarmsim: $d/bad_enum.yaml:5: robots[0].placement.shape: expected one of rectangle|circle|ring|grid|poses, got 'spiral'" \
     "$d/bad_enum.yaml"
 expect_error "duplicate key" \
-    "swarmsim: $d/duplicate_key.yaml:4: robots.count: duplicate key 'count' (first on line 3)" \
+    "swarmsim: $d/duplicate_key.yaml:4: robots[0].count: duplicate key 'count' (first on line 3)" \
     "$d/duplicate_key.yaml"
 expect_error "cylinder without a radius" \
     "swarmsim: $d/cylinder_no_radius.yaml:4: objects[1].radius: a cylinder needs radius > 0" \
@@ -82,11 +82,20 @@ expect_error "object outside the arena" \
     "swarmsim: $d/object_outside.yaml:4: objects[0]: the cylinder reaches outside the arena" \
     "$d/object_outside.yaml"
 expect_error "unknown controller" \
-    "swarmsim: $d/bad_controller.yaml:3: controller.name: unknown controller 'levy_walk' (valid: random_walk" \
+    "swarmsim: $d/bad_controller.yaml:4: robots[0].controller: unknown controller 'levy_walk' (valid: random_walk" \
     "$d/bad_controller.yaml"
 expect_error "controller parameter out of range" \
-    "swarmsim: $d/bad_controller_param.yaml:5: controller.params.speed_steps_s: 5000 is out of range [0, 1000]" \
+    "swarmsim: $d/bad_controller_param.yaml:5: robots[0].params.speed_steps_s: 5000 is out of range [0, 1000]" \
     "$d/bad_controller_param.yaml"
+expect_error "controller needs more IR payload bits" \
+    "swarmsim: $d/ircom_too_narrow.yaml:3: robots[0].controller: controller 'forager' sends 16-bit IR messages but ircom.payload_bits is 8" \
+    "$d/ircom_too_narrow.yaml"
+expect_error "a task's own check" \
+    "swarmsim: $d/task_check.yaml:7: foraging.information: 'beacon' needs one robot running nest_beacon" \
+    "$d/task_check.yaml"
+expect_error "the format before robot groups" \
+    "swarmsim: $d/old_syntax.yaml:2: controller: unknown key 'controller': robots are groups now" \
+    "$d/old_syntax.yaml"
 
 # ---- too many objects (generated: 4097 entries, the last on line 4098)
 {
@@ -105,14 +114,17 @@ expect_error "missing file" \
 # ---- bad --set overrides on a valid file: --set TEXT: key.path: message
 ok=$d/valid_small.yaml
 expect_error "--set: integer expected" \
-    "swarmsim: --set robots.count=abc: robots.count: expected an integer, got 'abc'" \
-    "$ok" --set robots.count=abc
+    "swarmsim: --set robots.0.count=abc: robots[0].count: expected an integer, got 'abc'" \
+    "$ok" --set robots.0.count=abc
 expect_error "--set: unknown key" \
-    "swarmsim: --set robots.cuont=5: robots.cuont: unknown key 'cuont' (did you mean 'count'?)" \
-    "$ok" --set robots.cuont=5
+    "swarmsim: --set robots.0.cuont=5: robots[0].cuont: unknown key 'cuont' (did you mean 'count'?)" \
+    "$ok" --set robots.0.cuont=5
 expect_error "--set: unknown controller parameter" \
-    "swarmsim: --set controller.params.speed=3: controller.params.speed: unknown key 'speed'" \
-    "$ok" --set controller.params.speed=3
+    "swarmsim: --set robots.0.params.speed=3: robots[0].params.speed: unknown key 'speed'" \
+    "$ok" --set robots.0.params.speed=3
+expect_error "--set: a group past the end" \
+    "swarmsim: --set robots.5.count=3: robots[5]: index out of range (the sequence has 1 entries)" \
+    "$ok" --set robots.5.count=3
 expect_error "--set: out of range" \
     "swarmsim: --set ircom.loss=2: ircom.loss: 2 is out of range [0, 1]" \
     "$ok" --set ircom.loss=2
@@ -120,14 +132,14 @@ expect_error "--set: sequence index out of range" \
     "swarmsim: --set objects.7.x=1: objects[7]: index out of range (the sequence has 2 entries)" \
     "$ok" --set objects.7.x=1
 expect_error "--set: without '='" \
-    "swarmsim: --set robots.count: expected key.path=value" \
-    "$ok" --set robots.count
+    "swarmsim: --set robots.0.count: expected key.path=value" \
+    "$ok" --set robots.0.count
 expect_error "--set: malformed key path" \
     "swarmsim: --set robots..count=3: malformed key path 'robots..count'" \
     "$ok" --set robots..count=3
 expect_error "--set: a later override replaces an earlier one" \
-    "swarmsim: --set robots.count=1.5: robots.count: expected an integer, got '1.5'" \
-    "$ok" --set robots.count=3 --set robots.count=1.5
+    "swarmsim: --set robots.0.count=1.5: robots[0].count: expected an integer, got '1.5'" \
+    "$ok" --set robots.0.count=3 --set robots.0.count=1.5
 
 echo "$pass passed, $fail failed"
 if [ "$fail" -ne 0 ]; then

@@ -1,6 +1,6 @@
 /*
  * foraging.c - food tokens, the passive gripper, deliveries and the
- * ground-truth nest ledger of seed 000 (see foraging.h).
+ * ground-truth nest ledger of seed 000 (foraging.h), as a task plug-in.
  */
 #include "foraging.h"
 
@@ -9,175 +9,393 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/geometry.h"
+#include "core/rand.h"
+#include "foraging/forager.h"
+#include "foraging/nest_beacon.h"
 #include "foraging/nest_link.h"
-#include "core/sim_internal.h"
+#include "units.h"
 
 /* The gripper takes a token whose centre comes within its radius plus this
  * of the robot's front point, and holds it this far ahead of the lens. */
 #define GRASP_TOLERANCE 0.025f
 #define CARRY_GAP 0.005f
 #define PLACE_TRIES 100000
+/* Drawing: the grey nest floor, and robots by task state. */
+#define RGB_NEST 0xB4B4B4u
+#define RGB_SEARCHING 0x8CDC8Cu
+#define RGB_RETURNING 0xF0DC5Au
+#define RGB_BEACON 0x8CA0F0u
 
-static float nest_radius(const struct sim *sim) { return sim->sc->nest.diameter / 2.0f; }
+typedef struct foraging {
+    const foraging_config_t *cfg;
+    const scenario_t *sc;
+    uint32_t n_robots;
+    uint8_t *is_forager;     /**< per robot: runs the forager (has the gripper) */
+    uint8_t *is_beacon;      /**< per robot: runs the nest beacon */
+    uint32_t n_foragers;     /**< N_r */
+    char *task;              /**< per robot: last task state 'W', 'S', 'R' (foragers) */
 
-static int in_nest(const struct sim *sim, float x, float y)
+    uint32_t n_tokens;
+    sim_item_t *tokens;      /**< what the camera sees */
+    int32_t *carrier;        /**< per token: robot index, or -1 on the floor */
+    int32_t *carried;        /**< per robot: token index or -1 */
+    sim_rand_t rand;         /**< token placement */
+
+    uint64_t delivered;      /**< tokens deposited in the nest */
+    uint64_t dropped;        /**< tokens let go outside the nest */
+    uint64_t forage_steps;   /**< robot-steps spent in S_S or S_R */
+    uint64_t oae_seen;       /**< OAEs already charged */
+    double nest_units;       /**< energy the nest consumed, units */
+    double food;             /**< F(t), tokens */
+    double deviation_sum;    /**< sum over steps of |F_d - F(t)| */
+    uint32_t waiting, searching, returning;   /**< foragers by task state now */
+    uint32_t *oae_window;    /**< the foragers' OAEs per step over the last T2 (global info) */
+    uint32_t window_len, window_pos;
+    uint64_t window_sum;
+} foraging_t;
+
+/* ---------------------------------------------------------------- config */
+
+#define FC foraging_config_t
+static const char *const information_choices[] = { "beacon", "global", NULL };
+
+static const param_desc_t foraging_params[] = {
+    { .key = "food_count", PARAM_FIELD(FC, food_count, uint32_t), .min = 0, .max = 10000,
+      .doc = "N_f, food tokens kept in the arena (one respawns per delivery)" },
+    { .key = "token_radius", PARAM_FIELD(FC, token_radius, float), .min = 0.005, .max = 0.5,
+      .doc = "token radius, m" },
+    { .key = "token_height", PARAM_FIELD(FC, token_height, float), .min = 0.005, .max = 1,
+      .doc = "token height, m" },
+    { .key = "token_energy", PARAM_FIELD(FC, token_energy, float), .min = 1, .max = 1e9,
+      .doc = "energy units per food token" },
+    { .key = "initial_food", PARAM_FIELD(FC, initial_food, float), .min = -1e6, .max = 1e6,
+      .doc = "F(0), food tokens in the nest at the start" },
+    { .key = "desired_food", PARAM_FIELD(FC, desired_food, float), .min = -1e6, .max = 1e6,
+      .doc = "F_d, desired food tokens in the nest" },
+    { .key = "consumption", PARAM_FIELD(FC, consumption, float), .min = 0, .max = 1e6,
+      .doc = "C_rate, food the nest consumes, tokens/min" },
+    { .key = "move_cost", PARAM_FIELD(FC, move_cost, float), .min = 0, .max = 1e9,
+      .doc = "energy units per step per foraging robot" },
+    { .key = "oae_energy", PARAM_FIELD(FC, oae_energy, float), .min = 0, .max = 1e9,
+      .doc = "E_a, energy units per obstacle-avoidance event" },
+    { .key = "robot_speed", PARAM_FIELD(FC, robot_speed, float), .min = 0.001, .max = 0.128,
+      .doc = "v, forager speed, m/s (seed 000: 0.05); sets T2 = L/(2v)" },
+    { .key = "information", PARAM_ENUM_FIELD(FC, information, information_choices),
+      .doc = "beacon: a nest_beacon group keeps the ledger; global: ideal information" },
+    PARAM_END
+};
+
+static const param_desc_t nest_params[] = {
+    { .key = "x", PARAM_FIELD(FC, nest.x, float), .min = -500, .max = 500, .doc = "nest centre x, m" },
+    { .key = "y", PARAM_FIELD(FC, nest.y, float), .min = -500, .max = 500, .doc = "nest centre y, m" },
+    { .key = "diameter", PARAM_FIELD(FC, nest.diameter, float), .min = 0.01, .max = 1000,
+      .doc = "d, nest diameter, m" },
+    PARAM_END
+};
+#undef FC
+
+static const param_section_t foraging_sections[] = {
+    { "nest", nest_params, "the nest: a grey floor circle" },
+    { NULL, NULL, NULL }
+};
+
+static void foraging_default_config(void *config)
 {
-    float dx = x - sim->sc->nest.x, dy = y - sim->sc->nest.y, r = nest_radius(sim);
+    foraging_config_t *c = config;
+    c->nest.x = 0.0f;
+    c->nest.y = 0.0f;
+    c->nest.diameter = 1.5f;
+    c->food_count = 20;
+    c->token_radius = 0.0175f;
+    c->token_height = 0.042f;
+    c->token_energy = 1500.0f;
+    c->initial_food = 5.0f;
+    c->desired_food = 20.0f;
+    c->consumption = 2.0f;
+    c->move_cost = 1.0f;
+    c->oae_energy = 10.0f;
+    c->robot_speed = 0.05f;
+    c->information = FORAGING_INFO_BEACON;
+}
+
+static uint32_t robots_running(const scenario_t *sc, const controller_def_t *def)
+{
+    uint32_t n = 0;
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        n += sc->groups[g].def == def ? sc->groups[g].count : 0;
+    }
+    return n;
+}
+
+static int foraging_check(const void *config, const scenario_t *sc, char key[64], char msg[256])
+{
+    const foraging_config_t *c = config;
+    double r = c->nest.diameter / 2.0;
+    uint32_t beacons = robots_running(sc, &nest_beacon_def);
+    if (fabs(c->nest.x) + r > sc->arena.width / 2.0 + 1e-6 || fabs(c->nest.y) + r > sc->arena.height / 2.0 + 1e-6) {
+        snprintf(key, 64, "nest");
+        snprintf(msg, 256, "the nest circle reaches outside the arena (x in [%g, %g], y in [%g, %g] m)",
+                 -sc->arena.width / 2.0, sc->arena.width / 2.0, -sc->arena.height / 2.0,
+                 sc->arena.height / 2.0);
+        return -1;
+    }
+    if (c->information == FORAGING_INFO_BEACON && beacons != 1) {
+        snprintf(key, 64, "information");
+        snprintf(msg, 256, "'beacon' needs one robot running nest_beacon at the nest (the scenario "
+                 "has %u); add a group {count: 1, controller: nest_beacon, moves: false} or use "
+                 "'global'", beacons);
+        return -1;
+    }
+    if (c->information == FORAGING_INFO_GLOBAL && beacons != 0) {
+        snprintf(key, 64, "information");
+        snprintf(msg, 256, "'global' replaces the nest beacon by the simulator: remove the "
+                 "nest_beacon group (or set its count to 0)");
+        return -1;
+    }
+    return 0;
+}
+
+/* What a robot is built with (seed 000): the forager knows F_d, N_r, L, the
+ * nest radius and its speed; the beacon the ledger's constants and T2. */
+static void foraging_configure(const void *config, const scenario_t *sc, const robot_group_t *group,
+                               void *params)
+{
+    const foraging_config_t *c = config;
+    if (group->def == &forager_def) {
+        forager_params_t *p = params;
+        p->f_d_tokens = c->desired_food;
+        p->n_robots = (uint16_t)robots_running(sc, &forager_def);
+        p->arena_l_mm = (uint16_t)lround(fmin(sc->arena.width, 65.535) * 1000.0);
+        p->nest_radius_mm = (uint16_t)lround(fmin(c->nest.diameter / 2.0, 65.535) * 1000.0);
+        p->speed_steps_s = (int16_t)lround(fmin(c->robot_speed / EPUCK_STEP_M, 1000.0));
+        p->walk.speed_steps_s = p->speed_steps_s;
+    } else if (group->def == &nest_beacon_def) {
+        nest_beacon_params_t *p = params;
+        double t2_s = sc->arena.width / (2.0 * c->robot_speed);   /* T2 = L/(2v) */
+        p->n_robots = (uint16_t)robots_running(sc, &forager_def);
+        p->f0_tokens = (int16_t)lround(c->initial_food);
+        p->token_energy = (uint16_t)lround(fmin(c->token_energy, 65535.0));
+        p->c_rate_milli_tokens_per_min = (uint16_t)lround(fmin(c->consumption * 1000.0, 65535.0));
+        p->move_cost = (uint16_t)lround(fmin(c->move_cost, 65535.0));
+        p->e_a = (uint16_t)lround(fmin(c->oae_energy, 65535.0));
+        p->t2_steps = (uint16_t)lround(fmin(t2_s * 1000.0 / sc->control_period_ms, 65535.0));
+    }
+}
+
+/* ---------------------------------------------------------------- tokens */
+
+static float nest_radius(const foraging_t *f) { return f->cfg->nest.diameter / 2.0f; }
+
+static int in_nest(const foraging_t *f, float x, float y)
+{
+    float dx = x - f->cfg->nest.x, dy = y - f->cfg->nest.y, r = nest_radius(f);
     return dx * dx + dy * dy < r * r;
 }
 
-/* A free spot for a token: inside the walls, outside the nest, off the
+/* A free spot for token k: inside the walls, outside the nest, off the
  * obstacles.  Returns 0, or -1 when the arena has no room. */
-static int place_token(struct sim *sim, food_token_t *t)
+static int place_token(foraging_t *f, const sim_t *sim, uint32_t k)
 {
-    const scenario_t *sc = sim->sc;
-    float r = sc->foraging.token_radius, margin = r + 0.01f;
-    for (int k = 0; k < PLACE_TRIES; k++) {
-        float x = (float)((2 * sim_rand_uniform(&sim->forage.rand) - 1) * (sim->hw - margin));
-        float y = (float)((2 * sim_rand_uniform(&sim->forage.rand) - 1) * (sim->hh - margin));
-        float dx = x - sc->nest.x, dy = y - sc->nest.y, nr = nest_radius(sim) + r;
+    float r = f->cfg->token_radius, margin = r + 0.01f, hw, hh;
+    sim_arena_half(sim, &hw, &hh);
+    for (int tries = 0; tries < PLACE_TRIES; tries++) {
+        float x = (float)((2 * sim_rand_uniform(&f->rand) - 1) * (hw - margin));
+        float y = (float)((2 * sim_rand_uniform(&f->rand) - 1) * (hh - margin));
+        float dx = x - f->cfg->nest.x, dy = y - f->cfg->nest.y, nr = nest_radius(f) + r;
         int ok = dx * dx + dy * dy > nr * nr;
-        for (uint32_t o = 0; ok && o < sim->n_obstacles; o++) {
-            const obstacle_t *ob = &sim->obstacles[o];
-            ok = x < ob->aabb[0] - r || x > ob->aabb[2] + r || y < ob->aabb[1] - r || y > ob->aabb[3] + r;
+        for (uint32_t o = 0; ok && o < sim_obstacle_count(sim); o++) {
+            float b[4];
+            sim_obstacle_bounds(sim, o, b);
+            ok = x < b[0] - r || x > b[2] + r || y < b[1] - r || y > b[3] + r;
         }
         if (ok) {
-            t->x = x;
-            t->y = y;
-            t->carrier = -1;
+            f->tokens[k].x = x;
+            f->tokens[k].y = y;
+            f->carrier[k] = -1;
             return 0;
         }
     }
     return -1;
 }
 
-int foraging_init(struct sim *sim, char err[256])
+static void foraging_destroy(void *self)
 {
-    const scenario_t *sc = sim->sc;
-    foraging_t *f = &sim->forage;
-    memset(f, 0, sizeof *f);
-    f->n_tokens = sc->foraging.food_count;
+    foraging_t *f = self;
+    if (!f) {
+        return;
+    }
+    free(f->is_forager);
+    free(f->is_beacon);
+    free(f->task);
+    free(f->tokens);
+    free(f->carrier);
+    free(f->carried);
+    free(f->oae_window);
+    free(f);
+}
+
+static void *foraging_create(sim_t *sim, const void *config, char err[256])
+{
+    const foraging_config_t *c = config;
+    const scenario_t *sc = sim_scenario(sim);
+    foraging_t *f = calloc(1, sizeof *f);
+    uint32_t n = sim_robot_count(sim), n1 = n ? n : 1;
+    if (!f) {
+        snprintf(err, 256, "out of memory for the foraging task");
+        return NULL;
+    }
+    f->cfg = c;
+    f->sc = sc;
+    f->n_robots = n;
+    f->n_tokens = c->food_count;
+    f->is_forager = calloc(n1, 1);
+    f->is_beacon = calloc(n1, 1);
+    f->task = calloc(n1, 1);
     f->tokens = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->tokens);
-    f->carried = malloc((sim->n ? sim->n : 1) * sizeof *f->carried);
+    f->carrier = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->carrier);
+    f->carried = malloc(n1 * sizeof *f->carried);
     /* T2 = L / (2 v) (seed 000, eq 5), in control steps. */
-    double t2 = sc->arena.width / (2.0 * sc->foraging.robot_speed);
+    double t2 = sc->arena.width / (2.0 * c->robot_speed);
     f->window_len = (uint32_t)fmax(1.0, floor(t2 * 1000.0 / sc->control_period_ms + 0.5));
     f->oae_window = calloc(f->window_len, sizeof *f->oae_window);
-    if (!f->tokens || !f->carried || !f->oae_window) {
+    if (!f->is_forager || !f->is_beacon || !f->task || !f->tokens || !f->carrier || !f->carried
+        || !f->oae_window) {
         snprintf(err, 256, "out of memory for %u food tokens", f->n_tokens);
-        return -1;
+        foraging_destroy(f);
+        return NULL;
     }
-    for (uint32_t i = 0; i < sim->n; i++) {
+    for (uint32_t i = 0; i < n; i++) {
         f->carried[i] = -1;
+        f->is_forager[i] = sim_robot_def(sim, i) == &forager_def;
+        f->is_beacon[i] = sim_robot_def(sim, i) == &nest_beacon_def;
+        f->n_foragers += f->is_forager[i];
+        f->task[i] = f->is_forager[i] ? 'W' : 0;
     }
-    sim_rand_seed(&f->rand, sim->seed, 0, RAND_FOOD);
+    sim_task_rand_seed(sim, &foraging_task, 0, &f->rand);
     for (uint32_t k = 0; k < f->n_tokens; k++) {
-        if (place_token(sim, &f->tokens[k]) != 0) {
+        f->tokens[k].radius = c->token_radius;
+        f->tokens[k].height = c->token_height;
+        f->tokens[k].colour = HAL_COLOUR_RED;
+        if (place_token(f, sim, k) != 0) {
             snprintf(err, 256, "cannot place food token %u of %u outside the nest and obstacles",
                      k + 1, f->n_tokens);
-            return -1;
+            foraging_destroy(f);
+            return NULL;
         }
     }
-    f->food = sc->foraging.initial_food;
-    return 0;
+    f->food = c->initial_food;
+    return f;
 }
 
-void foraging_free(struct sim *sim)
+static int backing(const sim_t *sim, uint32_t i)
 {
-    free(sim->forage.tokens);
-    free(sim->forage.carried);
-    free(sim->forage.oae_window);
-    memset(&sim->forage, 0, sizeof sim->forage);
+    int16_t l, r;
+    sim_robot_wheels(sim, i, &l, &r);
+    return l < 0 && r < 0;
 }
 
-static int backing(const sim_robot_t *r) { return r->cmd_left < 0 && r->cmd_right < 0; }
-
-void foraging_release(struct sim *sim)
+/* Before physics: foragers backing up let go of their tokens. */
+static void foraging_release(void *self, sim_t *sim)
 {
-    foraging_t *f = &sim->forage;
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
+    foraging_t *f = self;
+    for (uint32_t i = 0; i < f->n_robots; i++) {
         int32_t k = f->carried[i];
-        if (k < 0 || !backing(&sim->robots[i])) {
+        if (k < 0 || !backing(sim, i)) {
             continue;
         }
-        food_token_t *t = &f->tokens[k];
         f->carried[i] = -1;
-        t->carrier = -1;
-        if (in_nest(sim, t->x, t->y)) {
+        f->carrier[k] = -1;
+        if (in_nest(f, f->tokens[k].x, f->tokens[k].y)) {
             f->delivered++;
+            sim_event(sim, i, "deposit", "", k);
             /* A new token appears at random; if none fits, the delivered one
-             * stays out of play (counted in the summary as n_tokens). */
-            if (place_token(sim, t) != 0) {
-                t->x = t->y = NAN;
+             * stays out of play. */
+            if (place_token(f, sim, (uint32_t)k) != 0) {
+                f->tokens[k].x = f->tokens[k].y = NAN;
             }
         } else {
             f->dropped++;
+            sim_event(sim, i, "token_dropped", "let go outside the nest", k);
         }
     }
 }
 
-int foraging_drop(struct sim *sim, uint32_t i)
+static void carry_and_grasp(foraging_t *f, sim_t *sim)
 {
-    foraging_t *f = &sim->forage;
-    if (!sim->foraging_on || i >= sim->n_swarm || f->carried[i] < 0) {
-        return 0;
-    }
-    food_token_t *t = &f->tokens[f->carried[i]];
-    /* Left on the floor a little ahead, out of the gripper's reach. */
-    t->x += 0.1f * cosf(sim->robots[i].theta);
-    t->y += 0.1f * sinf(sim->robots[i].theta);
-    t->carrier = -1;
-    f->carried[i] = -1;
-    f->dropped++;
-    return 1;
-}
-
-static void carry_and_grasp(struct sim *sim)
-{
-    foraging_t *f = &sim->forage;
-    float tr = sim->sc->foraging.token_radius, reach = tr + GRASP_TOLERANCE;
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
-        sim_robot_t *r = &sim->robots[i];
-        float c = cosf(r->theta), s = sinf(r->theta);
-        if (f->carried[i] < 0 && !backing(r)) {
-            float fx = r->x + SIM_ROBOT_RADIUS * c, fy = r->y + SIM_ROBOT_RADIUS * s;
+    float tr = f->cfg->token_radius, reach = tr + GRASP_TOLERANCE;
+    for (uint32_t i = 0; i < f->n_robots; i++) {
+        double px, py, pt;
+        if (!f->is_forager[i]) {
+            continue;
+        }
+        sim_robot_pose(sim, i, &px, &py, &pt);
+        float x = (float)px, y = (float)py, theta = (float)pt;
+        float c = cosf(theta), s = sinf(theta);
+        if (f->carried[i] < 0 && !backing(sim, i)) {
+            float fx = x + EPUCK_BODY_RADIUS_M * c, fy = y + EPUCK_BODY_RADIUS_M * s;
             for (uint32_t k = 0; k < f->n_tokens; k++) {
-                food_token_t *t = &f->tokens[k];
-                float dx = t->x - fx, dy = t->y - fy;
-                if (t->carrier < 0 && dx * dx + dy * dy < reach * reach) {
-                    t->carrier = (int32_t)i;
+                float dx = f->tokens[k].x - fx, dy = f->tokens[k].y - fy;
+                if (f->carrier[k] < 0 && dx * dx + dy * dy < reach * reach) {
+                    f->carrier[k] = (int32_t)i;
                     f->carried[i] = (int32_t)k;
+                    sim_event(sim, i, "pickup", "", (int32_t)k);
                     break;
                 }
             }
         }
         if (f->carried[i] >= 0) {
-            food_token_t *t = &f->tokens[f->carried[i]];
-            float ahead = SIM_ROBOT_RADIUS + tr + CARRY_GAP;
-            t->x = r->x + ahead * c;
-            t->y = r->y + ahead * s;
+            sim_item_t *t = &f->tokens[f->carried[i]];
+            float ahead = EPUCK_BODY_RADIUS_M + tr + CARRY_GAP;
+            t->x = x + ahead * c;
+            t->y = y + ahead * s;
         }
     }
 }
 
-void foraging_update(struct sim *sim)
+static uint64_t forager_oaes(const foraging_t *f, sim_t *sim)
 {
-    const scenario_t *sc = sim->sc;
-    foraging_t *f = &sim->forage;
-    carry_and_grasp(sim);
+    uint64_t total = 0;
+    for (uint32_t i = 0; i < f->n_robots; i++) {
+        if (f->is_forager[i]) {
+            total += ((const forager_t *)sim_robot_controller(sim, i))->walk.oae_count;
+        }
+    }
+    return total;
+}
+
+static double balance(const foraging_t *f)
+{
+    const foraging_config_t *c = f->cfg;
+    double spent = f->nest_units + c->move_cost * (double)f->forage_steps + c->oae_energy * (double)f->oae_seen;
+    return c->initial_food + (double)f->delivered - spent / c->token_energy;
+}
+
+/* After physics: carried tokens follow, grippers pick up, energy is charged. */
+static void foraging_update(void *self, sim_t *sim)
+{
+    foraging_t *f = self;
+    const foraging_config_t *c = f->cfg;
+    carry_and_grasp(f, sim);
 
     f->waiting = f->searching = f->returning = 0;
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
-        const sim_robot_t *r = &sim->robots[i];
-        char st = (r->ctrl && r->ctrl_desc->task_state) ? r->ctrl_desc->task_state(r->ctrl) : 0;
+    for (uint32_t i = 0; i < f->n_robots; i++) {
+        if (!f->is_forager[i]) {
+            continue;
+        }
+        char st = forager_paper_state(((const forager_t *)sim_robot_controller(sim, i))->state);
         f->waiting += st == 'W';
         f->searching += st == 'S';
         f->returning += st == 'R';
+        if (f->task[i] == 'R' && st == 'S') {
+            sim_event(sim, i, "token_lost", "the forager gave up its token", 0);
+        }
+        f->task[i] = st;
     }
     /* One unit per step per robot in S_S or S_R (seed 000, 3.1). */
     f->forage_steps += f->searching + f->returning;
 
-    uint64_t oae = sim_oae_total(sim);
+    uint64_t oae = forager_oaes(f, sim);
     uint32_t new_oae = (uint32_t)(oae - f->oae_seen);
     f->oae_seen = oae;
     f->window_sum += new_oae;
@@ -185,29 +403,24 @@ void foraging_update(struct sim *sim)
     f->oae_window[f->window_pos] = new_oae;
     f->window_pos = (f->window_pos + 1) % f->window_len;
 
-    double minutes = (double)(sim->step + 1) * sc->control_period_ms / 60000.0;
-    f->nest_units = sc->foraging.consumption * sc->foraging.token_energy * minutes;
-    f->food = foraging_balance(sim);
-    f->deviation_sum += fabs(sc->foraging.desired_food - f->food);
+    double minutes = (double)(sim_step_count(sim) + 1) * f->sc->control_period_ms / 60000.0;
+    f->nest_units = c->consumption * c->token_energy * minutes;
+    f->food = balance(f);
+    f->deviation_sum += fabs(c->desired_food - f->food);
 }
 
-double foraging_balance(const struct sim *sim)
+/* Ideal global information: the true nest state, in the frames a nest
+ * beacon sends, one per step in turn, to every forager within IR range of
+ * the nest centre. */
+static void foraging_broadcast_truth(void *self, sim_t *sim)
 {
-    const scenario_t *sc = sim->sc;
-    const foraging_t *f = &sim->forage;
-    double spent = f->nest_units + sc->foraging.move_cost * (double)f->forage_steps
-                 + sc->foraging.oae_energy * (double)f->oae_seen;
-    return sc->foraging.initial_food + (double)f->delivered - spent / sc->foraging.token_energy;
-}
-
-void foraging_broadcast_truth(struct sim *sim)
-{
-    const scenario_t *sc = sim->sc;
-    const foraging_t *f = &sim->forage;
-    /* The same frames a nest beacon sends, one per step in turn, with the
-     * true values, to every robot within IR range of the nest centre. */
+    foraging_t *f = self;
+    const scenario_t *sc = f->sc;
     uint16_t frame;
-    switch (sim->step % NL_KIND_COUNT) {
+    if (f->cfg->information != FORAGING_INFO_GLOBAL) {
+        return;
+    }
+    switch (sim_step_count(sim) % NL_KIND_COUNT) {
     case NL_KIND_FOOD:
         frame = nest_link_encode_food((int32_t)lround(f->food * 16.0));
         break;
@@ -216,21 +429,170 @@ void foraging_broadcast_truth(struct sim *sim)
         break;
     default:
         frame = nest_link_encode_mean_oae(
-            sc->robots.count ? (uint32_t)lround(256.0 * (double)f->window_sum / sc->robots.count) : 0u);
+            f->n_foragers ? (uint32_t)lround(256.0 * (double)f->window_sum / f->n_foragers) : 0u);
         break;
     }
-    for (uint32_t i = 0; i < sim->n_swarm; i++) {
-        sim_robot_t *r = &sim->robots[i];
-        float dx = sc->nest.x - r->x, dy = sc->nest.y - r->y;
-        float d = sqrtf(dx * dx + dy * dy);
-        if (d > sc->ircom.range || r->rx_count >= SIM_IRCOM_QUEUE) {
+    for (uint32_t i = 0; i < f->n_robots; i++) {
+        double px, py, pt;
+        if (!f->is_forager[i]) {
             continue;
         }
-        hal_ircom_msg_t *m = &r->rx[(r->rx_head + r->rx_count) % SIM_IRCOM_QUEUE];
-        m->value = frame;
-        m->bearing_mrad = (int16_t)lroundf(1000.0f * geom_wrap(atan2f(dy, dx) - r->theta));
-        m->sensor = 0;
-        m->range_mm = (uint16_t)fminf(d * 1000.0f + 0.5f, 65535.0f);
-        r->rx_count++;
+        sim_robot_pose(sim, i, &px, &py, &pt);
+        float dx = f->cfg->nest.x - (float)px, dy = f->cfg->nest.y - (float)py;
+        float d = sqrtf(dx * dx + dy * dy);
+        if (d > sc->ircom.range) {
+            continue;
+        }
+        hal_ircom_msg_t m;
+        m.value = frame;
+        m.bearing_mrad = (int16_t)lroundf(1000.0f * geom_wrap(atan2f(dy, dx) - (float)pt));
+        m.sensor = 0;
+        m.range_mm = (uint16_t)fminf(d * 1000.0f + 0.5f, 65535.0f);
+        (void)sim_ircom_inject(sim, i, &m);   /* a full inbox drops it, as a robot's would */
     }
+}
+
+static uint32_t foraging_items(const void *self, const sim_item_t **items)
+{
+    const foraging_t *f = self;
+    *items = f->tokens;
+    return f->n_tokens;
+}
+
+/* ---------------------------------------------------------------- outputs */
+
+static const metric_desc_t foraging_columns[] = {
+    { "food_nest", "tokens", "F(t), the nest's food by the ground-truth ledger" },
+    { "food_collected", "tokens", "tokens delivered to the nest so far" },
+    { "waiting", "robots", "foragers in S_W" },
+    { "searching", "robots", "foragers in S_S" },
+    { "returning", "robots", "foragers in S_R" },
+    { "active", "robots", "foragers in S_S or S_R" },
+    { NULL, NULL, NULL }
+};
+
+static void foraging_sample(const void *self, const sim_t *sim, double *v)
+{
+    const foraging_t *f = self;
+    (void)sim;
+    v[0] = f->food;
+    v[1] = (double)f->delivered;
+    v[2] = f->waiting;
+    v[3] = f->searching;
+    v[4] = f->returning;
+    v[5] = f->searching + f->returning;
+}
+
+static const metric_desc_t foraging_summary[] = {
+    { "V_f", "tokens", "eq 8: mean |F_d - F(t)| over the steps" },
+    { "E_e", "", "eq 9: E_n / E_T = F(T) / collected (a fraction; the paper prints %)" },
+    { "M_T", "events", "total obstacle-avoidance events of the foragers" },
+    { "M_v", "events/robot", "eq 10: M_T / N_r" },
+    { "food_collected", "tokens", "tokens delivered" },
+    { "food_net", "tokens", "F(T)" },
+    { "food_dropped", "tokens", "tokens let go outside the nest" },
+    { NULL, NULL, NULL }
+};
+
+/* Seed 000, section 2.4. */
+static void foraging_final(const void *self, const sim_t *sim, double *v)
+{
+    const foraging_t *f = self;
+    double steps = (double)sim_step_count(sim);
+    double n = f->n_foragers ? f->n_foragers : 1;
+    v[0] = steps > 0 ? f->deviation_sum / steps : 0.0;
+    v[1] = f->delivered ? f->food / (double)f->delivered : 0.0;
+    v[2] = (double)f->oae_seen;
+    v[3] = (double)f->oae_seen / n;
+    v[4] = (double)f->delivered;
+    v[5] = f->food;
+    v[6] = (double)f->dropped;
+}
+
+static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
+{
+    const foraging_t *f = self;
+    draw_shape_t nest = { .kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = RGB_NEST,
+                          .x = f->cfg->nest.x, .y = f->cfg->nest.y, .radius = nest_radius(f) };
+    (void)sim;
+    drawing_add(out, &nest);
+    for (uint32_t i = 0; i < f->n_robots && i < out->robot_count; i++) {
+        if (f->is_beacon[i]) {
+            out->robot_rgb[i] = RGB_BEACON;
+        } else if (f->is_forager[i] && f->task[i] == 'S') {
+            out->robot_rgb[i] = RGB_SEARCHING;
+        } else if (f->is_forager[i] && f->task[i] == 'R') {
+            out->robot_rgb[i] = RGB_RETURNING;
+        }
+    }
+}
+
+const task_def_t foraging_task = {
+    .name = "foraging",
+    .doc = "seed 000: food tokens, the nest and its ground-truth energy ledger",
+    .config_size = sizeof(foraging_config_t),
+    .params = foraging_params,
+    .sections = foraging_sections,
+    .default_config = foraging_default_config,
+    .check = foraging_check,
+    .configure = foraging_configure,
+    .create = foraging_create,
+    .destroy = foraging_destroy,
+    .before_control = foraging_broadcast_truth,
+    .after_control = foraging_release,
+    .after_physics = foraging_update,
+    .items = foraging_items,
+    .columns = foraging_columns,
+    .sample = foraging_sample,
+    .summary = foraging_summary,
+    .final = foraging_final,
+    .draw = foraging_draw,
+};
+
+/* ---------------------------------------------------------------- for tests */
+
+int foraging_truth(const sim_t *sim, foraging_truth_t *out)
+{
+    const foraging_t *f = sim_task(sim, &foraging_task);
+    if (!f) {
+        return 0;
+    }
+    out->delivered = f->delivered;
+    out->dropped = f->dropped;
+    out->food = f->food;
+    out->waiting = f->waiting;
+    out->searching = f->searching;
+    out->returning = f->returning;
+    return 1;
+}
+
+int32_t foraging_carried(const sim_t *sim, uint32_t i)
+{
+    const foraging_t *f = sim_task(sim, &foraging_task);
+    return f && i < f->n_robots ? f->carried[i] : -1;
+}
+
+int foraging_drop(sim_t *sim, uint32_t i)
+{
+    foraging_t *f = sim_task(sim, &foraging_task);
+    double x, y, theta;
+    if (!f || i >= f->n_robots || f->carried[i] < 0) {
+        return 0;
+    }
+    int32_t k = f->carried[i];
+    sim_robot_pose(sim, i, &x, &y, &theta);
+    /* Left on the floor a little ahead, out of the gripper's reach. */
+    f->tokens[k].x += 0.1f * cosf((float)theta);
+    f->tokens[k].y += 0.1f * sinf((float)theta);
+    f->carrier[k] = -1;
+    f->carried[i] = -1;
+    f->dropped++;
+    sim_event(sim, i, "token_dropped", "dropped by a test", k);
+    return 1;
+}
+
+double foraging_balance(const sim_t *sim)
+{
+    const foraging_t *f = sim_task(sim, &foraging_task);
+    return f ? balance(f) : 0.0;
 }

@@ -1,0 +1,33 @@
+/*
+ * nest_beacon_def.c - seed 000's nest beacon as the simulator runs it.  Its
+ * constants (N_r, F(0), the ledger's costs, T2) come from the foraging
+ * task's section, as a real beacon is built with them; it has no keys.
+ */
+#include "foraging/nest_beacon.h"
+
+static const param_desc_t nest_beacon_params[] = { PARAM_END };
+
+static const observable_t nest_beacon_observables[] = {
+    { .name = "nest_food", OBS_FIELD(nest_beacon_t, food_q4, int32_t), .scale = 1.0f / 16.0f,
+      .unit = "tokens", .doc = "F(t) by the beacon's ledger (what it broadcasts)" },
+    { .name = "waiting", OBS_FIELD(nest_beacon_t, n_waiting, uint16_t), .scale = 1.0f,
+      .unit = "robots", .doc = "N_W, robots heard waiting in the nest" },
+    { .name = "oae_window", OBS_FIELD(nest_beacon_t, m_t2, uint32_t), .scale = 1.0f,
+      .unit = "events", .doc = "M_T2, OAEs reported over the last T2" },
+    { .name = "deposits_reported", OBS_FIELD(nest_beacon_t, deposits_total, uint32_t),
+      .scale = 1.0f, .unit = "tokens", .doc = "deposits the foragers reported" },
+    { .name = "oaes_reported", OBS_FIELD(nest_beacon_t, oae_total, uint32_t), .scale = 1.0f,
+      .unit = "events", .doc = "OAEs the foragers reported" },
+    OBS_END
+};
+
+CONTROLLER_ADAPTERS(nest_beacon)
+
+const controller_def_t nest_beacon_def = {
+    .name = "nest_beacon",
+    .doc = "seed 000 nest beacon: keeps the nest ledger, broadcasts F(t), N_W, M_A",
+    CONTROLLER_FUNCS(nest_beacon),
+    .params = nest_beacon_params,
+    .observables = nest_beacon_observables,
+    .ircom_bits = 16,
+};

@@ -1,0 +1,188 @@
+/*
+ * placement.c - the start pose of every robot, group by group.
+ *
+ * Groups with explicit poses are placed first, then the others in scenario
+ * order, so that robots drawn at random keep clear of the fixed ones.  One
+ * random stream (the run seed's placement stream) serves every random
+ * group in turn.  A spot is taken when the body lies inside the arena,
+ * clears every obstacle by 5 mm, and is at least the group's min_spacing
+ * (and never less than a body) from every robot placed before; a random
+ * group tries up to 20,000 spots per robot.  Regions (the body must lie
+ * inside them):
+ *   rectangle  centre x, y, size width x height (0: the arena's), with a
+ *              5 mm margin inside its edges;
+ *   circle     centre x, y, radius;
+ *   ring       centre x, y, between inner and outer radius (uniform by area);
+ *   grid       rows and columns over the rectangle, one spot per robot
+ *              (as many columns as the rectangle's aspect asks);
+ *   poses      one pose per robot, in order.
+ * The heading is the group's (degrees), or drawn uniformly when `random`;
+ * a pose's own heading, when given, wins.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "sim_internal.h"
+#include "units.h"
+
+#define PLACE_TRIES 20000
+/* Bodies keep this far inside a rectangle's edges and from obstacles, m. */
+#define PLACE_MARGIN 0.005f
+
+static const char *const shape_names[] = { "rectangle", "circle", "ring", "grid", "poses" };
+
+float placement_obstacle_gap(const obstacle_t *o, vec2_t p)
+{
+    if (o->shape == SHAPE_CYLINDER) {
+        return v2_len(v2_sub(p, o->c)) - o->r - EPUCK_BODY_RADIUS_M;
+    }
+    /* Inside the box? (corners are counter-clockwise) */
+    int inside = 1;
+    float best = INFINITY;
+    for (int e = 0; e < 4; e++) {
+        vec2_t a = o->corner[e], b = o->corner[(e + 1) & 3];
+        if (v2_cross(v2_sub(b, a), v2_sub(p, a)) < 0) inside = 0;
+        best = fminf(best, v2_len(v2_sub(p, geom_closest_on_segment(p, a, b))));
+    }
+    return inside ? -best - EPUCK_BODY_RADIUS_M : best - EPUCK_BODY_RADIUS_M;
+}
+
+/* Whether robot `i` may stand at (x, y), given the robots in `placed`. */
+static int free_spot(const struct sim *sim, const uint8_t *placed, float spacing, float x, float y)
+{
+    float margin = EPUCK_BODY_RADIUS_M + PLACE_MARGIN;
+    if (!(fabsf(x) <= sim->hw - margin && fabsf(y) <= sim->hh - margin)) {
+        return 0;
+    }
+    for (uint32_t j = 0; j < sim->n; j++) {
+        if (placed[j]) {
+            float dx = sim->robots[j].x - x, dy = sim->robots[j].y - y;
+            if (dx * dx + dy * dy < spacing * spacing) {
+                return 0;
+            }
+        }
+    }
+    for (uint32_t k = 0; k < sim->n_obstacles; k++) {
+        if (placement_obstacle_gap(&sim->obstacles[k], v2(x, y)) < PLACE_MARGIN) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static float heading_rad(float deg) { return deg * (float)UNITS_PI / 180.0f; }
+
+/* A candidate spot for robot k of group `grp` (k-th of its group). */
+static void draw_spot(const struct sim *sim, const robot_group_t *grp, uint32_t k, sim_rand_t *rnd,
+                      float *x, float *y)
+{
+    const placement_def_t *p = &grp->placement;
+    float hw = p->width > 0 ? p->width / 2 : sim->hw, hh = p->height > 0 ? p->height / 2 : sim->hh;
+    switch (p->shape) {
+    case PLACE_GRID: {
+        uint32_t cols = (uint32_t)ceil(sqrt((double)grp->count * hw / hh));
+        if (cols == 0) cols = 1;
+        uint32_t rows = (grp->count + cols - 1) / cols;
+        *x = p->x - hw + (2 * hw) * ((float)(k % cols) + 0.5f) / (float)cols;
+        *y = p->y - hh + (2 * hh) * ((float)(k / cols) + 0.5f) / (float)rows;
+        break;
+    }
+    case PLACE_CIRCLE: {
+        double rad = p->radius - EPUCK_BODY_RADIUS_M;
+        double u = sqrt(sim_rand_uniform(rnd)) * (rad > 0 ? rad : 0);
+        double a = 2 * UNITS_PI * sim_rand_uniform(rnd);
+        *x = (float)(p->x + u * cos(a));
+        *y = (float)(p->y + u * sin(a));
+        break;
+    }
+    case PLACE_RING: {
+        double r0 = p->inner + EPUCK_BODY_RADIUS_M, r1 = p->outer - EPUCK_BODY_RADIUS_M;
+        if (r1 < r0) r1 = r0;
+        double u = sqrt(r0 * r0 + sim_rand_uniform(rnd) * (r1 * r1 - r0 * r0));
+        double a = 2 * UNITS_PI * sim_rand_uniform(rnd);
+        *x = (float)(p->x + u * cos(a));
+        *y = (float)(p->y + u * sin(a));
+        break;
+    }
+    default: {   /* rectangle */
+        float margin = EPUCK_BODY_RADIUS_M + PLACE_MARGIN;
+        *x = (float)(p->x + (2 * sim_rand_uniform(rnd) - 1) * (hw - margin));
+        *y = (float)(p->y + (2 * sim_rand_uniform(rnd) - 1) * (hh - margin));
+        break;
+    }
+    }
+}
+
+static int place_group(struct sim *sim, const robot_group_t *grp, uint32_t gi, uint32_t first,
+                       uint8_t *placed, sim_rand_t *rnd, char err[256])
+{
+    float spacing = fmaxf(grp->min_spacing, 2 * EPUCK_BODY_RADIUS_M);
+    const placement_def_t *p = &grp->placement;
+    for (uint32_t k = 0; k < grp->count; k++) {
+        sim_robot_t *r = &sim->robots[first + k];
+        int ok = 0;
+        if (p->shape == PLACE_POSES) {
+            const pose_def_t *q = &p->poses[k];
+            r->x = q->x;
+            r->y = q->y;
+            float deg = isnan(q->heading) ? grp->heading : q->heading;
+            r->theta = isnan(deg) ? (float)(2 * UNITS_PI * sim_rand_uniform(rnd) - UNITS_PI) : heading_rad(deg);
+            ok = free_spot(sim, placed, spacing, r->x, r->y);
+            if (!ok) {
+                snprintf(err, 256, "robots[%u] (%s): pose %u at (%g, %g) m is not free: "
+                         "outside the arena, on an obstacle or too close to another robot",
+                         gi, grp->name, k, (double)q->x, (double)q->y);
+                return -1;
+            }
+        }
+        int tries = p->shape == PLACE_GRID ? 1 : PLACE_TRIES;
+        for (int attempt = 0; attempt < tries && !ok && p->shape != PLACE_POSES; attempt++) {
+            float x, y;
+            draw_spot(sim, grp, k, rnd, &x, &y);
+            if (free_spot(sim, placed, spacing, x, y)) {
+                r->x = x;
+                r->y = y;
+                r->theta = isnan(grp->heading) ? (float)(2 * UNITS_PI * sim_rand_uniform(rnd) - UNITS_PI)
+                                               : heading_rad(grp->heading);
+                ok = 1;
+            }
+        }
+        if (!ok) {
+            snprintf(err, 256, "cannot place robot %u of %u of robots[%u] (%s, placement %s): no free "
+                     "spot; enlarge the region or the arena, or use fewer robots",
+                     k + 1, grp->count, gi, grp->name, shape_names[p->shape]);
+            return -1;
+        }
+        placed[first + k] = 1;
+    }
+    return 0;
+}
+
+int placement_run(struct sim *sim, char err[256])
+{
+    const scenario_t *sc = sim->sc;
+    uint8_t *placed = calloc(sim->n ? sim->n : 1, 1);
+    uint32_t first[SCENARIO_MAX_GROUPS];
+    sim_rand_t rnd;
+    int rc = 0;
+    if (!placed) {
+        snprintf(err, 256, "out of memory placing %u robots", sim->n);
+        return -1;
+    }
+    sim_rand_seed(&rnd, sim->seed, 0, RAND_PLACEMENT);
+    for (uint32_t g = 0, i = 0; g < sc->group_count; i += sc->groups[g].count, g++) {
+        first[g] = i;
+    }
+    /* Fixed poses first, then the rest, each pass in scenario order. */
+    for (int pass = 0; pass < 2 && rc == 0; pass++) {
+        for (uint32_t g = 0; g < sc->group_count && rc == 0; g++) {
+            const robot_group_t *grp = &sc->groups[g];
+            if ((grp->placement.shape == PLACE_POSES) == (pass == 0)) {
+                rc = place_group(sim, grp, g, first[g], placed, &rnd, err);
+            }
+        }
+    }
+    free(placed);
+    return rc;
+}

@@ -1,0 +1,29 @@
+/*
+ * registry.h - the controllers and tasks the simulator can run by name.
+ * The core (scenario loading, --help) looks them up here; sim_host/registry.c
+ * lists them, one line each: the one place a new controller or task is
+ * registered.
+ */
+#ifndef SIM_REGISTRY_H
+#define SIM_REGISTRY_H
+
+#include <stddef.h>
+
+#include "common/controller.h"
+#include "core/task.h"
+
+/** The controller called `name`, or NULL. */
+const controller_def_t *registry_controller(const char *name);
+/** The i-th registered controller, or NULL past the end. */
+const controller_def_t *registry_controller_at(size_t i);
+
+/** The task whose scenario section is `name`, or NULL. */
+const task_def_t *registry_task(const char *name);
+/** The i-th registered task, or NULL past the end. */
+const task_def_t *registry_task_at(size_t i);
+
+/** Robots that run no firmware: they keep the wheel speeds last set through
+ *  their hal_t (tests drive robots so) and are obstacles otherwise. */
+extern const controller_def_t idle_def;
+
+#endif
