@@ -16,6 +16,14 @@
 /** Body diameter, micrometres (70 mm). */
 #define EPUCK_BODY_DIAMETER_UM 70000L
 
+/** IR sensor bearings IR0..IR7, degrees counter-clockwise from straight
+ *  ahead (EPUCK.md): the one table; everything else derives from it. */
+#define EPUCK_IR_BEARINGS_DEG { -17, -50, -90, -150, 150, 90, 50, 17 }
+
+/** Bearing of IR sensor `index` in milliradians, rounded to nearest
+ *  (integer arithmetic only); 0 for an index out of range. */
+int16_t units_ir_bearing_mrad(uint8_t index);
+
 /* The same facts in floating point, for the simulator and host tools (the
  * firmware uses the integer forms above). */
 #define UNITS_PI 3.14159265358979323846

@@ -19,8 +19,8 @@
 
 #include "hal.h"
 #include "swarmlcm_robot_state_t.h"
-#include "common/telemetry_frame.h"
-#include "common/telemetry_tx.h"
+#include "telemetry/telemetry_frame.h"
+#include "telemetry/telemetry_tx.h"
 
 /* ------------------------------------------------------------ fake sink */
 

@@ -1,43 +1,24 @@
 #include "app_telemetry.h"
 
-#include <math.h>
-
-void app_telemetry_init(app_telemetry_t *t)
+void app_telemetry_platform(struct hal *hal, robot_telemetry_platform_t *out)
 {
-    telemetry_tx_init(&t->tx);
-    t->countdown = 0u;
-}
-
-uint8_t app_telemetry_due(app_telemetry_t *t)
-{
-    uint8_t due = (uint8_t)(t->countdown == 0u);
-    if (due != 0u) {
-        t->countdown = (uint8_t)APP_TELEMETRY_STEPS;
+    uint16_t ir_best = 0u, amb_low = 0xFFFFu, v;
+    uint8_t k, ir_at = 0u;
+    for (k = 0u; k < HAL_IR_COUNT; k++) {
+        v = hal_ir_proximity(hal, k);
+        if (v > ir_best) {
+            ir_best = v;
+            ir_at = k;
+        }
+        v = hal_ir_ambient(hal, k);
+        amb_low = v < amb_low ? v : amb_low;
     }
-    t->countdown--;
-    return due;
-}
-
-void app_telemetry_send(app_telemetry_t *t, struct hal *hal, swarmlcm_robot_state_t *m)
-{
-    int n;
-    m->utime = (int64_t)hal_time_ms(hal) * 1000;
-    m->run = 0;
-    m->robot_id = (int16_t)hal_robot_id(hal);
     /* The commands of this step: the image owns its struct hal. */
-    m->wheel_left = hal->speed_left;
-    m->wheel_right = hal->speed_right;
-    m->leds = (int16_t)hal->leds;
-    m->pose_known = 0;
-    m->x = m->y = m->theta = NAN;
-
-    n = swarmlcm_robot_state_t_encode(t->payload, 0, (int)sizeof t->payload, m);
-    if (n > 0) {
-        (void)telemetry_tx_send(&t->tx, hal, (uint8_t)TELEMETRY_CH_ROBOT_STATE, t->payload, (uint16_t)n);
-    }
-}
-
-void app_telemetry_pump(app_telemetry_t *t, struct hal *hal)
-{
-    (void)telemetry_tx_pump(&t->tx, hal);
+    out->wheel_left = hal->speed_left;
+    out->wheel_right = hal->speed_right;
+    out->leds = (int16_t)hal->leds;
+    out->ir_max = (int16_t)ir_best;
+    out->ir_max_index = (int8_t)ir_at;
+    out->ambient_min = (int16_t)amb_low;
+    out->blobs = -1;   /* not recomputed for telemetry */
 }

@@ -58,6 +58,11 @@ CONTROLLER_API(random_walk);
 /** Largest proximity of the four front sensors (IR0, IR1, IR6, IR7). */
 uint16_t random_walk_front_proximity(hal_t *hal);
 
+/** Its registered name, and what it shows (random_walk_def.c): the simulator's
+ *  telemetry and the robot image's read the same table. */
+#define RANDOM_WALK_NAME "random_walk"
+extern const observable_t random_walk_observables[];
+
 /** Its description for the simulator (random_walk_def.c). */
 extern const controller_def_t random_walk_def;
 

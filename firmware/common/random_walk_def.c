@@ -8,7 +8,7 @@ static const param_desc_t random_walk_params[] = {
     PARAM_END
 };
 
-static const observable_t random_walk_observables[] = {
+const observable_t random_walk_observables[] = {
     { .name = "oae", OBS_FIELD(random_walk_t, oae_count, uint32_t), .kind = OBS_COUNTER,
       .scale = 1.0f, .unit = "events", .doc = "obstacle-avoidance events so far" },
     OBS_END
@@ -17,7 +17,7 @@ static const observable_t random_walk_observables[] = {
 CONTROLLER_ADAPTERS(random_walk)
 
 const controller_def_t random_walk_def = {
-    .name = "random_walk",
+    .name = RANDOM_WALK_NAME,
     .doc = "random walk with IR obstacle avoidance (seed 000's ASM, A(t) = 0)",
     CONTROLLER_FUNCS(random_walk),
     .params = random_walk_params,

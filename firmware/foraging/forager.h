@@ -140,6 +140,11 @@ CONTROLLER_API(forager);
 /** Seed 000's name of a forager_state_t: 'W', 'S' or 'R' ('?' if unknown). */
 char forager_paper_state(uint8_t state);
 
+/** Its registered name, and what it shows (forager_def.c): the simulator's
+ *  telemetry and the robot image's read the same table. */
+#define FORAGER_NAME "forager"
+extern const observable_t forager_observables[];
+
 /** Its description for the simulator (forager_def.c). */
 extern const controller_def_t forager_def;
 

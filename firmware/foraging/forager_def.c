@@ -47,7 +47,7 @@ static const param_desc_t forager_params[] = {
 };
 #undef FP
 
-static const observable_t forager_observables[] = {
+const observable_t forager_observables[] = {
     { .name = "oae", OBS_FIELD(forager_t, walk.oae_count, uint32_t), .kind = OBS_COUNTER,
       .scale = 1.0f, .unit = "events", .doc = "obstacle-avoidance events counted by the robot" },
     { .name = "deposits", OBS_FIELD(forager_t, deposits, uint32_t), .kind = OBS_COUNTER,
@@ -79,7 +79,7 @@ static void forager_set_policy(void *params, uint8_t index)
 CONTROLLER_ADAPTERS(forager)
 
 const controller_def_t forager_def = {
-    .name = "forager",
+    .name = FORAGER_NAME,
     .doc = "seed 000 forager: S_W/S_S/S_R with DRTM, ARTM or FRTM task allocation",
     CONTROLLER_FUNCS(forager),
     .params = forager_params,

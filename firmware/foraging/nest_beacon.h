@@ -124,6 +124,11 @@ int32_t nest_beacon_food_q4(const nest_beacon_t *self);
  *  before saturation). */
 uint32_t nest_beacon_mean_oae_q8(const nest_beacon_t *self);
 
+/** Its registered name, and what it shows (nest_beacon_def.c): the simulator's
+ *  telemetry and the robot image's read the same table. */
+#define NEST_BEACON_NAME "nest_beacon"
+extern const observable_t nest_beacon_observables[];
+
 /** Its description for the simulator (nest_beacon_def.c). */
 extern const controller_def_t nest_beacon_def;
 

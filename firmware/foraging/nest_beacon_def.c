@@ -7,7 +7,7 @@
 
 static const param_desc_t nest_beacon_params[] = { PARAM_END };
 
-static const observable_t nest_beacon_observables[] = {
+const observable_t nest_beacon_observables[] = {
     { .name = "nest_food", OBS_FIELD(nest_beacon_t, food_q4, int32_t), .scale = 1.0f / 16.0f,
       .unit = "tokens", .doc = "F(t) by the beacon's ledger (what it broadcasts)" },
     { .name = "waiting", OBS_FIELD(nest_beacon_t, n_waiting, uint16_t), .scale = 1.0f,
@@ -24,7 +24,7 @@ static const observable_t nest_beacon_observables[] = {
 CONTROLLER_ADAPTERS(nest_beacon)
 
 const controller_def_t nest_beacon_def = {
-    .name = "nest_beacon",
+    .name = NEST_BEACON_NAME,
     .doc = "seed 000 nest beacon: keeps the nest ledger, broadcasts F(t), N_W, M_A",
     CONTROLLER_FUNCS(nest_beacon),
     .params = nest_beacon_params,

@@ -7,6 +7,7 @@
  * No mutable static storage: the state is the caller's struct hal.
  */
 #include "hal_epuck.h"
+#include "units.h"
 
 #include <stddef.h>
 
@@ -294,7 +295,7 @@ uint8_t hal_epuck_nearest_sensor(int16_t bearing_mrad)
     uint8_t i;
     int16_t b = wrap_mrad(bearing_mrad);
     for (i = 0; i < HAL_IR_COUNT; i++) {
-        int32_t d = (int32_t)wrap_mrad((int32_t)b - hal_ir_bearing_mrad(i));
+        int32_t d = (int32_t)wrap_mrad((int32_t)b - units_ir_bearing_mrad(i));
         uint16_t ad = (uint16_t)(d < 0 ? -d : d);
         if (ad < best_d) {
             best_d = ad;
@@ -358,41 +359,65 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
     return n;
 }
 
-int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band)
+hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px)
 {
-    (void)hal;
-    (void)mic;
-    (void)band;
-    return HAL_NOT_MODELLED;
+    if (hal->cam_state != HAL_EPUCK_CAM_RUNNING) {
+        *width_px = 0u;
+        *height_px = 0u;
+        return HAL_ERR_UNAVAILABLE;
+    }
+    *width_px = hal->cfg.cam_width;
+    *height_px = hal->cfg.cam_height;
+    return HAL_OK;
 }
 
-int8_t hal_speaker_set(hal_t *hal, uint8_t band)
+/* The microphones and the speaker come with the RepAtt work (seed 002). */
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level)
 {
     (void)hal;
-    (void)band;
-    return HAL_NOT_MODELLED;
+    *level = 0;
+    if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
+    return HAL_ERR_UNAVAILABLE;
 }
 
-int8_t hal_ircom_send(hal_t *hal, uint16_t value)
+hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
+{
+    (void)hal;
+    return band >= HAL_SOUND_BANDS ? HAL_ERR_RANGE : HAL_ERR_UNAVAILABLE;
+}
+
+/* A bare e-puck knows nothing of where it is. */
+hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
+{
+    (void)hal;
+    out->x_mm = 0;
+    out->y_mm = 0;
+    out->heading_mrad = 0;
+    return HAL_ERR_UNAVAILABLE;
+}
+
+hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
     uint8_t bits = hal_ircom_payload_bits(hal);
     if (hal->out_pending != 0u) {
-        return -1;
+        return HAL_ERR_BUSY;
     }
     hal->out_value = bits >= 16u ? value : (uint16_t)(value & ((1u << bits) - 1u));
     hal->out_pending = 1u;
-    return 0;
+    return HAL_OK;
 }
 
-uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
+hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
 {
     if (hal->in_count == 0u) {
-        return 0u;
+        return HAL_ERR_EMPTY;
     }
     *out = hal->inbox[hal->in_head];
     hal->in_head = (uint8_t)((hal->in_head + 1u) % HAL_EPUCK_INBOX);
     hal->in_count--;
-    return 1u;
+    return HAL_OK;
 }
 
 static int16_t clamp_speed(int16_t v)

@@ -47,7 +47,7 @@
  * telemetry sender from the idle loop (hal_epuck_poll's caller) to keep
  * the link busy.
  *
- * Microphone band levels and the speaker are HAL_NOT_MODELLED, as in the
+ * Microphone band levels and the speaker are HAL_ERR_UNAVAILABLE, as in the
  * simulator, until the RepAtt work defines the bands.
  *
  * The sources of hal/epuck have no mutable static storage (hygiene.sh

@@ -66,29 +66,32 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
     return 1u;
 }
 
-int16_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band) { (void)hal; (void)mic; (void)band; return HAL_NOT_MODELLED; }
-int8_t hal_speaker_set(hal_t *hal, uint8_t band) { (void)hal; (void)band; return HAL_NOT_MODELLED; }
+hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *w, uint16_t *h) { (void)hal; *w = 40u; *h = 20u; return HAL_OK; }
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level)
+{ (void)hal; (void)mic; (void)band; *level = 0; return HAL_ERR_UNAVAILABLE; }
+hal_status_t hal_speaker_set(hal_t *hal, uint8_t band) { (void)hal; (void)band; return HAL_ERR_UNAVAILABLE; }
+hal_status_t hal_pose(hal_t *hal, hal_pose_t *out) { (void)hal; (void)out; return HAL_ERR_UNAVAILABLE; }
 uint8_t hal_ircom_payload_bits(hal_t *hal) { (void)hal; return 16u; }
 
-int8_t hal_ircom_send(hal_t *hal, uint16_t value)
+hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
     (void)value;
     if (hal->sent) {
-        return -1;
+        return HAL_ERR_BUSY;
     }
     hal->sent = 1u;
-    return 0;
+    return HAL_OK;
 }
 
-uint8_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
+hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
 {
     if (hal->in_count == 0u) {
-        return 0u;
+        return HAL_ERR_EMPTY;
     }
     *out = hal->inbox[hal->in_head];
     hal->in_head = (hal->in_head + 1u) % INBOX;
     hal->in_count--;
-    return 1u;
+    return HAL_OK;
 }
 
 void hal_set_wheel_speeds(hal_t *hal, int16_t l, int16_t r) { hal->left = l; hal->right = r; }

@@ -12,7 +12,7 @@ it compiles every source warning-free (-std=c99 -pedantic -Wall -Wextra
 -Werror ...) with -fstack-usage, links the image against the stubs of the
 e-puck library functions (tests/firmware/stubs/) and measures:
 
-The images that publish telemetry (TELEMETRY_IMAGES) also link lcm-gen's C
+The images that publish telemetry (telemetry_images) also link lcm-gen's C
 code of robot_state_t (--lcm-c-dir, from `make lcm-types`; headers of LCM
 from --lcm-cflags), compiled with the same warnings as ours; --gc-sections
 drops its decoder (malloc) and its publish/subscribe functions.  Its
@@ -87,11 +87,31 @@ BACKEND_SOURCES = {
 }
 
 
-# Images that send robot_state_t, and the generated sources they link.
-TELEMETRY_IMAGES = ('forager', 'nest_beacon')
-LCM_TYPES_LINKED = ('robot_state_t',)
-# Shared by the telemetry images: the fields every robot reports, the sender.
-TELEMETRY_APP_SOURCES = ['firmware/apps/app_telemetry.c']
+# The generated sources an image with telemetry links, and its own: the
+# robot's telemetry (portable, the simulator runs it too) and the e-puck's
+# platform values for it.
+LCM_TYPES_LINKED = ('robot_state_t', 'schema_t')
+TELEMETRY_APP_SOURCES = ['firmware/telemetry/robot_telemetry.c', 'firmware/apps/app_telemetry.c']
+
+
+def read_images(path):
+    """(image, backend) pairs and the set of images with telemetry, from the
+    image list; exits with the file and line of a bad entry."""
+    images, telemetry = [], set()
+    with open(os.path.join(ROOT, path), encoding='utf-8') as fh:
+        for lineno, line in enumerate(fh, 1):
+            words = line.split('#', 1)[0].split()
+            if not words:
+                continue
+            if len(words) != 3 or words[1] not in BACKEND_SOURCES or words[2] not in ('yes', 'no'):
+                sys.exit(f'image_gates: {path}:{lineno}: expected "IMAGE BACKEND yes|no" with a backend '
+                         f'in {", ".join(BACKEND_SOURCES)}, got: {line.strip()}')
+            if not os.path.exists(os.path.join(ROOT, 'firmware', 'apps', f'{words[0]}_main.c')):
+                sys.exit(f'image_gates: {path}:{lineno}: firmware/apps/{words[0]}_main.c not found')
+            images.append((words[0], words[1]))
+            if words[2] == 'yes':
+                telemetry.add(words[0])
+    return images, telemetry
 
 
 def sh(cmd):
@@ -106,7 +126,7 @@ def common_sources():
     for d in sorted(os.listdir(fw)):
         if d != 'apps' and os.path.isdir(os.path.join(fw, d)):
             out += sorted(os.path.join('firmware', d, f) for f in os.listdir(os.path.join(fw, d))
-                          if f.endswith('.c'))
+                          if f.endswith('.c') and os.path.join('firmware', d, f) not in TELEMETRY_APP_SOURCES)
     out += sorted(os.path.join('hal', f) for f in os.listdir(os.path.join(ROOT, 'hal'))
                   if f.endswith('.c'))
     return out + ['hal/epuck/hal_epuck.c']
@@ -382,20 +402,16 @@ def main():
                     help="lcm-gen's C output (make lcm-types)")
     ap.add_argument('--lcm-cflags', default='',
                     help='flags that find <lcm/lcm_coretypes.h> (LCM_CFLAGS of build/config.mk)')
-    ap.add_argument('images', nargs='+', help='IMAGE:BACKEND, e.g. forager:randb')
+    ap.add_argument('--images', default='firmware/apps/images.list',
+                    help='the image list (firmware/apps/images.list)')
     args = ap.parse_args()
 
-    images = []
-    for spec in args.images:
-        image, _, backend = spec.partition(':')
-        if backend not in BACKEND_SOURCES:
-            sys.exit(f'image_gates: {spec}: backend must be one of {", ".join(BACKEND_SOURCES)}')
-        images.append((image, backend))
+    images, telemetry_images = read_images(args.images)
 
     failures = []
     inc = f"{INC} -I{shlex.quote(args.lcm_c_dir)} {args.lcm_cflags}"
     lcm_srcs = [os.path.join(args.lcm_c_dir, f'swarmlcm_{t}.c') for t in LCM_TYPES_LINKED]
-    if any(i in TELEMETRY_IMAGES for i, _ in images):
+    if any(i in telemetry_images for i, _ in images):
         for s in lcm_srcs:
             if not os.path.exists(os.path.join(ROOT, s)):
                 sys.exit(f'image_gates: {s} not found: run make lcm-types')
@@ -405,7 +421,7 @@ def main():
     for image, backend in images:
         srcs.add(f'firmware/apps/{image}_main.c')
         srcs.update(BACKEND_SOURCES[backend][0] + BACKEND_SOURCES[backend][1])
-        if image in TELEMETRY_IMAGES:
+        if image in telemetry_images:
             srcs.update(lcm_srcs + TELEMETRY_APP_SOURCES)
     srcs = sorted(srcs)
 
@@ -425,7 +441,7 @@ def main():
         for image, backend in images:
             own, stub = BACKEND_SOURCES[backend]
             sources = common + own + [f'firmware/apps/{image}_main.c'] + stubs + stub
-            if image in TELEMETRY_IMAGES:
+            if image in telemetry_images:
                 sources += lcm_srcs + TELEMETRY_APP_SOURCES
             res, err = link_image(args.build, target, image, backend, sources)
             checks += 1

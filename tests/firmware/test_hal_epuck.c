@@ -129,8 +129,17 @@ static void test_sensors_sampled_once_per_step(void)
     CHECK(hal_epuck_step_due(&robot));
     hal_epuck_begin_step(&robot);
     CHECK(hal_ir_proximity(&robot, 3) == 999u);
-    CHECK(hal_mic_level(&robot, 0, 1) == HAL_NOT_MODELLED);
-    CHECK(hal_speaker_set(&robot, 1) == HAL_NOT_MODELLED);
+    {
+        int16_t level = 77;
+        hal_pose_t pose;
+        uint16_t w = 0u, h = 0u;
+        CHECK(hal_mic_level(&robot, 0, 1, &level) == HAL_ERR_UNAVAILABLE && level == 0);
+        CHECK(hal_mic_level(&robot, 3, 1, &level) == HAL_ERR_RANGE);
+        CHECK(hal_speaker_set(&robot, 1) == HAL_ERR_UNAVAILABLE);
+        CHECK(hal_speaker_set(&robot, 9) == HAL_ERR_RANGE);
+        CHECK(hal_pose(&robot, &pose) == HAL_ERR_UNAVAILABLE);
+        CHECK(hal_camera_frame_size(&robot, &w, &h) == HAL_ERR_UNAVAILABLE || (w == 40u && h == 20u));
+    }
     CHECK(hal_epuck_seed(&robot) != 0u);
 }
 
@@ -322,13 +331,13 @@ static void test_ircom_randb(void)
     hal_epuck_tick(&robot);
     CHECK(hal_epuck_step_due(&robot));
     hal_epuck_begin_step(&robot);
-    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(hal_ircom_receive(&robot, &m) == HAL_OK);
     CHECK(m.value == 0xC123u && m.bearing_mrad == 1571 && m.range_mm == 420u && m.sensor == 5u);
-    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(hal_ircom_receive(&robot, &m) == HAL_OK);
     CHECK(m.value == 7u && m.bearing_mrad == -300 && m.range_mm == 0xFFFEu && m.sensor == 0u);
-    CHECK(hal_ircom_receive(&robot, &m) == 0u);
-    CHECK(hal_ircom_send(&robot, 0xBEEFu) == 0);
-    CHECK(hal_ircom_send(&robot, 0x1111u) == -1);   /* one per period */
+    CHECK(hal_ircom_receive(&robot, &m) == HAL_ERR_EMPTY);
+    CHECK(hal_ircom_send(&robot, 0xBEEFu) == HAL_OK);
+    CHECK(hal_ircom_send(&robot, 0x1111u) == HAL_ERR_BUSY);   /* one per period */
     CHECK(epuck_stub.randb_sends == 0);              /* sent after the step */
     hal_epuck_end_step(&robot);
     CHECK(epuck_stub.randb_sends == 1 && epuck_stub.randb_sent[0] == 0xBEEFu);
@@ -341,7 +350,7 @@ static void test_ircom_randb(void)
         hal_epuck_poll(&robot);
     }
     CHECK(robot.in_count == HAL_EPUCK_INBOX && robot.in_dropped == 3u);
-    CHECK(hal_ircom_receive(&robot, &m) == 1u && m.value == 0u);
+    CHECK(hal_ircom_receive(&robot, &m) == HAL_OK && m.value == 0u);
 }
 #else
 static void test_ircom_libircom(void)
@@ -366,19 +375,19 @@ static void test_ircom_libircom(void)
     hal_epuck_tick(&robot);
     CHECK(hal_epuck_step_due(&robot));
     hal_epuck_begin_step(&robot);
-    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(hal_ircom_receive(&robot, &m) == HAL_OK);
     CHECK(m.value == 0xABu && m.range_mm == 123u && m.bearing_mrad == 873 && m.sensor == 6u);
-    CHECK(hal_ircom_receive(&robot, &m) == 1u);
+    CHECK(hal_ircom_receive(&robot, &m) == HAL_OK);
     CHECK(m.value == 4u && m.range_mm == 0u && m.sensor == 2u);
-    CHECK(hal_ircom_receive(&robot, &m) == 0u);
-    CHECK(hal_ircom_send(&robot, 0x1234u) == 0);
+    CHECK(hal_ircom_receive(&robot, &m) == HAL_ERR_EMPTY);
+    CHECK(hal_ircom_send(&robot, 0x1234u) == HAL_OK);
     hal_epuck_end_step(&robot);
     CHECK(epuck_stub.ircom_sends == 1 && epuck_stub.ircom_sent[0] == 0x34);
     epuck_stub.ircom_sending = 1;   /* the previous one still going out */
     hal_epuck_tick(&robot);
     CHECK(hal_epuck_step_due(&robot));
     hal_epuck_begin_step(&robot);
-    CHECK(hal_ircom_send(&robot, 0x55u) == 0);
+    CHECK(hal_ircom_send(&robot, 0x55u) == HAL_OK);
     hal_epuck_end_step(&robot);
     CHECK(epuck_stub.ircom_sends == 1);
 }

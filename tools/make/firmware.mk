@@ -21,13 +21,20 @@
 #                           RANDB_DIR      e-RandB turret driver (e_randb.c), for
 #                                          forager and nest_beacon
 #                           IRCOM_DIR      libIrcom sources, for random_walk
-#                         FIRMWARE_IMAGES (forager nest_beacon random_walk),
+#                         FIRMWARE_IMAGES (every image of firmware/apps/images.list),
 #                         FORAGER_POLICY (drtm|artm|frtm), FIRMWARE_N_ROBOTS
 #                         (20), FIRMWARE_ARENA_MM (4000).
 #   make flash HEX=build/firmware/xc16/forager.hex DEVICE=/dev/rfcomm0 ROBOT_ID=7
 #
-# Images and their IR backend (hal/epuck/ircom_*.c):
-FW_IMAGE_SPECS := forager:randb nest_beacon:randb random_walk:libircom
+# Images, their IR backend (hal/epuck/ircom_*.c) and whether they send
+# telemetry: one line each in firmware/apps/images.list.
+FW_IMAGE_LIST := firmware/apps/images.list
+FW_IMAGE_ROWS := $(shell sed -e 's/\#.*//' $(FW_IMAGE_LIST) | awk 'NF == 3 { print $$1 ":" $$2 ":" $$3 }')
+fw_field = $(word $(2),$(subst :, ,$(1)))
+FW_IMAGE_SPECS := $(foreach r,$(FW_IMAGE_ROWS),$(call fw_field,$(r),1):$(call fw_field,$(r),2))
+FW_TELEMETRY_IMAGES := $(foreach r,$(FW_IMAGE_ROWS),$(if $(filter yes,$(call fw_field,$(r),3)),$(call fw_field,$(r),1)))
+# The forager's policies, from their one list (firmware/foraging/task_alloc.h).
+FW_POLICIES := $(shell sed -n 's/^\#define TA_POLICY_NAMES //p' firmware/foraging/task_alloc.h | tr -d '",')
 FW_OUT := $(BUILD)/firmware
 
 .PHONY: firmware firmware-check firmware-cpu firmware-gates firmware-hal-tests \
@@ -35,20 +42,21 @@ FW_OUT := $(BUILD)/firmware
 
 EXTRA_TESTS += firmware-check
 
-# forager and nest_beacon send robot_state_t (firmware/apps/): they link
-# lcm-gen's C of that one type, as generated library code with our warnings
-# and -ffunction-sections, so --gc-sections drops its malloc-using decoder.
+# Images with telemetry send robot_state_t and schema_t
+# (firmware/telemetry/robot_telemetry.c): they link lcm-gen's C of those two
+# types, as generated library code with our warnings and
+# -ffunction-sections, so --gc-sections drops its malloc-using decoders.
 FW_LCM_C_DIR := $(BUILD)/lcm_c
 FW_LCM_STAMP := $(FW_LCM_C_DIR)/.stamp
-FW_LCM_SRC := $(FW_LCM_C_DIR)/swarmlcm_robot_state_t.c
-FW_TELEMETRY_IMAGES := forager nest_beacon
+FW_LCM_SRC := $(FW_LCM_C_DIR)/swarmlcm_robot_state_t.c $(FW_LCM_C_DIR)/swarmlcm_schema_t.c
+FW_ROBOT_TELEMETRY_SRC := firmware/telemetry/robot_telemetry.c
 
 firmware-check: lcm-types firmware-gates firmware-hal-tests firmware-flash-tests firmware-cpu
 	@echo "firmware-check: all passed"
 
 firmware-gates: lcm-types | $(BUILD)/config.mk
 	@python3 tests/firmware/image_gates.py --build $(FW_OUT) --lcm-c-dir $(FW_LCM_C_DIR) \
-	  --lcm-cflags '$(LCM_CFLAGS)' $(FW_IMAGE_SPECS)
+	  --lcm-cflags '$(LCM_CFLAGS)' --images $(FW_IMAGE_LIST)
 
 firmware-flash-tests:
 	@python3 tools/flash/test_flash.py
@@ -58,7 +66,7 @@ FW_HOST := $(FW_OUT)/host
 FW_HOST_CFLAGS := -std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes \
   -Wmissing-prototypes -g -O1 -Ihal -Ifirmware -Ihal/epuck -Itests/firmware/stubs \
   -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c \
+FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c hal/units.c \
   tests/firmware/stubs/epuck_lib_stubs.c
 FW_HAL_DEPS := tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) $(wildcard hal/epuck/*.h) \
   $(wildcard hal/*.h) tests/firmware/stubs/epuck_stubs.h
@@ -82,7 +90,7 @@ FW_APP_TEST_SRC := $(FW_SRC) \
   tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c firmware/apps/app_telemetry.c \
   $(FW_LCM_SRC)
 $(FW_HOST)/test_app_telemetry: tests/firmware/test_app_telemetry.c firmware/apps/forager_main.c \
-    firmware/apps/app_telemetry.h \
+    firmware/apps/app_telemetry.h firmware/apps/app_telemetry.c \
     $(filter-out $(FW_LCM_SRC),$(FW_APP_TEST_SRC)) $(FW_LCM_STAMP) $(wildcard firmware/*/*.h hal/*.h hal/epuck/*.h) \
     tests/firmware/stubs/epuck_stubs.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
@@ -121,7 +129,7 @@ XC16_DIR ?=
 EPUCK_LIB_DIR ?=
 RANDB_DIR ?=
 IRCOM_DIR ?=
-FIRMWARE_IMAGES ?= forager nest_beacon random_walk
+FIRMWARE_IMAGES ?= $(foreach s,$(FW_IMAGE_SPECS),$(firstword $(subst :, ,$(s))))
 FORAGER_POLICY ?= drtm
 FIRMWARE_N_ROBOTS ?= 20
 FIRMWARE_ARENA_MM ?= 4000
@@ -143,7 +151,7 @@ FW_POLICY_DEF := TA_$(shell echo '$(FORAGER_POLICY)' | tr a-z A-Z)
 FW_APP_DEFS := -DAPP_N_ROBOTS=$(FIRMWARE_N_ROBOTS)u -DAPP_ARENA_L_MM=$(FIRMWARE_ARENA_MM)u \
   -DAPP_FORAGER_POLICY=$(FW_POLICY_DEF)
 
-FW_OURS_SRC := $(FW_SRC) \
+FW_OURS_SRC := $(filter-out $(FW_ROBOT_TELEMETRY_SRC),$(FW_SRC)) \
   hal/epuck/hal_epuck.c hal/epuck/xc16/robot_id.c
 FW_EPL_COMMON := motor_led/e_init_port.c motor_led/advance_one_timer/e_agenda.c \
   motor_led/advance_one_timer/e_motors.c motor_led/advance_one_timer/e_led.c \
@@ -169,11 +177,11 @@ FW_BACKEND_OBJ_randb := $(call fw_obj,hal/epuck/ircom_randb.c) $(FW_EPL_ADSCAN_O
 FW_BACKEND_OBJ_libircom := $(call fw_obj,hal/epuck/ircom_libircom.c) $(FW_IRCOM_OBJ)
 fw_backend = $(patsubst $(1):%,%,$(filter $(1):%,$(FW_IMAGE_SPECS)))
 FW_HEX := $(patsubst %,$(FWX)/%.hex,$(FIRMWARE_IMAGES))
-# lcm-gen's C, for the images that send telemetry (robot_state_t only: it
-# has no double, which is 32-bit under XC16).
-FW_LCM_OBJ := $(FWX)/lcm/swarmlcm_robot_state_t.o
+# lcm-gen's C, for the images that send telemetry (robot_state_t and
+# schema_t: no double, which is 32-bit under XC16).
+FW_LCM_OBJ := $(FWX)/lcm/swarmlcm_robot_state_t.o $(FWX)/lcm/swarmlcm_schema_t.o
 fw_lcm_objs = $(if $(filter $(1),$(FW_TELEMETRY_IMAGES)),$(FW_LCM_OBJ) \
-  $(call fw_obj,firmware/apps/app_telemetry.c))
+  $(call fw_obj,$(FW_ROBOT_TELEMETRY_SRC)) $(call fw_obj,firmware/apps/app_telemetry.c))
 
 $(FWX)/ours/%.o: %.c | $(FW_LCM_STAMP)
 	@mkdir -p $(@D)
@@ -205,6 +213,11 @@ $(FWX)/$(1).hex: $(FWX)/$(1).elf
 endef
 $(foreach s,$(FW_IMAGE_SPECS),$(eval $(call FW_IMAGE_RULES,$(firstword $(subst :, ,$(s))))))
 
+# The asked images by IR backend.
+fw_images_with = $(foreach i,$(FIRMWARE_IMAGES),$(if $(filter $(i):$(1),$(FW_IMAGE_SPECS)),$(i)))
+FW_RANDB_IMAGES = $(call fw_images_with,randb)
+FW_IRCOM_IMAGES = $(call fw_images_with,libircom)
+
 # Says exactly what is missing, then builds what was asked.
 firmware:
 	@missing=0; say() { echo "firmware: $$*" >&2; missing=1; }; \
@@ -217,12 +230,12 @@ firmware:
 	else for f in $(FW_EPL_COMMON) $(if $(filter %:randb,$(foreach i,$(FIRMWARE_IMAGES),$(filter $(i):%,$(FW_IMAGE_SPECS)))),$(FW_EPL_ADSCAN)); do \
 	  [ -f "$(EPL)/$$f" ] || say "EPUCK_LIB_DIR: $(EPL)/$$f not found (is EPUCK_LIB_DIR the e-puck library?)"; done; fi; \
 	for i in $(FIRMWARE_IMAGES); do case " $(FW_IMAGE_SPECS) " in *" $$i:"*) ;; *) say "unknown image '$$i' (images: $(FW_IMAGE_SPECS))";; esac; done; \
-	if [ -n "$(filter forager nest_beacon,$(FIRMWARE_IMAGES))" ]; then \
-	  if [ -z "$(RANDB_DIR)" ]; then say "RANDB_DIR is not set: forager and nest_beacon need the e-RandB range-and-bearing turret's e-puck driver (e_randb.c, e_randb.h) from the turret's distribution; or build FIRMWARE_IMAGES=random_walk only"; \
+	if [ -n "$(FW_RANDB_IMAGES)" ]; then \
+	  if [ -z "$(RANDB_DIR)" ]; then say "RANDB_DIR is not set: $(FW_RANDB_IMAGES) need the e-RandB range-and-bearing turret's e-puck driver (e_randb.c, e_randb.h) from the turret's distribution; or leave them out of FIRMWARE_IMAGES"; \
 	  elif [ ! -f "$(RANDB_DIR)/e_randb.c" ]; then say "$(RANDB_DIR)/e_randb.c not found"; fi; fi; \
-	if [ -n "$(filter random_walk,$(FIRMWARE_IMAGES))" ]; then \
-	  if [ -z "$(IRCOM_DIR)" ]; then say "IRCOM_DIR is not set: random_walk needs libIrcom's sources (ircom.c, ircomSend.c, ..., its e_ad_conv.c); or build FIRMWARE_IMAGES='forager nest_beacon' only"; \
+	if [ -n "$(FW_IRCOM_IMAGES)" ]; then \
+	  if [ -z "$(IRCOM_DIR)" ]; then say "IRCOM_DIR is not set: $(FW_IRCOM_IMAGES) need libIrcom's sources (ircom.c, ircomSend.c, ..., its e_ad_conv.c); or leave them out of FIRMWARE_IMAGES"; \
 	  elif [ ! -f "$(IRCOM_DIR)/ircom.c" ]; then say "$(IRCOM_DIR)/ircom.c not found (is IRCOM_DIR libIrcom's source folder?)"; fi; fi; \
-	case "$(FORAGER_POLICY)" in drtm|artm|frtm) ;; *) say "FORAGER_POLICY must be drtm, artm or frtm";; esac; \
+	case " $(FW_POLICIES) " in *" $(FORAGER_POLICY) "*) ;; *) say "FORAGER_POLICY must be one of: $(FW_POLICIES)";; esac; \
 	if [ $$missing != 0 ]; then echo "firmware: nothing built (make firmware-check runs the portable gates without XC16)" >&2; exit 1; fi
 	@$(MAKE) --no-print-directory $(FW_HEX)

@@ -34,6 +34,9 @@ LCM_GLIB := $(shell pkg-config --libs glib-2.0 2>/dev/null || echo -l:libglib-2.
 endif
 LDLIBS_SIM += $(LCM_LIBS) $(LCM_GLIB) -lpthread
 SIM_CFLAGS += $(LCM_CFLAGS) -I$(LCM_C_DIR)
+# The robot's own telemetry (firmware/telemetry/robot_telemetry.c) encodes
+# with the generated C: firmware sees its headers too.
+FW_CFLAGS += $(LCM_CFLAGS) -I$(LCM_C_DIR)
 
 # Generated C code: compiled without our -Werror (lcm-gen's style is its own).
 LCM_GEN_CFLAGS := -std=c11 -g -O2 -fno-strict-aliasing $(LCM_CFLAGS) -I$(LCM_C_DIR)
@@ -56,6 +59,7 @@ $(BUILD)/asan/lcm/%.o: $(LCM_C_DIR)/%.c $(LCM_C_STAMP)
 
 # Sources that include generated headers wait for them.
 $(BUILD)/obj/sim_host/core/telemetry.o $(BUILD)/asan/sim_host/core/telemetry.o: $(LCM_C_STAMP)
+$(BUILD)/obj/firmware/telemetry/robot_telemetry.o $(BUILD)/asan/firmware/telemetry/robot_telemetry.o: $(LCM_C_STAMP)
 $(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_telemetry*.c)): $(LCM_C_STAMP)
 $(patsubst tests/%.c,$(BUILD)/tests/asan/%,$(wildcard tests/test_telemetry*.c)): $(LCM_C_STAMP)
 
@@ -89,13 +93,13 @@ endif
 monitor: $(LCM_PY_STAMP)
 	$(PYTHON) tools/telemetry/monitor.py $(if $(LCM_URL),--lcm '$(LCM_URL)')
 
-# The host side of the robots' framing (firmware/common/telemetry_frame.c) as a
+# The host side of the robots' framing (firmware/telemetry/telemetry_frame.c) as a
 # shared library, so the Python tests check the bridge's decoder against the
 # very encoder the robots run.
 TELEMETRY_FRAME_SO := $(BUILD)/telemetry/libtelemetry_frame.so
-$(TELEMETRY_FRAME_SO): firmware/common/telemetry_frame.c firmware/common/telemetry_frame.h | $(BUILD)/config.mk
+$(TELEMETRY_FRAME_SO): firmware/telemetry/telemetry_frame.c firmware/telemetry/telemetry_frame.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ firmware/common/telemetry_frame.c
+	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ firmware/telemetry/telemetry_frame.c
 
 # matplotlib for tools/telemetry/plot_run.py (pinned wheels).
 TELEMETRY_DEPS_STAMP := $(VENV)/.telemetry-installed

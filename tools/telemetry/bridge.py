@@ -3,7 +3,7 @@
 
 Reads one or several serial devices (the Bluetooth rfcomm ports of e-pucks,
 or any tty or pseudo-terminal), decodes the frames of
-firmware/common/telemetry_frame.h and republishes each payload on LCM on the
+firmware/telemetry/telemetry_frame.h and republishes each payload on LCM on the
 channel its channel id names (ROBOT_STATE, SWARM_EVENT, SWARM_STATE, ...:
 the simulator's channels, so the same monitor, logger and tools work), with
 the robot's id: the id in the frame, or the one given with --id for that

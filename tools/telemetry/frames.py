@@ -1,4 +1,4 @@
-"""The robots' serial framing, host side (see firmware/common/telemetry_frame.h).
+"""The robots' serial framing, host side (see firmware/telemetry/telemetry_frame.h).
 
 On the wire:  0x00, COBS(body), 0x00, where the body is
     version (1), channel id (1), robot id (2, big-endian),
@@ -20,13 +20,14 @@ MAX_BODY = HEADER_BYTES + MAX_PAYLOAD + CRC_BYTES           # 248
 MAX_ENCODED = MAX_BODY + 1 + MAX_BODY // 254                # COBS of the largest body
 MIN_BODY = HEADER_BYTES + CRC_BYTES
 
-#: Channel id -> LCM channel (firmware/common/telemetry_frame.h, telemetry_channel_t).
+#: Channel id -> LCM channel (firmware/telemetry/telemetry_frame.h, telemetry_channel_t).
 CHANNEL_IDS = {
     1: "ROBOT_STATE",
     2: "SWARM_EVENT",
     3: "SWARM_STATE",
     4: "RUN_INFO",
     5: "RUN_SUMMARY",
+    6: "TELEMETRY_SCHEMA",
 }
 
 
@@ -78,7 +79,7 @@ def cobs_decode(data):
 
 
 def encode_frame(channel, robot_id, seq, payload):
-    """A whole frame on the wire, as firmware/common/telemetry_frame.c writes it."""
+    """A whole frame on the wire, as firmware/telemetry/telemetry_frame.c writes it."""
     if len(payload) > MAX_PAYLOAD:
         raise ValueError(f"payload of {len(payload)} bytes: at most {MAX_PAYLOAD}")
     body = bytes([VERSION, channel & 0xFF, (robot_id >> 8) & 0xFF, robot_id & 0xFF,

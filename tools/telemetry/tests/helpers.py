@@ -24,7 +24,7 @@ if not FRAME_SO.is_absolute():
 
 
 def c_encoder():
-    """firmware/common/telemetry_frame.c through ctypes (built by the make target)."""
+    """firmware/telemetry/telemetry_frame.c through ctypes (built by the make target)."""
     if not FRAME_SO.exists():
         raise unittest.SkipTest(f"{FRAME_SO} not built (make telemetry-tests builds it)")
     lib = ctypes.CDLL(str(FRAME_SO))

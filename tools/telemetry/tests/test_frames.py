@@ -1,5 +1,5 @@
 """The host decoder of the robots' framing (tools/telemetry/frames.py)
-against the firmware's encoder (firmware/common/telemetry_frame.c), and a fuzz test:
+against the firmware's encoder (firmware/telemetry/telemetry_frame.c), and a fuzz test:
 no input makes it raise, and no corrupted frame gets through."""
 import random
 import re
@@ -27,7 +27,7 @@ class Vectors(unittest.TestCase):
             self.assertEqual(cobs_decode(enc), raw)
 
     def test_constants_match_the_firmware_header(self):
-        h = (ROOT / "firmware" / "common" / "telemetry_frame.h").read_text()
+        h = (ROOT / "firmware" / "telemetry" / "telemetry_frame.h").read_text()
         ids = {int(v): name for name, v in re.findall(r"TELEMETRY_CH_(\w+) = (\d+)", h)}
         self.assertEqual({k: v.replace("EVENT", "SWARM_EVENT") for k, v in ids.items()}, frames.CHANNEL_IDS)
         self.assertEqual(int(re.search(r"TELEMETRY_MAX_PAYLOAD (\d+)u", h).group(1)), frames.MAX_PAYLOAD)

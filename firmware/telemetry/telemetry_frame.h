@@ -55,7 +55,8 @@ typedef enum telemetry_channel {
     TELEMETRY_CH_EVENT = 2,         /**< SWARM_EVENT, swarmlcm.event_t */
     TELEMETRY_CH_SWARM_STATE = 3,   /**< SWARM_STATE, swarmlcm.swarm_state_t (a nest beacon) */
     TELEMETRY_CH_RUN_INFO = 4,      /**< RUN_INFO, swarmlcm.run_info_t */
-    TELEMETRY_CH_RUN_SUMMARY = 5    /**< RUN_SUMMARY, swarmlcm.run_summary_t */
+    TELEMETRY_CH_RUN_SUMMARY = 5,   /**< RUN_SUMMARY, swarmlcm.run_summary_t */
+    TELEMETRY_CH_SCHEMA = 6         /**< TELEMETRY_SCHEMA, swarmlcm.schema_t */
 } telemetry_channel_t;
 
 /** CRC-16/CCITT-FALSE of `len` bytes continuing from `crc` (start with
