@@ -9,8 +9,12 @@ BUILD := build
 SHELL := /bin/bash
 
 # Dependencies: found or installed by tools/deps.sh, recorded in config.mk.
-# Make rebuilds an included makefile that is missing or out of date.
+# Make rebuilds an included makefile that is missing or out of date, so
+# only goals that build read it: `make clean` installs nothing.
+NO_DEPS_GOALS := clean clean-lcm help
+ifneq ($(filter-out $(NO_DEPS_GOALS),$(or $(MAKECMDGOALS),all)),)
 include $(BUILD)/config.mk
+endif
 $(BUILD)/config.mk: tools/deps.sh tools/requirements.txt
 	@mkdir -p $(BUILD)
 	tools/deps.sh > $@.tmp && mv $@.tmp $@
@@ -89,17 +93,19 @@ $(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN) $(SIM_EXTRA_OBJ_ASAN)
 $(BUILD)/swarmsim: $(BUILD)/obj/sim_host/main.o $(BUILD)/libswarm.a
 	$(CC) -o $@ $^ $(LDLIBS_SIM)
 
+# Test binaries record the headers they read (-MMD): a changed header
+# rebuilds them.
 $(BUILD)/tests/%: tests/%.c $(BUILD)/libswarm.a
 	@mkdir -p $(@D)
-	$(CC) $(SIM_CFLAGS) $(CMOCKA_CFLAGS) -o $@ $< $(BUILD)/libswarm.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
+	$(CC) $(SIM_CFLAGS) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
 $(BUILD)/tests/asan/%: tests/%.c $(BUILD)/libswarm-asan.a
 	@mkdir -p $(@D)
-	$(CC) $(SIM_CFLAGS) $(ASAN) $(CMOCKA_CFLAGS) -o $@ $< $(BUILD)/libswarm-asan.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
+	$(CC) $(SIM_CFLAGS) $(ASAN) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm-asan.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
 
 # ---------------------------------------------------------------- run
 RUN_SCENARIO ?= sim_host/scenarios/foraging_base.yaml
 RUN_OUT ?= out/run
-run: $(BUILD)/swarmsim
+run: deps $(BUILD)/swarmsim
 	$(BUILD)/swarmsim $(RUN_SCENARIO) --out $(RUN_OUT) --frames 1000 $(RUN_ARGS)
 
 # ---------------------------------------------------------------- tests
@@ -118,7 +124,11 @@ cli-tests: $(BUILD)/swarmsim
 firmware-hygiene: $(BUILD)/config.mk lcm-types
 	@LCM_CFLAGS='$(LCM_CFLAGS)' LCM_C_DIR='$(BUILD)/lcm_c' bash tests/firmware/hygiene.sh
 
-test: unit-tests asan-tests cli-tests firmware-hygiene $(EXTRA_TESTS)
+# Every group, one after the other, each saying how long it took.
+TEST_GROUPS = unit-tests asan-tests cli-tests firmware-hygiene $(EXTRA_TESTS)
+test: deps
+	@set -e; for g in $(TEST_GROUPS); do \
+	  bash tools/make/timed.sh $$g $(MAKE) --no-print-directory $$g; done
 	@echo "make test: all test groups passed"
 
 # ---------------------------------------------------------------- bench
@@ -128,4 +138,4 @@ bench: $(BUILD)/swarmsim
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/asan $(BUILD)/fw $(BUILD)/tests $(BUILD)/*.a $(BUILD)/swarmsim
 
--include $(shell find $(BUILD)/obj $(BUILD)/asan -name '*.d' 2>/dev/null)
+-include $(shell find $(BUILD)/obj $(BUILD)/asan $(BUILD)/tests -name '*.d' 2>/dev/null)

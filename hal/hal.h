@@ -183,6 +183,10 @@ void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right);
 
 /** Number of red ring LEDs (LED0 front, counting clockwise seen from above). */
 #define HAL_LED_COUNT 8u
+/** The LED word platforms report (telemetry, pictures): bit k = ring LED k,
+ *  then these two. */
+#define HAL_LED_WORD_BODY_BIT 8u
+#define HAL_LED_WORD_FRONT_BIT 9u
 
 /** Switches ring LED `index` (0..7) on (non-zero) or off. */
 void hal_set_led(hal_t *hal, uint8_t index, uint8_t on);

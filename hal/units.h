@@ -24,6 +24,11 @@
  *  (integer arithmetic only); 0 for an index out of range. */
 int16_t units_ir_bearing_mrad(uint8_t index);
 
+/** pi, a quarter turn and a full turn in milliradians, rounded. */
+#define UNITS_PI_MRAD 3142
+#define UNITS_HALF_PI_MRAD 1571
+#define UNITS_TWO_PI_MRAD 6283
+
 /* The same facts in floating point, for the simulator and host tools (the
  * firmware uses the integer forms above). */
 #define UNITS_PI 3.14159265358979323846

@@ -426,6 +426,197 @@ static void test_placement_failure_is_reported(void **state)
     free(sc);
 }
 
+
+/* ---------------------------------------------------------- groups */
+
+/* Two idle groups: `first` robots then one more, which moves or not. */
+static scenario_t *two_groups(uint32_t first, uint8_t second_moves)
+{
+    scenario_t *sc = idle_scenario(first, 2.0f);
+    sc->group_count = 2;
+    sc->groups[1] = sc->groups[0];
+    strcpy(sc->groups[1].name, "post");
+    sc->groups[1].count = 1;
+    sc->groups[1].moves = second_moves;
+    sc->groups[1].placement.shape = PLACE_POSES;
+    sc->groups[1].placement.pose_count = 1;
+    sc->groups[1].placement.poses[0] = (pose_def_t){ 0.5f, 0.5f, 90.0f };
+    return sc;
+}
+
+/* A group that does not move is a static body: a robot driving into it
+ * stops, and it stays where it was; a moving one is pushed away. */
+static void test_static_group_is_not_pushed(void **state)
+{
+    (void)state;
+    for (int moves = 0; moves < 2; moves++) {
+        scenario_t *sc = two_groups(1, (uint8_t)moves);
+        sim_t *sim = make(sc, 3);
+        double x, y, t;
+        sim_robot_pose(sim, 1, &x, &y, &t);
+        assert_true(x == 0.5f && y == 0.5f && fabs(t - PI / 2) < 1e-6);   /* its pose */
+        assert_int_equal(sim_robot_group(sim, 1), 1);
+        sim_set_robot_pose(sim, 0, 0.2, 0.5, 0.0);
+        hal_set_wheel_speeds(sim_robot_hal(sim, 0), 800, 800);
+        for (int k = 0; k < 200; k++) sim_step(sim);
+        sim_robot_pose(sim, 1, &x, &y, &t);
+        double moved = hypot(x - 0.5, y - 0.5);
+        if (moves) assert_true(moved > 0.05);
+        else assert_true(moved == 0.0);
+        double x0, y0, t0;
+        sim_robot_pose(sim, 0, &x0, &y0, &t0);
+        assert_true(hypot(x0 - x, y0 - y) >= 0.07 - 0.006);   /* no overlap either way */
+        sim_destroy(sim);
+        free(sc);
+    }
+}
+
+/* Every placement shape puts every body inside its region, at least
+ * min_spacing apart, with the group's heading. */
+static void test_placement_shapes(void **state)
+{
+    (void)state;
+    for (int shape = PLACE_RECTANGLE; shape <= PLACE_GRID; shape++) {
+        scenario_t *sc = idle_scenario(30, 4.0f);
+        robot_group_t *g = &sc->groups[0];
+        g->placement = (placement_def_t){ .shape = shape, .x = 0.5f, .y = -0.5f, .width = 1.2f,
+                                          .height = 0.8f, .radius = 0.6f, .inner = 0.4f, .outer = 0.9f };
+        g->min_spacing = 0.1f;
+        g->heading = shape == PLACE_GRID ? NAN : 30.0f;
+        sim_t *sim = make(sc, 11);
+        for (uint32_t i = 0; i < 30; i++) {
+            double x, y, t, dx, dy, d;
+            sim_robot_pose(sim, i, &x, &y, &t);
+            dx = x - 0.5;
+            dy = y + 0.5;
+            d = hypot(dx, dy);
+            switch (shape) {
+            case PLACE_CIRCLE: assert_true(d <= 0.6 - 0.035 + 1e-6); break;
+            case PLACE_RING: assert_true(d >= 0.4 + 0.035 - 1e-6 && d <= 0.9 - 0.035 + 1e-6); break;
+            default: assert_true(fabs(dx) <= 0.6 && fabs(dy) <= 0.4); break;
+            }
+            if (shape != PLACE_GRID) assert_true(fabs(t - 30.0 * PI / 180.0) < 1e-6);
+            for (uint32_t j = 0; j < i; j++) {
+                double x2, y2, t2;
+                sim_robot_pose(sim, j, &x2, &y2, &t2);
+                assert_true(hypot(x - x2, y - y2) >= 0.1 - 1e-6);
+            }
+        }
+        sim_destroy(sim);
+        free(sc);
+    }
+}
+
+/* A pose on an obstacle is an error naming the group and the pose. */
+static void test_bad_pose_is_reported(void **state)
+{
+    (void)state;
+    scenario_t *sc = two_groups(2, 0);
+    sc->object_count = 1;
+    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.1f,
+                                     .height = 0.05f };
+    char err[256] = "";
+    assert_null(sim_create(sc, 1, err));
+    assert_non_null(strstr(err, "robots[1] (post): pose 0 at (0.5, 0.5) m is not free"));
+    free(sc);
+}
+
+/* Sensing and stepping read only the start of the step: any order of the
+ * robots' steps gives the same run (task.h, phase 2). */
+static void test_step_order_does_not_matter(void **state)
+{
+    (void)state;
+    static const char *const files[] = { "../sim_host/scenarios/foraging_base.yaml",
+                                         "../sim_host/scenarios/random_walk.yaml" };
+    for (size_t f = 0; f < 2; f++) {
+        scenario_t *sc = malloc(sizeof *sc);
+        char err[SCENARIO_ERROR_MAX];
+        uint64_t hash[3];
+        assert_non_null(sc);
+        if (scenario_load(files[f], NULL, 0, sc, err) != 0) fail_msg("%s", err);
+        for (int order = 0; order < 3; order++) {
+            sim_t *sim = make(sc, 5);
+            sim_set_step_order(sim, order, 99);
+            for (int k = 0; k < 1500; k++) sim_step(sim);
+            hash[order] = sim_state_hash(sim);
+            sim_destroy(sim);
+        }
+        assert_true(hash[0] == hash[1] && hash[0] == hash[2]);
+        free(sc);
+    }
+}
+
+/* ---------------------------------------------------------- HAL channels */
+
+/* The overhead tracker: unavailable unless the scenario has one; ground
+ * truth in mm and mrad without noise; noise of the stated sd; dropout. */
+static void test_tracker_pose(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 2.0f);
+    sim_t *sim = make(sc, 4);
+    hal_pose_t p;
+    assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
+    sim_destroy(sim);
+
+    sc->tracker.enabled = 1;
+    sim = make(sc, 4);
+    sim_set_robot_pose(sim, 0, 0.1234, -0.5678, 1.0);
+    assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_OK);
+    assert_int_equal(p.x_mm, 123);
+    assert_int_equal(p.y_mm, -568);
+    assert_int_equal(p.heading_mrad, 1000);
+    sim_destroy(sim);
+
+    sc->tracker.noise_mm = 10.0f;
+    sim = make(sc, 4);
+    double sum = 0, sq = 0;
+    for (int k = 0; k < 400; k++) {
+        sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
+        assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_OK);
+        sum += p.x_mm;
+        sq += (double)p.x_mm * p.x_mm;
+        sim_step(sim);
+    }
+    double mean = sum / 400, sd = sqrt(sq / 400 - mean * mean);
+    assert_true(fabs(mean) < 2.0 && sd > 8.0 && sd < 12.0);
+    sim_destroy(sim);
+
+    sc->tracker.noise_mm = 0.0f;
+    sc->tracker.dropout = 1.0f;
+    sim = make(sc, 4);
+    assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* One status convention: sound is not modelled yet (unavailable), a
+ * channel out of range says so, and the camera tells its frame size. */
+static void test_hal_status(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 2.0f);
+    sc->camera.width_px = 40;
+    sc->camera.height_px = 20;
+    sim_t *sim = make(sc, 4);
+    hal_t *hal = sim_robot_hal(sim, 0);
+    int16_t level = 5;
+    uint16_t w = 0, h = 0;
+    assert_int_equal(hal_mic_level(hal, 0, 1, &level), HAL_ERR_UNAVAILABLE);
+    assert_int_equal(level, 0);
+    assert_int_equal(hal_mic_level(hal, 3, 1, &level), HAL_ERR_RANGE);
+    assert_int_equal(hal_mic_level(hal, 0, 0, &level), HAL_ERR_RANGE);
+    assert_int_equal(hal_speaker_set(hal, 1), HAL_ERR_UNAVAILABLE);
+    assert_int_equal(hal_speaker_set(hal, HAL_SOUND_BANDS), HAL_ERR_RANGE);
+    assert_int_equal(hal_camera_frame_size(hal, &w, &h), HAL_OK);
+    assert_true(w == 40 && h == 20);
+    assert_int_equal(hal_ir_bearing_mrad(hal, 0), -297);
+    assert_int_equal(hal_ir_bearing_mrad(hal, 4), 2618);
+    assert_int_equal(hal_ir_bearing_mrad(hal, 8), 0);
+    sim_destroy(sim);
+    free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -442,6 +633,12 @@ int main(void)
         cmocka_unit_test(test_placement_failure_is_reported),
         cmocka_unit_test(test_same_seed_same_state),
         cmocka_unit_test(test_twenty_robots_100k_steps_stay_inside),
+        cmocka_unit_test(test_static_group_is_not_pushed),
+        cmocka_unit_test(test_placement_shapes),
+        cmocka_unit_test(test_bad_pose_is_reported),
+        cmocka_unit_test(test_step_order_does_not_matter),
+        cmocka_unit_test(test_tracker_pose),
+        cmocka_unit_test(test_hal_status),
     };
     return cmocka_run_group_tests_name("sim", tests, NULL, NULL);
 }

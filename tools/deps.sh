@@ -63,7 +63,7 @@ if [ ! -f "$stamp" ]; then
     say "creating $VENV with the pinned wheels of tools/requirements.txt"
     python3 -m venv "$VENV" >&2
     if ! "$VENV/bin/pip" install --disable-pip-version-check -q -r tools/requirements.txt >&2; then
-        say "could not install the wheels of tools/requirements.txt (lcm==1.5.3, pyb2d3==0.11.1)"
+        say "could not install the wheels of tools/requirements.txt (lcm, pyb2d3, numpy, scipy, matplotlib, ruff, ...)"
         say "they come from PyPI: check the network, or install a system Box2D >= 3.1 and LCM 1.5.3"
         exit 1
     fi
@@ -71,11 +71,15 @@ if [ ! -f "$stamp" ]; then
 fi
 SITE=$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["platlib"])')
 
-# Box2D >= 3.1: a system install if pkg-config knows one, else the wheel's.
-if pkg-config --atleast-version=3.1 box2d 2>/dev/null; then
+# Box2D 3.1.x (the tested range: the golden hashes are pinned on 3.1.1): a
+# system install if pkg-config knows one in that range, else the wheel's.
+if pkg-config --atleast-version=3.1 box2d 2>/dev/null && ! pkg-config --atleast-version=3.2 box2d 2>/dev/null; then
     BOX2D_CFLAGS=$(pkg-config --cflags box2d); BOX2D_LIBS=$(pkg-config --libs box2d)
     say "using the system Box2D $(pkg-config --modversion box2d)"
 else
+    if pkg-config --exists box2d 2>/dev/null; then
+        say "ignoring the system Box2D $(pkg-config --modversion box2d): outside the tested 3.1.x; using pyb2d3's 3.1.1"
+    fi
     [ -f "$SITE/lib64/libbox2d.a" ] || { say "pyb2d3 wheel has no lib64/libbox2d.a in $SITE"; exit 1; }
     BOX2D_CFLAGS="-isystem $SITE/include"; BOX2D_LIBS="$SITE/lib64/libbox2d.a"
 fi

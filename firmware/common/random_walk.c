@@ -3,7 +3,6 @@
 #include "units.h"
 
 /* Full turn in mrad: a tumble angle is uniform in (-PI, PI]. */
-#define PI_MRAD 3142
 
 void random_walk_default_params(random_walk_params_t *params)
 {
@@ -68,7 +67,7 @@ static void turn_in_place(const random_walk_t *self, hal_t *hal)
 
 static void start_tumble(random_walk_t *self)
 {
-    int32_t angle = rng_range(&self->rng, -PI_MRAD + 1, PI_MRAD);
+    int32_t angle = rng_range(&self->rng, -UNITS_PI_MRAD + 1, UNITS_PI_MRAD);
     self->turn_sign = (angle >= 0) ? (int8_t)1 : (int8_t)-1;
     self->turn_steps_left = units_turn_mrad_to_steps(angle >= 0 ? angle : -angle);
     self->state = RW_TUMBLE;

@@ -1,11 +1,11 @@
 #include "forager.h"
 
 #include "nest_link.h"
+#include "units.h"
 
 /* The walk's stream must differ from the forager's own (n, roulette). */
 #define WALK_SEED_SALT UINT32_C(0x5bd1e995)
 /* 90 degrees in mrad: a light farther round than this is behind. */
-#define QUARTER_TURN_MRAD 1571
 /* A blob this close to straight ahead is centred, mrad. */
 #define CENTRED_MRAD 150
 /* No beacon frame this step. */
@@ -191,9 +191,9 @@ static uint8_t phototaxis(const forager_t *self, hal_t *hal)
         return 0u;
     }
     bearing = hal_ir_bearing_mrad(hal, best_i);
-    if (bearing > QUARTER_TURN_MRAD) {
+    if (bearing > UNITS_HALF_PI_MRAD) {
         hal_set_wheel_speeds(hal, (int16_t)-w, w);   /* behind on the left: turn CCW */
-    } else if (bearing < -QUARTER_TURN_MRAD) {
+    } else if (bearing < -UNITS_HALF_PI_MRAD) {
         hal_set_wheel_speeds(hal, w, (int16_t)-w);   /* behind on the right: turn CW */
     } else {
         steer(self, hal, bearing);
@@ -250,11 +250,11 @@ static void decide(forager_t *self, hal_t *hal)
         self->P_s = 0.0f;   /* nothing to go on: stay */
         return;
     }
-    food_tokens = (float)self->beacon_food_q4 * 0.0625f;
+    food_tokens = (float)self->beacon_food_q4 / (float)NL_FOOD_PER_TOKEN;
     self->S = ta_stimulus(p->f_d_tokens, food_tokens);
     self->k = ta_traffic_density(p->n_robots, self->beacon_n_waiting,
                                  (float)p->arena_l_mm * 0.001f);
-    self->M_A = (float)self->beacon_mean_oae_q8 * 0.00390625f;   /* 1/256 */
+    self->M_A = (float)self->beacon_mean_oae_q8 / (float)NL_MEAN_OAE_PER_UNIT;
     switch (p->policy) {
     case TA_DRTM:
         self->theta = ta_drtm_threshold(p->alpha, p->beta, self->k, self->M_A);

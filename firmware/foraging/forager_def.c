@@ -6,6 +6,7 @@
  * as a real robot is built with it.
  */
 #include "foraging/forager.h"
+#include "foraging/nest_link.h"
 
 #define FP forager_params_t
 static const param_desc_t forager_params[] = {
@@ -64,7 +65,7 @@ const observable_t forager_observables[] = {
       .doc = "M_A, mean OAEs per robot over T2 at the last decision (eq 5)" },
     { .name = "n", OBS_FIELD(forager_t, n, uint8_t), .scale = 1.0f, .unit = "",
       .doc = "eq 7 exponent drawn by this robot" },
-    { .name = "nest_food", OBS_FIELD(forager_t, beacon_food_q4, int16_t), .scale = 1.0f / 16.0f,
+    { .name = "nest_food", OBS_FIELD(forager_t, beacon_food_q4, int16_t), .scale = 1.0f / (float)NL_FOOD_PER_TOKEN,
       .unit = "tokens", .doc = "F(t) as last heard from the nest beacon" },
     { .name = "carrying", OBS_FIELD(forager_t, carrying, uint8_t), .scale = 1.0f, .unit = "",
       .doc = "1 while the robot sees a token in its gripper" },

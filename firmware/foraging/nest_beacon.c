@@ -71,7 +71,7 @@ int32_t nest_beacon_food_q4(const nest_beacon_t *self)
         e = -lim;
     }
     /* Round half away from zero: C division truncates toward zero. */
-    return (e >= 0) ? (e * 16 + te / 2) / te : (e * 16 - te / 2) / te;
+    return (e >= 0) ? (e * NL_FOOD_PER_TOKEN + te / 2) / te : (e * NL_FOOD_PER_TOKEN - te / 2) / te;
 }
 
 uint32_t nest_beacon_mean_oae_q8(const nest_beacon_t *self)

@@ -8,7 +8,7 @@
 static const param_desc_t nest_beacon_params[] = { PARAM_END };
 
 const observable_t nest_beacon_observables[] = {
-    { .name = "nest_food", OBS_FIELD(nest_beacon_t, food_q4, int32_t), .scale = 1.0f / 16.0f,
+    { .name = "nest_food", OBS_FIELD(nest_beacon_t, food_q4, int32_t), .scale = 1.0f / (float)NL_FOOD_PER_TOKEN,
       .unit = "tokens", .doc = "F(t) by the beacon's ledger (what it broadcasts)" },
     { .name = "waiting", OBS_FIELD(nest_beacon_t, n_waiting, uint16_t), .scale = 1.0f,
       .unit = "robots", .doc = "N_W, robots heard waiting in the nest" },

@@ -65,6 +65,11 @@ typedef struct nest_link_frame {
                              M_A in 1/256; report: the total mod 256 */
 } nest_link_frame_t;
 
+/** Fixed-point scales of the beacon's frames: F(t) in 1/NL_FOOD_PER_TOKEN
+ *  token, M_A in 1/NL_MEAN_OAE_PER_UNIT OAE per robot. */
+#define NL_FOOD_PER_TOKEN 16
+#define NL_MEAN_OAE_PER_UNIT 256
+
 /** Beacon frame of F(t), `food_q4` in 1/16 token, saturated to -2048..2047. */
 uint16_t nest_link_encode_food(int32_t food_q4);
 

@@ -15,12 +15,6 @@
 
 /* Tenths of a millisecond per millisecond: the agenda's unit. */
 #define AGENDA_TICKS_PER_MS 10u
-/* pi in mrad, for wrapping bearings. */
-#define PI_MRAD 3142
-#define TWO_PI_MRAD 6283
-/* Bits of hal->leds above the ring. */
-#define LED_BODY_BIT 8u
-#define LED_FRONT_BIT 9u
 #define LEDS_UNKNOWN 0xFFFFu
 #define LEDS_ALL 0x03FFu
 /* Camera orientations reported by e_poxxxx_get_orientation. */
@@ -197,11 +191,11 @@ void hal_epuck_end_step(hal_t *hal)
                 e_set_led(i, (hal->leds >> i) & 1u);
             }
         }
-        if ((changed & (1u << LED_BODY_BIT)) != 0u) {
-            e_set_body_led((hal->leds >> LED_BODY_BIT) & 1u);
+        if ((changed & (1u << HAL_LED_WORD_BODY_BIT)) != 0u) {
+            e_set_body_led((hal->leds >> HAL_LED_WORD_BODY_BIT) & 1u);
         }
-        if ((changed & (1u << LED_FRONT_BIT)) != 0u) {
-            e_set_front_led((hal->leds >> LED_FRONT_BIT) & 1u);
+        if ((changed & (1u << HAL_LED_WORD_FRONT_BIT)) != 0u) {
+            e_set_front_led((hal->leds >> HAL_LED_WORD_FRONT_BIT) & 1u);
         }
         hal->leds_applied = hal->leds;
     }
@@ -253,11 +247,11 @@ uint8_t hal_epuck_inbox_push(hal_t *hal, const hal_ircom_msg_t *msg)
 
 static int16_t wrap_mrad(int32_t m)
 {
-    while (m > PI_MRAD) {
-        m -= TWO_PI_MRAD;
+    while (m > UNITS_PI_MRAD) {
+        m -= UNITS_TWO_PI_MRAD;
     }
-    while (m <= -PI_MRAD) {
-        m += TWO_PI_MRAD;
+    while (m <= -UNITS_PI_MRAD) {
+        m += UNITS_TWO_PI_MRAD;
     }
     return (int16_t)m;
 }
@@ -269,10 +263,10 @@ int16_t hal_epuck_rad_to_mrad(float rad)
         return 0;   /* NaN, or no bearing a driver gives */
     }
     while (m > 3141.59f) {
-        m -= 6283.19f;
+        m -= 2000.0f * (float)UNITS_PI;
     }
     while (m <= -3141.59f) {
-        m += 6283.19f;
+        m += 2000.0f * (float)UNITS_PI;
     }
     return wrap_mrad((int32_t)(m >= 0.0f ? m + 0.5f : m - 0.5f));
 }
@@ -461,12 +455,12 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
 
 void hal_set_body_led(hal_t *hal, uint8_t on)
 {
-    set_led_bit(hal, (uint8_t)LED_BODY_BIT, on);
+    set_led_bit(hal, (uint8_t)HAL_LED_WORD_BODY_BIT, on);
 }
 
 void hal_set_front_led(hal_t *hal, uint8_t on)
 {
-    set_led_bit(hal, (uint8_t)LED_FRONT_BIT, on);
+    set_led_bit(hal, (uint8_t)HAL_LED_WORD_FRONT_BIT, on);
 }
 
 uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)

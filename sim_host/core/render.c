@@ -9,6 +9,8 @@
  */
 #include "render.h"
 
+#include "units.h"
+
 #include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <png.h>
@@ -20,7 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI_F 3.14159265358979323846f
+#define PI_F ((float)UNITS_PI)
 
 struct render_ctx {
     OSMesaContext gl;  /**< owned */

@@ -141,8 +141,8 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
     }
 }
 
-void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, 8, on); }
-void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, 9, on); }
+void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_BODY_BIT, on); }
+void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_FRONT_BIT, on); }
 
 /* The overhead tracker: ground truth, with Gaussian noise and dropout from
  * the robot's own stream (drawn only when the tracker is on, so a run

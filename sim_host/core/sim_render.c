@@ -52,8 +52,8 @@ int sim_render_png(const sim_t *simp, render_ctx_t *ctx, const char *png_path, c
         robots[i].y = r->y;
         robots[i].theta = r->theta;
         robots[i].leds = (uint8_t)(r->leds & 0xffu);
-        robots[i].body_led = (uint8_t)((r->leds >> 8) & 1u);
-        robots[i].front_led = (uint8_t)((r->leds >> 9) & 1u);
+        robots[i].body_led = (uint8_t)((r->leds >> HAL_LED_WORD_BODY_BIT) & 1u);
+        robots[i].front_led = (uint8_t)((r->leds >> HAL_LED_WORD_FRONT_BIT) & 1u);
         robots[i].fill_rgb = drawing.robot_rgb[i];
     }
     for (uint32_t k = 0; k < sc->object_count; k++) {

@@ -55,11 +55,11 @@ firmware-check: lcm-types firmware-gates firmware-hal-tests firmware-flash-tests
 	@echo "firmware-check: all passed"
 
 firmware-gates: lcm-types | $(BUILD)/config.mk
-	@python3 tests/firmware/image_gates.py --build $(FW_OUT) --lcm-c-dir $(FW_LCM_C_DIR) \
+	@$(PYTHON) tests/firmware/image_gates.py --build $(FW_OUT) --lcm-c-dir $(FW_LCM_C_DIR) \
 	  --lcm-cflags '$(LCM_CFLAGS)' --images $(FW_IMAGE_LIST)
 
-firmware-flash-tests:
-	@python3 tools/flash/test_flash.py
+firmware-flash-tests: deps
+	@$(PYTHON) tools/tests/flash/test_epuck.py
 
 # ------------------------------------------------ host tests of hal/epuck
 FW_HOST := $(FW_OUT)/host
@@ -113,7 +113,7 @@ $(FW_HOST)/cpu_harness: tests/firmware/cpu_harness.c $(FW_CPU_SRC) $(wildcard fi
 
 firmware-cpu: $(FW_HOST)/cpu_harness
 	@$< 50 > /dev/null
-	@python3 tests/firmware/cpu_report.py $< $(FW_CPU_STEPS) --out $(FW_OUT)/cpu.md
+	@$(PYTHON) tests/firmware/cpu_report.py $< $(FW_CPU_STEPS) --out $(FW_OUT)/cpu.md
 
 # ------------------------------------------------ flashing
 HEX ?=
@@ -122,7 +122,7 @@ ROBOT_ID ?=
 flash:
 	@if [ -z "$(HEX)" ] || [ -z "$(DEVICE)" ]; then \
 	  echo "usage: make flash HEX=build/firmware/xc16/forager.hex DEVICE=/dev/rfcomm0 [ROBOT_ID=N]" >&2; exit 2; fi
-	python3 tools/flash/epuck_flash.py $(HEX) $(DEVICE) $(if $(ROBOT_ID),--robot-id $(ROBOT_ID))
+	$(PYTHON) -m swarmtools.flash.epuck $(HEX) $(DEVICE) $(if $(ROBOT_ID),--robot-id $(ROBOT_ID))
 
 # ------------------------------------------------ XC16 build
 XC16_DIR ?=

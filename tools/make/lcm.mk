@@ -1,12 +1,11 @@
 # lcm.mk - LCM telemetry: message types (lcm_types/*.lcm) generated into C,
 # Python and (with a JDK) a Java jar for lcm-spy; the simulator's publisher
-# (sim_host/core/telemetry.c) linked against the wheel's liblcm; the tools of
-# tools/telemetry/ and their tests.
+# (sim_host/core/telemetry.c) linked against the wheel's liblcm.  The Python
+# tools are the swarmtools package (python.mk).
 #
 #   make lcm-types     build/lcm_c/, build/lcm_python/, build/lcm_types.jar
 #   make spy           lcm-spy with our types  (LCM_URL=udpm://... to choose the bus)
 #   make monitor       the terminal dashboard   (LCM_URL as for spy)
-#   make telemetry-tests   the Python tests (also part of `make test`)
 #
 # Generated code lives in build/ only.
 
@@ -78,7 +77,7 @@ $(LCM_TYPES_JAR): $(LCM_TYPES) | $(BUILD)/config.mk
 
 LCM_TYPE_OUTPUTS := $(LCM_C_STAMP) $(LCM_PY_STAMP) $(if $(and $(JAVAC),$(JAR)),$(LCM_TYPES_JAR))
 
-.PHONY: lcm-types spy monitor telemetry-tests telemetry-deps
+.PHONY: lcm-types spy monitor
 lcm-types: $(LCM_TYPE_OUTPUTS)
 all: $(LCM_TYPE_OUTPUTS)
 
@@ -90,8 +89,8 @@ spy:
 	@echo "make spy: lcm-spy needs a JDK (javac and jar) to build $(LCM_TYPES_JAR); install one (e.g. openjdk-17-jdk-headless)"; exit 1
 endif
 
-monitor: $(LCM_PY_STAMP)
-	$(PYTHON) tools/telemetry/monitor.py $(if $(LCM_URL),--lcm '$(LCM_URL)')
+monitor: deps
+	$(PYTHON) -m swarmtools.telemetry.monitor $(if $(LCM_URL),--lcm '$(LCM_URL)')
 
 # The host side of the robots' framing (firmware/telemetry/telemetry_frame.c) as a
 # shared library, so the Python tests check the bridge's decoder against the
@@ -100,19 +99,6 @@ TELEMETRY_FRAME_SO := $(BUILD)/telemetry/libtelemetry_frame.so
 $(TELEMETRY_FRAME_SO): firmware/telemetry/telemetry_frame.c firmware/telemetry/telemetry_frame.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ firmware/telemetry/telemetry_frame.c
-
-# matplotlib for tools/telemetry/plot_run.py (pinned wheels).
-TELEMETRY_DEPS_STAMP := $(VENV)/.telemetry-installed
-$(TELEMETRY_DEPS_STAMP): tools/telemetry/requirements.txt | $(BUILD)/config.mk
-	$(VENV)/bin/pip install --disable-pip-version-check -q -r tools/telemetry/requirements.txt
-	touch $@
-telemetry-deps: $(TELEMETRY_DEPS_STAMP)
-
-telemetry-tests: $(LCM_TYPE_OUTPUTS) $(TELEMETRY_FRAME_SO) $(BUILD)/swarmsim $(TELEMETRY_DEPS_STAMP)
-	@echo "== tools/telemetry/tests (Python unittest)"
-	SWARMSIM=$(BUILD)/swarmsim TELEMETRY_FRAME_SO=$(TELEMETRY_FRAME_SO) $(PYTHON) tools/telemetry/tests/run.py
-
-EXTRA_TESTS += telemetry-tests
 
 .PHONY: clean-lcm
 clean: clean-lcm

@@ -422,14 +422,14 @@ static void foraging_broadcast_truth(void *self, sim_t *sim)
     }
     switch (sim_step_count(sim) % NL_KIND_COUNT) {
     case NL_KIND_FOOD:
-        frame = nest_link_encode_food((int32_t)lround(f->food * 16.0));
+        frame = nest_link_encode_food((int32_t)lround(f->food * NL_FOOD_PER_TOKEN));
         break;
     case NL_KIND_WAITING:
         frame = nest_link_encode_waiting((uint16_t)f->waiting);
         break;
     default:
         frame = nest_link_encode_mean_oae(
-            f->n_foragers ? (uint32_t)lround(256.0 * (double)f->window_sum / f->n_foragers) : 0u);
+            f->n_foragers ? (uint32_t)lround((double)NL_MEAN_OAE_PER_UNIT * (double)f->window_sum / f->n_foragers) : 0u);
         break;
     }
     for (uint32_t i = 0; i < f->n_robots; i++) {

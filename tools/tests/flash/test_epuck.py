@@ -12,7 +12,7 @@ row address not on a row boundary or inside the bootloader's code, an end
 sequence other than 95 00 00 FF, anything sent after it) and the tests
 check that there is none and that program memory ends up as expected.
 
-Run: python3 tools/flash/test_flash.py  (unittest; prints "N passed, M failed")
+Run: .venv/bin/python tools/tests/flash/test_epuck.py  (unittest; prints "N passed, M failed")
 """
 import os
 import pty
@@ -25,10 +25,10 @@ import time
 import tty
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-FLASHER = os.path.join(HERE, 'epuck_flash.py')
-sys.path.insert(0, HERE)
-import epuck_flash as ef  # noqa: E402
+import swarmtools.flash.epuck as ef
+
+# The flasher as a user runs it (python -m, from the installed package).
+FLASHER_CMD = [sys.executable, '-m', 'swarmtools.flash.epuck']
 
 ROW = 64          # PC units per row
 BOOT_CODE = 0x17F40
@@ -216,7 +216,7 @@ class PtyCase(unittest.TestCase):
         self.boot = boot
         if boot is not None:
             boot.start()
-        r = subprocess.run([sys.executable, FLASHER, hex_path, device or self.device,
+        r = subprocess.run([*FLASHER_CMD, hex_path, device or self.device,
                             '--timeout', '0.5', *args],
                            capture_output=True, text=True, timeout=60)
         if boot is not None:

@@ -22,7 +22,7 @@ Study design
   l3        foraging_l3.yaml     4.4 (row 5.4): L = 3 m, d = 1 m
   ========  ===================  ===========================================
 
-* x 3 policies (``--set controller.policy=drtm|artm|frtm``)
+* x 3 policies (``--set robots.0.policy=drtm|artm|frtm``: the foragers are the first group)
 * x 50 repetitions, seeds 1..50 for every policy (``--reps``, ``--seed``)
 * x 12,000 steps of 100 ms = 1200 s (the scenarios' ``duration``; ``--steps``).
 
@@ -85,10 +85,10 @@ Command line
 ------------
 ::
 
-    .venv/bin/python tools/study/study_drtm.py                 # the full study
-    .venv/bin/python tools/study/study_drtm.py --quick         # smoke run
-    .venv/bin/python tools/study/study_drtm.py --conditions base,l3 --policies drtm,artm
-    .venv/bin/python tools/study/study_drtm.py --from-json out/study_drtm/results.json
+    .venv/bin/python -m swarmtools.study.drtm                 # the full study
+    .venv/bin/python -m swarmtools.study.drtm --quick         # smoke run
+    .venv/bin/python -m swarmtools.study.drtm --conditions base,l3 --policies drtm,artm
+    .venv/bin/python -m swarmtools.study.drtm --from-json out/study_drtm/results.json
 
 ``--reps N``         repetitions per (condition, policy), default 50
 ``--seed S``         first seed, default 1 (runs use S .. S+N-1)
@@ -116,7 +116,7 @@ garbled; 2 bad arguments, or a missing simulator binary or scenario file;
 
 Requirements: Python 3.11 with the pinned wheels of
 ``tools/requirements-study.txt`` (numpy, scipy, matplotlib). Tests:
-``python -m unittest discover -s tools/study -p 'test_*.py'``.
+tools/tests/study/test_drtm.py (part of ``make test``).
 """
 
 from __future__ import annotations
@@ -140,7 +140,7 @@ from typing import Any, Iterable, Sequence
 
 import numpy as np
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
+REPO_ROOT = Path(__file__).resolve().parents[3]
 FORMAT = "study_drtm/1"
 ALPHA = 0.05
 
@@ -252,11 +252,7 @@ PAPER_TTESTS: dict[str, dict[str, tuple[float, float, str]]] = {
 PAPER_REPS = 50
 PAPER_STEPS = 12000
 
-# Time series columns the figures need, and the full header swarmsim writes.
-TIMESERIES_COLUMNS: tuple[str, ...] = (
-    "step", "time_s", "oae_total", "robot_contacts", "static_contacts",
-    "distance_m", "food_nest", "food_collected", "waiting", "searching",
-    "returning", "active")
+# Time series columns the figures need (read by name: the header says the rest).
 SERIES_KEYS: tuple[str, ...] = ("food_nest", "oae_total", "active")
 
 
@@ -627,7 +623,7 @@ def render_markdown(results: dict[str, Any], figures: dict[str, list[str]] | Non
     reps = sorted({len(p["runs"]) for c in results["conditions"].values()
                    for p in c["policies"].values()})
     out = ["# Seed 000 simulation study: DRTM vs ARTM vs FRTM", ""]
-    out.append(f"Generated {results['generated_utc']} by `tools/study/study_drtm.py` "
+    out.append(f"Generated {results['generated_utc']} by `swarmtools.study.drtm` "
                f"(format {results['format']}).")
     if rerender_command:
         out.append(f"Re-rendered from results.json by `{rerender_command}`.")
@@ -836,7 +832,7 @@ def run_cell(sim: Path, scenario: Path, policy: str, folder: Path, args: argpars
            # No LCM log per run: 750 runs would write about 5 GB; the study
            # reads summary.json and timeseries.csv only.
            "--lcm", "off",
-           "--set", f"controller.policy={policy}"]
+           "--set", f"robots.0.policy={policy}"]
     if args.steps is not None:
         cmd += ["--steps", str(args.steps)]
     t0 = time.monotonic()
@@ -1029,8 +1025,7 @@ def invocation(argv: Sequence[str]) -> str:
             exe = rel
     except ValueError:
         pass
-    script = sys.argv[0] if sys.argv and sys.argv[0] else "tools/study/study_drtm.py"
-    return shlex.join([exe, script, *argv])
+    return shlex.join([exe, "-m", "swarmtools.study.drtm", *argv])
 
 
 def main(argv: Sequence[str] | None = None) -> int:

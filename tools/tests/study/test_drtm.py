@@ -1,6 +1,6 @@
-"""Tests of tools/study/study_drtm.py (plain unittest, no simulator needed).
+"""Tests of swarmtools.study.drtm (plain unittest, no simulator needed).
 
-    python -m unittest discover -s tools/study -p 'test_*.py'
+    .venv/bin/python tools/tests/run.py   (make python-tests)
 
 The statistics (the pooled t-test against scipy.stats.ttest_ind(equal_var=True)
 and against hand-computed examples, the paper's sign convention), the
@@ -24,10 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-
-import study_drtm as sd  # noqa: E402
+import swarmtools.study.drtm as sd
 
 def write_run(folder, seed, steps=100, policy="drtm", robots=20, every=10,
               scenario="foraging_base"):
@@ -434,7 +431,7 @@ class TestEndToEnd(unittest.TestCase):
         self.assertEqual(rc, 1)
         self.assertIn("swarmsim exited with status 1 (a run failed)", err)
         self.assertIn("boom", err)
-        self.assertIn("controller.policy=artm", err)
+        self.assertIn("robots.0.policy=artm", err)
         self.assertIn("FAILED", out)
         self.assertFalse((self.dir / "out" / "results.md").exists())
 

@@ -1,0 +1,16 @@
+"""Runs the host tools' tests (tools/tests/telemetry, tools/tests/study;
+the flasher's run in `make firmware-check`) with unittest discovery and
+ends with one line 'python tools: N passed, N failed, N skipped'."""
+import sys
+import unittest
+from pathlib import Path
+
+here = Path(__file__).resolve().parent
+suite = unittest.TestSuite()
+for group in ("telemetry", "study"):
+    suite.addTests(unittest.defaultTestLoader.discover(str(here / group), top_level_dir=str(here)))
+result = unittest.TextTestRunner(verbosity=2).run(suite)
+failed = len(result.failures) + len(result.errors) + len(result.unexpectedSuccesses)
+skipped = len(result.skipped)
+print(f"python tools: {result.testsRun - failed - skipped} passed, {failed} failed, {skipped} skipped")
+sys.exit(0 if result.wasSuccessful() else 1)
