@@ -15,6 +15,14 @@
 #define EPUCK_STEPS_PER_REV 1000L
 /** Body diameter, micrometres (70 mm). */
 #define EPUCK_BODY_DIAMETER_UM 70000L
+/** IR sensors: on a circle of this radius around the centre, this high
+ *  above the floor, micrometres (EPUCK.md: ~33 mm, ~33 mm). */
+#define EPUCK_IR_MOUNT_RADIUS_UM 33000L
+#define EPUCK_IR_HEIGHT_UM 33000L
+/** The camera lens above the floor, micrometres (our estimate: the lens
+ *  sits below the ring of IR sensors; used for the apparent height of
+ *  objects in blob pixel counts). */
+#define EPUCK_CAMERA_HEIGHT_UM 30000L
 
 /** IR sensor bearings IR0..IR7, degrees counter-clockwise from straight
  *  ahead (EPUCK.md): the one table; everything else derives from it. */
@@ -30,14 +38,20 @@ int16_t units_ir_bearing_mrad(uint8_t index);
 #define UNITS_TWO_PI_MRAD 6283
 
 /* The same facts in floating point, for the simulator and host tools (the
- * firmware uses the integer forms above). */
+ * firmware uses the integer forms above), derived from them. */
 #define UNITS_PI 3.14159265358979323846
-/** Body radius, m. */
-#define EPUCK_BODY_RADIUS_M 0.035f
+/** Body radius, m (float: the simulator's geometry is float). */
+#define EPUCK_BODY_RADIUS_M ((float)(EPUCK_BODY_DIAMETER_UM / 2) / 1e6f)
 /** Wheel travel per motor step, m (pi * 41 mm / 1000). */
-#define EPUCK_STEP_M (3.14159265358979 * 0.041 / 1000.0)
+#define EPUCK_STEP_M (UNITS_PI * (double)EPUCK_WHEEL_DIAMETER_UM / 1e6 / (double)EPUCK_STEPS_PER_REV)
 /** Axle length (wheel separation), m. */
-#define EPUCK_AXLE_M 0.053
+#define EPUCK_AXLE_M ((double)EPUCK_AXLE_UM / 1e6)
+#define EPUCK_IR_MOUNT_RADIUS_M ((float)EPUCK_IR_MOUNT_RADIUS_UM / 1e6f)
+#define EPUCK_IR_HEIGHT_M ((float)EPUCK_IR_HEIGHT_UM / 1e6f)
+#define EPUCK_CAMERA_HEIGHT_M ((float)EPUCK_CAMERA_HEIGHT_UM / 1e6f)
+/** The camera frame of the e-puck image: 40 x 20 pixels (hal/epuck). */
+#define EPUCK_CAMERA_WIDTH_PX 40u
+#define EPUCK_CAMERA_HEIGHT_PX 20u
 
 /** Millimetres travelled by a wheel for `steps` motor steps
  *  (0.12881 mm per step), rounded toward zero.  |steps| <= 1,000,000. */

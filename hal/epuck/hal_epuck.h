@@ -60,6 +60,7 @@
 
 #include "blob_detect.h"
 #include "hal.h"
+#include "units.h"
 
 /** Received IR messages kept between two steps (libIrcom's queue is 20). */
 #define HAL_EPUCK_INBOX 16u
@@ -70,8 +71,8 @@
  *  sensor rows around the horizon subsampled by 16: 40 x 20 RGB565 pixels,
  *  1600 bytes.  Two of them (double buffering) take 3200 bytes, the RAM of
  *  one 40 x 40 frame. */
-#define HAL_EPUCK_CAM_WIDTH 40u
-#define HAL_EPUCK_CAM_HEIGHT 20u
+#define HAL_EPUCK_CAM_WIDTH EPUCK_CAMERA_WIDTH_PX
+#define HAL_EPUCK_CAM_HEIGHT EPUCK_CAMERA_HEIGHT_PX
 #define HAL_EPUCK_FRAME_BYTES (HAL_EPUCK_CAM_WIDTH * HAL_EPUCK_CAM_HEIGHT * 2u)
 /** Value of hal_robot_id when no id was flashed (the word is erased). */
 #define HAL_EPUCK_NO_ID 0xFFFFu

@@ -338,8 +338,8 @@ void scenario_defaults(scenario_t *out)
     out->ambient.noise_rel = 0.01f;
     out->camera.fov = 56.0f;
     out->camera.range = 0.6f;
-    out->camera.width_px = 40;
-    out->camera.height_px = 40;
+    out->camera.width_px = EPUCK_CAMERA_WIDTH_PX;
+    out->camera.height_px = EPUCK_CAMERA_HEIGHT_PX;
     out->ircom.range = 0.25f;
     out->ircom.loss = 0.1f;
     out->ircom.bearing_noise = 5.0f;

@@ -9,17 +9,20 @@
 #include "sim_internal.h"
 #include "units.h"
 
-/* IR sensors sit on a 33 mm radius, 33 mm above the floor; the camera
- * looks forward from the front of the body [? height]. */
-#define IR_MOUNT_RADIUS 0.033f
-#define SENSOR_HEIGHT 0.033f
-#define CAMERA_HEIGHT 0.030f
+/* Where the IR sensors and the camera are: hal/units.h. */
+#define IR_MOUNT_RADIUS EPUCK_IR_MOUNT_RADIUS_M
+#define SENSOR_HEIGHT EPUCK_IR_HEIGHT_M
+#define CAMERA_HEIGHT EPUCK_CAMERA_HEIGHT_M
 
-/* Sensor bearings as unit vectors in the robot frame (IR0..IR7). */
-static const float ir_cos[HAL_IR_COUNT] = { 0.956305f, 0.642788f, 0.0f, -0.866025f,
-                                            -0.866025f, 0.0f, 0.642788f, 0.956305f };
-static const float ir_sin[HAL_IR_COUNT] = { -0.292372f, -0.766044f, -1.0f, -0.5f,
-                                            0.5f, 1.0f, 0.766044f, 0.292372f };
+void sensors_init(struct sim *sim)
+{
+    /* The sensors' bearings as unit vectors in the robot frame, from the
+     * one table of bearings (units.h). */
+    static const int deg[HAL_IR_COUNT] = EPUCK_IR_BEARINGS_DEG;
+    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
+        sim->ir_dir[s] = v2((float)cos(deg[s] * UNITS_PI / 180.0), (float)sin(deg[s] * UNITS_PI / 180.0));
+    }
+}
 
 /* Proximity (raw counts) against distance from the sensor to a surface,
  * measured on a real e-puck (Webots calibration, EPUCK.md). */
@@ -95,7 +98,7 @@ void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
         float d = INFINITY;
         if (nr > 1 || no > 0 || nw > 0) {
-            vec2_t a = v2_rot(v2(ir_cos[s], ir_sin[s]), ch, sh);
+            vec2_t a = v2_rot(sim->ir_dir[s], ch, sh);
             vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
             cone_t k = geom_cone_dir(p, a, half, cos_half, sin_half);
             for (uint32_t j = 0; j < nr; j++) {
@@ -124,7 +127,7 @@ void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
     const scenario_t *sc = sim->sc;
     float ch = cosf(r->theta), sh = sinf(r->theta);
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
-        vec2_t a = v2_rot(v2(ir_cos[s], ir_sin[s]), ch, sh);
+        vec2_t a = v2_rot(sim->ir_dir[s], ch, sh);
         vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
         /* Irradiance on the sensor: intensity * cos(incidence) / d^2 from
          * each lamp, in 3D (lamps hang above the floor).  Shadows cast by

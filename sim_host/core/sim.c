@@ -182,6 +182,7 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     for (uint32_t i = 0; i < sim->n; i++) {
         sim->step_order[i] = i;
     }
+    sensors_init(sim);
     build_obstacles(sim);
     float (*boxes)[4] = calloc(no, sizeof *boxes);
     int bad = !boxes;

@@ -128,6 +128,7 @@ struct sim {
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;
 
+    vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
 };
 
@@ -144,6 +145,8 @@ int placement_run(struct sim *sim, char err[256]);
 float placement_obstacle_gap(const obstacle_t *o, vec2_t p);
 
 /* sensors.c */
+/** Precomputes what the sensor models share (sensor directions). */
+void sensors_init(struct sim *sim);
 /** Noise-free calibrated proximity at distance d (m) from a surface. */
 float sensors_ir_curve(float d, float range);
 void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
