@@ -191,7 +191,7 @@ static void test_defaults(void **state)
     assert_float_equal(sc->camera.fov, 56.0, 1e-6);
     assert_float_equal(sc->camera.range, 0.6, 1e-6);
     assert_int_equal(sc->camera.width_px, 40);
-    assert_int_equal(sc->camera.height_px, 40);
+    assert_int_equal(sc->camera.height_px, 20);   /* the e-puck image's frame */
     assert_float_equal(sc->ircom.range, 0.25, 1e-6);
     assert_float_equal(sc->ircom.loss, 0.1, 1e-6);
     assert_float_equal(sc->ircom.bearing_noise, 5.0, 1e-6);
