@@ -4,19 +4,23 @@
 #include <string.h>
 
 #include "common/random_walk.h"
+#include "examples/phototaxis.h"
 #include "foraging/forager.h"
 #include "foraging/nest_beacon.h"
 #include "tasks/foraging/foraging.h"
+#include "tasks/gather/gather.h"
 
 static const controller_def_t *const controllers[] = {
     &random_walk_def,
     &idle_def,
     &forager_def,
     &nest_beacon_def,
+    &phototaxis_def,
 };
 
 static const task_def_t *const tasks[] = {
     &foraging_task,
+    &gather_task,
 };
 
 #define COUNT(a) (sizeof (a) / sizeof (a)[0])

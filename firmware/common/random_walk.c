@@ -2,8 +2,6 @@
 
 #include "units.h"
 
-/* Full turn in mrad: a tumble angle is uniform in (-PI, PI]. */
-
 void random_walk_default_params(random_walk_params_t *params)
 {
     params->speed_steps_s = 500;

@@ -423,13 +423,16 @@ int runner_run(const run_options_t *opt, char err[512])
             if (f) fclose(f);
         }
         if (!opt->quiet && rc == 0) {
-            double robot_steps = (double)opt->reps * (double)opt->steps * scenario_robot_count(opt->scenario);
-            double sim_time = (double)opt->reps * (double)opt->steps * opt->scenario->control_period_ms / 1000.0;
+            /* The steps the runs really did: a task may have stopped them. */
+            double steps = 0.0;
+            for (uint32_t r = 0; r < opt->reps; r++) steps += (double)job.results[r].steps;
+            double robot_steps = steps * scenario_robot_count(opt->scenario);
+            double sim_time = steps * opt->scenario->control_period_ms / 1000.0;
             printf("outputs: %s/ (run_<seed>/summary.json, timeseries.csv%s%s)\n", opt->out_dir,
                    opt->frames_every ? ", frames/*.png" : "",
                    opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
-            fprintf(stderr, "swarmsim: %u run(s) x %llu steps x %u robots in %.3f s wall on %u thread(s): "
-                    "%.0f robot-steps/s, %.0fx real time\n", opt->reps, (unsigned long long)opt->steps,
+            fprintf(stderr, "swarmsim: %u run(s), %.0f steps x %u robots in %.3f s wall on %u thread(s): "
+                    "%.0f robot-steps/s, %.0fx real time\n", opt->reps, steps,
                     scenario_robot_count(opt->scenario), wall, nthreads, robot_steps / wall, sim_time / wall);
         }
     }

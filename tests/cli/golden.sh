@@ -27,6 +27,7 @@ pins=(
     "foraging_ea20   196183229b92590d"
     "foraging_nr30   116b3d16c7b0e23a"
     "foraging_l3     964c2238c4c6fc44"
+    "phototaxis_gather f8ae7bdce4060218"
 )
 
 pass=0 fail=0

@@ -15,7 +15,7 @@ for spec in 20:12000 200:6000 2000:1500; do
     n=${spec%%:*} steps=${spec##*:}
     side=$(awk -v n="$n" 'BEGIN { printf "%.3f", sqrt(n / 1.25) }')
     line=$("$sim" "$scenario" --threads 1 --steps "$steps" --out "$out/$n" \
-        --set robots.count="$n" --set arena.width="$side" --set arena.height="$side" ${BENCH_ARGS:-} 2>&1 >/dev/null |
+        --set robots.0.count="$n" --set arena.width="$side" --set arena.height="$side" ${BENCH_ARGS:-} 2>&1 >/dev/null |
         grep 'robot-steps/s')
     wall=$(sed -E 's/.* in ([0-9.]+) s wall.*/\1/' <<<"$line")
     rate=$(sed -E 's/.*: ([0-9]+) robot-steps\/s.*/\1/' <<<"$line")
