@@ -24,7 +24,8 @@
  * at most 248 bytes, so a frame is at most TELEMETRY_FRAME_MAX = 251 bytes.
  *
  * Pure functions, no HAL: telemetry_tx.h sends frames through the HAL.
- * The host side is tools/telemetry/frames.py (decoder) and bridge.py.
+ * The host side is tools/swarmtools/telemetry/frames.py (decoder) and
+ * bridge.py, and the simulator's sim_host/core/robot_link.c.
  */
 #ifndef FW_TELEMETRY_FRAME_H
 #define FW_TELEMETRY_FRAME_H
@@ -56,8 +57,15 @@ typedef enum telemetry_channel {
     TELEMETRY_CH_SWARM_STATE = 3,   /**< SWARM_STATE, swarmlcm.swarm_state_t (a nest beacon) */
     TELEMETRY_CH_RUN_INFO = 4,      /**< RUN_INFO, swarmlcm.run_info_t */
     TELEMETRY_CH_RUN_SUMMARY = 5,   /**< RUN_SUMMARY, swarmlcm.run_summary_t */
-    TELEMETRY_CH_SCHEMA = 6         /**< TELEMETRY_SCHEMA, swarmlcm.schema_t */
+    TELEMETRY_CH_SCHEMA = 6,        /**< TELEMETRY_SCHEMA, swarmlcm.schema_t */
+    TELEMETRY_CH_COUNT = 7
 } telemetry_channel_t;
+
+/** The LCM channel of each id (index = id; "" for none), for the hosts that
+ *  republish frames (the simulator; tools/swarmtools/telemetry/frames.py
+ *  keeps the same table, a test compares them). */
+#define TELEMETRY_CHANNEL_NAMES \
+    { "", "ROBOT_STATE", "SWARM_EVENT", "SWARM_STATE", "RUN_INFO", "RUN_SUMMARY", "TELEMETRY_SCHEMA" }
 
 /** CRC-16/CCITT-FALSE of `len` bytes continuing from `crc` (start with
  *  0xFFFF).  Bitwise: no table in flash.  "123456789" gives 0x29B1. */

@@ -215,6 +215,18 @@ static const param_desc_t tracker_params[] = {
     PARAM_END
 };
 
+static const param_desc_t robot_telemetry_params[] = {
+    { .key = "enabled", PARAM_BOOL_FIELD(SC, robot_telemetry.enabled),
+      .doc = "every robot runs the image's telemetry sender; its frames are republished" },
+    { .key = "channel_prefix", PARAM_STRING_FIELD(SC, robot_telemetry.channel_prefix),
+      .doc = "prefix of the republished channels (as the bridge's --prefix)" },
+    { .key = "baud", PARAM_FIELD(SC, robot_telemetry.baud, uint32_t), .min = 0, .max = 10000000,
+      .doc = "the UART's rate, bits/s (0: unlimited); bytes beyond it wait in the sender" },
+    { .key = "dump", PARAM_BOOL_FIELD(SC, robot_telemetry.dump),
+      .doc = "also write each robot's raw byte stream to run_<seed>/uart/robot_<id>.bin" },
+    PARAM_END
+};
+
 static const param_desc_t output_params[] = {
     { .key = "timeseries_every", PARAM_FIELD(SC, output.timeseries_every, uint32_t), .min = 1,
       .max = 1e9, .doc = "control steps between time-series CSV rows" },
@@ -254,6 +266,7 @@ MAPPING_SCHEMA(ircom);
 MAPPING_SCHEMA(wheels);
 MAPPING_SCHEMA(tracker);
 MAPPING_SCHEMA(output);
+MAPPING_SCHEMA(robot_telemetry);
 
 static const seq_desc_t poses_seq = {
     "poses", SCENARIO_MAX_POSES, sizeof(pose_def_t), &pose_default, &pose_schema,
@@ -297,6 +310,8 @@ static const child_t top_children[] = {
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
     { "tracker", CHILD_MAPPING, &tracker_schema, NULL, "overhead tracker (hal_pose)" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
+    { "robot_telemetry", CHILD_MAPPING, &robot_telemetry_schema, NULL,
+      "the robots' own telemetry, in the loop" },
     CHILD_END
 };
 static const schema_t top_schema = { top_params, top_children, fill_task, task_key };
@@ -350,6 +365,10 @@ void scenario_defaults(scenario_t *out)
     out->wheels.speed_noise_rel = 0.0f;
     out->tracker.enabled = 0;
     out->output.timeseries_every = 10;
+    out->robot_telemetry.enabled = 0;
+    snprintf(out->robot_telemetry.channel_prefix, sizeof out->robot_telemetry.channel_prefix, "FW_");
+    out->robot_telemetry.baud = 115200;
+    out->robot_telemetry.dump = 0;
 }
 
 uint32_t scenario_robot_count(const scenario_t *sc)

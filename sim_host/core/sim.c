@@ -127,6 +127,68 @@ static void init_controllers(struct sim *sim)
     }
 }
 
+/* The robots' own telemetry, when the scenario runs it in the loop. */
+static int create_robot_links(struct sim *sim, char err[256])
+{
+    const scenario_t *sc = sim->sc;
+    if (!sc->robot_telemetry.enabled) {
+        return 0;
+    }
+    size_t n = sim->n ? sim->n : 1;
+    sim->robot_tx = calloc(n, sizeof *sim->robot_tx);
+    sim->links = calloc(n, sizeof *sim->links);
+    if (!sim->robot_tx || !sim->links) {
+        snprintf(err, 256, "out of memory for the robots' telemetry links");
+        return -1;
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        robot_telemetry_init(&sim->robot_tx[i]);
+        robot_link_init(&sim->links[i]);
+    }
+    /* 8N1: ten bits a byte. */
+    uint64_t per_step = (uint64_t)sc->robot_telemetry.baud * sc->control_period_ms / 10000u;
+    sim->link_budget = sc->robot_telemetry.baud == 0 || per_step > UINT32_MAX ? UINT32_MAX : (uint32_t)per_step;
+    return 0;
+}
+
+/* After robot r's step: its image's telemetry sender, as on the robot.
+ * It reads only the robot's own state and this step's sensor caches, so
+ * the run is the same with it or without it. */
+static void robot_telemetry_of(struct sim *sim, uint32_t i)
+{
+    sim_robot_t *r = &sim->robots[i];
+    robot_telemetry_platform_t p;
+    robot_telemetry_source_t src;
+    uint64_t now = sim->step + 1;
+    p.wheel_left = r->cmd_left;
+    p.wheel_right = r->cmd_right;
+    p.leds = (int16_t)r->leds;
+    p.ir_max = -1;
+    p.ir_max_index = -1;
+    if (r->ir_stamp == now) {
+        p.ir_max = 0;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+            if (r->ir[k] > p.ir_max) {
+                p.ir_max = (int16_t)r->ir[k];
+                p.ir_max_index = (int8_t)k;
+            }
+        }
+        if (p.ir_max_index < 0) p.ir_max_index = 0;
+    }
+    p.ambient_min = -1;
+    if (r->ambient_stamp == now) {
+        uint16_t low = HAL_RAW_MAX;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) low = r->ambient[k] < low ? r->ambient[k] : low;
+        p.ambient_min = (int16_t)low;
+    }
+    p.blobs = r->camera_stamp == now ? (int8_t)r->blob_count : -1;
+    src.controller = r->def->name;
+    src.observables = r->def->observables;
+    src.state = r->ctrl;
+    src.state_name = r->def->state_name(r->ctrl);
+    robot_telemetry_step(&sim->robot_tx[i], &r->hal, &src, &p);
+}
+
 static int create_tasks(struct sim *sim, char err[256])
 {
     const scenario_t *sc = sim->sc;
@@ -206,6 +268,10 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     }
     init_controllers(sim);
     find_counters(sim);
+    if (create_robot_links(sim, err) != 0) {
+        sim_destroy(sim);
+        return NULL;
+    }
     if (world_create(sim, err) != 0 || grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0
         || create_tasks(sim, err) != 0) {
         sim_destroy(sim);
@@ -239,6 +305,8 @@ void sim_destroy(sim_t *sim)
     free(sim->obstacles);
     free(sim->obstacle_mark);
     free(sim->events);
+    free(sim->robot_tx);
+    free(sim->links);
     free(sim);
 }
 
@@ -250,10 +318,17 @@ void sim_step(sim_t *sim)
             sim->tasks[t].def->before_control(sim->tasks[t].self, sim);
         }
     }
+    for (uint32_t i = 0; sim->links && i < sim->n; i++) {
+        robot_link_begin_step(&sim->links[i], sim->link_budget);
+    }
     for (uint32_t k = 0; k < sim->n; k++) {
-        sim_robot_t *r = &sim->robots[sim->step_order[k]];
+        uint32_t i = sim->step_order[k];
+        sim_robot_t *r = &sim->robots[i];
         if (r->ctrl) {
             r->def->step(r->ctrl, &r->hal);
+            if (sim->robot_tx) {
+                robot_telemetry_of(sim, i);
+            }
         }
     }
     ircom_deliver(sim);
@@ -446,6 +521,11 @@ void sim_event(sim_t *sim, uint32_t robot, const char *kind, const char *detail,
     e->kind = kind;
     e->detail = detail;
     e->value = value;
+}
+
+const struct robot_link *sim_robot_link(const sim_t *sim, uint32_t i)
+{
+    return sim->links ? &sim->links[i] : NULL;
 }
 
 uint32_t sim_events(const sim_t *sim, const sim_event_rec_t **events)

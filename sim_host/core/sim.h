@@ -111,6 +111,11 @@ typedef struct sim_event_rec {
 /** The events recorded during the last step. */
 uint32_t sim_events(const sim_t *sim, const sim_event_rec_t **events);
 
+struct robot_link;
+/** Robot `i`'s telemetry link when the scenario runs the robots' own
+ *  telemetry (robot_telemetry.enabled), else NULL. */
+const struct robot_link *sim_robot_link(const sim_t *sim, uint32_t i);
+
 /** FNV-1a hash of every robot's pose bits and counters: equal hashes mean
  *  bit-identical runs. */
 uint64_t sim_state_hash(const sim_t *sim);

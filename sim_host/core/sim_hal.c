@@ -174,9 +174,12 @@ hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
 
 uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)
 {
-    /* Telemetry is published by the simulator itself (LCM work); the
-     * firmware's bytes are accepted and dropped here. */
-    (void)hal;
+    /* The robot's own telemetry goes down its simulated UART when the
+     * scenario runs it in the loop (robot_link.h); otherwise the simulator
+     * publishes from its own view and these bytes are accepted and dropped. */
+    if (hal->sim->links) {
+        return robot_link_write(&hal->sim->links[hal->index], bytes, len);
+    }
     (void)bytes;
     return len;
 }

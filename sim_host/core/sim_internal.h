@@ -13,7 +13,9 @@
 #include "hal.h"
 #include "rand.h"
 #include "sim.h"
+#include "robot_link.h"
 #include "task.h"
+#include "telemetry/robot_telemetry.h"
 
 /** libIrcom keeps a queue of 20 received messages. */
 #define SIM_IRCOM_QUEUE 20u
@@ -124,6 +126,12 @@ struct sim {
 
     uint32_t n_counters;
     sim_counter_t counters[SIM_MAX_COUNTERS];
+
+    /* robot_telemetry.enabled: each robot's sender and the link it writes
+     * to (NULL otherwise). */
+    robot_telemetry_t *robot_tx;
+    robot_link_t *links;
+    uint32_t link_budget;          /**< bytes per step the UART carries */
 
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;

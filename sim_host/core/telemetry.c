@@ -23,6 +23,8 @@
 #include <string.h>
 #include <time.h>
 
+#include <sys/stat.h>
+
 #include <lcm/lcm.h>
 
 #include "sim_internal.h"
@@ -65,6 +67,13 @@ struct telemetry {
     float *prev_counter;         /* n x n_counters, in each robot's table order */
     const char **prev_state;
     uint8_t *prev_escaped;
+
+    /* The robots' own telemetry (robot_telemetry.enabled): republished on
+     * prefixed channels; raw bytes dumped per robot on request. */
+    char fw_channel[TELEMETRY_CH_COUNT][48];
+    int fw_channel_len[TELEMETRY_CH_COUNT];
+    char dump_dir[1024];         /* "" when not dumping */
+    FILE **dump;                 /* per robot, opened at its first bytes */
 
     /* Controller states seen so far, for SWARM_STATE's robots by state. */
     uint16_t n_states;
@@ -169,6 +178,24 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
         telemetry_close(t, 0, err);
         return -1;
     }
+    if (sim->links) {
+        static const char *const names[TELEMETRY_CH_COUNT] = TELEMETRY_CHANNEL_NAMES;
+        for (int c = 1; c < TELEMETRY_CH_COUNT; c++) {
+            t->fw_channel_len[c] = snprintf(t->fw_channel[c], sizeof t->fw_channel[c], "%s%s",
+                                            sim->sc->robot_telemetry.channel_prefix, names[c]);
+        }
+        if (sim->sc->robot_telemetry.dump && log_path) {
+            const char *slash = strrchr(log_path, '/');
+            size_t len = slash ? (size_t)(slash - log_path) : 0;
+            snprintf(t->dump_dir, sizeof t->dump_dir, "%.*s%suart", (int)len, log_path, len ? "/" : "");
+            t->dump = calloc(n, sizeof *t->dump);
+            if (!t->dump || (mkdir(t->dump_dir, 0777) != 0 && errno != EEXIST)) {
+                snprintf(err, 256, "%.150s: cannot create: %.60s", t->dump_dir, strerror(errno ? errno : ENOMEM));
+                telemetry_close(t, 0, err);
+                return -1;
+            }
+        }
+    }
     t->seed = sim->seed;
     t->robot_hz = opt->robot_hz;
     t->swarm_hz = opt->swarm_hz;
@@ -267,6 +294,37 @@ static uint8_t *reserve(telemetry_t *t, int size)
             (t)->write_error = ENOMEM;                                             \
         }                                                                          \
     } while (0)
+
+/* ------------------------------------------------------------ robots' own frames */
+
+/* What robot i's image sent this step, republished as the bridge does
+ * (the payload as it came, on the prefixed channel of its id), and its raw
+ * bytes dumped when asked. */
+static void send_robot_frames(telemetry_t *t, const struct sim *sim, uint32_t i)
+{
+    const robot_link_t *l = &sim->links[i];
+    for (uint8_t k = 0; k < l->n_frames; k++) {
+        const robot_link_frame_t *f = &l->frames[k];
+        int off = LOG_HEADER + t->fw_channel_len[f->channel];
+        uint8_t *b = reserve(t, off + f->len);
+        if (!b) {
+            t->write_error = t->write_error ? t->write_error : ENOMEM;
+            return;
+        }
+        memcpy(b + off, f->payload, f->len);
+        publish(t, t->fw_channel[f->channel], t->fw_channel_len[f->channel], b, off, f->len, utime_of(sim));
+    }
+    if (t->dump && l->raw_len) {
+        if (!t->dump[i]) {
+            char path[1100];
+            snprintf(path, sizeof path, "%s/robot_%u.bin", t->dump_dir, i);
+            t->dump[i] = fopen(path, "wb");
+        }
+        if (!t->dump[i] || fwrite(l->raw, l->raw_len, 1, t->dump[i]) != 1) {
+            t->write_error = t->write_error ? t->write_error : (errno ? errno : EIO);
+        }
+    }
+}
 
 /* ------------------------------------------------------------ robot state */
 
@@ -589,6 +647,9 @@ void telemetry_step(telemetry_t *t, const sim_t *simp)
     for (uint32_t i = 0; i < sim->n; i++) {
         robot_events(t, sim, i);
     }
+    for (uint32_t i = 0; sim->links && i < sim->n; i++) {
+        send_robot_frames(t, sim, i);
+    }
     if (t->info_every && sim->step % t->info_every == 0) send_info(t, sim);
     if (t->swarm_every && sim->step % t->swarm_every == 0) send_swarm(t, sim);
     if (t->robot_every && sim->step % t->robot_every == 0) send_robots(t, sim);
@@ -657,6 +718,12 @@ int telemetry_close(telemetry_t *t, int keep, char err[256])
         }
         lcm_destroy(t->lcm);
     }
+    for (uint32_t i = 0; t->dump && i < t->n; i++) {
+        if (t->dump[i] && fclose(t->dump[i]) != 0 && !t->write_error) {
+            t->write_error = errno ? errno : EIO;
+        }
+    }
+    free(t->dump);
     free(t->buf);
     free(t->prev_counter);
     free(t->prev_state);
