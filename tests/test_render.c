@@ -198,16 +198,18 @@ static void test_scene_colours(void **state)
     };
     render_light_t light = {.x = -0.3f, .y = -0.38f};
     /* A task's floor disc (a nest), a ring and a line over everything. */
-    draw_shape_t shapes[3] = {
+    draw_shape_t shapes[4] = {
         {.kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = 0xB4B4B4u, .x = 0.25f, .y = -0.25f,
          .radius = 0.1f},
         {.kind = DRAW_RING, .layer = DRAW_OVER, .rgb = 0x102030u, .x = 0.0f, .y = 0.3f,
          .radius = 0.1f, .line = 0.01f},
         {.kind = DRAW_LINE, .layer = DRAW_OVER, .rgb = 0x405060u, .x = -0.4f, .y = -0.1f,
          .x2 = -0.1f, .y2 = -0.1f, .line = 0.01f},
+        {.kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = 0x901020u, .x = 0.1f, .y = -0.45f,
+         .text = "T=42"},
     };
     sc.shapes = shapes;
-    sc.shape_count = 3;
+    sc.shape_count = 4;
     sc.robots = &robot;
     sc.robot_count = 1;
     sc.objects = objs;
@@ -245,6 +247,25 @@ static void test_scene_colours(void **state)
     assert_int_equal(at_world(ctx, &sc, &pic, 0.0f, 0.3f), RENDER_RGB_FLOOR);
     assert_int_equal(at_world(ctx, &sc, &pic, -0.25f, -0.1f), 0x405060u);
     assert_int_equal(at_world(ctx, &sc, &pic, -0.25f, -0.13f), RENDER_RGB_FLOOR);
+    /* The label: its colour in a box above and right of its corner, and
+     * nowhere else. */
+    {
+        int in = 0, out = 0;
+        float c0, r0, c1, r1;
+        assert_int_equal(render_world_to_pixel(ctx, &sc, 0.095f, -0.35f, &c0, &r0), 0);
+        assert_int_equal(render_world_to_pixel(ctx, &sc, 0.35f, -0.455f, &c1, &r1), 0);
+        for (int y = 0; y < pic.h; y++) {
+            for (int x = 0; x < pic.w; x++) {
+                int box = x >= (int)c0 && x <= (int)c1 && y >= (int)r0 && y <= (int)r1;
+                if (px(&pic, x, y) == 0x901020u) {
+                    if (box) in++;
+                    else out++;
+                }
+            }
+        }
+        assert_true(in > 20);
+        assert_int_equal(out, 0);
+    }
     /* Light marker. */
     assert_int_equal(at_world(ctx, &sc, &pic, -0.3f, -0.38f),
                      RENDER_RGB_LIGHT);

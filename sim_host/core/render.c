@@ -171,6 +171,7 @@ int render_world_to_pixel(const render_ctx_t *ctx, const render_scene_t *scene,
 /** The drawing frame: world (x, y) m -> GL pixel (cx + x*s, cy + y*s). */
 typedef struct frame {
     float s, cx, cy;
+    int w_px;          /**< picture width, pixels */
 } frame_t;
 
 static void colour(uint32_t rgb)
@@ -272,6 +273,86 @@ static void draw_arena(const frame_t *f, const render_scene_t *sc)
     rect(f->cx - hw, f->cy - hh, f->cx + hw, f->cy + hh);
 }
 
+/* Labels: a 3 x 5 pixel font (digits, capitals, a little punctuation;
+ * lower case is drawn in capitals, anything else as '?').  Each glyph is
+ * 15 bits, rows top to bottom, three bits a row, the left pixel first. */
+typedef struct glyph { char ch; uint16_t bits; } glyph_t;
+static const glyph_t font[] = {
+    { ' ', 0x0000u },
+    { '%', 0x52A5u },
+    { '(', 0x2922u },
+    { ')', 0x224Au },
+    { '+', 0x05D0u },
+    { ',', 0x0014u },
+    { '-', 0x01C0u },
+    { '.', 0x0002u },
+    { '/', 0x12A4u },
+    { '0', 0x7B6Fu },
+    { '1', 0x2C97u },
+    { '2', 0x73E7u },
+    { '3', 0x73CFu },
+    { '4', 0x5BC9u },
+    { '5', 0x79CFu },
+    { '6', 0x79EFu },
+    { '7', 0x7249u },
+    { '8', 0x7BEFu },
+    { '9', 0x7BCFu },
+    { ':', 0x0410u },
+    { '=', 0x0E38u },
+    { '?', 0x7282u },
+    { 'A', 0x2BEDu },
+    { 'B', 0x6BAEu },
+    { 'C', 0x3923u },
+    { 'D', 0x6B6Eu },
+    { 'E', 0x79A7u },
+    { 'F', 0x79A4u },
+    { 'G', 0x396Bu },
+    { 'H', 0x5BEDu },
+    { 'I', 0x7497u },
+    { 'J', 0x126Au },
+    { 'K', 0x5BADu },
+    { 'L', 0x4927u },
+    { 'M', 0x5FEDu },
+    { 'N', 0x6B6Du },
+    { 'O', 0x2B6Au },
+    { 'P', 0x6BA4u },
+    { 'Q', 0x2B73u },
+    { 'R', 0x6BADu },
+    { 'S', 0x388Eu },
+    { 'T', 0x7492u },
+    { 'U', 0x5B6Fu },
+    { 'V', 0x5B6Au },
+    { 'W', 0x5BFDu },
+    { 'X', 0x5AADu },
+    { 'Y', 0x5A92u },
+    { 'Z', 0x72A7u },
+    { '_', 0x0007u },
+};
+
+static uint16_t glyph_bits(char c)
+{
+    if (c >= 'a' && c <= 'z')
+        c = (char)(c - 'a' + 'A');
+    for (size_t k = 0; k < sizeof font / sizeof font[0]; k++)
+        if (font[k].ch == c)
+            return font[k].bits;
+    return glyph_bits('?');
+}
+
+/* Text with its lower left corner at (x, y) pixels, `cell` pixels a font
+ * pixel, a blank column between letters. */
+static void text(float x, float y, const char *s, float cell)
+{
+    for (; *s != '\0'; s++, x += 4.0f * cell) {
+        uint16_t bits = glyph_bits(*s);
+        for (int row = 0; row < 5; row++)
+            for (int col = 0; col < 3; col++)
+                if (bits & (1u << (14 - 3 * row - col)))
+                    rect(x + (float)col * cell, y + (float)(4 - row) * cell,
+                         x + (float)(col + 1) * cell, y + (float)(5 - row) * cell);
+    }
+}
+
 /* A segment of width w pixels (at least one) from (x0, y0) to (x1, y1). */
 static void thick_line(float x0, float y0, float x1, float y1, float w)
 {
@@ -282,7 +363,7 @@ static void thick_line(float x0, float y0, float x1, float y1, float w)
         atan2f(dy, dx));
 }
 
-/* One shape of a task's drawing (drawing.h); labels are not drawn yet. */
+/* One shape of a task's drawing (drawing.h). */
 static void draw_shape(const frame_t *f, const draw_shape_t *d)
 {
     float x = f->cx + d->x * f->s, y = f->cy + d->y * f->s;
@@ -314,6 +395,14 @@ static void draw_shape(const frame_t *f, const draw_shape_t *d)
             thick_line(x, y, f->cx + d->x2 * f->s, f->cy + d->y2 * f->s,
                        isfinite(d->line) ? d->line * f->s : 0.0f);
         break;
+    case DRAW_LABEL: {
+        char buf[DRAW_TEXT_MAX + 1];
+        memcpy(buf, d->text, DRAW_TEXT_MAX);
+        buf[DRAW_TEXT_MAX] = '\0';
+        /* 2 pixels a font pixel on an 800-pixel picture, never under 1. */
+        text(x, y, buf, fmaxf(1.0f, floorf((float)f->w_px / 400.0f)));
+        break;
+    }
     default:
         break;
     }
@@ -407,7 +496,7 @@ static void draw_robot(const frame_t *f, const render_robot_t *rb, float r)
 static void draw_scene(const render_ctx_t *ctx, const render_scene_t *sc,
                        float s)
 {
-    frame_t f = {s, 0.5f * (float)ctx->w, 0.5f * (float)ctx->h};
+    frame_t f = {s, 0.5f * (float)ctx->w, 0.5f * (float)ctx->h, ctx->w};
 
     glViewport(0, 0, ctx->w, ctx->h);
     glDisable(GL_DEPTH_TEST);

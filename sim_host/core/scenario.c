@@ -14,8 +14,8 @@
  *  - A group names its controller; its policy defaults to the controller's
  *    first, its name to the controller's (with its index when taken).  A
  *    `poses` placement gives one pose per robot.
- *  - A task runs when its section is present (`foraging:`), in registry
- *    order whatever the file's order.
+ *  - A task runs when its section (named after the task) is present, in
+ *    registry order whatever the file's order.
  */
 #include "scenario.h"
 
@@ -79,13 +79,13 @@ static const param_desc_t group_params[] = {
     { .key = "controller", PARAM_STRING_FIELD(GRP, controller),
       .doc = "registered controller (swarmsim --help lists them)" },
     { .key = "policy", PARAM_STRING_FIELD(GRP, policy),
-      .doc = "variant of the controller (forager: drtm, artm, frtm; default its first)" },
+      .doc = "variant of the controller (swarmsim --help lists them; default its first)" },
     { .key = "heading", PARAM_ANGLE_FIELD(GRP, heading), .min = -360, .max = 360,
       .doc = "start heading, deg CCW from +x, or random" },
     { .key = "min_spacing", PARAM_FIELD(GRP, min_spacing, float), .min = 0.07, .max = 10,
       .doc = "centre-to-centre distance to robots placed before, m (the body is 0.07 m)" },
     { .key = "moves", PARAM_BOOL_FIELD(GRP, moves),
-      .doc = "false: a static body nothing can push (a beacon, a landmark)" },
+      .doc = "false: a static body nothing can push (a fixed station, a landmark)" },
     PARAM_END
 };
 
@@ -771,7 +771,8 @@ static int old_syntax(const loader_t *ld, const ynode_t *root)
     static const char *const moved[][2] = {
         { "controller", "robots are groups now: robots: [{count: 20, controller: NAME, policy: P, "
                         "params: {...}, placement: {...}}]" },
-        { "nest", "the nest belongs to its task now (foraging: {nest: {x, y, diameter}})" },
+        { "nest", "a nest is no longer a core key: a task that has one declares it in its own "
+                  "section (swarmsim --help lists the tasks' keys)" },
     };
     for (size_t i = 0; i < sizeof moved / sizeof moved[0]; i++) {
         const ynode_t *v = ytree_get(root, moved[i][0]);

@@ -93,7 +93,7 @@ typedef struct robot_group {
     placement_def_t placement;
     float heading;              /**< start heading, deg; NaN: random */
     float min_spacing;          /**< centre-to-centre distance to every robot placed before, m */
-    uint8_t moves;              /**< 0: a static body that nothing pushes (a beacon, a landmark) */
+    uint8_t moves;              /**< 0: a static body that nothing pushes (a fixed station, a landmark) */
 } robot_group_t;
 
 /** A task's section, parsed into the task's own config struct. */

@@ -276,7 +276,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
             occ_obj[nocc++] = obst[j];
         }
     }
-    /* The tasks' items (tokens, targets): seen and hiding like any object.
+    /* The tasks' items (things on the floor): seen and hiding like any object.
      * An item a robot carries sits just ahead of its lens and fills the view. */
     const sim_item_t *items[SCENARIO_MAX_TASKS] = { NULL };
     for (uint32_t t = 0; t < sim->n_tasks; t++) {

@@ -1,6 +1,7 @@
 /*
- * task.h - an experiment's world-side logic as a plug-in: food tokens and a
- * nest ledger (seed 000), targets (seed 002), path detection (seed 003).
+ * task.h - an experiment's world-side logic as a plug-in: the things on the
+ * floor, the ledgers and the detectors of an experiment, and its metrics.
+ * The seeds' tasks live in sim_host/tasks/<name>/; the core names none.
  *
  * A task has its own scenario section (a mapping named after it, strict
  * like the rest: its keys are descriptor tables), tells the robots of each
@@ -37,7 +38,7 @@
 #include "scenario.h"
 #include "sim.h"
 
-/** Something on the floor that the robots' camera sees (a token, a
+/** Something on the floor that the robots' camera sees (food, a
  *  target).  Items are not rigid: robots drive through them, and the IR
  *  sensors do not see them. */
 typedef struct sim_item {
@@ -47,7 +48,7 @@ typedef struct sim_item {
     uint8_t colour;    /**< hal_colour_t; HAL_COLOUR_NONE is not seen */
 } sim_item_t;
 
-/** A nested mapping of a task's section, e.g. foraging's `nest:`. */
+/** A nested mapping of a task's section, e.g. a `goal:` with its x, y, radius. */
 typedef struct param_section {
     const char *key;
     const param_desc_t *params;   /**< offsets from the task's config struct */

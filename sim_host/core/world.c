@@ -78,7 +78,7 @@ int world_create(struct sim *sim, char err[256])
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_robot_t *r = &sim->robots[i];
         b2BodyDef bd = b2DefaultBodyDef();
-        /* A group that does not move (a beacon, a landmark) is a static
+        /* A group that does not move (a fixed station, a landmark) is a static
          * body: robots bump into it but cannot push it. */
         bd.type = r->moves ? b2_dynamicBody : b2_staticBody;
         bd.position = (b2Vec2){ r->x, r->y };

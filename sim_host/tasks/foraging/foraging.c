@@ -514,8 +514,12 @@ static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
     const foraging_t *f = self;
     draw_shape_t nest = { .kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = RGB_NEST,
                           .x = f->cfg->nest.x, .y = f->cfg->nest.y, .radius = nest_radius(f) };
+    draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = 0x303030u,
+                           .x = f->cfg->nest.x - nest_radius(f), .y = f->cfg->nest.y + nest_radius(f) };
     (void)sim;
     drawing_add(out, &nest);
+    snprintf(label.text, sizeof label.text, "F=%.1f COLLECTED %llu", f->food, (unsigned long long)f->delivered);
+    drawing_add(out, &label);
     for (uint32_t i = 0; i < f->n_robots && i < out->robot_count; i++) {
         if (f->is_beacon[i]) {
             out->robot_rgb[i] = RGB_BEACON;

@@ -132,8 +132,13 @@ static void gather_draw(const void *self, const sim_t *sim, drawing_t *out)
     const gather_t *g = self;
     draw_shape_t ring = { .kind = DRAW_RING, .layer = DRAW_FLOOR, .rgb = RGB_GOAL, .x = g->cfg->goal.x,
                           .y = g->cfg->goal.y, .radius = g->cfg->goal.radius, .line = 0.01f };
+    draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = RGB_GOAL,
+                           .x = g->cfg->goal.x - g->cfg->goal.radius,
+                           .y = g->cfg->goal.y + g->cfg->goal.radius + 0.03f };
     (void)sim;
     drawing_add(out, &ring);
+    snprintf(label.text, sizeof label.text, "IN GOAL %u/%u", g->in_goal, g->n);
+    drawing_add(out, &label);
     for (uint32_t i = 0; i < g->n && i < out->robot_count; i++) {
         if (g->inside[i]) {
             out->robot_rgb[i] = RGB_INSIDE;
