@@ -157,7 +157,7 @@ def parse_map(path):
     with open(path) as f:
         lines = f.read().split('\n')
     try:
-        start = next(i for i, l in enumerate(lines) if l.startswith('Linker script and memory map'))
+        start = next(i for i, line in enumerate(lines) if line.startswith('Linker script and memory map'))
     except StopIteration:
         return rows
     pending = None
@@ -265,7 +265,7 @@ def call_edges(target, funcs, starts):
     """{caller start: set(callee starts)}, and callers with indirect calls."""
     edges = {}
     indirect = set()
-    for addr, (name, insns) in funcs.items():
+    for addr, (_name, insns) in funcs.items():
         out = set()
         for mn, ops in insns:
             if target == 'avr':
@@ -357,7 +357,7 @@ def link_image(build, target, image, backend, sources):
     by_name = {v[0]: a for a, v in funcs.items()}
 
     def owner(a):
-        for lo, hi, file, fn in sect_owner:
+        for lo, hi, file, _fn in sect_owner:
             if lo <= a < hi:
                 return file
         return None
@@ -429,7 +429,7 @@ def main():
     checks = 0
     for target in TARGETS:
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as ex:
-            outs = list(ex.map(lambda s: compile_one(args.build, target, s, inc), srcs))
+            outs = list(ex.map(lambda s, t=target: compile_one(args.build, t, s, inc), srcs))
         bad = [(s, msg) for s, rc, msg in outs if rc != 0]
         checks += len(outs)
         for s, msg in bad:
@@ -458,9 +458,8 @@ def main():
 
     by = {(r['image'], r['target']): r for r in results}
     lines = []
-    lines.append('| image | IR backend | static RAM (gate <= %d) | .data | .bss | camera frames '
-                 '| stack estimate | our RAM total | our flash | image flash | Cortex-M4F static RAM / flash |'
-                 % RAM_GATE)
+    lines.append(f'| image | IR backend | static RAM (gate <= {RAM_GATE}) | .data | .bss | camera frames '
+                 '| stack estimate | our RAM total | our flash | image flash | Cortex-M4F static RAM / flash |')
     lines.append('|---|---|---|---|---|---|---|---|---|---|---|')
     for image, backend in images:
         a = by.get((image, 'avr'))

@@ -135,8 +135,9 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -348,6 +349,8 @@ def read_summary(path: Path, expect_seed: int | None = None) -> dict[str, Any]:
     """Read one run's summary.json; check its shape and the metrics we use.
 
     Returns {"seed", "steps", "robots", "state_hash", "metrics": {...}} with
+    "robots" the foragers (N_r: the robots of the groups running the forager,
+    not the nest beacon), and
     every metric as a float (JSON null becomes NaN). Raises StudyError naming
     the file when it is missing, not JSON, or lacks a field.
     """
@@ -376,7 +379,11 @@ def read_summary(path: Path, expect_seed: int | None = None) -> dict[str, Any]:
             raise StudyError(f"{path}: garbled summary: \"{key}\" is not an integer")
     if expect_seed is not None and doc["seed"] != expect_seed:
         raise StudyError(f"{path}: seed {doc['seed']}, expected {expect_seed}")
-    robots = doc.get("robots")
+    groups = doc.get("groups")
+    robots = None
+    if isinstance(groups, list):
+        robots = sum(g.get("count", 0) for g in groups
+                     if isinstance(g, dict) and g.get("controller") == "forager")
     return {
         "seed": doc["seed"],
         "steps": doc["steps"],
@@ -445,7 +452,7 @@ def aggregate_series(series: Sequence[dict[str, np.ndarray]],
     rows = [np.searchsorted(s["step"], common) for s in series]
     out["time_s"] = series[0]["time_s"][rows[0]]
     for c in columns:
-        m = np.vstack([s[c][r] for s, r in zip(series, rows)])
+        m = np.vstack([s[c][r] for s, r in zip(series, rows, strict=True)])
         out[c] = {"mean": m.mean(axis=0),
                   "sd": m.std(axis=0, ddof=1) if len(series) > 1 else np.zeros(m.shape[1])}
     return out
@@ -837,7 +844,7 @@ def run_cell(sim: Path, scenario: Path, policy: str, folder: Path, args: argpars
         cmd += ["--steps", str(args.steps)]
     t0 = time.monotonic()
     try:
-        proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
     except OSError as e:
         raise SetupError(f"cannot run {sim}: {e.strerror}; run `make` first") from None
     dt = time.monotonic() - t0
@@ -942,7 +949,7 @@ def run_study(args: argparse.Namespace, command: str) -> dict[str, Any]:
         print(f" {dt:6.1f} s  (F(T) {fmt_mean_sd(fn)}, M_T {fmt_mean_sd(mt, decimals=0)};"
               f" elapsed {_hms(elapsed)}, about {_hms(eta)} left)", flush=True)
     results["wall_time_s"] = time.monotonic() - t_start
-    results["generated_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+    results["generated_utc"] = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
     return results
 
 

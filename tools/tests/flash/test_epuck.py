@@ -19,7 +19,6 @@ import pty
 import subprocess
 import sys
 import tempfile
-import termios
 import threading
 import time
 import tty

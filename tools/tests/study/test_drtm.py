@@ -26,6 +26,7 @@ import numpy as np
 
 import swarmtools.study.drtm as sd
 
+
 def write_run(folder, seed, steps=100, policy="drtm", robots=20, every=10,
               scenario="foraging_base"):
     """A synthetic run_<seed>/ in the simulator's exact format; returns its metrics.
@@ -68,7 +69,10 @@ def write_run(folder, seed, steps=100, policy="drtm", robots=20, every=10,
         "food_net": food, "food_dropped": 0,
     }
     summary = {"scenario": scenario, "scenario_file": f"sim_host/scenarios/{scenario}.yaml",
-               "seed": seed, "controller": "forager", "robots": robots, "steps": steps,
+               "seed": seed,
+               "groups": [{"name": "foragers", "controller": "forager", "policy": policy, "count": robots},
+                          {"name": "nest_beacon", "controller": "nest_beacon", "policy": "", "count": 1}],
+               "tasks": ["foraging"], "robots": robots + 1, "steps": steps,
                "control_period_ms": 100, "state_hash": f"{seed:016x}", "metrics": metrics}
     (run / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     return metrics
@@ -240,7 +244,7 @@ class TestReaders(unittest.TestCase):
         write_run(self.dir, 1)
         path = self.dir / "run_1" / "timeseries.csv"
         lines = path.read_text().splitlines()
-        path.write_text("\n".join([lines[0].replace(",active", "")] + [l.rsplit(",", 1)[0] for l in lines[1:]]))
+        path.write_text("\n".join([lines[0].replace(",active", "")] + [line.rsplit(",", 1)[0] for line in lines[1:]]))
         with self.assertRaisesRegex(sd.StudyError, "header lacks active"):
             sd.read_timeseries(path)
         path.write_text("\n".join(lines[:3] + [lines[3] + ",7"] + lines[4:]))
