@@ -57,7 +57,17 @@ SIM_EXTRA_OBJ :=
 SIM_EXTRA_OBJ_ASAN :=
 include $(sort $(wildcard tools/make/*.mk))
 
-.PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps
+.PHONY: all run test unit-tests asan-tests cli-tests firmware-hygiene bench clean deps help
+
+help:
+	@echo "make run        build what is needed and run the default scenario (RUN_SCENARIO=, RUN_ARGS=)"
+	@echo "make test       every test group, each with its time"
+	@echo "make deps       install what the build and the tools need (.venv, swarmtools)"
+	@echo "make bench      simulator throughput (BENCH_ARGS=)"
+	@echo "make study-drtm seed 000's study (STUDY_ARGS=--quick for a smoke run)"
+	@echo "make firmware-check / firmware / flash   the e-puck gates, .hex files, flashing"
+	@echo "make monitor / spy   watch telemetry (LCM_URL=)"
+	@echo "make clean      remove what the build made (installs nothing)"
 
 all: $(BUILD)/swarmsim
 
