@@ -12,7 +12,7 @@
  * Telemetry: firmware/telemetry/robot_telemetry.c, pumped every step: the
  * controller's observables (forager_def.c) as a swarmlcm.robot_state_t once
  * a second and its schema a few entries at a time, framed through the
- * Bluetooth UART; tools/telemetry/bridge.py republishes them on LCM.  A real
+ * Bluetooth UART; swarmtools.telemetry.bridge republishes them on LCM.  A real
  * robot has no pose (pose_known false).
  *
  * Static storage: an image is the one place where the firmware's state

@@ -50,7 +50,7 @@
 
 /** Channel ids: the LCM channel (and message type, lcm_types/) a frame's
  *  payload is republished on by the bridge.  Keep in step with
- *  tools/telemetry/frames.py (a test compares them). */
+ *  tools/swarmtools/telemetry/frames.py (a test compares them). */
 typedef enum telemetry_channel {
     TELEMETRY_CH_ROBOT_STATE = 1,   /**< ROBOT_STATE, swarmlcm.robot_state_t */
     TELEMETRY_CH_EVENT = 2,         /**< SWARM_EVENT, swarmlcm.event_t */

@@ -72,7 +72,7 @@ void metrics_sample(const sim_t *simp, metric_list_t *out)
     metrics_put(out, "time_s", "s", "simulated time", sim_time_s(simp));
     count(sim, total, robots);
     for (uint32_t k = 0; k < sim->n_counters; k++) {
-        metrics_put(out, sim->counters[k].total_key, sim->counters[k].unit, sim->counters[k].doc, total[k]);
+        metrics_put(out, sim->counters[k].total_key, sim->counters[k].unit, sim->counters[k].total_doc, total[k]);
     }
     metrics_put(out, "robot_contacts", "", "robot-robot contacts begun", (double)g->robot_contacts);
     metrics_put(out, "static_contacts", "", "robot-wall and robot-obstacle contacts begun",
@@ -104,7 +104,7 @@ void metrics_final(const sim_t *simp, metric_list_t *out)
     out->count = 0;
     count(sim, total, robots);
     for (uint32_t k = 0; k < sim->n_counters; k++) {
-        metrics_put(out, sim->counters[k].total_key, sim->counters[k].unit, sim->counters[k].doc, total[k]);
+        metrics_put(out, sim->counters[k].total_key, sim->counters[k].unit, sim->counters[k].total_doc, total[k]);
         metrics_put(out, sim->counters[k].per_robot_key, sim->counters[k].unit,
                     "the total over the robots that count it, per robot",
                     robots[k] ? total[k] / robots[k] : 0.0);

@@ -109,7 +109,8 @@ static void find_counters(struct sim *sim)
             sim_counter_t *c = &sim->counters[sim->n_counters++];
             c->name = o->name;
             c->unit = o->unit ? o->unit : "";
-            c->doc = o->doc ? o->doc : "";
+            snprintf(c->total_doc, sizeof c->total_doc, "summed over the robots that count it: %.120s",
+                     o->doc ? o->doc : o->name);
             snprintf(c->total_key, sizeof c->total_key, "%.40s_total", o->name);
             snprintf(c->per_robot_key, sizeof c->per_robot_key, "%.40s_per_robot", o->name);
         }

@@ -80,7 +80,8 @@ typedef struct sim_interval { float lo, hi, near; } sim_interval_t;
 #define SIM_MAX_COUNTERS 16
 typedef struct sim_counter {
     const char *name;
-    const char *unit, *doc;
+    const char *unit;
+    char total_doc[160];       /**< "summed over the robots that count it: <doc>" */
     char total_key[48];        /**< "<name>_total" */
     char per_robot_key[56];    /**< "<name>_per_robot" */
 } sim_counter_t;

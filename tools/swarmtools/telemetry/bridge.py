@@ -5,20 +5,24 @@ Reads one or several serial devices (the Bluetooth rfcomm ports of e-pucks,
 or any tty or pseudo-terminal), decodes the frames of
 firmware/telemetry/telemetry_frame.h and republishes each payload on LCM on the
 channel its channel id names (ROBOT_STATE, SWARM_EVENT, SWARM_STATE, ...:
-the simulator's channels, so the same monitor, logger and tools work), with
-the robot's id: the id in the frame, or the one given with --id for that
-device, written into the message's robot_id field.
+the simulator's channels, so the same monitor, logger and tools work;
+TELEMETRY_SCHEMA carries the pieces of the robot's controller schema that
+name its ROBOT_STATE values), with the robot's id: the id in the frame, or
+the one given with --id for that device, written into the message's
+robot_id field.
 
 It never stops on bad input: garbage bytes, truncated frames, bad stuffing,
 CRC errors, payloads that are not the channel's LCM type and unknown
-channel ids are counted and skipped; a device that disappears (read error,
+channel ids are counted and skipped (a robot whose firmware sends an
+older telemetry version, e.g. v1, is named once on stderr: flash it
+again); a device that disappears (read error,
 hang-up, removed node) is closed and opened again every --reopen seconds
 until it comes back.  Counts per device go to BRIDGE_STATUS
 (swarmlcm.bridge_status_t) every --status-every seconds and to stderr every
 --report-every seconds and at exit.
 
-    .venv/bin/python tools/telemetry/bridge.py /dev/rfcomm0 /dev/rfcomm1 \\
-        --lcm udpm://239.255.76.67:7667?ttl=0 --baud 115200
+    swarm-bridge /dev/rfcomm0 /dev/rfcomm1 --lcm 'udpm://239.255.76.67:7667?ttl=0' --baud 115200
+    (or .venv/bin/python -m swarmtools.telemetry.bridge ...)
 """
 import argparse
 import errno
@@ -30,9 +34,8 @@ import termios
 import time
 import tty
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
-from frames import CHANNEL_IDS, FrameDecoder  # noqa: E402
+from swarmtools.telemetry import common
+from swarmtools.telemetry.frames import CHANNEL_IDS, FrameDecoder
 
 READ_CHUNK = 4096
 
@@ -55,6 +58,7 @@ class Device:
         self.republished = 0
         self.next_try = 0.0
         self.last_error = ""
+        self.incompatible = None     # why the latest payload of another telemetry version was refused
         self._last_seq = {}          # robot id -> last sequence number
 
     @property
@@ -137,17 +141,19 @@ class Bridge:
         dev.note_seq(frame.robot_id, frame.seq)
         cls = self._types[name]
         data = frame.payload
-        if data[:8] != cls._get_packed_fingerprint():
-            dev.bad_payload += 1
-            return None
         try:
-            msg = cls.decode(data)
-            if hasattr(msg, "robot_id") and msg.robot_id != robot_id:
-                msg.robot_id = robot_id if robot_id < 0x8000 else robot_id - 0x10000
-                data = msg.encode()
-        except Exception:   # not a well-formed message of the channel's type
+            msg = common.decode(data, name)
+        except common.IncompatibleMessage as e:   # another telemetry version, or malformed
+            dev.bad_payload += 1
+            if e.why != "undecodable":
+                dev.incompatible = e.explain(f"{dev.path} robot {robot_id}", log=False)
+            return None
+        if not isinstance(msg, cls):               # another of our types: not this channel's
             dev.bad_payload += 1
             return None
+        if hasattr(msg, "robot_id") and msg.robot_id != robot_id:
+            msg.robot_id = robot_id if robot_id < 0x8000 else robot_id - 0x10000
+            data = msg.encode()
         channel = self.prefix + name
         try:
             self.publish(channel, data)
@@ -205,11 +211,10 @@ class Bridge:
             self.feed(dev, data)
 
     def status_message(self, utime):
-        pkg = common.swarmlcm()
-        m = pkg.bridge_status_t()
+        m = common.type_class("bridge_status_t")()
         m.utime = utime
         for dev in self.devices:
-            d = pkg.bridge_device_t()
+            d = common.type_class("bridge_device_t")()
             d.device = dev.path
             d.robot_id = dev.robot_id if -0x8000 <= dev.robot_id < 0x8000 else -1
             d.connected = dev.connected
@@ -228,7 +233,8 @@ class Bridge:
                          f"{c['crc_errors']} CRC errors, {c['framing_errors']} framing errors, "
                          f"{c['oversize']} garbage runs, {c['bad_payload']} bad payloads, "
                          f"{c['unknown_channel']} unknown channels, {c['lost']} lost, "
-                         f"{c['reconnects']} reconnects")
+                         f"{c['reconnects']} reconnects"
+                         + (f" (latest refused: {dev.incompatible})" if dev.incompatible else ""))
         return "; ".join(parts)
 
 
@@ -237,18 +243,18 @@ def parse_ids(items):
     for item in items or []:
         dev, sep, value = item.rpartition("=")
         if not sep or not dev:
-            raise SystemExit(f"bridge: --id {item!r}: expected DEVICE=ID")
+            raise SystemExit(f"swarm-bridge: --id {item!r}: expected DEVICE=ID")
         try:
             ids[dev] = int(value, 0)
         except ValueError:
-            raise SystemExit(f"bridge: --id {item!r}: {value!r} is not a robot id") from None
+            raise SystemExit(f"swarm-bridge: --id {item!r}: {value!r} is not a robot id") from None
         if not 0 <= ids[dev] <= 0xFFFF:
-            raise SystemExit(f"bridge: --id {item!r}: robot ids are 0..65535")
+            raise SystemExit(f"swarm-bridge: --id {item!r}: robot ids are 0..65535")
     return ids
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+    ap = argparse.ArgumentParser(prog="swarm-bridge", description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("devices", nargs="+", help="serial devices (/dev/rfcomm0, /dev/ttyUSB0, a pty, ...)")
     ap.add_argument("--lcm", default=common.DEFAULT_URL, help="LCM URL to publish on (default %(default)s)")
@@ -266,17 +272,18 @@ def main(argv=None):
     ids = parse_ids(args.id)
     for dev in ids:
         if dev not in args.devices:
-            raise SystemExit(f"bridge: --id names {dev!r}, which is not one of the devices")
+            raise SystemExit(f"swarm-bridge: --id names {dev!r}, which is not one of the devices")
     lcm = common.lcm_module()
     try:
         bus = lcm.LCM(args.lcm)
     except Exception as e:
-        raise SystemExit(f"bridge: cannot open LCM URL {args.lcm!r}: {e}") from None
+        raise SystemExit(f"swarm-bridge: cannot open LCM URL {args.lcm!r}: {e}") from None
     devices = [Device(p, args.baud, ids.get(p)) for p in args.devices]
     bridge = Bridge(devices, bus.publish, prefix=args.prefix, reopen_s=args.reopen)
     status_channel = args.prefix + "BRIDGE_STATUS"
 
     stop = []
+    warned = {}                  # device -> the incompatibility told on stderr
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
     signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     t0 = time.monotonic()
@@ -287,6 +294,10 @@ def main(argv=None):
         if args.duration and now - t0 >= args.duration:
             break
         bridge.poll(0.1)
+        for dev in devices:
+            if dev.incompatible and dev.incompatible != warned.get(dev.path) and not args.quiet:
+                warned[dev.path] = dev.incompatible
+                print(f"swarm-bridge: {dev.incompatible}", file=sys.stderr, flush=True)
         now = time.monotonic()
         if args.status_every > 0 and now >= next_status:
             next_status = now + args.status_every
@@ -297,13 +308,13 @@ def main(argv=None):
         if now >= next_report:
             next_report = now + args.report_every
             if not args.quiet:
-                print(f"bridge: {bridge.report()}", file=sys.stderr, flush=True)
+                print(f"swarm-bridge: {bridge.report()}", file=sys.stderr, flush=True)
     for dev in devices:
         dev.close()
     if not args.quiet:
-        print(f"bridge: {bridge.report()}", file=sys.stderr, flush=True)
+        print(f"swarm-bridge: {bridge.report()}", file=sys.stderr, flush=True)
         if bridge.publish_errors:
-            print(f"bridge: {bridge.publish_errors} messages could not be published", file=sys.stderr)
+            print(f"swarm-bridge: {bridge.publish_errors} messages could not be published", file=sys.stderr)
     return 0
 
 

@@ -1,19 +1,32 @@
-#!/usr/bin/env python3
 """Export channels of an LCM log to CSV.
 
+    swarm-export run_1/telemetry.lcmlog --channel SWARM_STATE -o swarm.csv
+    swarm-export run_1/telemetry.lcmlog -o csv/            # every channel: csv/<CHANNEL>.csv
+    swarm-export run_1/telemetry.lcmlog --timeseries 10    # the run's timeseries.csv again
+    (or .venv/bin/python -m swarmtools.telemetry.export_csv ...)
+
 Every message of a channel becomes a row, every field a column, named as in
-lcm_types/ (nested structs as parent.field).  Arrays go into one cell,
-joined with ';', except a pair NAME_names / NAME_values (RUN_SUMMARY's
-metric_names / metric_values), which becomes one column per name.
+lcm_types/ (nested structs as parent.field).  The values[] of ROBOT_STATE
+and SWARM_STATE become one column each, named <schema>.<value> by the
+schema_t that names them (channel TELEMETRY_SCHEMA): the controller's for
+a robot (e.g. forager.threshold), "swarm" for the swarm (swarm.step,
+swarm.time_s, ...); a value not named by any schema in the log is
+<schema>.value<k>.  A pair NAME_names / NAME_values (RUN_SUMMARY's metrics)
+becomes one column per name, a pair NAME_names / NAME_<other> (SWARM_STATE's
+state_names / state_counts) one column NAME.<name> per name; other arrays go
+into one cell, joined with ';'.  A channel's columns are those of all its
+messages in the log (robots of several controllers, states that appear
+during the run), in their order; a row leaves the cells it has no value for
+empty.
+
 Numbers print as the simulator's own CSV does: doubles with %.10g (the same
 text for the same bits), floats with the fewest digits that give the same
-float32, integers as integers, booleans as 1 / 0, robot_state_t.task_state
-as its letter, event_t.kind as its name (pickup, deposit, oae, failure,
-state_change).
+float32, integers as integers, booleans as 1 / 0.
 
-    export_csv.py run_1/telemetry.lcmlog --channel SWARM_STATE -o swarm.csv
-    export_csv.py run_1/telemetry.lcmlog -o csv/          # every channel: csv/<CHANNEL>.csv
-    export_csv.py run_1/telemetry.lcmlog --timeseries 10  # the run's timeseries.csv again
+--timeseries N writes SWARM_STATE as the run's timeseries.csv with
+output.timeseries_every = N, byte for byte: the swarm schema's names as the
+header, then the values of each step that is a multiple of N, and of the
+last step.
 """
 import argparse
 import csv
@@ -23,36 +36,30 @@ import re
 import struct
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+from swarmtools.telemetry import common
 
-#: The columns of a run's timeseries.csv (sim_host/metrics.c), all fields
-#: of swarm_state_t.
-TIMESERIES_FIELDS = ["step", "time_s", "oae_total", "robot_contacts", "static_contacts", "distance_m",
-                     "food_nest", "food_collected", "waiting", "searching", "returning", "active"]
-
-def timeseries_fields(msg):
-    """timeseries.csv's columns: the foraging ones only in foraging runs."""
-    return TIMESERIES_FIELDS if msg.foraging else TIMESERIES_FIELDS[:6]
-
-
+PROG = "swarm-export"
 PRIMITIVES = {"int8_t", "int16_t", "int32_t", "int64_t", "byte", "float", "double", "string", "boolean"}
 
 
 def fmt_double(v):
-    return "%.10g" % v
+    """C's printf("%.10g"), as the simulator writes timeseries.csv (glibc
+    prints a NaN with its sign bit set as -nan)."""
+    if math.isnan(v):
+        return "-nan" if math.copysign(1.0, v) < 0 else "nan"
+    return format(v, ".10g")
 
 
 def fmt_float(v):
     """Shortest text that reads back as the same float32."""
     if math.isnan(v) or math.isinf(v):
-        return "%g" % v
+        return format(v, "g")
     packed = struct.pack("<f", v)
     for digits in range(6, 10):
-        text = "%.*g" % (digits, v)
+        text = format(v, f".{digits}g")
         if struct.pack("<f", float(text)) == packed:
             return text
-    return "%.9g" % v
+    return format(v, ".9g")
 
 
 def fmt_value(typename, v):
@@ -63,91 +70,105 @@ def fmt_value(typename, v):
     if typename == "boolean":
         return "1" if v else "0"
     if typename == "byte" and isinstance(v, (bytes, bytearray)):
-        return v.hex()
+        return bytes(v).hex()
     return str(v)
 
 
-def flatten(msg, prefix=""):
-    """(column, text) pairs of one message, in field order."""
-    out = []
-    slots = list(msg.__slots__)
-    types = list(msg.__typenames__)
-    dims = list(msg.__dimensions__)
-    names_of = {s[:-len("_names")]: s for s in slots if s.endswith("_names")}
-    paired = set()
-    for base, names_slot in names_of.items():
-        if base + "_values" in slots:
-            paired.update({names_slot, base + "_values"})
-    for slot, typename, dim in zip(slots, types, dims):
-        v = getattr(msg, slot)
-        if slot in paired:
-            if slot.endswith("_values"):
-                base = slot[:-len("_values")]
-                vtype = types[slots.index(slot)]
-                for name, value in zip(getattr(msg, base + "_names"), v):
-                    out.append((prefix + name, fmt_value(vtype, value)))
+def _pairs(msg):
+    """{array slot: (its NAME_names slot, NAME)} for the arrays named by a
+    NAME_names array of the same length (exactly one such array per NAME)."""
+    slots, dims = msg.__slots__, msg.__dimensions__
+    out = {}
+    for i, s in enumerate(slots):
+        if not s.endswith("_names") or dims[i] is None:
             continue
-        if typename == "int8_t" and slot == "task_state" and dim is None:
-            out.append((prefix + slot, common.task_letter(v)))
-        elif slot == "kind" and type(msg).__name__ == "event_t":
-            out.append((prefix + slot, common.EVENT_KINDS.get(v, str(v))))
-        elif dim is None and typename in PRIMITIVES:
-            out.append((prefix + slot, fmt_value(typename, v)))
-        elif dim is None:
-            out.extend(flatten(v, prefix + slot + "."))
-        elif typename in PRIMITIVES:
-            if typename == "byte" and isinstance(v, (bytes, bytearray)):
-                out.append((prefix + slot, bytes(v).hex()))
-            else:
-                out.append((prefix + slot, ";".join(fmt_value(typename, x) for x in v)))
-        else:
-            cells = []
-            for item in v:
-                cells.append("{" + ",".join(f"{k}={t}" for k, t in flatten(item)) + "}")
-            out.append((prefix + slot, ";".join(cells)))
+        base = s[:-len("_names")]
+        siblings = [t for t, d in zip(slots, dims, strict=True) if t != s and t.startswith(base + "_") and d == dims[i]]
+        if len(siblings) == 1:
+            out[siblings[0]] = (s, base)
     return out
 
 
-class ChannelWriter:
-    """Streams one channel's rows to a CSV file.  The header comes from the
-    first message (and --fields); rows are written one message late so that
-    the last one can always be kept (--every)."""
+def fields(msg, schemas, prefix=""):
+    """(column, LCM type, value) of one message, in field order; the
+    values[] of robot and swarm states named by `schemas`."""
+    out = []
+    pairs = _pairs(msg)
+    named = {names for names, _ in pairs.values()}
+    key = common.schema_key(msg)
+    for slot, typename, dim in zip(msg.__slots__, msg.__typenames__, msg.__dimensions__, strict=True):
+        v = getattr(msg, slot)
+        if slot in named:
+            continue
+        if slot in pairs:
+            names_slot, base = pairs[slot]
+            for name, x in zip(getattr(msg, names_slot), v, strict=True):
+                col = name if slot == base + "_values" else f"{base}.{name}"
+                out.append((prefix + col, typename, x))
+        elif slot == "values" and key is not None:
+            schema = schemas.of(msg)
+            for k, x in enumerate(v):
+                out.append((prefix + common.value_column(key[1], schema.entry(k).name), typename, x))
+        elif dim is None and typename in PRIMITIVES:
+            out.append((prefix + slot, typename, v))
+        elif dim is None:
+            out.extend(fields(v, schemas, prefix + slot + "."))
+        elif typename in PRIMITIVES:
+            if typename == "byte" and isinstance(v, (bytes, bytearray)):
+                out.append((prefix + slot, "byte", v))
+            else:
+                out.append((prefix + slot, "string", ";".join(fmt_value(typename, x) for x in v)))
+        else:
+            cells = ["{" + ",".join(f"{c}={fmt_value(t, x)}" for c, t, x in fields(item, schemas)) + "}"
+                     for item in v]
+            out.append((prefix + slot, "string", ";".join(cells)))
+    return out
 
-    def __init__(self, path, fields=None, every=None, log_time=False):
+
+def flatten(msg, schemas):
+    """(column, text) pairs of one message, in field order."""
+    return [(c, fmt_value(t, v)) for c, t, v in fields(msg, schemas)]
+
+
+class Columns:
+    """The union of the columns of a channel's messages, in their order: a
+    new column goes just before the next column of its message that is
+    already known (or last)."""
+
+    def __init__(self):
+        self.order = []
+        self._known = set()
+        self._shapes = set()
+
+    def merge(self, cols):
+        shape = tuple(cols)
+        if shape in self._shapes:
+            return
+        self._shapes.add(shape)
+        for j, c in enumerate(cols):
+            if c in self._known:
+                continue
+            nxt = next((d for d in cols[j + 1:] if d in self._known), None)
+            self.order.insert(self.order.index(nxt) if nxt is not None else len(self.order), c)
+            self._known.add(c)
+
+
+class ChannelWriter:
+    """Streams one channel's rows to a CSV file.  Rows are written one
+    message late so that the last one can always be kept (--every)."""
+
+    def __init__(self, path, header, every=None):
         self.path = path
-        self.fields = fields
+        self.header = header
         self.every = every
-        self.log_time = log_time
-        self.header = None
         self.pending = None
         self.rows = 0
-        self.dropped_columns = set()
         self._file = sys.stdout if path == "-" else open(path, "w", newline="")
         self._csv = csv.writer(self._file, lineterminator="\n")
+        self._csv.writerow(header)
 
-    def add(self, utime, msg):
-        cols = flatten(msg)
-        if self.log_time:
-            cols.insert(0, ("log_utime", str(utime)))
-        row = dict(cols)
-        if self.header is None:
-            if callable(self.fields):
-                self.fields = self.fields(msg)
-            if self.fields:
-                missing = [f for f in self.fields if f not in row]
-                if missing:
-                    raise SystemExit(f"export_csv: {type(msg).__name__} has no field(s) {', '.join(missing)}; "
-                                     f"it has: {', '.join(c for c, _ in cols)}")
-                self.header = list(self.fields)
-            else:
-                self.header = [c for c, _ in cols]
-            self._csv.writerow(self.header)
-        if not self.fields:
-            self.dropped_columns.update(set(row) - set(self.header))
-        keep = True
-        if self.every:
-            step = getattr(msg, "step", None)
-            keep = step is not None and step % self.every == 0
+    def add(self, row, step=None):
+        keep = not self.every or (step is not None and step % self.every == 0)
         if self.pending is not None and self.pending[1]:
             self._write(self.pending[0])
         self.pending = ([row.get(c, "") for c in self.header], keep)
@@ -165,52 +186,136 @@ class ChannelWriter:
             self._file.flush()
 
 
-def export(log_path, channels=None, out="-", fields=None, every=None, log_time=False, run=None):
-    """Writes the CSV(s); returns {channel: rows}."""
-    lcm = common.lcm_module()
-    common.swarmlcm()
-    patterns = [re.compile(f"^(?:{c})$") for c in channels] if channels else None
-    try:
-        log = lcm.EventLog(log_path, "r")
-    except (IOError, OSError) as e:
-        raise SystemExit(f"export_csv: {log_path}: {e}") from None
-    writers = {}
-    unknown = set()
-    to_dir = out != "-" and (out.endswith(os.sep) or os.path.isdir(out))
-    for ev in log:
-        if patterns and not any(p.match(ev.channel) for p in patterns):
-            continue
-        msg = common.decode(ev.data)
+def _scan(log_path):
+    """First reading of the log: every message decodes (or the tool stops
+    before writing anything).  Returns the schemas, complete, the channels
+    of other programs' messages and the runs of the SWARM_STATE messages."""
+    schemas, unknown, swarm_runs = common.Schemas(), set(), []
+    for ev, msg in common.read_log(log_path, PROG):
+        kind = type(msg).__name__
         if msg is None:
             unknown.add(ev.channel)
+        elif kind == "schema_t":
+            schemas.add(msg)
+        elif kind == "swarm_state_t" and msg.run not in swarm_runs:
+            swarm_runs.append(msg.run)
+    return schemas, unknown, swarm_runs
+
+
+def _selected(log_path, patterns, run):
+    for ev, msg in common.read_log(log_path, PROG):
+        if msg is None:
+            continue
+        if patterns and not any(p.match(ev.channel) for p in patterns):
             continue
         if run is not None and getattr(msg, "run", run) != run:
             continue
-        w = writers.get(ev.channel)
-        if w is None:
-            if writers and not to_dir:
-                raise SystemExit(f"export_csv: the log has several channels ({', '.join(sorted(writers))}, "
-                                 f"{ev.channel}, ...): choose one with --channel, or give -o a directory")
-            if to_dir:
-                os.makedirs(out, exist_ok=True)
-                path = os.path.join(out, f"{ev.channel}.csv")
-            else:
-                path = out
-            w = writers[ev.channel] = ChannelWriter(path, fields, every, log_time)
-        w.add(ev.timestamp, msg)
-    log.close()
-    for w in writers.values():
-        w.close()
-        if w.dropped_columns:
-            print(f"export_csv: {w.path}: columns that appeared after the first row were left out: "
-                  f"{', '.join(sorted(w.dropped_columns))}", file=sys.stderr)
+        yield ev, msg
+
+
+def export(log_path, channels=None, out="-", fields_wanted=None, every=None, log_time=False, run=None):
+    """Writes the CSV(s); returns {channel: rows}."""
+    patterns = [re.compile(f"^(?:{c})$") for c in channels] if channels else None
+    schemas, unknown, _ = _scan(log_path)
+    if patterns:
+        unknown = {ch for ch in unknown if any(p.match(ch) for p in patterns)}
+    columns = {}
+    for ev, msg in _selected(log_path, patterns, run):
+        cols = [c for c, _, _ in fields(msg, schemas)]
+        if log_time:
+            cols.insert(0, "log_utime")
+        columns.setdefault(ev.channel, Columns()).merge(cols)
+    if not columns:
+        if unknown:
+            print(f"{PROG}: channels of unknown types skipped: {', '.join(sorted(unknown))}", file=sys.stderr)
+        return {}
+    to_dir = out != "-" and (out.endswith(os.sep) or os.path.isdir(out))
+    if len(columns) > 1 and not to_dir:
+        raise SystemExit(f"{PROG}: the log has several channels ({', '.join(columns)}): "
+                         f"choose one with --channel, or give -o a directory")
+    headers = {}
+    for ch, cols in columns.items():
+        if fields_wanted:
+            missing = [f for f in fields_wanted if f not in cols.order]
+            if missing:
+                raise SystemExit(f"{PROG}: {ch} has no field(s) {', '.join(missing)}; "
+                                 f"it has: {', '.join(cols.order)}")
+            headers[ch] = list(fields_wanted)
+        else:
+            headers[ch] = cols.order
+    if to_dir:
+        os.makedirs(out, exist_ok=True)
+    writers = {ch: ChannelWriter(os.path.join(out, f"{ch}.csv") if to_dir else out, headers[ch], every)
+               for ch in columns}
+    try:
+        for ev, msg in _selected(log_path, patterns, run):
+            row = dict(flatten(msg, schemas))
+            if log_time:
+                row["log_utime"] = str(ev.timestamp)
+            writers[ev.channel].add(row, getattr(msg, "step", None))
+    finally:
+        for w in writers.values():
+            w.close()
     if unknown:
-        print(f"export_csv: channels of unknown types skipped: {', '.join(sorted(unknown))}", file=sys.stderr)
+        print(f"{PROG}: channels of unknown types skipped: {', '.join(sorted(unknown))}", file=sys.stderr)
     return {ch: w.rows for ch, w in writers.items()}
 
 
+def export_timeseries(log_path, every, out="-", run=None):
+    """SWARM_STATE as timeseries.csv (every `every` steps and the last);
+    returns the number of rows."""
+    schemas, _, runs = _scan(log_path)
+    runs = [r for r in runs if run is None or r == run]
+    if not runs:
+        raise SystemExit(f"{PROG}: {log_path}: no SWARM_STATE messages" + (f" of run {run}" if run is not None else ""))
+    if len(runs) > 1:
+        raise SystemExit(f"{PROG}: {log_path} holds several runs ({', '.join(map(str, runs))}): choose one with --run")
+    schema = schemas.get("swarm", "swarm", runs[0])
+    if schema is None or not schema.complete:
+        raise SystemExit(f"{PROG}: {log_path}: no (whole) swarm schema on TELEMETRY_SCHEMA to name the columns")
+    names = schema.names()
+    f = sys.stdout if out == "-" else open(out, "w", newline="")
+    steps, pending = [], None
+    try:
+        f.write(",".join(names) + "\n")
+        for _ev, msg in _selected(log_path, [re.compile("^SWARM_STATE$")], runs[0]):
+            if type(msg).__name__ != "swarm_state_t":
+                continue
+            if len(msg.values) != len(names):
+                raise SystemExit(f"{PROG}: {log_path}: a SWARM_STATE of step {msg.step} has {len(msg.values)} "
+                                 f"values, the swarm schema names {len(names)}")
+            if pending is not None and pending[0] % every == 0:
+                f.write(pending[1])
+                steps.append(pending[0])
+            pending = (msg.step, ",".join(fmt_double(v) for v in msg.values) + "\n")
+        if pending is not None:
+            f.write(pending[1])     # the last step always
+            steps.append(pending[0])
+    finally:
+        if f is sys.stdout:
+            f.flush()
+        else:
+            f.close()
+    want = list(range(0, steps[-1], every)) + [steps[-1]] if steps else []
+    if steps != want:
+        gaps = sorted(set(want) - set(steps))
+        print(f"{PROG}: {log_path}: SWARM_STATE misses steps {', '.join(map(str, gaps[:5]))}"
+              f"{', ...' if len(gaps) > 5 else ''} of every {every}: not the whole time series "
+              f"(was the swarm rate, --telemetry-rate, lower?)", file=sys.stderr)
+        return -len(steps)
+    return len(steps)
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+    try:
+        return _main(argv)
+    except BrokenPipeError:     # `... | head`: the reader has what it wanted
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no error at exit's flush
+        return 0
+
+
+def _main(argv):
+    ap = argparse.ArgumentParser(prog="swarm-export", description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     ap.add_argument("log", help="an LCM log file (lcm-logger's, or a run's telemetry.lcmlog)")
     ap.add_argument("--channel", action="append", help="channel name or regular expression (repeatable; default: all)")
@@ -222,13 +327,19 @@ def main(argv=None):
     ap.add_argument("--log-time", action="store_true", help="first column: the log event's timestamp, us")
     ap.add_argument("--run", type=int, help="only messages of the run with this seed")
     args = ap.parse_args(argv)
-    fields = args.fields.split(",") if args.fields else None
-    channels, every = args.channel, args.every
+    for name in ("every", "timeseries"):
+        value = getattr(args, name)
+        if value is not None and value < 1:
+            ap.error(f"--{name} takes a whole number of steps, at least 1")
     if args.timeseries:
-        channels, fields, every = ["SWARM_STATE"], timeseries_fields, args.timeseries
-    counts = export(args.log, channels, args.out, fields, every, args.log_time, args.run)
+        if args.channel or args.fields or args.every or args.log_time:
+            ap.error("--timeseries takes no --channel, --fields, --every or --log-time")
+        rows = export_timeseries(args.log, args.timeseries, args.out, args.run)
+        return 0 if rows > 0 else 1
+    fields_wanted = args.fields.split(",") if args.fields else None
+    counts = export(args.log, args.channel, args.out, fields_wanted, args.every, args.log_time, args.run)
     if not counts:
-        print("export_csv: no messages matched", file=sys.stderr)
+        print(f"{PROG}: no messages matched", file=sys.stderr)
         return 1
     if args.out != "-":
         for ch, n in sorted(counts.items()):

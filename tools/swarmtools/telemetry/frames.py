@@ -20,7 +20,8 @@ MAX_BODY = HEADER_BYTES + MAX_PAYLOAD + CRC_BYTES           # 248
 MAX_ENCODED = MAX_BODY + 1 + MAX_BODY // 254                # COBS of the largest body
 MIN_BODY = HEADER_BYTES + CRC_BYTES
 
-#: Channel id -> LCM channel (firmware/telemetry/telemetry_frame.h, telemetry_channel_t).
+#: Channel id -> LCM channel (firmware/telemetry/telemetry_frame.h: telemetry_channel_t and
+#: TELEMETRY_CHANNEL_NAMES; a test compares them).
 CHANNEL_IDS = {
     1: "ROBOT_STATE",
     2: "SWARM_EVENT",

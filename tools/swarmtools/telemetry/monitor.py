@@ -1,49 +1,63 @@
-#!/usr/bin/env python3
 """Live terminal dashboard of a swarm from LCM telemetry.
 
-Shows what is running (RUN_INFO), the swarm and the nest (SWARM_STATE: time,
-nest food against F_d, robots by state, k, M_A, OAEs, the nest beacon's own
-estimates), one line per robot (ROBOT_STATE: state, task letter, theta,
-P_s, S, n, energy, OAEs, deposits, what it carries, sensors, pose), the
-latest events (SWARM_EVENT), the run's summary at its end (RUN_SUMMARY) and
-the serial bridge's counters (BRIDGE_STATUS).  The same for a simulation
-and for real robots behind tools/telemetry/bridge.py.
+Shows what is running (RUN_INFO: scenario, groups, tasks), the swarm
+(SWARM_STATE: time, step, every value the swarm schema names, robots by
+state), one table per controller with a line per robot (ROBOT_STATE: group,
+state, wheels, sensors, pose, and the values the controller's schema names,
+whatever the controller), the events of the run by kind and the latest of
+them (SWARM_EVENT), the run's summary at its end (RUN_SUMMARY) and the
+serial bridge's counters (BRIDGE_STATUS).  The same for a simulation and
+for real robots behind the bridge (swarm-bridge); --prefix shows channels
+published with a prefix instead (the bridge's --prefix; FW_ for the robots'
+own telemetry in a simulation with robot_telemetry.enabled).
 
-    .venv/bin/python tools/telemetry/monitor.py                    # LCM's default udpm bus
-    .venv/bin/python tools/telemetry/monitor.py --lcm 'udpm://239.255.76.67:7667?ttl=0'
-    .venv/bin/python tools/telemetry/monitor.py --log out/run/run_1/telemetry.lcmlog --plain
+    swarm-monitor                                             # LCM's default udpm bus
+    swarm-monitor --lcm 'udpm://239.255.76.67:7667?ttl=0'
+    swarm-monitor --log out/run/run_1/telemetry.lcmlog --plain
+    (or .venv/bin/python -m swarmtools.telemetry.monitor ...)
 
-Keys: q quits; up/down, PgUp/PgDn scroll the robot table.  --plain prints
+Keys: q quits; up/down, PgUp/PgDn scroll the robot tables.  --plain prints
 the dashboard as text every --interval seconds instead (no terminal needed).
 """
 import argparse
 import collections
-import math
 import os
+import shlex
+import shutil
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+from swarmtools.telemetry import common
+
+fmt = common.fmt_number
 
 
-def fmt(v, spec="{:.2f}", none="-"):
-    if v is None or (isinstance(v, float) and math.isnan(v)):
-        return none
-    return spec.format(v)
+def wrap(items, width, indent="  ", first=""):
+    """`first`, then `items` three spaces apart, in lines of at most
+    `width` (None: one line); further lines start with `indent`."""
+    lines, line, empty = [], first, True
+    for item in items:
+        if not empty and width is not None and len(line) + 3 + len(item) > width:
+            lines.append(line)
+            line, empty = indent, True
+        line += item if empty else "   " + item
+        empty = False
+    if not empty:
+        lines.append(line)
+    return lines
 
 
-def bar(frac, width):
-    frac = 0.0 if frac is None or math.isnan(frac) else min(max(frac, 0.0), 1.0)
-    full = int(round(frac * width))
-    return "[" + "#" * full + "." * (width - full) + "]"
+def fit(lines, width):
+    return lines if width is None else [ln[:width] for ln in lines]
 
 
 class Model:
-    """What the dashboard knows: the latest message of each kind."""
+    """What the dashboard knows: the latest message of each kind, the
+    schemas, the events of the run."""
 
-    def __init__(self, run=None, events=12, clock=time.monotonic):
+    def __init__(self, run=None, events=12, clock=time.monotonic, prefix=""):
         self.run_filter = run
+        self.prefix = prefix
         self.clock = clock
         self.info = None
         self.swarm = None
@@ -51,8 +65,11 @@ class Model:
         self.bridge = None
         self.robots = {}             # robot id -> (robot_state_t, receive time)
         self.events = collections.deque(maxlen=events)
+        self.event_counts = collections.Counter()
+        self.schemas = common.Schemas()
         self.messages = 0
         self.undecodable = 0
+        self.elsewhere = collections.Counter()   # channel -> messages not shown (another prefix, not ours)
         self.run = None
         self.by_channel = collections.Counter()
         self._rate = collections.deque()
@@ -72,23 +89,33 @@ class Model:
             self.run = run
             self.robots.clear()
             self.events.clear()
+            self.event_counts.clear()
             self.summary = self.swarm = self.info = None
         return run == self.run
 
     def add(self, channel, data):
+        """Takes one message (an LCM handler).  Raises
+        common.IncompatibleMessage for one of another toolkit version."""
         now = self.clock()
         self.messages += 1
         self.by_channel[channel] += 1
         self._rate.append(now)
         while self._rate and now - self._rate[0] > 2.0:
             self._rate.popleft()
-        msg = common.decode(data)
+        msg = common.decode(data, channel)
         if msg is None:
             self.undecodable += 1
             return None
+        ours = common.split_channel(channel)
+        if ours is None or ours[0] != self.prefix:
+            self.elsewhere[channel] += 1
+            return msg
         kind = type(msg).__name__
         if kind == "bridge_status_t":
             self.bridge = msg
+            return msg
+        if kind == "schema_t":
+            self.schemas.add(msg)     # every run's: kept by run
             return msg
         if not self._follow(msg):
             return msg
@@ -100,6 +127,7 @@ class Model:
             self.robots[msg.robot_id] = (msg, now)
         elif kind == "event_t":
             self.events.append(msg)
+            self.event_counts[msg.kind] += 1
         elif kind == "run_summary_t":
             self.summary = msg
         return msg
@@ -110,121 +138,155 @@ class Model:
         span = self._rate[-1] - self._rate[0]
         return (len(self._rate) - 1) / span if span > 0 else 0.0
 
+    def states(self):
+        """(state, robots) of the run: SWARM_STATE's, or counted from the
+        robots' latest states when there is none (real robots)."""
+        if self.swarm is not None:
+            return list(zip(self.swarm.state_names, self.swarm.state_counts, strict=True))
+        return list(collections.Counter(m.state for m, _ in self.robots.values()).items())
+
     # ---------------------------------------------------------------- render
 
     def header(self, source, width):
         lines = [f"swarm monitor  {source}   {self.messages} messages, {self.rate():.0f}/s"]
         i = self.info
         if i is not None:
-            pol = f"/{i.policy}" if i.policy else ""
-            beacon = " + nest beacon" if i.beacon else ""
-            lines.append(f"run {i.scenario} seed {i.run}: {i.controller}{pol}, {i.robots} robots{beacon}, "
-                         f"{i.control_period_ms} ms steps, arena {i.arena_width:g} x {i.arena_height:g} m")
+            tasks = ", ".join(i.tasks) if i.tasks else "none"
+            lines.append(f"run {i.scenario} seed {i.run}: {i.robots} robots, {i.control_period_ms} ms steps, "
+                         f"arena {i.arena_width:g} x {i.arena_height:g} m, tasks: {tasks}")
+            groups = [f"{n}: {c} x {ctrl}{'/' + pol if pol else ''}"
+                      for n, ctrl, pol, c in zip(i.group_names, i.group_controllers, i.group_policies,
+                                                 i.group_counts, strict=True)]
+            lines += wrap(groups, width, indent="        ", first="groups  ")
         s = self.swarm
         if s is not None:
             total = i.steps if i is not None else 0
             prog = f" of {total} ({100.0 * s.step / total:.0f} %)" if total else ""
-            lines.append(f"t = {s.time_s:8.1f} s   step {s.step}{prog}")
-            if s.foraging:
-                fd = s.food_desired
-                lines.append(f"nest food F(t) {fmt(s.food_nest):>7} / F_d {fmt(fd, '{:.1f}')} "
-                             f"{bar(s.food_nest / fd if fd else float('nan'), 20)}   collected {s.food_collected}"
-                             f"   dropped {s.food_dropped}")
-                lines.append(f"robots  waiting {s.waiting:3d}  searching {s.searching:3d}  returning {s.returning:3d}"
-                             f"   k {fmt(s.k)} robots/m^2   M_A {fmt(s.mean_oae)}   OAEs {s.oae_total}")
-                if s.beacon:
-                    lines.append(f"beacon  F {fmt(s.beacon_food)}   N_W {s.beacon_waiting}   M_A {fmt(s.beacon_mean_oae)}")
-            else:
-                lines.append(f"OAEs {s.oae_total}   contacts {s.robot_contacts} robot, {s.static_contacts} static"
-                             f"   distance {s.distance_m:.1f} m")
-            states = "  ".join(f"{n} {c}" for n, c in zip(s.state_names, s.state_counts))
-            lines.append(f"states  {states}")
-        elif not self.robots:
+            lines.append(f"t = {s.utime / 1e6:8.1f} s   step {s.step}{prog}   {s.robots} robots")
+            schema = self.schemas.of(s)
+            items = []
+            for k, v in enumerate(s.values):
+                e = schema.entry(k)
+                if e.name in common.TIME_VALUES:
+                    continue
+                items.append(f"{e.name} {fmt(v, e.counter)}{' ' + e.unit if e.unit else ''}")
+            lines += wrap(items, width, indent="        ", first="swarm   ")
+        elif self.robots:
+            newest = max(m.utime for m, _ in self.robots.values())
+            lines.append(f"t = {newest / 1e6:8.1f} s (robot clock)   {len(self.robots)} robots heard")
+        else:
             lines.append("waiting for messages ...")
-        return [ln[:width] for ln in lines]
+        states = self.states()
+        if states:
+            lines += wrap([f"{n} {c}" for n, c in states], width, indent="        ", first="states  ")
+        return fit(lines, width)
 
-    ROBOT_HEAD = (" id  controller   state    T   theta    P_s      S  n  energy   OAE  dep  item  ir(max) "
-                  "ambient blobs      x       y   theta  seen")
+    ROBOT_HEAD = (f"{'id':>3} {'group':11} {'state':10} {'wheels':>11} {'ir(max)':>8} {'amb':>5} {'blobs':>5} "
+                  f"{'x':>6} {'y':>6} {'theta':>6} {'seen':>5}")
 
     def robot_lines(self, width):
+        """One table per controller (in order of their first robot): a
+        title, the column heads, a line per robot."""
         now = self.clock()
-        out = []
+        by_ctrl = {}
         for rid in sorted(self.robots):
             m, t = self.robots[rid]
-            item = "-" if m.carried_item == -1 else ("?" if m.carried_item < -1 else str(m.carried_item))
-            if m.carrying and item == "-":
-                item = "yes"
-            ir = f"{m.ir_max}@{m.ir_max_index}" if m.ir_max >= 0 else "-"
-            pose = (f"{m.x:7.2f} {m.y:7.2f} {m.theta:7.2f}" if m.pose_known else f"{'-':>7} {'-':>7} {'-':>7}")
-            out.append(f"{m.robot_id:3d}  {m.controller[:11]:11s} {m.state[:8]:8s} {common.task_letter(m.task_state) or '-':1s} "
-                       f"{fmt(m.threshold):>7} {fmt(m.probability, '{:.3f}'):>6} {fmt(m.stimulus):>6} "
-                       f"{m.response_n if m.response_n else '-':>2} {fmt(m.energy):>7} {m.oae_count:5d} {m.deposits:4d} "
-                       f"{item:>5} {ir:>8} {m.ambient_min if m.ambient_min >= 0 else '-':>7} "
-                       f"{m.blobs if m.blobs >= 0 else '-':>5} {pose} {now - t:4.1f}s"[:width])
-        return out
+            by_ctrl.setdefault(m.controller, []).append((m, t))
+        out = []
+        for ctrl, robots in by_ctrl.items():
+            schema = self.schemas.of(robots[0][0])
+            n = max(len(m.values) for m, _ in robots)
+            entries = [schema.entry(k) for k in range(n)]
+            widths = [max(6, min(len(e.name), 18)) for e in entries]
+            if out:
+                out.append("")
+            out.append(f"{ctrl or '(no controller)'}: {len(robots)} robot{'s' if len(robots) != 1 else ''}"
+                       + ("" if schema.complete and schema.total else "   (schema incomplete: value<k> not named yet)"
+                          if n else ""))
+            out.append(self.ROBOT_HEAD + "".join(f" {e.name[:w]:>{w}}" for e, w in zip(entries, widths, strict=True)))
+            for m, t in robots:
+                ir = f"{m.ir_max}@{m.ir_max_index}" if m.ir_max >= 0 else "-"
+                pose = (f"{m.x:6.2f} {m.y:6.2f} {m.theta:6.2f}" if m.pose_known else f"{'-':>6} {'-':>6} {'-':>6}")
+                line = (f"{m.robot_id:3d} {(m.group or '-')[:11]:11s} {m.state[:10]:10s} "
+                        f"{m.wheel_left:>5}/{m.wheel_right:<5} {ir:>8} "
+                        f"{m.ambient_min if m.ambient_min >= 0 else '-':>5} {m.blobs if m.blobs >= 0 else '-':>5} "
+                        f"{pose} {now - t:4.1f}s")
+                for k, w in enumerate(widths):
+                    v = m.values[k] if k < len(m.values) else None
+                    line += f" {fmt(v, entries[k].counter, '{:.4g}'):>{w}}"
+                out.append(line)
+        return fit(out, width)
+
+    def event_text(self, e):
+        words = [e.kind]
+        if e.value:
+            words.append(str(e.value))
+        if e.detail:
+            words.append(e.detail)
+        return " ".join(words)
 
     def footer(self, width):
         lines = []
-        if self.events:
-            lines.append("events (latest last):")
+        if self.event_counts:
+            lines += wrap([f"{k} {n}" for k, n in self.event_counts.most_common()], width, indent="        ",
+                          first="events  ")
+            lines.append("latest events (last at the bottom):")
             for e in self.events:
-                kind = common.EVENT_KINDS.get(e.kind, str(e.kind))
-                what = {"pickup": f"picked up token {e.value}", "deposit": f"deposited token {e.value}",
-                        "oae": f"obstacle avoidance #{e.value}", "failure": f"FAILURE {e.detail}",
-                        "state_change": e.detail}.get(kind, f"{kind} {e.detail} {e.value}")
-                lines.append(f"  {e.utime / 1e6:9.1f} s  robot {e.robot_id:3d}  {what}")
+                lines.append(f"  {e.utime / 1e6:9.1f} s  robot {e.robot_id:3d}  {self.event_text(e)}")
         if self.summary is not None:
             m = self.summary
             lines.append(f"run finished after {m.steps} steps (state {m.state_hash}):")
-            line = " "
-            for n, v in zip(m.metric_names, m.metric_values):
-                item = f" {n} {v:.6g}"
-                if len(line) + len(item) > width and line.strip():
-                    lines.append(line)
-                    line = " "
-                line += item
-            lines.append(line)
+            lines += wrap([f"{n} {v:.6g}" for n, v in zip(m.metric_names, m.metric_values, strict=True)], width, indent="  ",
+                          first="  ")
         if self.bridge is not None:
             for d in self.bridge.devices:
                 lines.append(f"bridge {d.device} robot {d.robot_id}: {'up' if d.connected else 'DOWN'}  "
                              f"frames {d.frames}  crc {d.crc_errors}  framing {d.framing_errors}  "
                              f"garbage {d.oversize}  bad payload {d.bad_payload}  lost {d.lost}  "
                              f"reconnects {d.reconnects}")
+        if self.elsewhere:
+            prefixes = sorted({common.split_channel(ch)[0] for ch in self.elsewhere if common.split_channel(ch)}
+                              - {self.prefix})
+            lines += wrap([f"{ch} {n}" for ch, n in sorted(self.elsewhere.items())], width, indent="           ",
+                          first="not shown  ")
+            if prefixes:
+                lines.append(f"           (see them with {' or '.join(f'--prefix {shlex.quote(p)}' for p in prefixes)})")
         if self.undecodable:
             lines.append(f"{self.undecodable} messages of unknown types")
-        return [ln[:width] for ln in lines]
+        return fit(lines, width)
 
     def render(self, source="", width=160, height=None, scroll=0):
-        """The dashboard as lines of text, fitted to width x height."""
+        """The dashboard as lines of text, fitted to width x height (None:
+        no limit)."""
         head = self.header(source, width)
         foot = self.footer(width)
-        robots = self.robot_lines(width)
-        table = [self.ROBOT_HEAD[:width]] if robots else []
+        table = self.robot_lines(width)
         if height is None:
-            return head + [""] + table + robots + [""] + foot
-        # The robot table keeps at least a few lines; the events give way.
-        room = max(min(len(robots), 5), height - len(head) - len(foot) - 3)
-        foot = foot[:max(0, height - len(head) - 3 - room)]
-        scroll = max(0, min(scroll, max(0, len(robots) - room)))
-        shown = robots[scroll:scroll + room]
-        if len(robots) > room and room > 0:
-            table = [f"{self.ROBOT_HEAD[:width - 30]}  ({scroll + 1}-{scroll + len(shown)} of {len(robots)})"[:width]]
-        return (head + [""] + table + shown + [""] + foot)[:height]
+            return head + [""] + table + [""] + foot
+        # The robot tables keep at least a few lines; the events give way.
+        room = max(min(len(table), 6), height - len(head) - len(foot) - 2)
+        foot = foot[:max(0, height - len(head) - 2 - room)]
+        scroll = max(0, min(scroll, max(0, len(table) - room)))
+        shown = table[scroll:scroll + room]
+        if len(table) > room and room > 1:
+            note = f"robot tables: lines {scroll + 1}-{scroll + len(shown) - 1} of {len(table)} (up/down scroll)"
+            shown = fit([note], width) + shown[:-1]
+        return (head + [""] + shown + [""] + foot)[:height]
 
 
 def open_bus(args):
     lcm = common.lcm_module()
     if args.log:
         path = os.path.abspath(args.log)
-        if not os.path.exists(path):
-            raise SystemExit(f"monitor: {args.log}: no such file")
+        if not os.path.isfile(path):
+            raise SystemExit(f"swarm-monitor: {args.log}: no such file")
         url = f"file://{path}?speed={args.speed:g}"
     else:
         url = args.lcm
     try:
         return lcm.LCM(url), url
     except Exception as e:
-        raise SystemExit(f"monitor: cannot open LCM URL {url!r}: {e}") from None
+        raise SystemExit(f"swarm-monitor: cannot open LCM URL {url!r}: {e}") from None
 
 
 def handle(bus, timeout_ms, args):
@@ -239,6 +301,7 @@ def handle(bus, timeout_ms, args):
 
 
 def run_plain(bus, model, source, args):
+    width = shutil.get_terminal_size().columns if sys.stdout.isatty() else None
     last_msg = time.monotonic()
     next_print = time.monotonic() + args.interval
     printed = False
@@ -250,14 +313,14 @@ def run_plain(bus, model, source, args):
         if got > 0:
             last_msg = now
         if now >= next_print and not args.exit_idle:
-            print("\n".join(model.render(source)), flush=True)
+            print("\n".join(model.render(source, width)), flush=True)
             print("-" * 40, flush=True)
             next_print = now + args.interval
             printed = True
         if args.exit_idle and now - last_msg >= args.exit_idle:
             break
     if args.exit_idle or not printed:
-        print("\n".join(model.render(source)), flush=True)
+        print("\n".join(model.render(source, width)), flush=True)
 
 
 def run_curses(bus, model, source, args):
@@ -288,7 +351,7 @@ def run_curses(bus, model, source, args):
             page = max(1, height - 12)
             scroll = {curses.KEY_DOWN: scroll + 1, curses.KEY_UP: scroll - 1,
                       curses.KEY_NPAGE: scroll + page, curses.KEY_PPAGE: scroll - page}.get(key, scroll)
-            scroll = max(0, min(scroll, max(0, len(model.robots) - 1)))
+            scroll = max(0, min(scroll, max(0, len(model.robot_lines(None)) - 1)))
             now = time.monotonic()
             if args.exit_idle and now - last_msg >= args.exit_idle:
                 return
@@ -307,7 +370,7 @@ def run_curses(bus, model, source, args):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+    ap = argparse.ArgumentParser(prog="swarm-monitor", description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     src = ap.add_mutually_exclusive_group()
     src.add_argument("--lcm", default=common.DEFAULT_URL, help="LCM URL to listen on (default %(default)s)")
@@ -319,11 +382,12 @@ def main(argv=None):
     ap.add_argument("--interval", type=float, default=2.0, help="--plain: seconds between prints")
     ap.add_argument("--exit-idle", type=float, default=0.0,
                     help="quit after this many seconds without a message (and, with --plain, print once then)")
-    ap.add_argument("--events", type=int, default=10, help="events shown")
+    ap.add_argument("--events", type=int, default=10, help="latest events shown")
+    ap.add_argument("--prefix", default="",
+                    help="show the channels with this prefix (FW_: the robots' own telemetry in a simulation)")
     args = ap.parse_args(argv)
-    common.swarmlcm()   # fail early, with advice, when the types are missing
     bus, url = open_bus(args)
-    model = Model(run=args.run, events=args.events)
+    model = Model(run=args.run, events=args.events, prefix=args.prefix)
     bus.subscribe(".*", model.add)
     source = args.log or url
     try:
@@ -331,8 +395,12 @@ def main(argv=None):
             run_plain(bus, model, source, args)
         else:
             run_curses(bus, model, source, args)
+    except common.IncompatibleMessage as e:
+        raise SystemExit(f"swarm-monitor: {e.explain(source, log=bool(args.log))}") from None
     except KeyboardInterrupt:
         pass
+    except BrokenPipeError:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return 0
 
 

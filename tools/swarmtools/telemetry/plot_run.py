@@ -1,175 +1,269 @@
-#!/usr/bin/env python3
-"""PNG figures of a run from its LCM log.
+"""PNG figures of a run from its LCM log, whatever its controllers and tasks.
 
-    plot_run.py out/run/run_1/telemetry.lcmlog -o out/run/run_1/plots
+    swarm-plot out/run/run_1/telemetry.lcmlog -o out/run/run_1/plots
+    (or .venv/bin/python -m swarmtools.telemetry.plot_run ...)
 
 writes
-  food_level.png       nest food F(t) with F_d, and the nest beacon's own F(t)
-                       when there is one (foraging runs)
-  robots_by_state.png  robots waiting / searching / returning over time
-                       (foraging), or by controller state (any controller)
-  oae.png              obstacle-avoidance events: the total, and per 10 s
-  events.png           pick-ups, deposits and failures over time (when any)
-from SWARM_STATE and SWARM_EVENT (any log with them: a simulation's, or
-lcm-logger's of real robots behind the bridge).  Needs matplotlib
-(`make telemetry-deps`).
+  robots_by_state.png      robots in each controller state over time (SWARM_STATE;
+                           from the robots' own states when there is none)
+  swarm_values.png         every value of the swarm schema (but step and time_s,
+                           the time axis) over time, one panel each
+                           (swarm_values_2.png, ... past 12 panels)
+  events.png               cumulative events of each kind (SWARM_EVENT; log scale)
+  controller_<name>.png    per controller: the mean over its robots of each of
+                           its values over time, with their range (ROBOT_STATE)
+named by the schemas on TELEMETRY_SCHEMA: any log with them (a
+simulation's, or lcm-logger's of real robots behind the bridge).  --prefix
+plots channels published with a prefix instead (the bridge's --prefix; FW_
+for the robots' own telemetry in a simulation with robot_telemetry.enabled).
 """
 import argparse
 import collections
 import math
 import os
+import re
 import sys
+from dataclasses import dataclass, field
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+from swarmtools.telemetry import common
 
-EVENT_WINDOW_S = 10.0
+PROG = "swarm-plot"
+PANELS_PER_FIGURE = 12
 
 
-def read_log(path, run=None):
-    """SWARM_STATE rows, events, the run info and summary of a log."""
-    lcm = common.lcm_module()
-    common.swarmlcm()
-    try:
-        log = lcm.EventLog(path, "r")
-    except (IOError, OSError) as e:
-        raise SystemExit(f"plot_run: {path}: {e}") from None
-    swarm, events, info, summary = [], [], None, None
-    for ev in log:
-        msg = common.decode(ev.data)
-        if msg is None:
-            continue
-        if run is not None and getattr(msg, "run", run) != run:
+@dataclass
+class Figure:
+    """A PNG written: its path, title and the names of what its panels
+    (or series) show."""
+    path: str
+    title: str
+    series: list = field(default_factory=list)
+
+
+@dataclass
+class Run:
+    """What the plots need from a log (one run)."""
+    info: object = None
+    summary: object = None
+    swarm: list = field(default_factory=list)           # swarm_state_t
+    events: list = field(default_factory=list)          # event_t
+    robots: dict = field(default_factory=dict)          # controller -> [robot_state_t]
+    schemas: common.Schemas = field(default_factory=common.Schemas)
+    run: int = None
+
+
+def read_log(path, run=None, prefix=""):
+    """The messages of one run on the channels with `prefix` of a log (the
+    run --run chose; the only one there is, else an error)."""
+    r = Run()
+    runs = []
+    for ev, msg in common.read_log(path, PROG):
+        ours = common.split_channel(ev.channel)
+        if msg is None or ours is None or ours[0] != prefix:
             continue
         kind = type(msg).__name__
+        if kind == "schema_t":
+            r.schemas.add(msg)
+            continue
+        mrun = getattr(msg, "run", None)
+        if mrun is None:
+            continue                 # the bridge's status
+        if run is not None and mrun != run:
+            continue
+        if mrun not in runs:
+            runs.append(mrun)
         if kind == "swarm_state_t":
-            swarm.append(msg)
+            r.swarm.append(msg)
         elif kind == "event_t":
-            events.append(msg)
-        elif kind == "run_info_t" and info is None:
-            info = msg
+            r.events.append(msg)
+        elif kind == "robot_state_t":
+            r.robots.setdefault(msg.controller, []).append(msg)
+        elif kind == "run_info_t" and r.info is None:
+            r.info = msg
         elif kind == "run_summary_t":
-            summary = msg
-    log.close()
-    return swarm, events, info, summary
+            r.summary = msg
+    if len(runs) > 1:
+        raise SystemExit(f"{PROG}: {path} holds several runs ({', '.join(map(str, runs))}): choose one with --run")
+    r.run = runs[0] if runs else run
+    return r
 
 
 def title(info, what):
     if info is None:
         return what
-    pol = f" {info.policy.upper()}" if info.policy else ""
-    return f"{what}: {info.scenario}, seed {info.run},{pol} {info.robots} robots"
+    return f"{what}: {info.scenario}, seed {info.run}, {info.robots} robots"
 
 
-def plot(path, out_dir, run=None, dpi=110):
+def label(entry):
+    return f"{entry.name} ({entry.unit})" if entry.unit else entry.name
+
+
+def filename(text):
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text) or "_"
+
+
+def robot_bins(robots, bin_s):
+    """Per time bin (robot clock, `bin_s` wide): each robot's latest state
+    in it.  Returns [(bin time s, [robot_state_t])]."""
+    bins = collections.OrderedDict()
+    for m in sorted(robots, key=lambda m: m.utime):
+        b = math.floor(m.utime / 1e6 / bin_s + 1e-9)
+        bins.setdefault(b, {})[m.robot_id] = m
+    return [(b * bin_s, list(ms.values())) for b, ms in bins.items()]
+
+
+def robot_bin_s(info):
+    hz = info.robot_state_hz if info is not None else 0.0
+    return 1.0 / hz if hz > 0 else 1.0
+
+
+def plot(path, out_dir, run=None, dpi=110, prefix=""):
+    """Writes the figures; returns them (Figure)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    swarm, events, info, summary = read_log(path, run)
-    if not swarm and not events:
-        raise SystemExit(f"plot_run: {path}: no SWARM_STATE or SWARM_EVENT messages")
+    r = read_log(path, run, prefix)
+    if not r.swarm and not r.events and not r.robots:
+        raise SystemExit(f"{PROG}: {path}: no {prefix}SWARM_STATE, {prefix}SWARM_EVENT or {prefix}ROBOT_STATE "
+                         f"messages" + (f" of run {run}" if run is not None else ""))
     os.makedirs(out_dir, exist_ok=True)
     written = []
 
-    def save(fig, name):
+    def save(fig, name, what, series):
         p = os.path.join(out_dir, name)
         fig.tight_layout()
         fig.savefig(p, dpi=dpi)
         plt.close(fig)
-        written.append(p)
+        written.append(Figure(p, what, list(series)))
 
-    t = [m.time_s for m in swarm]
-    foraging = bool(swarm) and swarm[-1].foraging
+    def grids(name, what, panels, draw):
+        """Figures of up to PANELS_PER_FIGURE panels, three a row; panels
+        are (name, label, data), draw(ax, data)."""
+        for f0 in range(0, len(panels), PANELS_PER_FIGURE):
+            part = panels[f0:f0 + PANELS_PER_FIGURE]
+            cols = min(3, len(part))
+            rows = math.ceil(len(part) / cols)
+            fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 2.6 * rows + 0.6), squeeze=False,
+                                     sharex=True)
+            for ax, (_, lab, data) in zip(axes.flat, part, strict=False):
+                draw(ax, data)
+                ax.set_title(lab, fontsize="medium")
+                ax.grid(alpha=0.3)
+            for ax in axes.flat[len(part):]:
+                ax.set_visible(False)
+            for ax in axes[-1]:
+                ax.set_xlabel("time (s)")
+            fig.suptitle(title(r.info, what))
+            suffix = "" if f0 == 0 else f"_{f0 // PANELS_PER_FIGURE + 1}"
+            save(fig, f"{name}{suffix}.png", what, [n for n, _, _ in part])
 
-    if foraging:
+    # Robots by state.
+    if r.swarm:
+        t = [m.utime / 1e6 for m in r.swarm]
+        names = []
+        for m in r.swarm:
+            names += [n for n in m.state_names if n not in names]
+        counts = [dict(zip(m.state_names, m.state_counts, strict=True)) for m in r.swarm]
+        total = max(m.robots for m in r.swarm)
+    else:
+        bins = robot_bins([m for ms in r.robots.values() for m in ms], robot_bin_s(r.info))
+        t = [b for b, _ in bins]
+        names = []
+        for _, ms in bins:
+            names += [m.state for m in ms if m.state not in names]
+        counts = [collections.Counter(m.state for m in ms) for _, ms in bins]
+        total = max((len(ms) for _, ms in bins), default=1)
+    if t and names:
         fig, ax = plt.subplots(figsize=(8, 4))
-        ax.plot(t, [m.food_nest for m in swarm], label="F(t), nest food (ground truth)", color="tab:green")
-        ax.axhline(swarm[-1].food_desired, color="tab:red", linestyle="--", label="F_d, desired")
-        if swarm[-1].beacon:
-            ax.plot(t, [m.beacon_food for m in swarm], label="the nest beacon's F(t)", color="tab:olive",
-                    linewidth=0.8, alpha=0.8)
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("food in the nest (tokens)")
-        ax.set_title(title(info, "Nest food"))
-        ax.legend(loc="best", fontsize="small")
-        ax.grid(alpha=0.3)
-        save(fig, "food_level.png")
-
-    if swarm:
-        fig, ax = plt.subplots(figsize=(8, 4))
-        if foraging:
-            series = [("waiting (S_W)", [m.waiting for m in swarm]),
-                      ("searching (S_S)", [m.searching for m in swarm]),
-                      ("returning (S_R)", [m.returning for m in swarm])]
-        else:
-            names = []
-            for m in swarm:
-                for n in m.state_names:
-                    if n not in names:
-                        names.append(n)
-            series = []
-            for n in names:
-                series.append((n, [dict(zip(m.state_names, m.state_counts)).get(n, 0) for m in swarm]))
-        ax.stackplot(t, *[s for _, s in series], labels=[n for n, _ in series], alpha=0.85)
+        ax.stackplot(t, *[[c.get(n, 0) for c in counts] for n in names], labels=names, alpha=0.85)
         ax.set_xlabel("time (s)")
         ax.set_ylabel("robots")
-        ax.set_title(title(info, "Robots by state"))
-        ax.set_ylim(0, max(1, swarm[-1].robots))
-        ax.legend(loc="upper right", fontsize="small")
-        save(fig, "robots_by_state.png")
+        ax.set_title(title(r.info, "Robots by state"))
+        ax.set_ylim(0, max(1, total))
+        ax.legend(loc="upper right", fontsize="small", ncol=max(1, len(names) // 8))
+        save(fig, "robots_by_state.png", "Robots by state", names)
 
-        fig, ax = plt.subplots(figsize=(8, 4))
-        ax.plot(t, [m.oae_total for m in swarm], color="tab:purple", label="total OAEs (M_T so far)")
+    # Every swarm value.
+    if r.swarm:
+        t = [m.utime / 1e6 for m in r.swarm]
+        schema = r.schemas.of(r.swarm[-1])
+        n = max(len(m.values) for m in r.swarm)
+        panels = []
+        for k in range(n):
+            e = schema.entry(k)
+            if e.name in common.TIME_VALUES:
+                continue
+            ys = [m.values[k] if k < len(m.values) else math.nan for m in r.swarm]
+            panels.append((e.name, label(e), (t, ys)))
+        if panels:
+            grids("swarm_values", "Swarm", panels, lambda ax, d: ax.plot(*d, color="tab:blue", linewidth=1))
+
+    # Cumulative events by kind.
+    if r.events:
+        times = collections.OrderedDict()
+        for e in sorted(r.events, key=lambda e: e.utime):
+            times.setdefault(e.kind, []).append(e.utime / 1e6)
+        end = max([e.utime / 1e6 for e in r.events] + [m.utime / 1e6 for m in r.swarm[-1:]])
+        fig, ax = plt.subplots(figsize=(8, 4.5))
+        for kind, ts in times.items():
+            ax.step([0.0] + ts + [end], [0] + list(range(1, len(ts) + 1)) + [len(ts)], where="post",
+                    label=f"{kind} ({len(ts)})")
         ax.set_xlabel("time (s)")
-        ax.set_ylabel("obstacle-avoidance events")
+        ax.set_ylabel("events so far")
+        ax.set_yscale("symlog", linthresh=10)
         ax.grid(alpha=0.3)
-        oae_t = [e.utime / 1e6 for e in events if e.kind == 3]
-        if oae_t:
-            ax2 = ax.twinx()
-            end = max(t[-1], oae_t[-1])
-            bins = max(1, int(math.ceil(end / EVENT_WINDOW_S)))
-            ax2.hist(oae_t, bins=bins, range=(0, bins * EVENT_WINDOW_S), color="tab:orange", alpha=0.35,
-                     label=f"OAEs per {EVENT_WINDOW_S:g} s")
-            ax2.set_ylabel(f"OAEs per {EVENT_WINDOW_S:g} s")
-            ax.set_zorder(ax2.get_zorder() + 1)    # the total over the bars
-            ax.patch.set_visible(False)
-            h1, l1 = ax.get_legend_handles_labels()
-            h2, l2 = ax2.get_legend_handles_labels()
-            ax.legend(h1 + h2, l1 + l2, loc="upper left", fontsize="small")
-        else:
-            ax.legend(loc="upper left", fontsize="small")
-        ax.set_title(title(info, "Obstacle avoidance"))
-        save(fig, "oae.png")
+        ax.legend(loc="upper left", fontsize="small", ncol=2)
+        ax.set_title(title(r.info, "Events by kind"))
+        save(fig, "events.png", "Events by kind", list(times))
 
-    counts = collections.Counter(e.kind for e in events if e.kind in (1, 2, 4))
-    if counts:
-        fig, ax = plt.subplots(figsize=(8, 3.5))
-        rows = [(1, "pick-ups", "tab:blue"), (2, "deposits", "tab:green"), (4, "failures", "tab:red")]
-        for y, (kind, label, colour) in enumerate(rows):
-            xs = [e.utime / 1e6 for e in events if e.kind == kind]
-            ax.scatter(xs, [y] * len(xs), marker="|", s=200, color=colour, label=f"{label} ({len(xs)})")
-        ax.set_yticks(range(len(rows)), [r[1] for r in rows])
-        ax.set_ylim(-0.6, len(rows) - 0.4)
-        ax.set_xlabel("time (s)")
-        ax.set_title(title(info, "Events"))
-        ax.legend(loc="upper left", fontsize="small", ncol=3)
-        ax.grid(axis="x", alpha=0.3)
-        save(fig, "events.png")
+    # Each controller's values: the mean over its robots, and their range.
+    for ctrl, robots in r.robots.items():
+        schema = r.schemas.of(robots[-1])
+        n = max(len(m.values) for m in robots)
+        if n == 0:
+            continue
+        bins = robot_bins(robots, robot_bin_s(r.info))
+        t = [b for b, _ in bins]
+        panels = []
+        for k in range(n):
+            mean, low, high = [], [], []
+            for _, ms in bins:
+                vs = [m.values[k] for m in ms if k < len(m.values) and not math.isnan(m.values[k])]
+                mean.append(sum(vs) / len(vs) if vs else math.nan)
+                low.append(min(vs) if vs else math.nan)
+                high.append(max(vs) if vs else math.nan)
+            e = schema.entry(k)
+            panels.append((e.name, label(e), (t, mean, low, high)))
+
+        def draw(ax, d):
+            t, mean, low, high = d
+            ax.fill_between(t, low, high, color="tab:blue", alpha=0.15, linewidth=0)
+            ax.plot(t, mean, color="tab:blue", linewidth=1)
+
+        count = len({m.robot_id for m in robots})
+        grids(f"controller_{filename(ctrl)}", f"{ctrl or '(no controller)'}: mean of {count} robots (band: range)",
+              panels, draw)
     return written
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+    ap = argparse.ArgumentParser(prog="swarm-plot", description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     ap.add_argument("log", help="an LCM log (a run's telemetry.lcmlog, or lcm-logger's)")
     ap.add_argument("-o", "--out", help="folder for the PNGs (default: plots/ beside the log)")
     ap.add_argument("--run", type=int, help="only the run with this seed (a log of several runs)")
     ap.add_argument("--dpi", type=int, default=110)
+    ap.add_argument("--prefix", default="",
+                    help="plot the channels with this prefix (FW_: the robots' own telemetry in a simulation)")
     args = ap.parse_args(argv)
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise SystemExit(f"{PROG}: matplotlib is missing: run with .venv/bin/python (`make deps`)") from None
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.log)), "plots")
-    for p in plot(args.log, out, args.run, args.dpi):
-        print(p)
+    for f in plot(args.log, out, args.run, args.dpi, args.prefix):
+        print(f.path)
     return 0
 
 

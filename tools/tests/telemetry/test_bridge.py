@@ -1,7 +1,9 @@
-"""The serial bridge (tools/telemetry/bridge.py): republishing with the
-robot's id, counting what is wrong, pseudo-terminal pairs standing in for
-e-pucks' rfcomm ports (garbage, several devices, a device that disappears
-and comes back), the command line writing an LCM log, and memq://."""
+"""The serial bridge (swarmtools.telemetry.bridge): republishing with the
+robot's id (schema pieces on TELEMETRY_SCHEMA too), counting what is wrong
+(payloads of an older telemetry version named), pseudo-terminal pairs
+standing in for e-pucks' rfcomm ports (garbage, several devices, a device
+that disappears and comes back), the command line writing an LCM log, and
+memq://."""
 import os
 import random
 import signal
@@ -9,10 +11,13 @@ import subprocess
 import time
 import tty
 
-from .helpers import PYTHON, TOOLS, TempDir, c_encoder, common, event, robot_state
+from swarmtools.telemetry import bridge, common
+from swarmtools.telemetry.frames import encode_frame
 
-import bridge
-from frames import encode_frame
+from .helpers import PYTHON, TempDir, c_encoder, event, read_log, robot_state, schema
+
+#: A robot_state_t of telemetry v1 (its fingerprint, then whatever).
+V1_ROBOT_STATE = bytes.fromhex("3715081f471fd9b6") + bytes(40)
 
 
 class Collect:
@@ -76,16 +81,34 @@ class HandleFrames(TempDir):
 
     def test_robot_id_from_the_frame_or_the_device(self):
         # The robot's firmware left robot_id 0 in the message: the frame's id wins.
-        data = encode_frame(1, 7, 0, robot_state(robot_id=0, oae=3).encode())
+        data = encode_frame(1, 7, 0, robot_state(robot_id=0, values=[3, 0.5]).encode())
         self.br.feed(self.dev, data)
         (ch, m), = self.out.got
-        self.assertEqual((ch, m.robot_id, m.oae_count, m.state), ("ROBOT_STATE", 7, 3, "search"))
+        self.assertEqual((ch, m.robot_id, m.values, m.state), ("ROBOT_STATE", 7, (3.0, 0.5), "search"))
         self.assertEqual(self.dev.robot_id, 7)
         # --id DEVICE=42 overrides it; events carry it too.
         self.dev.id_override = 42
-        self.br.feed(self.dev, encode_frame(2, 7, 1, event(robot_id=7, kind=2, value=5).encode()))
+        self.br.feed(self.dev, encode_frame(2, 7, 1, event(robot_id=7, kind="deposits", value=5).encode()))
         ch, m = self.out.got[-1]
-        self.assertEqual((ch, m.robot_id, m.kind, m.value), ("SWARM_EVENT", 42, 2, 5))
+        self.assertEqual((ch, m.robot_id, m.kind, m.value), ("SWARM_EVENT", 42, "deposits", 5))
+
+    def test_schema_pieces_are_republished(self):
+        # A controller's schema of 5 values in pieces of 3 (as robot_telemetry.c sends it), channel 6.
+        names = ["carried", "rate", "drops", "heading", "spare"]
+        pieces = [schema("sorter", names[0:3], first=0, total=5, counters=[0, 0, 1]),
+                  schema("sorter", names[3:5], first=3, total=5, units=["rad", ""])]
+        for seq, piece in enumerate(pieces):
+            self.br.feed(self.dev, encode_frame(6, 9, seq, piece.encode()))
+        self.assertEqual([ch for ch, _ in self.out.got], ["TELEMETRY_SCHEMA"] * 2)
+        self.assertEqual([m.encode() for _, m in self.out.got], [p.encode() for p in pieces])   # as sent
+        book = common.Schemas()
+        for _, m in self.out.got:
+            book.add(m)
+        s = book.get("controller", "sorter", 0)
+        self.assertTrue(s.complete)
+        self.assertEqual(s.names(), names)
+        self.assertEqual((s.entry(2).counter, s.entry(3).unit), (True, "rad"))
+        self.assertEqual(self.dev.counters()["bad_payload"], 0)
 
     def test_counts_what_is_wrong(self):
         good = robot_state(robot_id=1).encode()
@@ -100,6 +123,24 @@ class HandleFrames(TempDir):
         self.assertEqual(c["lost"], 3)
         self.assertEqual(c["frames"], 2)
         self.assertEqual(len(self.out.got), 2)
+        self.assertIsNone(self.dev.incompatible)    # malformed, not another version
+
+    def test_older_and_newer_telemetry_is_refused_and_named(self):
+        self.br.feed(self.dev, encode_frame(1, 4, 0, V1_ROBOT_STATE))           # old firmware
+        self.assertEqual(self.dev.counters()["bad_payload"], 1)
+        self.assertIn("robot 4: a message on ROBOT_STATE comes from an older version of the toolkit "
+                      "(telemetry v1, robot_state_t)", self.dev.incompatible)
+        self.assertIn("robot's firmware", self.dev.incompatible)
+        self.assertIn("telemetry v1", self.br.report())
+        newer = robot_state(robot_id=4)
+        newer.version = 3
+        self.br.feed(self.dev, encode_frame(1, 4, 1, newer.encode()))
+        self.assertEqual(self.dev.counters()["bad_payload"], 2)
+        self.assertIn("a newer version of the toolkit (telemetry v3, robot_state_t); update these tools",
+                      self.dev.incompatible)
+        self.assertEqual(self.out.got, [])
+        self.br.feed(self.dev, encode_frame(1, 4, 2, robot_state(robot_id=4).encode()))   # reflashed
+        self.assertEqual(len(self.out.got), 1)
 
     def test_publish_failure_is_counted(self):
         def broken(channel, data):
@@ -121,12 +162,14 @@ class HandleFrames(TempDir):
         lcm = common.lcm_module()
         bus = lcm.LCM("memq://")
         seen = []
-        bus.subscribe("ROBOT_STATE", lambda ch, data: seen.append(common.decode(data)))
+        bus.subscribe("ROBOT_STATE|TELEMETRY_SCHEMA", lambda ch, data: seen.append(common.decode(data, ch)))
         br = bridge.Bridge([self.dev], bus.publish)
         br.feed(self.dev, encode_frame(1, 12, 0, robot_state(robot_id=0, state="wait").encode()))
+        br.feed(self.dev, encode_frame(6, 12, 1, schema("sorter", ["carried"]).encode()))
         while bus.handle_timeout(0) > 0:
             pass
-        self.assertEqual([(m.robot_id, m.state) for m in seen], [(12, "wait")])
+        self.assertEqual([(m.robot_id, m.state) for m in seen[:1]], [(12, "wait")])
+        self.assertEqual([(type(m).__name__, m.names) for m in seen[1:]], [("schema_t", ["carried"])])
 
 
 class PseudoTerminals(TempDir):
@@ -141,27 +184,27 @@ class PseudoTerminals(TempDir):
             for k, r in enumerate(robots):
                 r.send(bytes(rng.randrange(256) for _ in range(300)))          # line noise, boot text
                 for seq in range(20):
-                    r.send(c_frame(1, 10 + k, seq, robot_state(robot_id=10 + k, oae=seq).encode()))
+                    r.send(c_frame(1, 10 + k, seq, robot_state(robot_id=10 + k, values=[seq]).encode()))
             pump(br, lambda: len(out.got) == 40)
             for k in range(2):
-                self.assertEqual([m.oae_count for ch, m in out.got if m.robot_id == 10 + k], list(range(20)))
+                self.assertEqual([m.values[0] for ch, m in out.got if m.robot_id == 10 + k], list(range(20)))
             self.assertTrue(all(d.connected for d in devs))
 
             # Robot 0's link drops: its port vanishes.  The bridge notices,
             # keeps serving robot 1, and reopens robot 0 when it is back.
-            robots[0].send(c_frame(1, 10, 20, robot_state(robot_id=10, oae=20).encode())[:30])   # cut mid-frame
+            robots[0].send(c_frame(1, 10, 20, robot_state(robot_id=10, values=[20]).encode())[:30])   # cut mid-frame
             robots[0].disconnect()
             pump(br, lambda: not devs[0].connected)
-            robots[1].send(c_frame(1, 11, 20, robot_state(robot_id=11, oae=20).encode()))
+            robots[1].send(c_frame(1, 11, 20, robot_state(robot_id=11, values=[20]).encode()))
             pump(br, lambda: len(out.got) == 41)
             for _ in range(5):
                 br.poll(0.02)                      # tries to reopen a missing node: no crash
             self.assertFalse(devs[0].connected)
             robots[0].connect()
             pump(br, lambda: devs[0].connected)
-            robots[0].send(c_frame(1, 10, 21, robot_state(robot_id=10, oae=21).encode()))
+            robots[0].send(c_frame(1, 10, 21, robot_state(robot_id=10, values=[21]).encode()))
             pump(br, lambda: len(out.got) == 42)
-            self.assertEqual(out.got[-1][1].oae_count, 21)
+            self.assertEqual(out.got[-1][1].values, (21.0,))
             c0 = devs[0].counters()
             self.assertEqual(c0["reconnects"], 1)
             self.assertEqual(c0["lost"], 1)        # sequence 20 never arrived whole
@@ -177,38 +220,45 @@ class PseudoTerminals(TempDir):
         c_frame = c_encoder()
         robot = PtyRobot(str(self.tmp / "rfcomm3"))
         log = self.tmp / "bridge.lcmlog"
-        proc = subprocess.Popen([PYTHON, str(TOOLS / "bridge.py"), robot.link, "--lcm", f"file://{log}?mode=w",
+        proc = subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", robot.link, "--lcm", f"file://{log}?mode=w",
                                  "--id", f"{robot.link}=3", "--status-every", "0.2", "--report-every", "0"],
                                 stderr=subprocess.PIPE, text=True)
         try:
             time.sleep(0.5)
             robot.send(b"\xff" * 50)
             for seq in range(10):
-                robot.send(c_frame(1, 99, seq, robot_state(robot_id=99, oae=seq).encode()))
-            bad = bytearray(c_frame(2, 99, 10, event(kind=3).encode()))
+                robot.send(c_frame(1, 99, seq, robot_state(robot_id=99, values=[seq]).encode()))
+            bad = bytearray(c_frame(2, 99, 10, event(kind="oae").encode()))
             bad[8] ^= 0x40
             robot.send(bytes(bad))
-            robot.send(c_frame(2, 99, 11, event(kind=3, value=4).encode()))
+            robot.send(c_frame(2, 99, 11, event(kind="oae", value=4).encode()))
+            robot.send(c_frame(6, 99, 12, schema("sorter", ["carried"], counters=[1]).encode()))
+            robot.send(c_frame(1, 99, 13, V1_ROBOT_STATE))
             time.sleep(1.0)
         finally:
             proc.send_signal(signal.SIGINT)
             _, err = proc.communicate(timeout=10)
             robot.close()
         self.assertEqual(proc.returncode, 0, err)
-        self.assertIn("11 frames, 1 CRC errors", err)
-        lcm = common.lcm_module()
-        got = [(ev.channel, common.decode(ev.data)) for ev in lcm.EventLog(str(log), "r")]
+        self.assertIn("12 frames, 1 CRC errors", err)
+        self.assertIn("1 bad payloads", err)
+        self.assertEqual(err.count("comes from an older version of the toolkit (telemetry v1, robot_state_t)"), 2,
+                         err)   # told when it came, and in the report at exit
+        self.assertNotIn("Traceback", err)
+        got = read_log(log)
         states = [m for ch, m in got if ch == "ROBOT_STATE"]
-        self.assertEqual([m.oae_count for m in states], list(range(10)))
+        self.assertEqual([m.values for m in states], [(float(k),) for k in range(10)])
         self.assertTrue(all(m.robot_id == 3 for m in states))
         events = [m for ch, m in got if ch == "SWARM_EVENT"]
-        self.assertEqual([(m.robot_id, m.value) for m in events], [(3, 4)])
+        self.assertEqual([(m.robot_id, m.kind, m.value) for m in events], [(3, "oae", 4)])
+        schemas = [m for ch, m in got if ch == "TELEMETRY_SCHEMA"]
+        self.assertEqual([(m.name, m.names, m.counters) for m in schemas], [("sorter", ["carried"], (1,))])
         status = [m for ch, m in got if ch == "BRIDGE_STATUS"]
         self.assertTrue(status)
         self.assertEqual(status[-1].devices[0].crc_errors, 1)
 
     def test_command_line_rejects_bad_arguments(self):
-        r = subprocess.run([PYTHON, str(TOOLS / "bridge.py"), "/dev/null", "--id", "nope"],
+        r = subprocess.run([PYTHON, "-m", "swarmtools.telemetry.bridge", "/dev/null", "--id", "nope"],
                            capture_output=True, text=True)
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("DEVICE=ID", r.stderr)

@@ -1,14 +1,14 @@
-"""The host decoder of the robots' framing (tools/telemetry/frames.py)
-against the firmware's encoder (firmware/telemetry/telemetry_frame.c), and a fuzz test:
-no input makes it raise, and no corrupted frame gets through."""
+"""The host decoder of the robots' framing (swarmtools.telemetry.frames)
+against the firmware's encoder (firmware/telemetry/telemetry_frame.c), and
+a fuzz test: no input makes it raise, and no corrupted frame gets through."""
 import random
 import re
 import unittest
 
-from .helpers import ROOT, c_encoder
+from swarmtools.telemetry import common, frames
+from swarmtools.telemetry.frames import FrameDecoder, cobs_decode, cobs_encode, crc16, encode_frame
 
-import frames
-from frames import FrameDecoder, cobs_decode, cobs_encode, crc16, encode_frame
+from .helpers import ROOT, c_encoder
 
 
 class Vectors(unittest.TestCase):
@@ -28,8 +28,18 @@ class Vectors(unittest.TestCase):
 
     def test_constants_match_the_firmware_header(self):
         h = (ROOT / "firmware" / "telemetry" / "telemetry_frame.h").read_text()
-        ids = {int(v): name for name, v in re.findall(r"TELEMETRY_CH_(\w+) = (\d+)", h)}
-        self.assertEqual({k: v.replace("EVENT", "SWARM_EVENT") for k, v in ids.items()}, frames.CHANNEL_IDS)
+        # The header's table of LCM channel names by id ...
+        table = re.search(r"#define TELEMETRY_CHANNEL_NAMES \\\s*\{([^}]*)\}", h).group(1)
+        names = re.findall(r'"(\w*)"', table)
+        self.assertEqual({k: n for k, n in enumerate(names) if n}, frames.CHANNEL_IDS)
+        self.assertEqual(frames.CHANNEL_IDS[6], "TELEMETRY_SCHEMA")
+        # ... and its enum of ids (all but the count) name the same channels.
+        ids = {int(v): name for name, v in re.findall(r"TELEMETRY_CH_(\w+) = (\d+)", h) if name != "COUNT"}
+        self.assertEqual(set(ids), set(frames.CHANNEL_IDS))
+        for k, name in ids.items():
+            self.assertTrue(frames.CHANNEL_IDS[k].endswith(name), (k, name))
+        # Every channel a robot may send has an LCM type the bridge checks payloads against.
+        self.assertLessEqual(set(frames.CHANNEL_IDS.values()), set(common.CHANNEL_TYPES))
         self.assertEqual(int(re.search(r"TELEMETRY_MAX_PAYLOAD (\d+)u", h).group(1)), frames.MAX_PAYLOAD)
         self.assertEqual(int(re.search(r"TELEMETRY_VERSION (\d+)u", h).group(1)), frames.VERSION)
         self.assertEqual(int(re.search(r"TELEMETRY_HEADER_BYTES (\d+)u", h).group(1)), frames.HEADER_BYTES)
@@ -37,7 +47,7 @@ class Vectors(unittest.TestCase):
     def test_python_and_c_encoders_agree(self):
         c_frame = c_encoder()
         rng = random.Random(4)
-        for k in range(300):
+        for _ in range(300):
             n = rng.choice([0, 1, 2, 100, 239, 240, rng.randrange(241)])
             payload = bytes(rng.choice([0, 0, 0xFF, rng.randrange(256)]) for _ in range(n))
             ch, rid, seq = rng.randrange(256), rng.randrange(65536), rng.randrange(65536)
@@ -53,7 +63,7 @@ def stream(n, seed=1, c=False):
     wire, sent = b"", []
     for k in range(n):
         payload = bytes(rng.randrange(256) for _ in range(rng.randrange(0, 241)))
-        f = frames.Frame(channel=rng.randrange(1, 6), robot_id=rng.randrange(65536), seq=k & 0xFFFF, payload=payload)
+        f = frames.Frame(channel=rng.randrange(1, 7), robot_id=rng.randrange(65536), seq=k & 0xFFFF, payload=payload)
         wire += enc(f.channel, f.robot_id, f.seq, f.payload)
         sent.append(f)
     return wire, sent
@@ -160,7 +170,7 @@ class Fuzz(unittest.TestCase):
 
     def test_random_bytes(self):
         rng = random.Random(99)
-        for it in range(200):
+        for _ in range(200):
             n = rng.randrange(1, 5000)
             alphabet = rng.choice([256, 4, 2])   # dense zeros make many tiny "frames"
             data = bytes(rng.randrange(alphabet) for _ in range(n))
