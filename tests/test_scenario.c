@@ -478,7 +478,7 @@ static void test_unknown_keys(void **state)
         { "controller: {name: forager}\n", 1,
           "controller: unknown key 'controller': robots are groups now: robots: [{count: 20," },
         { "nest: {enabled: true}\n", 1,
-          "nest: unknown key 'nest': the nest belongs to its task now" },
+          "nest: unknown key 'nest': a nest is no longer a core key: a task that has one declares it" },
     };
     expect_cases(*state, cases, sizeof cases / sizeof cases[0]);
 }
