@@ -16,7 +16,8 @@
 /** Body diameter, micrometres (70 mm). */
 #define EPUCK_BODY_DIAMETER_UM 70000L
 /** IR sensors: on a circle of this radius around the centre, this high
- *  above the floor, micrometres (EPUCK.md: ~33 mm, ~33 mm). */
+ *  above the floor, micrometres (about 33 mm and 33 mm, as in the
+ *  public Webots and Enki e-puck models). */
 #define EPUCK_IR_MOUNT_RADIUS_UM 33000L
 #define EPUCK_IR_HEIGHT_UM 33000L
 /** The camera lens above the floor, micrometres (our estimate: the lens
@@ -25,7 +26,7 @@
 #define EPUCK_CAMERA_HEIGHT_UM 30000L
 
 /** IR sensor bearings IR0..IR7, degrees counter-clockwise from straight
- *  ahead (EPUCK.md): the one table; everything else derives from it. */
+ *  ahead (GCtronic's e-puck documentation, the Webots model): the one table; everything else derives from it. */
 #define EPUCK_IR_BEARINGS_DEG { -17, -50, -90, -150, 150, 90, 50, 17 }
 
 /** Bearing of IR sensor `index` in milliradians, rounded to nearest

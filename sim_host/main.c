@@ -62,6 +62,13 @@ static void usage(FILE *f)
     for (size_t i = 0; registry_controller_at(i); i++) {
         const controller_def_t *c = registry_controller_at(i);
         fprintf(f, "  %-14s %s\n", c->name, c->doc);
+        if (c->policies != NULL && c->policies[0] != NULL) {
+            fprintf(f, "  %-14s policies (`policy:`): %s (default)", "", c->policies[0]);
+            for (size_t k = 1; c->policies[k] != NULL; k++) {
+                fprintf(f, ", %s", c->policies[k]);
+            }
+            fputc('\n', f);
+        }
     }
     fputs("\ntasks (a scenario section of that name runs it):\n", f);
     for (size_t i = 0; registry_task_at(i); i++) {

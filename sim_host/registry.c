@@ -1,4 +1,5 @@
-/* The registry: one line per controller and per task the simulator runs. */
+/* The registry: the controllers and tasks the simulator runs, each its
+ * header included and one entry in its list. */
 #include "registry.h"
 
 #include <string.h>

@@ -1,6 +1,7 @@
 /*
  * test_sim.c - the simulator's physics and sensor models against the
- * e-puck facts they are calibrated to (EPUCK.md), and determinism.
+ * e-puck facts they are calibrated to (hal/units.h, the calibration
+ * tables of sensors.c), and determinism.
  */
 #include <math.h>
 #include <setjmp.h>

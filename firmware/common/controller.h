@@ -34,7 +34,8 @@
  *         .ircom_bits = 16,
  *     };
  *
- * and one line in sim_host/registry.c registers it with the simulator.
+ * and sim_host/registry.c registers it with the simulator (its header
+ * included, one entry in the list).
  */
 #ifndef FW_CONTROLLER_H
 #define FW_CONTROLLER_H

@@ -6,9 +6,10 @@
  *
  * Descriptor tables cannot lie about their fields: PARAM_FIELD and its
  * siblings take the field's C type and make a mismatch a build error (a
- * negative array size), so a PARAM_U32 on an int16_t field does not compile
- * (tests/firmware/param_check.sh proves it).  They need a GCC-compatible
- * compiler (gcc, clang, avr-gcc, XC16): __builtin_types_compatible_p.
+ * bit-field of negative width, named for the mistake), so a PARAM_U32 on
+ * an int16_t field does not compile (tests/firmware/hygiene.sh proves it
+ * on a probe).  They need a GCC-compatible compiler (gcc, clang, avr-gcc,
+ * XC16): __builtin_types_compatible_p.
  *
  *     { .key = "alpha", PARAM_FIELD(forager_params_t, alpha, float),
  *       .min = 0, .max = 1000, .doc = "eq 6 weight of k, per robot/m^2" },
@@ -54,9 +55,12 @@ typedef struct param_desc {
 #define FIELD_HAS_TYPE(T, f, ctype) \
     __builtin_types_compatible_p(__typeof__(((T *)0)->f), ctype)
 
-/** offsetof(T, f), and a build error unless the field's type is `ctype`. */
+/** offsetof(T, f), and a build error unless the field's type is `ctype`:
+ *  "negative width in bit-field 'descriptor_type_differs_from_the_field_type'",
+ *  with a note pointing at the descriptor's line. */
 #define FIELD_OFFSET_AS(T, f, ctype) \
-    (offsetof(T, f) + 0u * sizeof(char[FIELD_HAS_TYPE(T, f, ctype) ? 1 : -1]))
+    (offsetof(T, f) + 0u * sizeof(struct { \
+        int descriptor_type_differs_from_the_field_type : FIELD_HAS_TYPE(T, f, ctype) ? 1 : -1; }))
 
 #define FIELD_SIZE(T, f) sizeof(((T *)0)->f)
 

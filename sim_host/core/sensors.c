@@ -1,7 +1,8 @@
 /*
- * sensors.c - geometric sensor models of the e-puck, calibrated per
- * EPUCK.md.  Each is computed at most once per control step per robot,
- * and only when the controller asks (see sim_hal.c).
+ * sensors.c - geometric sensor models of the e-puck, calibrated to the
+ * facts of hal/units.h and the measurements cited below.  Each is
+ * computed at most once per control step per robot, and only when the
+ * controller asks (see sim_hal.c).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -25,7 +26,8 @@ void sensors_init(struct sim *sim)
 }
 
 /* Proximity (raw counts) against distance from the sensor to a surface,
- * measured on a real e-puck (Webots calibration, EPUCK.md). */
+ * measured on a real e-puck (the calibration of Webots' e-puck
+ * model, taken on the robot). */
 static const float ir_table_m[] = { 0.000f, 0.005f, 0.010f, 0.015f, 0.020f,
                                     0.030f, 0.040f, 0.050f, 0.060f, 0.070f };
 static const float ir_table_v[] = { 4095, 2133, 1466, 601, 384, 235, 158, 120, 104, 67 };

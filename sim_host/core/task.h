@@ -9,7 +9,8 @@
  * state (create/destroy), runs hooks around each control step, adds things
  * the sensors see (items), declares its time-series columns and summary
  * metrics, draws itself as data (drawing.h), and may end a run (done).
- * Register it with one line in sim_host/registry.c.
+ * Register it in sim_host/registry.c (its header included, one entry in
+ * the list).
  *
  * How one control step runs (sim_step):
  *   1. before_control of every task, in registry order (serial);

@@ -141,6 +141,24 @@ expect_error "--set: a later override replaces an earlier one" \
     "swarmsim: --set robots.0.count=1.5: robots[0].count: expected an integer, got '1.5'" \
     "$ok" --set robots.0.count=3 --set robots.0.count=1.5
 
+# --help documents what the errors point to: every controller with its
+# policies, every task, and the keys of each.
+n=$((n + 1))
+if ! "$sim" --help >"$tmp/help" 2>&1; then
+    echo "FAIL: --help: non-zero exit"; fail=$((fail + 1))
+else
+    missing=""
+    for want in "forager " "policies (\`policy:\`): drtm (default), artm, frtm" "phototaxis " \
+                "gather " "robots[].params" "foraging.food_count" "gather.goal.x"; do
+        grep -qF -- "$want" "$tmp/help" || missing="$missing '$want'"
+    done
+    if [ -n "$missing" ]; then
+        echo "FAIL: --help lacks:$missing"; fail=$((fail + 1))
+    else
+        pass=$((pass + 1))
+    fi
+fi
+
 echo "$pass passed, $fail failed"
 if [ "$fail" -ne 0 ]; then
     echo "scenario_errors.sh: $fail of $n checks failed" >&2

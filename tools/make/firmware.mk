@@ -19,8 +19,9 @@
 #                           EPUCK_LIB_DIR  the e-puck library (its library/ folder
 #                                          or the repository holding it)
 #                           RANDB_DIR      e-RandB turret driver (e_randb.c), for
-#                                          forager and nest_beacon
-#                           IRCOM_DIR      libIrcom sources, for random_walk
+#                                          the images on the turret (images.list)
+#                           IRCOM_DIR      libIrcom sources, for the images on
+#                                          libIrcom (images.list)
 #                         FIRMWARE_IMAGES (every image of firmware/apps/images.list),
 #                         FORAGER_POLICY (drtm|artm|frtm), FIRMWARE_N_ROBOTS
 #                         (20), FIRMWARE_ARENA_MM (4000).

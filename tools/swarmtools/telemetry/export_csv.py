@@ -316,7 +316,8 @@ def main(argv=None):
 
 def _main(argv):
     ap = argparse.ArgumentParser(prog="swarm-export", description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+                                 formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog=__doc__.split("\n\n", 1)[1])
     ap.add_argument("log", help="an LCM log file (lcm-logger's, or a run's telemetry.lcmlog)")
     ap.add_argument("--channel", action="append", help="channel name or regular expression (repeatable; default: all)")
     ap.add_argument("-o", "--out", default="-", help="CSV file, or a directory for one file per channel (default: stdout)")

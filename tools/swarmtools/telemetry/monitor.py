@@ -274,12 +274,31 @@ class Model:
         return (head + [""] + shown + [""] + foot)[:height]
 
 
+def check_log(lcm, name, path):
+    """Refuses a file that is not an LCM log before LCM's log provider
+    meets it (which would only say it could not start)."""
+    try:
+        log = lcm.EventLog(path, "r")
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"swarm-monitor: {name}: cannot read: {e}") from None
+    try:
+        first = log.read_next_event()
+    except (OSError, ValueError):
+        first = None
+    finally:
+        log.close()
+    if first is None:
+        what = "empty (no events)" if os.path.getsize(path) == 0 else "not an LCM log (no events in it)"
+        raise SystemExit(f"swarm-monitor: {name}: {what}")
+
+
 def open_bus(args):
     lcm = common.lcm_module()
     if args.log:
         path = os.path.abspath(args.log)
         if not os.path.isfile(path):
             raise SystemExit(f"swarm-monitor: {args.log}: no such file")
+        check_log(lcm, args.log, path)
         url = f"file://{path}?speed={args.speed:g}"
     else:
         url = args.lcm
@@ -371,7 +390,8 @@ def run_curses(bus, model, source, args):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="swarm-monitor", description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+                                 formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog=__doc__.split("\n\n", 1)[1])
     src = ap.add_mutually_exclusive_group()
     src.add_argument("--lcm", default=common.DEFAULT_URL, help="LCM URL to listen on (default %(default)s)")
     src.add_argument("--log", help="read an LCM log file instead (at --speed)")

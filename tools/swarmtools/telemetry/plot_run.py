@@ -249,7 +249,8 @@ def plot(path, out_dir, run=None, dpi=110, prefix=""):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="swarm-plot", description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+                                 formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog=__doc__.split("\n\n", 1)[1])
     ap.add_argument("log", help="an LCM log (a run's telemetry.lcmlog, or lcm-logger's)")
     ap.add_argument("-o", "--out", help="folder for the PNGs (default: plots/ beside the log)")
     ap.add_argument("--run", type=int, help="only the run with this seed (a log of several runs)")

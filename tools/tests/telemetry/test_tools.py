@@ -213,7 +213,7 @@ class RoundTrip(SimulatedRuns):
         r = tool("export_csv", self.log, "--channel", "SWARM_STATE", "--every", 100, "--fields", "step")
         self.assertEqual(r.stdout.split(), ["step"] + [str(s) for s in range(0, 1234, 100)] + ["1234"])
 
-    def test_exporter_errors(self):
+    def test_errors_on_bad_input(self):
         results = []
 
         def tool(*args, **kw):
@@ -231,15 +231,17 @@ class RoundTrip(SimulatedRuns):
         self.assertIn("no such file", r.stderr)
         text = self.tmp / "notes.txt"
         text.write_text("not a log\n")
-        r = tool("export_csv", text, check=False)
-        self.assertEqual(r.returncode, 1)
-        self.assertIn("not an LCM log", r.stderr)
+        for name, extra in (("export_csv", ()), ("plot_run", ()), ("monitor", ("--plain", "--speed", "0"))):
+            r = tool(name, *(("--log",) if name == "monitor" else ()), text, *extra, check=False)
+            self.assertEqual(r.returncode, 1, name)
+            self.assertIn(f"{text}: not an LCM log", r.stderr, name)
+            self.assertNotIn("Traceback", r.stderr, name)
         r = tool("export_csv", self.log, "--timeseries", 10, "--channel", "ROBOT_STATE", check=False)
         self.assertEqual(r.returncode, 2)
         r = tool("export_csv", self.log, "--timeseries", 10, "--run", 99, check=False)
         self.assertEqual(r.returncode, 1)
         self.assertIn("no SWARM_STATE messages of run 99", r.stderr)
-        self.assertEqual(len(results), 6)
+        self.assertEqual(len(results), 8)
         for r in results:
             self.assertNotIn("Traceback", r.stderr)
 
