@@ -1,27 +1,20 @@
-/* The registry: the controllers and tasks the simulator runs, each its
- * header included and one entry in its list. */
+/* The registry: the controllers and tasks the simulator runs.  The lists
+ * come from the sources (tools/make/registry.sh writes registry_list.h from
+ * every controller_def_t in firmware/<folder>/<name>_def.c and every
+ * task_def_t in sim_host/tasks/<task>/), so no hand-kept list names one. */
 #include "registry.h"
 
 #include <string.h>
 
-#include "common/random_walk.h"
-#include "examples/phototaxis.h"
-#include "foraging/forager.h"
-#include "foraging/nest_beacon.h"
-#include "tasks/foraging/foraging.h"
-#include "tasks/gather/gather.h"
+#include "registry_list.h"
 
 static const controller_def_t *const controllers[] = {
-    &random_walk_def,
+    REGISTRY_CONTROLLERS
     &idle_def,
-    &forager_def,
-    &nest_beacon_def,
-    &phototaxis_def,
 };
 
 static const task_def_t *const tasks[] = {
-    &foraging_task,
-    &gather_task,
+    REGISTRY_TASKS
 };
 
 #define COUNT(a) (sizeof (a) / sizeof (a)[0])

@@ -1,8 +1,10 @@
 /*
  * registry.h - the controllers and tasks the simulator can run by name.
- * The core (scenario loading, --help) looks them up here; sim_host/registry.c
- * lists them, one line each: the one place a new controller or task is
- * registered.
+ * The core (scenario loading, --help) looks them up here.  The lists are
+ * generated from the sources (tools/make/registry.sh): a controller's
+ * `const controller_def_t NAME_def = {` in firmware/<folder>/NAME_def.c and
+ * a task's `const task_def_t NAME = {` in sim_host/tasks/<task>/ register
+ * it; no hand-kept list names one.
  */
 #ifndef SIM_REGISTRY_H
 #define SIM_REGISTRY_H

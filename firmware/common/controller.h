@@ -34,8 +34,9 @@
  *         .ircom_bits = 16,
  *     };
  *
- * and sim_host/registry.c registers it with the simulator (its header
- * included, one entry in the list).
+ * and the simulator registers it by itself: the build finds every
+ * `const controller_def_t NAME = {` (on one line) in
+ * firmware/<folder>/<name>_def.c (tools/make/registry.sh).
  */
 #ifndef FW_CONTROLLER_H
 #define FW_CONTROLLER_H

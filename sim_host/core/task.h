@@ -9,8 +9,8 @@
  * state (create/destroy), runs hooks around each control step, adds things
  * the sensors see (items), declares its time-series columns and summary
  * metrics, draws itself as data (drawing.h), and may end a run (done).
- * Register it in sim_host/registry.c (its header included, one entry in
- * the list).
+ * The build registers it: it finds every `const task_def_t NAME = {` (on
+ * one line) in sim_host/tasks/<task>/ (tools/make/registry.sh).
  *
  * How one control step runs (sim_step):
  *   1. before_control of every task, in registry order (serial);
