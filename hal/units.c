@@ -36,15 +36,12 @@ int32_t units_steps_in_period(int16_t steps_s, uint16_t period_ms)
     return (int32_t)(((int32_t)steps_s * (int32_t)period_ms) / 1000L);
 }
 
+#define IR_MRAD_ITEM(deg) UNITS_DEG_TO_MRAD(deg),
+
 int16_t units_ir_bearing_mrad(uint8_t index)
 {
-    /* deg * 1000 * pi / 180, rounded: pi/180 = 314159 / 18000000 to 6
-     * digits, exact enough for every e-puck bearing (|deg| <= 180). */
-    static const int16_t deg[8] = EPUCK_IR_BEARINGS_DEG;
-    int32_t d;
-    if (index >= 8u) {
-        return 0;
-    }
-    d = (int32_t)deg[index] * 314159L;
-    return (int16_t)((d + (d < 0 ? -9000L : 9000L)) / 18000L);
+    /* Converted at compile time: the robot's poll path asks this for every
+     * sensor of every IR message received. */
+    static const int16_t mrad[8] = { EPUCK_IR_BEARINGS(IR_MRAD_ITEM) };
+    return index < 8u ? mrad[index] : 0;
 }

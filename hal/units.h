@@ -26,8 +26,18 @@
 #define EPUCK_CAMERA_HEIGHT_UM 30000L
 
 /** IR sensor bearings IR0..IR7, degrees counter-clockwise from straight
- *  ahead (GCtronic's e-puck documentation, the Webots model): the one table; everything else derives from it. */
-#define EPUCK_IR_BEARINGS_DEG { -17, -50, -90, -150, 150, 90, 50, 17 }
+ *  ahead (GCtronic's e-puck documentation, the Webots model): the one
+ *  list, X(deg) for each sensor in turn; everything else derives from it. */
+#define EPUCK_IR_BEARINGS(X) X(-17) X(-50) X(-90) X(-150) X(150) X(90) X(50) X(17)
+#define EPUCK_IR_DEG_ITEM(deg) deg,
+/** The bearings as an initialiser, degrees. */
+#define EPUCK_IR_BEARINGS_DEG { EPUCK_IR_BEARINGS(EPUCK_IR_DEG_ITEM) }
+
+/** `deg` (an integer constant, |deg| <= 180) in milliradians, rounded to
+ *  nearest, as a constant expression: pi/180 = 314159 / 18000000 to 6
+ *  digits, exact enough for every e-puck bearing. */
+#define UNITS_DEG_TO_MRAD(deg) \
+    ((int16_t)(((int32_t)(deg) * 314159L + ((deg) < 0 ? -9000L : 9000L)) / 18000L))
 
 /** Bearing of IR sensor `index` in milliradians, rounded to nearest
  *  (integer arithmetic only); 0 for an index out of range. */

@@ -194,9 +194,10 @@ static void test_frtm_fixed(void **state)
     /* ... so P depends on S only: 0.5 at S = theta0, 0 for S <= 0. */
     assert_float_equal(ta_probability(3.3f, theta, 5u), 0.5, EPS);
     assert_float_equal(ta_probability(-1.0f, theta, 5u), 0.0, 0.0);
-    assert_string_equal(ta_policy_name(TA_FRTM), "frtm");
-    assert_string_equal(ta_policy_name(TA_DRTM), "drtm");
-    assert_string_equal(ta_policy_name(TA_ARTM), "artm");
+    assert_string_equal(ta_policy_names[TA_FRTM], "frtm");
+    assert_string_equal(ta_policy_names[TA_DRTM], "drtm");
+    assert_string_equal(ta_policy_names[TA_ARTM], "artm");
+    assert_null(ta_policy_names[TA_POLICY_COUNT]);   /* the list's end */
 }
 
 int main(void)

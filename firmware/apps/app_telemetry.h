@@ -11,9 +11,12 @@
 #include "hal_epuck.h"
 #include "telemetry/robot_telemetry.h"
 
-/** This step's platform values of the robot `hal`: the commands it was
- *  given and the summaries of its IR and ambient readings (sampled once
- *  per step on the e-puck, so reading them here costs nothing). */
-void app_telemetry_platform(struct hal *hal, robot_telemetry_platform_t *out);
+/** The image's telemetry for this step (robot_telemetry_step), after its
+ *  controller's step.  On the steps that send a robot_state_t it adds what
+ *  the e-puck's struct hal knows: the commands of this step and, when
+ *  `reads_sensors` is non-zero, the summaries of the IR and ambient
+ *  readings (-1: a controller that reads none, such as the beacon). */
+void app_telemetry_step(robot_telemetry_t *t, struct hal *hal, const robot_telemetry_source_t *src,
+                        uint8_t reads_sensors);
 
 #endif

@@ -65,14 +65,11 @@ static ta_policy_t choose_policy(uint8_t selector)
 
 static void app_send_telemetry(void)
 {
-    robot_telemetry_platform_t platform;
-    robot_telemetry_source_t src;
-    app_telemetry_platform(&app_hal, &platform);
-    src.controller = FORAGER_NAME;
-    src.observables = forager_observables;
-    src.state = &app_forager;
-    src.state_name = forager_state_name(&app_forager);
-    robot_telemetry_step(&app_telemetry, &app_hal, &src, &platform);
+    const robot_telemetry_source_t src = {
+        .controller = FORAGER_NAME, .observables = forager_observables,
+        .state = &app_forager, .state_name = forager_state_name(&app_forager),
+    };
+    app_telemetry_step(&app_telemetry, &app_hal, &src, 1u);
 }
 
 static void app_setup(void)

@@ -39,17 +39,12 @@ static void app_tick(void)
 
 static void app_send_telemetry(void)
 {
-    robot_telemetry_platform_t platform;
-    robot_telemetry_source_t src;
-    app_telemetry_platform(&app_hal, &platform);
-    platform.ir_max = -1;          /* the beacon reads no sensor */
-    platform.ir_max_index = -1;
-    platform.ambient_min = -1;
-    src.controller = NEST_BEACON_NAME;
-    src.observables = nest_beacon_observables;
-    src.state = &app_beacon;
-    src.state_name = nest_beacon_state_name(&app_beacon);
-    robot_telemetry_step(&app_telemetry, &app_hal, &src, &platform);
+    const robot_telemetry_source_t src = {
+        .controller = NEST_BEACON_NAME, .observables = nest_beacon_observables,
+        .state = &app_beacon, .state_name = nest_beacon_state_name(&app_beacon),
+    };
+    /* the beacon reads no sensor */
+    app_telemetry_step(&app_telemetry, &app_hal, &src, 0u);
 }
 
 static void app_setup(void)

@@ -25,14 +25,11 @@ static void app_tick(void)
 
 static void app_send_telemetry(void)
 {
-    robot_telemetry_platform_t platform;
-    robot_telemetry_source_t src;
-    app_telemetry_platform(&app_hal, &platform);
-    src.controller = PHOTOTAXIS_NAME;
-    src.observables = phototaxis_observables;
-    src.state = &app_phototaxis;
-    src.state_name = phototaxis_state_name(&app_phototaxis);
-    robot_telemetry_step(&app_telemetry, &app_hal, &src, &platform);
+    const robot_telemetry_source_t src = {
+        .controller = PHOTOTAXIS_NAME, .observables = phototaxis_observables,
+        .state = &app_phototaxis, .state_name = phototaxis_state_name(&app_phototaxis),
+    };
+    app_telemetry_step(&app_telemetry, &app_hal, &src, 1u);
 }
 
 int main(void)

@@ -176,7 +176,7 @@ static void broadcast(nest_beacon_t *self, hal_t *hal)
     uint16_t frame;
     switch (self->next_kind) {
     case NL_KIND_FOOD:
-        frame = nest_link_encode_food(nest_beacon_food_q4(self));
+        frame = nest_link_encode_food(self->food_q4);
         break;
     case NL_KIND_WAITING:
         frame = nest_link_encode_waiting(self->n_waiting);
@@ -204,9 +204,9 @@ static void keep_ledger(nest_beacon_t *self, hal_t *hal)
     self->ledger_units -= consumption_units(self, hal_control_period_ms(hal));
     self->ledger_units -= (int32_t)((uint32_t)active * self->params.move_cost);
 
+    self->food_q4 = nest_beacon_food_q4(self);   /* the ledger is final for this step */
     broadcast(self, hal);
     self->bin_step++;
-    self->food_q4 = nest_beacon_food_q4(self);
 }
 
 void nest_beacon_step(nest_beacon_t *self, hal_t *hal)

@@ -94,8 +94,3 @@ float ta_artm_update(float theta, float S, float S_prev, float delta,
 }
 
 const char *const ta_policy_names[TA_POLICY_COUNT + 1] = { TA_POLICY_NAMES, 0 };
-
-const char *ta_policy_name(ta_policy_t policy)
-{
-    return (unsigned)policy < (unsigned)TA_POLICY_COUNT ? ta_policy_names[policy] : "?";
-}

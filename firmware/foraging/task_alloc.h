@@ -79,7 +79,4 @@ uint8_t ta_roulette(rng_t *rng, float p);
 float ta_artm_update(float theta, float S, float S_prev, float delta,
                      float theta_min, float theta_max);
 
-/** Name of a ta_policy_t: "drtm", "artm", "frtm" or "?". */
-const char *ta_policy_name(ta_policy_t policy);
-
 #endif

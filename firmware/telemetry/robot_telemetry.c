@@ -23,15 +23,21 @@ static void queue(robot_telemetry_t *t, hal_t *hal, uint8_t channel, int n)
     }
 }
 
+/* The observables sent: the table's, at most ROBOT_TELEMETRY_MAX_VALUES. */
+static uint8_t value_count(const robot_telemetry_source_t *src)
+{
+    uint8_t n = observable_count(src->observables);
+    return n > ROBOT_TELEMETRY_MAX_VALUES ? (uint8_t)ROBOT_TELEMETRY_MAX_VALUES : n;
+}
+
 static void send_state(robot_telemetry_t *t, hal_t *hal, const robot_telemetry_source_t *src,
                        const robot_telemetry_platform_t *p)
 {
     swarmlcm_robot_state_t m;
     float values[ROBOT_TELEMETRY_MAX_VALUES];
-    uint8_t n = 0u;
-    while (src->observables != 0 && src->observables[n].name != 0 && n < ROBOT_TELEMETRY_MAX_VALUES) {
-        values[n] = observable_read(&src->observables[n], src->state);
-        n++;
+    uint8_t n = value_count(src), k;
+    for (k = 0u; k < n; k++) {
+        values[k] = observable_read(&src->observables[k], src->state);
     }
     m.version = SWARMLCM_ROBOT_STATE_T_VERSION;
     m.utime = (int64_t)hal_time_ms(hal) * 1000;
@@ -63,10 +69,7 @@ static void send_schema_chunk(robot_telemetry_t *t, hal_t *hal, const robot_tele
     char *names[ROBOT_TELEMETRY_SCHEMA_CHUNK], *units[ROBOT_TELEMETRY_SCHEMA_CHUNK];
     char *docs[ROBOT_TELEMETRY_SCHEMA_CHUNK];
     int8_t counters[ROBOT_TELEMETRY_SCHEMA_CHUNK];
-    uint8_t total = observable_count(src->observables), k;
-    if (total > ROBOT_TELEMETRY_MAX_VALUES) {
-        total = (uint8_t)ROBOT_TELEMETRY_MAX_VALUES;
-    }
+    uint8_t total = value_count(src), k;
     if (t->schema_next >= total) {
         t->schema_next = 0u;
     }
@@ -94,10 +97,15 @@ static void send_schema_chunk(robot_telemetry_t *t, hal_t *hal, const robot_tele
           swarmlcm_schema_t_encode(t->payload, 0, (int)sizeof t->payload, &m));
 }
 
+uint8_t robot_telemetry_state_due(const robot_telemetry_t *t)
+{
+    return (uint8_t)(t->countdown == 0u);
+}
+
 void robot_telemetry_step(robot_telemetry_t *t, hal_t *hal, const robot_telemetry_source_t *src,
                           const robot_telemetry_platform_t *platform)
 {
-    if (t->countdown == 0u) {
+    if (robot_telemetry_state_due(t) != 0u) {
         t->countdown = (uint8_t)ROBOT_TELEMETRY_STEPS;
         send_state(t, hal, src, platform);
     } else if (t->countdown == ROBOT_TELEMETRY_STEPS / 2u) {

@@ -66,9 +66,15 @@ typedef struct robot_telemetry {
 /** Empty sender; the first state goes out at the first step. */
 void robot_telemetry_init(robot_telemetry_t *t);
 
+/** Non-zero when this step's robot_telemetry_step sends a robot_state_t:
+ *  the only step that reads the platform values and the state name, so a
+ *  caller gathers them then only. */
+uint8_t robot_telemetry_state_due(const robot_telemetry_t *t);
+
 /** Once per control step, after the controller's: sends what is due
- *  (robot_state_t, a schema chunk) and pumps the sender.  Frames that do
- *  not fit are dropped and counted by the sender. */
+ *  (robot_state_t, a schema chunk) and pumps the sender.  `platform` is
+ *  read only when robot_telemetry_state_due() said so (NULL otherwise).
+ *  Frames that do not fit are dropped and counted by the sender. */
 void robot_telemetry_step(robot_telemetry_t *t, hal_t *hal, const robot_telemetry_source_t *src,
                           const robot_telemetry_platform_t *platform);
 

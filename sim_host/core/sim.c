@@ -152,42 +152,55 @@ static int create_robot_links(struct sim *sim, char err[256])
     return 0;
 }
 
+void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p)
+{
+    const sim_robot_t *r = &sim->robots[i];
+    p->wheel_left = r->cmd_left;
+    p->wheel_right = r->cmd_right;
+    p->leds = (int16_t)r->leds;
+    p->ir_max = -1;
+    p->ir_max_index = -1;
+    if (r->ir_stamp != 0 && r->ir_stamp >= since) {
+        uint16_t best = 0;
+        uint8_t at = 0;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+            if (r->ir[k] > best) {
+                best = r->ir[k];
+                at = k;
+            }
+        }
+        p->ir_max = (int16_t)best;
+        p->ir_max_index = (int8_t)at;
+    }
+    p->ambient_min = -1;
+    if (r->ambient_stamp != 0 && r->ambient_stamp >= since) {
+        uint16_t low = HAL_RAW_MAX;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+            low = r->ambient[k] < low ? r->ambient[k] : low;
+        }
+        p->ambient_min = (int16_t)low;
+    }
+    p->blobs = r->camera_stamp != 0 && r->camera_stamp >= since ? (int8_t)r->blob_count : -1;
+}
+
 /* After robot r's step: its image's telemetry sender, as on the robot.
  * It reads only the robot's own state and this step's sensor caches, so
  * the run is the same with it or without it. */
 static void robot_telemetry_of(struct sim *sim, uint32_t i)
 {
     sim_robot_t *r = &sim->robots[i];
+    robot_telemetry_t *tx = &sim->robot_tx[i];
     robot_telemetry_platform_t p;
-    robot_telemetry_source_t src;
-    uint64_t now = sim->step + 1;
-    p.wheel_left = r->cmd_left;
-    p.wheel_right = r->cmd_right;
-    p.leds = (int16_t)r->leds;
-    p.ir_max = -1;
-    p.ir_max_index = -1;
-    if (r->ir_stamp == now) {
-        p.ir_max = 0;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-            if (r->ir[k] > p.ir_max) {
-                p.ir_max = (int16_t)r->ir[k];
-                p.ir_max_index = (int8_t)k;
-            }
-        }
-        if (p.ir_max_index < 0) p.ir_max_index = 0;
+    const robot_telemetry_platform_t *due = NULL;
+    robot_telemetry_source_t src = {
+        .controller = r->def->name, .observables = r->def->observables, .state = r->ctrl,
+    };
+    if (robot_telemetry_state_due(tx)) {
+        sim_robot_platform(sim, i, sim->step + 1, &p);
+        src.state_name = r->def->state_name(r->ctrl);
+        due = &p;
     }
-    p.ambient_min = -1;
-    if (r->ambient_stamp == now) {
-        uint16_t low = HAL_RAW_MAX;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) low = r->ambient[k] < low ? r->ambient[k] : low;
-        p.ambient_min = (int16_t)low;
-    }
-    p.blobs = r->camera_stamp == now ? (int8_t)r->blob_count : -1;
-    src.controller = r->def->name;
-    src.observables = r->def->observables;
-    src.state = r->ctrl;
-    src.state_name = r->def->state_name(r->ctrl);
-    robot_telemetry_step(&sim->robot_tx[i], &r->hal, &src, &p);
+    robot_telemetry_step(tx, &r->hal, &src, due);
 }
 
 static int create_tasks(struct sim *sim, char err[256])

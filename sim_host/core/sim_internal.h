@@ -141,6 +141,12 @@ struct sim {
     sim_metrics_t metrics;
 };
 
+/* sim.c */
+/** Robot i's commands and sensor summaries as robot_telemetry reports them:
+ *  IR and ambient from the readings cached at step stamp `since` or later
+ *  (1: any read so far; the current stamp: this step only), else -1. */
+void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p);
+
 /* world.c: Box2D bodies */
 int world_create(struct sim *sim, char err[256]);
 void world_destroy(struct sim *sim);

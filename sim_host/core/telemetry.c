@@ -342,32 +342,15 @@ static void robot_message(const telemetry_t *t, const struct sim *sim, uint32_t 
     m->group = (char *)sim->sc->groups[r->group].name;
     m->controller = (char *)r->def->name;
     m->state = (char *)sim_robot_state_name(sim, i);
-    m->wheel_left = r->cmd_left;
-    m->wheel_right = r->cmd_right;
-    m->leds = (int16_t)r->leds;
-    m->ir_max = -1;
-    m->ir_max_index = -1;
-    if (r->ir_stamp) {
-        uint16_t best = 0;
-        uint8_t at = 0;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-            if (r->ir[k] > best) {
-                best = r->ir[k];
-                at = k;
-            }
-        }
-        m->ir_max = (int16_t)best;
-        m->ir_max_index = (int8_t)at;
-    }
-    m->ambient_min = -1;
-    if (r->ambient_stamp) {
-        uint16_t low = HAL_RAW_MAX;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-            low = r->ambient[k] < low ? r->ambient[k] : low;
-        }
-        m->ambient_min = (int16_t)low;
-    }
-    m->blobs = r->camera_stamp ? (int8_t)r->blob_count : -1;
+    robot_telemetry_platform_t p;
+    sim_robot_platform(sim, i, 1, &p);   /* the latest readings, whenever taken */
+    m->wheel_left = p.wheel_left;
+    m->wheel_right = p.wheel_right;
+    m->leds = p.leds;
+    m->ir_max = p.ir_max;
+    m->ir_max_index = p.ir_max_index;
+    m->ambient_min = p.ambient_min;
+    m->blobs = p.blobs;
     m->pose_known = 1;
     m->x = r->x;
     m->y = r->y;

@@ -228,7 +228,7 @@ firmware:
 	elif [ ! -x "$(XC16_BIN)/xc16-bin2hex" ]; then say "$(XC16_BIN)/xc16-bin2hex not found in the XC16 install"; fi; \
 	if [ -z "$(EPUCK_LIB_DIR)" ]; then \
 	  say "EPUCK_LIB_DIR is not set: get GCtronic's e-puck library (the e-puck-library repository on GitHub, folder library/) and pass EPUCK_LIB_DIR=/path/to/e-puck-library"; \
-	else for f in $(FW_EPL_COMMON) $(if $(filter %:randb,$(foreach i,$(FIRMWARE_IMAGES),$(filter $(i):%,$(FW_IMAGE_SPECS)))),$(FW_EPL_ADSCAN)); do \
+	else for f in $(FW_EPL_COMMON) $(if $(FW_RANDB_IMAGES),$(FW_EPL_ADSCAN)); do \
 	  [ -f "$(EPL)/$$f" ] || say "EPUCK_LIB_DIR: $(EPL)/$$f not found (is EPUCK_LIB_DIR the e-puck library?)"; done; fi; \
 	for i in $(FIRMWARE_IMAGES); do case " $(FW_IMAGE_SPECS) " in *" $$i:"*) ;; *) say "unknown image '$$i' (images: $(FW_IMAGE_SPECS))";; esac; done; \
 	if [ -n "$(FW_RANDB_IMAGES)" ]; then \
