@@ -69,6 +69,9 @@ typedef struct controller_def {
     void (*default_params)(void *params);
     /** Applies policy `index` (into `policies`) to params; NULL without policies. */
     void (*set_policy)(void *params, uint8_t index);
+    /* self is the robot's state.  A stateless controller (state_size 0, the
+     * simulator's idle) is not initialised or stepped, and its state_name
+     * gets NULL. */
     void (*init)(void *self, const void *params, uint32_t seed);
     void (*reset)(void *self);
     void (*step)(void *self, hal_t *hal);

@@ -6,7 +6,6 @@
 #include "metrics.h"
 
 #include <math.h>
-#include <string.h>
 
 #include "sim_internal.h"
 
@@ -21,7 +20,8 @@ void metrics_put(metric_list_t *m, const char *name, const char *unit, const cha
     }
 }
 
-unsigned metric_desc_count(const metric_desc_t *table)
+/* Entries of a {NULL}-terminated metric_desc_t table. */
+static unsigned metric_desc_count(const metric_desc_t *table)
 {
     unsigned n = 0;
     while (table && table[n].name) {
@@ -39,14 +39,10 @@ static void count(const struct sim *sim, double *total, uint32_t *robots)
     }
     for (uint32_t i = 0; i < sim->n; i++) {
         const sim_robot_t *r = &sim->robots[i];
-        for (const observable_t *o = r->def->observables; r->ctrl && o && o->name; o++) {
-            for (uint32_t k = 0; o->kind == OBS_COUNTER && k < sim->n_counters; k++) {
-                if (strcmp(sim->counters[k].name, o->name) == 0) {
-                    total[k] += (double)observable_read(o, r->ctrl);
-                    robots[k]++;
-                    break;
-                }
-            }
+        const sim_group_counter_t *c = sim->group_counters[r->group];
+        for (uint32_t k = 0; r->ctrl && k < sim->n_group_counters[r->group]; k++) {
+            total[c[k].slot] += (double)observable_read(c[k].obs, r->ctrl);
+            robots[c[k].slot]++;
         }
     }
 }

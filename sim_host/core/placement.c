@@ -32,7 +32,8 @@
 
 static const char *const shape_names[] = { "rectangle", "circle", "ring", "grid", "poses" };
 
-float placement_obstacle_gap(const obstacle_t *o, vec2_t p)
+/* Gap between a robot at p and obstacle o (negative when they overlap). */
+static float obstacle_gap(const obstacle_t *o, vec2_t p)
 {
     if (o->shape == SHAPE_CYLINDER) {
         return v2_len(v2_sub(p, o->c)) - o->r - EPUCK_BODY_RADIUS_M;
@@ -64,7 +65,7 @@ static int free_spot(const struct sim *sim, const uint8_t *placed, float spacing
         }
     }
     for (uint32_t k = 0; k < sim->n_obstacles; k++) {
-        if (placement_obstacle_gap(&sim->obstacles[k], v2(x, y)) < PLACE_MARGIN) {
+        if (obstacle_gap(&sim->obstacles[k], v2(x, y)) < PLACE_MARGIN) {
             return 0;
         }
     }

@@ -318,15 +318,27 @@ static const schema_t top_schema = { top_params, top_children, fill_task, task_k
 
 /* ---------------------------------------------------------------- defaults */
 
+/* `def`'s default params in `out`, zeroed first; -1 (and zeros) when its
+ * params struct does not fit (resolve_controller reports that). */
+static int default_params_of(const controller_def_t *def, scenario_params_t *out)
+{
+    memset(out, 0, sizeof *out);
+    if (def->params_size > sizeof out->bytes) {
+        return -1;
+    }
+    if (def->default_params != NULL) {
+        def->default_params(out->bytes);
+    }
+    return 0;
+}
+
 static void group_defaults(robot_group_t *g, const controller_def_t *def)
 {
     *g = group_default;
     if (def != NULL) {
         snprintf(g->controller, sizeof g->controller, "%s", def->name);
         g->def = def;
-        if (def->default_params != NULL && def->params_size <= sizeof g->params.bytes) {
-            def->default_params(g->params.bytes);
-        }
+        (void)default_params_of(def, &g->params);
     }
 }
 
@@ -517,10 +529,7 @@ static int check_group(const loader_t *ld, const ynode_t *item, const char *path
     if (resolve_controller(ld, item, path, g) != 0 || resolve_policy(ld, item, path, g) != 0) {
         return -1;
     }
-    memset(g->params.bytes, 0, sizeof g->params.bytes);
-    if (g->def->default_params != NULL) {
-        g->def->default_params(g->params.bytes);
-    }
+    (void)default_params_of(g->def, &g->params);   /* it fits: resolve_controller checked */
     params_schema.params = g->def->params;
     schema_join(p, path, "params");
     if (schema_fill_mapping(ld, ytree_get(item, "params"), p, &params_schema, g->params.bytes) != 0) {
@@ -831,12 +840,8 @@ static void print_group_params(FILE *f, const char *prefix)
     const controller_def_t *def;
     for (size_t i = 0; (def = registry_controller_at(i)) != NULL; i++) {
         scenario_params_t buf;
-        if (def->params_size > sizeof buf.bytes) {
+        if (default_params_of(def, &buf) != 0) {
             continue;
-        }
-        memset(&buf, 0, sizeof buf);
-        if (def->default_params != NULL) {
-            def->default_params(buf.bytes);
         }
         if (def->params == NULL || def->params[0].key == NULL) {
             fprintf(f, "  %s: none when controller is %s\n", prefix, def->name);

@@ -45,8 +45,9 @@ static void build_obstacles(struct sim *sim)
     }
 }
 
-/* Every group's controller states, params (the scenario's, then its
- * policy, then what the tasks tell it) and robots. */
+/* Every group's robots and their controllers, initialised with the
+ * group's params (the scenario's, then its policy, then what the tasks
+ * tell it). */
 static int build_robots(struct sim *sim, char err[256])
 {
     const scenario_t *sc = sim->sc;
@@ -54,15 +55,14 @@ static int build_robots(struct sim *sim, char err[256])
     for (uint32_t g = 0; g < sc->group_count; g++) {
         const robot_group_t *grp = &sc->groups[g];
         const controller_def_t *def = grp->def;
-        scenario_params_t *params = &sim->group_params[g];
-        *params = grp->params;
+        scenario_params_t params = grp->params;
         if (def->set_policy) {
-            def->set_policy(params->bytes, grp->policy_index);
+            def->set_policy(params.bytes, grp->policy_index);
         }
         for (uint32_t t = 0; t < sc->task_count; t++) {
             const task_def_t *task = sc->tasks[t].def;
             if (task->configure) {
-                task->configure(sc->tasks[t].config.bytes, sc, grp, params->bytes);
+                task->configure(sc->tasks[t].config.bytes, sc, grp, params.bytes);
             }
         }
         /* Each state on its own 16-byte boundary. */
@@ -87,23 +87,38 @@ static int build_robots(struct sim *sim, char err[256])
             sim_rand_seed(&r->ircom_rand, sim->seed, i, RAND_IRCOM);
             sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
             sim_rand_seed(&r->tracker_rand, sim->seed, i, RAND_TRACKER);
+            if (r->ctrl) {
+                def->init(r->ctrl, params.bytes, sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
+            }
         }
     }
     return 0;
 }
 
-/* Every distinct counter name the groups' controllers declare, in order. */
+/* Every distinct counter name the groups' controllers declare, in order
+ * (one total per name, over every controller that counts it), and each
+ * group's counters with the total they add to. */
 static void find_counters(struct sim *sim)
 {
     const scenario_t *sc = sim->sc;
     for (uint32_t g = 0; g < sc->group_count; g++) {
         const controller_def_t *def = sc->groups[g].def;
         for (const observable_t *o = def->observables; o && o->name; o++) {
+            if (o->kind != OBS_COUNTER) {
+                continue;
+            }
             uint32_t k = 0;
             while (k < sim->n_counters && strcmp(sim->counters[k].name, o->name) != 0) {
                 k++;
             }
-            if (o->kind != OBS_COUNTER || k < sim->n_counters || k == SIM_MAX_COUNTERS) {
+            if (k == SIM_MAX_COUNTERS) {
+                continue;
+            }
+            if (sim->n_group_counters[g] < SIM_MAX_COUNTERS) {
+                sim->group_counters[g][sim->n_group_counters[g]++] =
+                    (sim_group_counter_t){ .obs = o, .slot = (uint8_t)k };
+            }
+            if (k < sim->n_counters) {
                 continue;
             }
             sim_counter_t *c = &sim->counters[sim->n_counters++];
@@ -113,17 +128,6 @@ static void find_counters(struct sim *sim)
                      o->doc ? o->doc : o->name);
             snprintf(c->total_key, sizeof c->total_key, "%.40s_total", o->name);
             snprintf(c->per_robot_key, sizeof c->per_robot_key, "%.40s_per_robot", o->name);
-        }
-    }
-}
-
-static void init_controllers(struct sim *sim)
-{
-    for (uint32_t i = 0; i < sim->n; i++) {
-        sim_robot_t *r = &sim->robots[i];
-        if (r->ctrl) {
-            r->def->init(r->ctrl, sim->group_params[r->group].bytes,
-                         sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
         }
     }
 }
@@ -237,7 +241,6 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     size_t n = sim->n ? sim->n : 1, no = sim->n_obstacles ? sim->n_obstacles : 1;
     size_t ng = sc->group_count ? sc->group_count : 1;
     sim->robots = calloc(n, sizeof *sim->robots);
-    sim->group_params = calloc(ng, sizeof *sim->group_params);
     sim->ctrl_blocks = calloc(ng, sizeof *sim->ctrl_blocks);
     sim->step_order = calloc(n, sizeof *sim->step_order);
     sim->px = calloc(n, sizeof *sim->px);
@@ -247,7 +250,7 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     /* Cells a little larger than the IR reach: an IR query touches at
      * most 3 x 3 cells. */
     float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
-    if (!sim->robots || !sim->group_params || !sim->ctrl_blocks || !sim->step_order || !sim->px
+    if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
         || !sim->py || !sim->obstacles || !sim->obstacle_mark
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
@@ -280,7 +283,6 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
         sim->px[i] = sim->robots[i].x;
         sim->py[i] = sim->robots[i].y;
     }
-    init_controllers(sim);
     find_counters(sim);
     if (create_robot_links(sim, err) != 0) {
         sim_destroy(sim);
@@ -311,7 +313,6 @@ void sim_destroy(sim_t *sim)
         free(sim->ctrl_blocks[g]);
     }
     free(sim->ctrl_blocks);
-    free(sim->group_params);
     free(sim->robots);
     free(sim->step_order);
     free(sim->px);
@@ -444,7 +445,7 @@ uint32_t sim_obstacle_count(const sim_t *sim) { return sim->n_obstacles; }
 const char *sim_robot_state_name(const sim_t *sim, uint32_t i)
 {
     const sim_robot_t *r = &sim->robots[i];
-    return r->ctrl ? r->def->state_name(r->ctrl) : "idle";
+    return r->def->state_name(r->ctrl);   /* ctrl is NULL for a stateless controller */
 }
 
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta)

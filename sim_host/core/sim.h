@@ -59,7 +59,7 @@ const controller_def_t *sim_robot_def(const sim_t *sim, uint32_t i);
  *  controllers; tests do).  NULL for a controller without state. */
 void *sim_robot_controller(sim_t *sim, uint32_t i);
 const void *sim_robot_controller_const(const sim_t *sim, uint32_t i);
-/** The current state name of its controller ("idle" without state). */
+/** The current state name of its controller. */
 const char *sim_robot_state_name(const sim_t *sim, uint32_t i);
 /** The hal_t of robot `i`, to drive a robot from a test. */
 hal_t *sim_robot_hal(sim_t *sim, uint32_t i);

@@ -86,6 +86,12 @@ typedef struct sim_counter {
     char per_robot_key[56];    /**< "<name>_per_robot" */
 } sim_counter_t;
 
+/** One counter of a group's controller and the total it adds to. */
+typedef struct sim_group_counter {
+    const observable_t *obs;
+    uint8_t slot;              /**< in sim->counters */
+} sim_group_counter_t;
+
 /** A running task. */
 typedef struct sim_task_run {
     const task_def_t *def;
@@ -102,7 +108,6 @@ struct sim {
 
     uint32_t n;                    /**< robots */
     sim_robot_t *robots;
-    scenario_params_t *group_params; /**< per group: what its robots were initialised with */
     void **ctrl_blocks;            /**< per group: its robots' controller states */
     float *px, *py;                /**< robot centres, for the grid */
     grid_t robot_grid;
@@ -127,6 +132,10 @@ struct sim {
 
     uint32_t n_counters;
     sim_counter_t counters[SIM_MAX_COUNTERS];
+    /* Per group, its controller's counters (found once by name, so that
+     * counting each step matches no strings). */
+    uint8_t n_group_counters[SCENARIO_MAX_GROUPS];
+    sim_group_counter_t group_counters[SCENARIO_MAX_GROUPS][SIM_MAX_COUNTERS];
 
     /* robot_telemetry.enabled: each robot's sender and the link it writes
      * to (NULL otherwise). */
@@ -156,8 +165,6 @@ void world_read_poses(struct sim *sim);
 
 /* placement.c: start poses of every group */
 int placement_run(struct sim *sim, char err[256]);
-/** Gap between a robot at p and obstacle o (negative when they overlap). */
-float placement_obstacle_gap(const obstacle_t *o, vec2_t p);
 
 /* sensors.c */
 /** Precomputes what the sensor models share (sensor directions). */

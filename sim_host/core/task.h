@@ -103,7 +103,4 @@ typedef struct task_def {
     int (*done)(const void *self, const sim_t *sim);
 } task_def_t;
 
-/** Entries of a {NULL}-terminated metric_desc_t table. */
-unsigned metric_desc_count(const metric_desc_t *table);
-
 #endif

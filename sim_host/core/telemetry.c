@@ -162,9 +162,9 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
         t->n = sim->n;
         t->buf_size = 4096;
         t->buf = malloc(t->buf_size);
-        for (uint32_t i = 0; i < sim->n; i++) {
+        for (uint32_t g = 0; g < sim->sc->group_count; g++) {   /* the most a robot has */
             uint32_t c = 0;
-            for (const observable_t *o = sim->robots[i].def->observables; o && o->name; o++) {
+            for (const observable_t *o = sim->sc->groups[g].def->observables; o && o->name; o++) {
                 c += o->kind == OBS_COUNTER;
             }
             t->n_counters = c > t->n_counters ? c : t->n_counters;
