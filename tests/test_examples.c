@@ -52,7 +52,7 @@ static void test_walkthrough_scenario_gathers(void **state)
     scenario_t *sc = load(NULL, 0);
     char err[256];
     sim_t *sim = sim_create(sc, 1, err);
-    assert_non_null(sim);
+    if (!sim) fail_msg("%s", err);
     uint64_t steps = 0;
     while (steps < 3000 && !sim_done(sim)) {
         sim_step(sim);
@@ -87,7 +87,7 @@ static void test_no_stop_condition(void **state)
     scenario_t *sc = load(sets, 1);
     char err[256];
     sim_t *sim = sim_create(sc, 1, err);
-    assert_non_null(sim);
+    if (!sim) fail_msg("%s", err);
     for (int k = 0; k < 1000; k++) sim_step(sim);
     assert_false(sim_done(sim));
     metric_list_t m;

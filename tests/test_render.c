@@ -410,9 +410,9 @@ static void test_highlight_and_body_leds(void **state)
     render_ctx_t *ctx = *state;
     render_scene_t sc = empty_scene();
     render_robot_t rbs[3] = {
-        {.x = -0.25f, .y = 0.0f, .fill_rgb = RENDER_RGB_HL_GREEN},
+        {.x = -0.25f, .y = 0.0f, .fill_rgb = DRAW_RGB_HL_GREEN},
         {.x = 0.0f, .y = 0.0f, .body_led = 1},
-        {.x = 0.25f, .y = 0.0f, .front_led = 1, .fill_rgb = RENDER_RGB_HL_YELLOW},
+        {.x = 0.25f, .y = 0.0f, .front_led = 1, .fill_rgb = DRAW_RGB_HL_YELLOW},
     };
     sc.robots = rbs;
     sc.robot_count = 3;
@@ -421,7 +421,7 @@ static void test_highlight_and_body_leds(void **state)
     picture_t pic = {0};
     render_and_read(ctx, &sc, "highlight.png", &pic);
     assert_int_equal(at_world(ctx, &sc, &pic, -0.25f - 0.5f * r, 0.0f),
-                     RENDER_RGB_HL_GREEN);
+                     DRAW_RGB_HL_GREEN);
     assert_int_equal(at_world(ctx, &sc, &pic, 0.0f - 0.2f * r, 0.0f),
                      RENDER_RGB_LED_GREEN);
     assert_int_equal(at_world(ctx, &sc, &pic, 0.0f - 0.6f * r, 0.0f),
@@ -429,7 +429,7 @@ static void test_highlight_and_body_leds(void **state)
     assert_int_equal(at_world(ctx, &sc, &pic, 0.25f + 0.55f * r, 0.0f),
                      RENDER_RGB_LED_RED);
     assert_int_equal(at_world(ctx, &sc, &pic, 0.25f - 0.5f * r, 0.0f),
-                     RENDER_RGB_HL_YELLOW);
+                     DRAW_RGB_HL_YELLOW);
     free(pic.rgb);
 }
 
@@ -617,7 +617,7 @@ static void *worker_main(void *arg)
         float side = wk->id == 0 ? -1.0f : 1.0f;
         render_robot_t rb = {.x = side * 0.25f, .y = -0.3f + 0.05f * (float)f,
                              .theta = PI_F,
-                             .fill_rgb = wk->id == 0 ? RENDER_RGB_HL_RED : RENDER_RGB_HL_GREEN,
+                             .fill_rgb = wk->id == 0 ? DRAW_RGB_HL_RED : DRAW_RGB_HL_GREEN,
                              .leds = 0x10};
         sc.robots = &rb;
         sc.robot_count = 1;
@@ -633,7 +633,7 @@ static void *worker_main(void *arg)
         float c, r, oc, orow;
         render_world_to_pixel(ctx, &sc, rb.x - 0.015f, rb.y + 0.01f, &c, &r);
         render_world_to_pixel(ctx, &sc, -rb.x, rb.y, &oc, &orow);
-        uint32_t want = wk->id == 0 ? RENDER_RGB_HL_RED : RENDER_RGB_HL_GREEN;
+        uint32_t want = wk->id == 0 ? DRAW_RGB_HL_RED : DRAW_RGB_HL_GREEN;
         /* LED4 is at the back, i.e. +x for a robot facing -x. */
         float lc, lr;
         render_world_to_pixel(ctx, &sc, rb.x + 0.76f * 0.035f, rb.y, &lc, &lr);

@@ -25,6 +25,13 @@ typedef enum draw_layer {
 
 #define DRAW_TEXT_MAX 32
 
+/* Robot fills that read well on the default body (drawing_t.robot_rgb,
+ * render_robot_t.fill_rgb): one palette for every task that marks robots. */
+#define DRAW_RGB_HL_RED       0xF08C8Cu
+#define DRAW_RGB_HL_GREEN     0x8CDC8Cu
+#define DRAW_RGB_HL_BLUE      0x8CA0F0u
+#define DRAW_RGB_HL_YELLOW    0xF0DC5Au
+
 typedef struct draw_shape {
     uint8_t kind;              /**< draw_kind_t */
     uint8_t layer;             /**< draw_layer_t */

@@ -60,11 +60,6 @@
 #define RENDER_RGB_HEADING      0x1E1E28u /**< heading bar, centre to front */
 #define RENDER_RGB_LED_RED      0xFF1010u /**< ring LED and front LED, on */
 #define RENDER_RGB_LED_GREEN    0x10E610u /**< body LED, on */
-/* Suggested robot fills for callers that mark robots (render_robot_t.fill_rgb). */
-#define RENDER_RGB_HL_RED       0xF08C8Cu
-#define RENDER_RGB_HL_GREEN     0x8CDC8Cu
-#define RENDER_RGB_HL_BLUE      0x8CA0F0u
-#define RENDER_RGB_HL_YELLOW    0xF0DC5Au
 
 /** One robot.  The ring LEDs sit on the rim: LED0 at the front, LED i at
  *  -45*i degrees from the heading (clockwise seen from above). */

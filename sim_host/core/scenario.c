@@ -658,18 +658,24 @@ static int check_tasks(const loader_t *ld, const ynode_t *root, const scenario_t
 
 /* ---------------------------------------------------------------- cross checks */
 
-static int inside_arena(const scenario_t *sc, double x, double y, double hx, double hy)
+int scenario_inside_arena(const scenario_t *sc, double x, double y, double hx, double hy)
 {
     return fabs(x) + hx <= sc->arena.width / 2.0 + ARENA_EPS &&
            fabs(y) + hy <= sc->arena.height / 2.0 + ARENA_EPS;
 }
 
+void scenario_outside_message(const scenario_t *sc, const char *what, char *msg, size_t size)
+{
+    snprintf(msg, size, "%s outside the arena (x in [%g, %g], y in [%g, %g] m)", what,
+             -sc->arena.width / 2.0, sc->arena.width / 2.0, -sc->arena.height / 2.0, sc->arena.height / 2.0);
+}
+
 static int outside(const loader_t *ld, const ynode_t *node, const char *path, const char *what,
                    const scenario_t *sc)
 {
-    return schema_fail(ld, node, path, "%s outside the arena (x in [%g, %g], y in [%g, %g] m)", what,
-                       -sc->arena.width / 2.0, sc->arena.width / 2.0, -sc->arena.height / 2.0,
-                       sc->arena.height / 2.0);
+    char msg[160];
+    scenario_outside_message(sc, what, msg, sizeof msg);
+    return schema_fail(ld, node, path, "%s", msg);
 }
 
 static int check_inside(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
@@ -685,14 +691,14 @@ static int check_inside(const loader_t *ld, const ynode_t *root, const scenario_
             hx = (c * o->width + s * o->depth) / 2.0;
             hy = (s * o->width + c * o->depth) / 2.0;
         }
-        if (!inside_arena(sc, o->x, o->y, hx, hy)) {
+        if (!scenario_inside_arena(sc, o->x, o->y, hx, hy)) {
             schema_index_path(path, "objects", i);
             return outside(ld, seq->items[i], path,
                            o->shape == SHAPE_BOX ? "the box reaches" : "the cylinder reaches", sc);
         }
     }
     for (uint32_t i = 0; i < sc->light_count; i++) {
-        if (!inside_arena(sc, sc->lights[i].x, sc->lights[i].y, 0.0, 0.0)) {
+        if (!scenario_inside_arena(sc, sc->lights[i].x, sc->lights[i].y, 0.0, 0.0)) {
             schema_index_path(path, "lights", i);
             return outside(ld, lights->items[i], path, "the light is", sc);
         }

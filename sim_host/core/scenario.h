@@ -210,6 +210,14 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
 /** Every robot of every group. */
 uint32_t scenario_robot_count(const scenario_t *sc);
 
+/** Non-zero when a rectangle of half-extents hx, hy (m) centred on (x, y)
+ *  lies inside the arena (to 1 um): the check of objects, lights and the
+ *  tasks' own regions. */
+int scenario_inside_arena(const scenario_t *sc, double x, double y, double hx, double hy);
+/** "<what> outside the arena (x in [..], y in [..] m)" in `msg`: the one
+ *  wording of that error, for the core and the tasks. */
+void scenario_outside_message(const scenario_t *sc, const char *what, char *msg, size_t size);
+
 /** The config of task `def` in `sc`, or NULL when the scenario has no such
  *  section. */
 const void *scenario_task_config(const scenario_t *sc, const struct task_def *def);

@@ -23,16 +23,14 @@
 #define PLACE_TRIES 100000
 /* Drawing: the grey nest floor, and robots by task state. */
 #define RGB_NEST 0xB4B4B4u
-#define RGB_SEARCHING 0x8CDC8Cu
-#define RGB_RETURNING 0xF0DC5Au
-#define RGB_BEACON 0x8CA0F0u
+#define RGB_SEARCHING DRAW_RGB_HL_GREEN
+#define RGB_RETURNING DRAW_RGB_HL_YELLOW
+#define RGB_BEACON DRAW_RGB_HL_BLUE
 
 typedef struct foraging {
     const foraging_config_t *cfg;
-    const scenario_t *sc;
     uint32_t n_robots;
     uint8_t *is_forager;     /**< per robot: runs the forager (has the gripper) */
-    uint8_t *is_beacon;      /**< per robot: runs the nest beacon */
     uint32_t n_foragers;     /**< N_r */
     char *task;              /**< per robot: last task state 'W', 'S', 'R' (foragers) */
 
@@ -133,11 +131,9 @@ static int foraging_check(const void *config, const scenario_t *sc, char key[64]
     const foraging_config_t *c = config;
     double r = c->nest.diameter / 2.0;
     uint32_t beacons = robots_running(sc, &nest_beacon_def);
-    if (fabs(c->nest.x) + r > sc->arena.width / 2.0 + 1e-6 || fabs(c->nest.y) + r > sc->arena.height / 2.0 + 1e-6) {
+    if (!scenario_inside_arena(sc, c->nest.x, c->nest.y, r, r)) {
         snprintf(key, 64, "nest");
-        snprintf(msg, 256, "the nest circle reaches outside the arena (x in [%g, %g], y in [%g, %g] m)",
-                 -sc->arena.width / 2.0, sc->arena.width / 2.0, -sc->arena.height / 2.0,
-                 sc->arena.height / 2.0);
+        scenario_outside_message(sc, "the nest circle reaches", msg, 256);
         return -1;
     }
     if (c->information == FORAGING_INFO_BEACON && beacons != 1) {
@@ -156,6 +152,12 @@ static int foraging_check(const void *config, const scenario_t *sc, char key[64]
     return 0;
 }
 
+/* T2 = L / (2 v) (seed 000, eq 5), s: the window of M_A. */
+static double t2_s(const scenario_t *sc, const foraging_config_t *c)
+{
+    return sc->arena.width / (2.0 * c->robot_speed);
+}
+
 /* What a robot is built with (seed 000): the forager knows F_d, N_r, L, the
  * nest radius and its speed; the beacon the ledger's constants and T2. */
 static void foraging_configure(const void *config, const scenario_t *sc, const robot_group_t *group,
@@ -172,14 +174,13 @@ static void foraging_configure(const void *config, const scenario_t *sc, const r
         p->walk.speed_steps_s = p->speed_steps_s;
     } else if (group->def == &nest_beacon_def) {
         nest_beacon_params_t *p = params;
-        double t2_s = sc->arena.width / (2.0 * c->robot_speed);   /* T2 = L/(2v) */
         p->n_robots = (uint16_t)robots_running(sc, &forager_def);
         p->f0_tokens = (int16_t)lround(c->initial_food);
         p->token_energy = (uint16_t)lround(fmin(c->token_energy, 65535.0));
         p->c_rate_milli_tokens_per_min = (uint16_t)lround(fmin(c->consumption * 1000.0, 65535.0));
         p->move_cost = (uint16_t)lround(fmin(c->move_cost, 65535.0));
         p->e_a = (uint16_t)lround(fmin(c->oae_energy, 65535.0));
-        p->t2_steps = (uint16_t)lround(fmin(t2_s * 1000.0 / sc->control_period_ms, 65535.0));
+        p->t2_steps = (uint16_t)lround(fmin(t2_s(sc, c) * 1000.0 / sc->control_period_ms, 65535.0));
     }
 }
 
@@ -226,7 +227,6 @@ static void foraging_destroy(void *self)
         return;
     }
     free(f->is_forager);
-    free(f->is_beacon);
     free(f->task);
     free(f->tokens);
     free(f->carrier);
@@ -246,20 +246,17 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
         return NULL;
     }
     f->cfg = c;
-    f->sc = sc;
     f->n_robots = n;
     f->n_tokens = c->food_count;
     f->is_forager = calloc(n1, 1);
-    f->is_beacon = calloc(n1, 1);
     f->task = calloc(n1, 1);
     f->tokens = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->tokens);
     f->carrier = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->carrier);
     f->carried = malloc(n1 * sizeof *f->carried);
-    /* T2 = L / (2 v) (seed 000, eq 5), in control steps. */
-    double t2 = sc->arena.width / (2.0 * c->robot_speed);
-    f->window_len = (uint32_t)fmax(1.0, floor(t2 * 1000.0 / sc->control_period_ms + 0.5));
+    /* T2 in control steps. */
+    f->window_len = (uint32_t)fmax(1.0, floor(t2_s(sc, c) * 1000.0 / sc->control_period_ms + 0.5));
     f->oae_window = calloc(f->window_len, sizeof *f->oae_window);
-    if (!f->is_forager || !f->is_beacon || !f->task || !f->tokens || !f->carrier || !f->carried
+    if (!f->is_forager || !f->task || !f->tokens || !f->carrier || !f->carried
         || !f->oae_window) {
         snprintf(err, 256, "out of memory for %u food tokens", f->n_tokens);
         foraging_destroy(f);
@@ -268,7 +265,6 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
     for (uint32_t i = 0; i < n; i++) {
         f->carried[i] = -1;
         f->is_forager[i] = sim_robot_def(sim, i) == &forager_def;
-        f->is_beacon[i] = sim_robot_def(sim, i) == &nest_beacon_def;
         f->n_foragers += f->is_forager[i];
         f->task[i] = f->is_forager[i] ? 'W' : 0;
     }
@@ -353,17 +349,6 @@ static void carry_and_grasp(foraging_t *f, sim_t *sim)
     }
 }
 
-static uint64_t forager_oaes(const foraging_t *f, sim_t *sim)
-{
-    uint64_t total = 0;
-    for (uint32_t i = 0; i < f->n_robots; i++) {
-        if (f->is_forager[i]) {
-            total += ((const forager_t *)sim_robot_controller(sim, i))->walk.oae_count;
-        }
-    }
-    return total;
-}
-
 static double balance(const foraging_t *f)
 {
     const foraging_config_t *c = f->cfg;
@@ -378,12 +363,15 @@ static void foraging_update(void *self, sim_t *sim)
     const foraging_config_t *c = f->cfg;
     carry_and_grasp(f, sim);
 
+    uint64_t oae = 0;   /* the foragers' OAEs so far */
     f->waiting = f->searching = f->returning = 0;
     for (uint32_t i = 0; i < f->n_robots; i++) {
         if (!f->is_forager[i]) {
             continue;
         }
-        char st = forager_paper_state(((const forager_t *)sim_robot_controller(sim, i))->state);
+        const forager_t *fs = sim_robot_controller(sim, i);
+        char st = forager_paper_state(fs->state);
+        oae += fs->walk.oae_count;
         f->waiting += st == 'W';
         f->searching += st == 'S';
         f->returning += st == 'R';
@@ -395,15 +383,16 @@ static void foraging_update(void *self, sim_t *sim)
     /* One unit per step per robot in S_S or S_R (seed 000, 3.1). */
     f->forage_steps += f->searching + f->returning;
 
-    uint64_t oae = forager_oaes(f, sim);
     uint32_t new_oae = (uint32_t)(oae - f->oae_seen);
     f->oae_seen = oae;
-    f->window_sum += new_oae;
-    f->window_sum -= f->oae_window[f->window_pos];
-    f->oae_window[f->window_pos] = new_oae;
-    f->window_pos = (f->window_pos + 1) % f->window_len;
+    if (c->information == FORAGING_INFO_GLOBAL) {   /* M_A for the broadcast; the beacon keeps its own */
+        f->window_sum += new_oae;
+        f->window_sum -= f->oae_window[f->window_pos];
+        f->oae_window[f->window_pos] = new_oae;
+        f->window_pos = (f->window_pos + 1) % f->window_len;
+    }
 
-    double minutes = (double)(sim_step_count(sim) + 1) * f->sc->control_period_ms / 60000.0;
+    double minutes = (double)(sim_step_count(sim) + 1) * sim_scenario(sim)->control_period_ms / 60000.0;
     f->nest_units = c->consumption * c->token_energy * minutes;
     f->food = balance(f);
     f->deviation_sum += fabs(c->desired_food - f->food);
@@ -415,7 +404,7 @@ static void foraging_update(void *self, sim_t *sim)
 static void foraging_broadcast_truth(void *self, sim_t *sim)
 {
     foraging_t *f = self;
-    const scenario_t *sc = f->sc;
+    const scenario_t *sc = sim_scenario(sim);
     uint16_t frame;
     if (f->cfg->information != FORAGING_INFO_GLOBAL) {
         return;
@@ -516,16 +505,15 @@ static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
                           .x = f->cfg->nest.x, .y = f->cfg->nest.y, .radius = nest_radius(f) };
     draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = 0x303030u,
                            .x = f->cfg->nest.x - nest_radius(f), .y = f->cfg->nest.y + nest_radius(f) };
-    (void)sim;
     drawing_add(out, &nest);
     snprintf(label.text, sizeof label.text, "F=%.1f COLLECTED %llu", f->food, (unsigned long long)f->delivered);
     drawing_add(out, &label);
     for (uint32_t i = 0; i < f->n_robots && i < out->robot_count; i++) {
-        if (f->is_beacon[i]) {
+        if (sim_robot_def(sim, i) == &nest_beacon_def) {
             out->robot_rgb[i] = RGB_BEACON;
-        } else if (f->is_forager[i] && f->task[i] == 'S') {
+        } else if (f->task[i] == 'S') {   /* task[] is 0 for robots that are not foragers */
             out->robot_rgb[i] = RGB_SEARCHING;
-        } else if (f->is_forager[i] && f->task[i] == 'R') {
+        } else if (f->task[i] == 'R') {
             out->robot_rgb[i] = RGB_RETURNING;
         }
     }

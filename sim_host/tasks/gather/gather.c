@@ -6,7 +6,7 @@
 #include <stdlib.h>
 
 #define RGB_GOAL 0x2878C8u
-#define RGB_INSIDE 0x8CDC8Cu
+#define RGB_INSIDE DRAW_RGB_HL_GREEN
 
 typedef struct gather {
     const gather_config_t *cfg;
@@ -15,7 +15,6 @@ typedef struct gather {
     uint32_t in_goal;          /**< robots inside now */
     uint32_t max_in_goal;
     double sum_in_goal;        /**< over the steps, for the mean */
-    uint64_t steps;
 } gather_t;
 
 #define GC gather_config_t
@@ -53,8 +52,7 @@ static int gather_check(const void *config, const scenario_t *sc, char key[64], 
     int x_out = fabsf(c->goal.x) > sc->arena.width / 2, y_out = fabsf(c->goal.y) > sc->arena.height / 2;
     if (x_out || y_out) {
         snprintf(key, 64, x_out ? "goal.x" : "goal.y");
-        snprintf(msg, 256, "the goal's centre is outside the arena (x in [%g, %g], y in [%g, %g] m)",
-                 -sc->arena.width / 2.0, sc->arena.width / 2.0, -sc->arena.height / 2.0, sc->arena.height / 2.0);
+        scenario_outside_message(sc, "the goal's centre is", msg, 256);
         return -1;
     }
     return 0;
@@ -99,7 +97,6 @@ static void gather_after_physics(void *self, sim_t *sim)
     }
     g->max_in_goal = g->in_goal > g->max_in_goal ? g->in_goal : g->max_in_goal;
     g->sum_in_goal += g->in_goal;
-    g->steps++;
 }
 
 static const metric_desc_t gather_columns[] = {
@@ -122,9 +119,9 @@ static const metric_desc_t gather_summary[] = {
 static void gather_final(const void *self, const sim_t *sim, double *v)
 {
     const gather_t *g = self;
-    (void)sim;
+    uint64_t steps = sim_step_count(sim);   /* after_physics ran once in each */
     v[0] = g->max_in_goal;
-    v[1] = g->steps ? g->sum_in_goal / (double)g->steps : 0.0;
+    v[1] = steps ? g->sum_in_goal / (double)steps : 0.0;
 }
 
 static void gather_draw(const void *self, const sim_t *sim, drawing_t *out)
