@@ -30,6 +30,7 @@ last step.
 """
 import argparse
 import csv
+import functools
 import math
 import os
 import re
@@ -74,10 +75,12 @@ def fmt_value(typename, v):
     return str(v)
 
 
-def _pairs(msg):
+@functools.cache
+def _pairs(cls):
     """{array slot: (its NAME_names slot, NAME)} for the arrays named by a
-    NAME_names array of the same length (exactly one such array per NAME)."""
-    slots, dims = msg.__slots__, msg.__dimensions__
+    NAME_names array of the same length (exactly one such array per NAME);
+    a property of the LCM type, worked out once per type."""
+    slots, dims = cls.__slots__, cls.__dimensions__
     out = {}
     for i, s in enumerate(slots):
         if not s.endswith("_names") or dims[i] is None:
@@ -93,7 +96,7 @@ def fields(msg, schemas, prefix=""):
     """(column, LCM type, value) of one message, in field order; the
     values[] of robot and swarm states named by `schemas`."""
     out = []
-    pairs = _pairs(msg)
+    pairs = _pairs(type(msg))
     named = {names for names, _ in pairs.values()}
     key = common.schema_key(msg)
     for slot, typename, dim in zip(msg.__slots__, msg.__typenames__, msg.__dimensions__, strict=True):
@@ -106,9 +109,8 @@ def fields(msg, schemas, prefix=""):
                 col = name if slot == base + "_values" else f"{base}.{name}"
                 out.append((prefix + col, typename, x))
         elif slot == "values" and key is not None:
-            schema = schemas.of(msg)
-            for k, x in enumerate(v):
-                out.append((prefix + common.value_column(key[1], schema.entry(k).name), typename, x))
+            for name, x in zip(schemas.names(msg), v, strict=True):
+                out.append((prefix + common.value_column(key[1], name), typename, x))
         elif dim is None and typename in PRIMITIVES:
             out.append((prefix + slot, typename, v))
         elif dim is None:

@@ -71,7 +71,6 @@ class Model:
         self.undecodable = 0
         self.elsewhere = collections.Counter()   # channel -> messages not shown (another prefix, not ours)
         self.run = None
-        self.by_channel = collections.Counter()
         self._rate = collections.deque()
 
     def _follow(self, msg):
@@ -98,7 +97,6 @@ class Model:
         common.IncompatibleMessage for one of another toolkit version."""
         now = self.clock()
         self.messages += 1
-        self.by_channel[channel] += 1
         self._rate.append(now)
         while self._rate and now - self._rate[0] > 2.0:
             self._rate.popleft()
@@ -183,6 +181,15 @@ class Model:
 
     ROBOT_HEAD = (f"{'id':>3} {'group':11} {'state':10} {'wheels':>11} {'ir(max)':>8} {'amb':>5} {'blobs':>5} "
                   f"{'x':>6} {'y':>6} {'theta':>6} {'seen':>5}")
+
+    def robot_line_count(self):
+        """How many lines robot_lines gives, without building them: per
+        controller a title, the column heads and a line per robot, and a
+        blank line between tables."""
+        if not self.robots:
+            return 0
+        controllers = {m.controller for m, _ in self.robots.values()}
+        return len(self.robots) + 3 * len(controllers) - 1
 
     def robot_lines(self, width):
         """One table per controller (in order of their first robot): a
@@ -370,7 +377,7 @@ def run_curses(bus, model, source, args):
             page = max(1, height - 12)
             scroll = {curses.KEY_DOWN: scroll + 1, curses.KEY_UP: scroll - 1,
                       curses.KEY_NPAGE: scroll + page, curses.KEY_PPAGE: scroll - page}.get(key, scroll)
-            scroll = max(0, min(scroll, max(0, len(model.robot_lines(None)) - 1)))
+            scroll = max(0, min(scroll, max(0, model.robot_line_count() - 1)))
             now = time.monotonic()
             if args.exit_idle and now - last_msg >= args.exit_idle:
                 return

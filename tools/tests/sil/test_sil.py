@@ -19,14 +19,9 @@ from pathlib import Path
 
 import swarmlcm
 
-from swarmtools.telemetry import bridge, common
+from swarmtools.telemetry import bridge
 
-from ..telemetry.helpers import SCENARIOS, has_matplotlib, run_sim, tool
-
-
-def raw_events(path):
-    """(channel, bytes) of each event of a log, undecoded."""
-    return [(ev.channel, bytes(ev.data)) for ev in common.lcm_module().EventLog(str(path), "r")]
+from ..telemetry.helpers import SCENARIOS, has_matplotlib, raw_events, run_sim, tool
 
 
 class RobotsOwnTelemetry(unittest.TestCase):

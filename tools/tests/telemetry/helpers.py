@@ -119,10 +119,23 @@ def write_log(path, events):
     return path
 
 
+def raw_events(path):
+    """(channel, bytes) of each event of a log, undecoded."""
+    return [(ev.channel, bytes(ev.data)) for ev in common.lcm_module().EventLog(str(path), "r")]
+
+
 def read_log(path):
     """(channel, decoded message) of each event of a log."""
-    lcm = common.lcm_module()
-    return [(ev.channel, common.decode(ev.data, ev.channel)) for ev in lcm.EventLog(str(path), "r")]
+    return [(ch, common.decode(data, ch)) for ch, data in raw_events(path)]
+
+
+def monitor_of(path):
+    """A monitor Model (clock at 0) fed every event of a log."""
+    from swarmtools.telemetry import monitor
+    m = monitor.Model(clock=lambda: 0.0)
+    for ch, data in raw_events(path):
+        m.add(ch, data)
+    return m
 
 
 def run_sim(out_dir, *args):

@@ -26,6 +26,7 @@ from .helpers import (
     TempDir,
     event,
     has_matplotlib,
+    monitor_of,
     read_log,
     robot_state,
     run_sim,
@@ -263,10 +264,8 @@ class RoundTrip(SimulatedRuns):
         self.assertNotIn("Traceback", r.stderr)
 
     def test_monitor_model_renders_in_a_small_window(self):
-        lcm = common.lcm_module()
-        m = monitor.Model(clock=lambda: 0.0)
-        for ev in lcm.EventLog(str(self.log), "r"):
-            m.add(ev.channel, ev.data)
+        m = monitor_of(self.log)
+        self.assertEqual(m.robot_line_count(), len(m.robot_lines(None)))
         lines = m.render("test", width=60, height=24, scroll=5)
         self.assertEqual(len(lines), 24)
         self.assertTrue(all(len(ln) <= 60 for ln in lines))
@@ -315,9 +314,8 @@ class NewControllers(SimulatedRuns):
         summary = json.loads((self.walk_dir / "summary.json").read_text())
         self.assertEqual(sum(float(row["random_walk.oae"]) for row in final.values()),
                          summary["metrics"]["oae_total"])
-        m = monitor.Model(clock=lambda: 0.0)
-        for ev in common.lcm_module().EventLog(str(self.walk_log), "r"):
-            m.add(ev.channel, ev.data)
+        m = monitor_of(self.walk_log)
+        self.assertEqual(m.robot_line_count(), len(m.robot_lines(None)))
         text = "\n".join(m.render("walk", width=None))
         self.assertIn("random_walk: 20 robots", text)
         self.assertRegex(text, r"\n id group .* seen +oae\n")
@@ -427,10 +425,8 @@ class HandBuiltLog(TempDir):
         self.assertIn("channels of unknown types skipped: OTHER_PROGRAM", r.stderr)
 
     def test_monitor(self):
-        m = monitor.Model(clock=lambda: 0.0)
-        lcm = common.lcm_module()
-        for e in lcm.EventLog(str(self.log), "r"):
-            m.add(e.channel, e.data)
+        m = monitor_of(self.log)
+        self.assertEqual(m.robot_line_count(), len(m.robot_lines(None)))
         text = "\n".join(m.render("robots", width=None))
         self.assertIn("sorter: 2 robots", text)
         self.assertRegex(text, r"seen +carried +rate +drops\n")
