@@ -54,6 +54,8 @@ static void usage(FILE *f)
 "  --realtime X    with telemetry on: run no faster than X times real time\n"
 "                  (to watch a run live)\n"
 "  --quiet         print nothing on success (errors still go to stderr)\n"
+"  --check         load the scenario and its --set overrides, report what is\n"
+"                  wrong, and run nothing (exit 0 or 2)\n"
 "  --help          this text, the controllers and every scenario key\n"
 "\n"
 "exit status: 0 ok, 1 a run failed, 2 bad arguments or scenario (nothing written)\n"
@@ -100,7 +102,7 @@ int main(int argc, char **argv)
     scenario_override_t sets[MAX_SETS];
     size_t nsets = 0;
     uint64_t seed = 0, reps = 1, threads = 0, steps = 0, frames = 0, frame_px = 800;
-    int have_seed = 0, have_steps = 0, quiet = 0;
+    int have_seed = 0, have_steps = 0, quiet = 0, check_only = 0;
     telemetry_options_t telemetry;
     telemetry_default_options(&telemetry);
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
@@ -116,6 +118,9 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             quiet = 1;
             continue;
+        } else if (!strcmp(a, "--check")) {
+            check_only = 1;
+            continue;
         } else if (a[0] != '-') {
             if (path) {
                 fprintf(stderr, "swarmsim: more than one scenario given ('%s' and '%s')\n", path, a);
@@ -130,7 +135,7 @@ int main(int argc, char **argv)
         }
         i++;
         if (!strcmp(a, "--seed")) {
-            bad = parse_uint(a, v, 0, UINT64_MAX / 2, &seed);
+            bad = parse_uint(a, v, 0, SCENARIO_SEED_MAX, &seed);
             have_seed = 1;
         } else if (!strcmp(a, "--reps")) {
             bad = parse_uint(a, v, 1, 1000000, &reps);
@@ -191,6 +196,20 @@ int main(int argc, char **argv)
         free(sc);
         return 2;
     }
+    uint64_t first_seed = have_seed ? seed : sc->seed;
+    if (reps - 1 > SCENARIO_SEED_MAX - first_seed) {
+        fprintf(stderr, "swarmsim: seeds %" PRIu64 " + %" PRIu64 " repetitions pass the seed range "
+                "[0, %" PRIu64 "]\n", first_seed, reps, SCENARIO_SEED_MAX);
+        free(sc);
+        return 2;
+    }
+    if (check_only) {   /* a sweep validates each combination of overrides this way */
+        if (!quiet) {
+            printf("swarmsim: %s: ok\n", path);
+        }
+        free(sc);
+        return 0;
+    }
     char default_out[SCENARIO_NAME_MAX + 8];
     if (!out_dir) {
         snprintf(default_out, sizeof default_out, "out/%s", sc->name);
@@ -198,7 +217,7 @@ int main(int argc, char **argv)
     }
     run_options_t opt = {
         .scenario = sc,
-        .seed = have_seed ? seed : sc->seed,
+        .seed = first_seed,
         .reps = (uint32_t)reps,
         .threads = (uint32_t)threads,
         .steps = have_steps ? steps : (uint64_t)(sc->duration * 1000.0 / sc->control_period_ms + 0.5),

@@ -244,7 +244,7 @@ static void test_name_from_path(void **state)
 
 static const char full_yaml[] =
     "name: full\n"
-    "seed: 18446744073709551615\n"
+    "seed: 9007199254740991\n"
     "duration: 1.5e3\n"
     "control_period_ms: 50\n"
     "physics_substeps: 8\n"
@@ -322,7 +322,7 @@ static void test_full_file(void **state)
     const scenario_t *sc = fx->sc;
     assert_int_equal(load(fx, full_yaml), 0);
     assert_string_equal(sc->name, "full");
-    assert_true(sc->seed == UINT64_MAX);
+    assert_true(sc->seed == SCENARIO_SEED_MAX);
     assert_float_equal(sc->duration, 1500.0, 1e-9);
     assert_int_equal(sc->control_period_ms, 50);
     assert_int_equal(sc->physics_substeps, 8);
@@ -527,9 +527,11 @@ static void test_out_of_range(void **state)
         { RW "    heading: 400\n", 3, "robots[0].heading: 400 is out of range [-360, 360]" },
         { "foraging:\n  robot_speed: 1\n", 2,
           "foraging.robot_speed: 1 is out of range [0.001, 0.128]" },
+        { "seed: 9007199254740992\n", 1,
+          "seed: 9007199254740992 is out of range [0, 9007199254740991]" },
         { "seed: 18446744073709551616\n", 1,
-          "seed: 18446744073709551616 is out of range [0, 18446744073709551615]" },
-        { "seed: -1\n", 1, "seed: -1 is out of range [0, 18446744073709551615]" },
+          "seed: 18446744073709551616 is out of range [0, 9007199254740991]" },
+        { "seed: -1\n", 1, "seed: -1 is out of range [0, 9007199254740991]" },
         { "arena:\n  width: 0.05\n", 2, "arena.width: 0.05 is out of range [0.1, 1000]" },
         { "duration: 0\n", 1, "duration: 0 is out of range [0.001, 10000000]" },
         { "duration: 1e400\n", 1, "duration: 1e400 is out of range" },

@@ -50,7 +50,7 @@ static const char *const placement_choices[] = { "rectangle", "circle", "ring", 
 static const param_desc_t top_params[] = {
     { .key = "name", PARAM_STRING_FIELD(SC, name),
       .doc = "scenario name (default: the file name without its extension)" },
-    { .key = "seed", PARAM_FIELD(SC, seed, uint64_t), .min = 0, .max = (double)UINT64_MAX,
+    { .key = "seed", PARAM_FIELD(SC, seed, uint64_t), .min = 0, .max = (double)SCENARIO_SEED_MAX,
       .doc = "base random seed; repetition r uses seed + r" },
     { .key = "duration", PARAM_FIELD(SC, duration, double), .min = 0.001, .max = 1e7,
       .doc = "simulated time, s" },

@@ -27,6 +27,11 @@
 #define SCENARIO_MAX_TASKS 4
 #define SCENARIO_CONTROLLER_PARAMS_MAX 512
 #define SCENARIO_TASK_CONFIG_MAX 1024
+/** The one seed range, [0, 2^53 - 1]: the scenario's `seed`, --seed and every
+ *  repetition's seed + r lie in it.  2^53 - 1 is exact as a double (the YAML
+ *  loader compares through one), as a JSON number and as a signed 64-bit
+ *  integer, so summaries and sweep tables carry seeds without rounding. */
+#define SCENARIO_SEED_MAX UINT64_C(9007199254740991)
 
 struct task_def;
 

@@ -68,10 +68,10 @@ void schema_index_path(char out[SCHEMA_PATH_MAX], const char *path, size_t i)
     format_into(out, SCHEMA_PATH_MAX, "%s[%zu]", path, i);
 }
 
-/* Integral values print without a fraction, others with %g. */
+/* Integral values up to 2^53 (exact in a double) print in full, others with %g. */
 static void format_number(double v, char *buf, size_t len)
 {
-    if (fabs(v) < 1e15 && v == (double)(long long)v) {
+    if (fabs(v) <= 9007199254740992.0 && v == (double)(long long)v) {  /* exact below 2^53 */
         snprintf(buf, len, "%.0f", v);
     } else {
         snprintf(buf, len, "%g", v);

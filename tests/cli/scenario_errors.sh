@@ -141,6 +141,27 @@ expect_error "--set: a later override replaces an earlier one" \
     "swarmsim: --set robots.0.count=1.5: robots[0].count: expected an integer, got '1.5'" \
     "$ok" --set robots.0.count=3 --set robots.0.count=1.5
 
+# ---- the one seed range [0, 2^53 - 1], for --seed and every repetition's seed
+expect_error "--seed past the seed range" \
+    "swarmsim: --seed: '9007199254740992' is not an integer in [0, 9007199254740991]" \
+    "$ok" --seed 9007199254740992
+expect_error "repetitions past the seed range" \
+    "swarmsim: seeds 9007199254740990 + 3 repetitions pass the seed range [0, 9007199254740991]" \
+    "$ok" --seed 9007199254740990 --reps 3
+
+# ---- --check validates and runs nothing: a bad override fails, a good one
+# exits 0 without creating the --out folder.
+expect_error "--check: a bad override" \
+    "swarmsim: --set robots.0.count=1.5: robots[0].count: expected an integer, got '1.5'" \
+    "$ok" --check --set robots.0.count=1.5
+n=$((n + 1))
+if "$sim" "$ok" --check --seed 9007199254740989 --reps 3 --out "$tmp/check_ok" >"$tmp/stdout" 2>"$tmp/stderr" \
+   && [ ! -e "$tmp/check_ok" ] && grep -qF ": ok" "$tmp/stdout"; then
+    pass=$((pass + 1))
+else
+    echo "FAIL: --check on a valid scenario: exit status, output or an --out folder"; fail=$((fail + 1))
+fi
+
 # --help documents what the errors point to: every controller with its
 # policies, every task, and the keys of each.
 n=$((n + 1))
