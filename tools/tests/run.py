@@ -1,4 +1,4 @@
-"""Runs the host tools' tests (tools/tests/telemetry, study and sil;
+"""Runs the host tools' tests (tools/tests/telemetry, study, sil and sweep;
 the flasher's run in `make firmware-check`) with unittest discovery and
 ends with one line 'python tools: N passed, N failed, N skipped'."""
 import sys
@@ -7,7 +7,7 @@ from pathlib import Path
 
 here = Path(__file__).resolve().parent
 suite = unittest.TestSuite()
-for group in ("telemetry", "study", "sil"):
+for group in ("telemetry", "study", "sil", "sweep"):
     suite.addTests(unittest.defaultTestLoader.discover(str(here / group), top_level_dir=str(here.parent)))
 result = unittest.TextTestRunner(verbosity=2).run(suite)
 failed = len(result.failures) + len(result.errors) + len(result.unexpectedSuccesses)

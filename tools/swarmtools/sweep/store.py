@@ -1,0 +1,194 @@
+"""A sweep's folder: the plan, one record per finished run, the tidy table.
+
+Layout of ``--out DIR``::
+
+    DIR/.swarmtools-sweep     marker: this folder is a sweep's (never delete
+                              or reuse a folder without it)
+    DIR/sweep.json            the expanded plan: every run, its id, overrides
+    DIR/records/<id>.json     one finished run (ok or failed), written whole
+    DIR/runs/<id>/run_<seed>/ the simulator's outputs of that run
+    DIR/results.csv           the tidy table, one row per recorded run
+    DIR/results.parquet       the same table (pandas.read_parquet)
+    DIR/slurm/                batch scripts and logs of the slurm backend
+
+Every file is written under a temporary name in its folder and renamed when
+complete, so an interrupted sweep never leaves a half-written record or row.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import tempfile
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from .plan import Run
+from .spec import SCENARIO_KEY, SweepError
+
+MARKER = ".swarmtools-sweep"
+FIXED_COLUMNS_BEFORE = ("run", "run_id")
+TEXT_COLUMNS = ("run_id", "status", "state_hash", "scenario_sha256", "code_version",
+                "sim_sha256", "host", "error", SCENARIO_KEY)
+
+
+def atomic_write(path: Path, data: bytes | str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data.encode() if isinstance(data, str) else data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+class Store:
+    def __init__(self, root: Path):
+        self.root = root
+        self.records = root / "records"
+        self.runs = root / "runs"
+
+    # ------------------------------------------------------------ the folder
+    def open_for(self, plan: dict[str, Any]) -> None:
+        """Make DIR a sweep folder, or reopen ours; refuse anyone else's."""
+        if self.root.exists():
+            if not self.root.is_dir():
+                raise SweepError(f"{self.root}: exists and is not a folder")
+            if any(self.root.iterdir()) and not (self.root / MARKER).exists():
+                raise SweepError(f"{self.root}: not empty and not a sweep's folder (no {MARKER}); "
+                                 "give a new --out")
+        self.root.mkdir(parents=True, exist_ok=True)
+        (self.root / MARKER).touch()
+        self.records.mkdir(exist_ok=True)
+        self.runs.mkdir(exist_ok=True)
+        atomic_write(self.root / "sweep.json", json.dumps(plan, indent=1) + "\n")
+
+    def load_plan(self) -> dict[str, Any]:
+        if not (self.root / MARKER).exists():
+            raise SweepError(f"{self.root}: not a sweep folder (no {MARKER})")
+        try:
+            return json.loads((self.root / "sweep.json").read_text())
+        except (OSError, json.JSONDecodeError) as e:
+            raise SweepError(f"{self.root / 'sweep.json'}: cannot read the plan: {e}") from None
+
+    def run_dir(self, run: Run) -> Path:
+        return self.runs / run.run_id
+
+    def clear_run(self, run: Run) -> None:
+        """Remove a run's old outputs before it runs again (inside our own folder)."""
+        shutil.rmtree(self.run_dir(run), ignore_errors=True)
+
+    # --------------------------------------------------------------- records
+    def record(self, run_id: str) -> dict[str, Any] | None:
+        try:
+            return json.loads((self.records / f"{run_id}.json").read_text())
+        except FileNotFoundError:
+            return None
+        except (OSError, json.JSONDecodeError):
+            return None       # unreadable: treated as not run (it runs again)
+
+    def write_record(self, rec: dict[str, Any]) -> None:
+        atomic_write(self.records / f"{rec['run_id']}.json", json.dumps(rec, indent=1) + "\n")
+
+    def pending(self, runs: Iterable[Run], max_attempts: int) -> tuple[list[Run], int, int]:
+        """Runs still to do: never run, or failed with attempts left.
+
+        Returns (pending, finished ok, failed for good)."""
+        todo, ok, dead = [], 0, 0
+        for r in runs:
+            rec = self.record(r.run_id)
+            if rec is None:
+                todo.append(r)
+            elif rec.get("status") == "ok":
+                ok += 1
+            elif int(rec.get("attempts", 1)) < max_attempts:
+                todo.append(r)
+            else:
+                dead += 1
+        return todo, ok, dead
+
+    # ----------------------------------------------------------------- table
+    def write_table(self, runs: list[Run], varied: list[str], metrics: list[str] | None) -> dict[str, int]:
+        """results.csv and results.parquet from the records of the plan's runs.
+
+        One row per recorded run, in plan order; runs not yet run are left
+        out (the counts say how many). Returns {"rows", "ok", "failed", "runs"}.
+        """
+        recs = [(r, self.record(r.run_id)) for r in runs]
+        recs = [(r, rec) for r, rec in recs if rec is not None]
+        if metrics is None:
+            metrics = []
+            for _, rec in recs:
+                for k in rec.get("metrics", {}):
+                    if k not in metrics:
+                        metrics.append(k)
+        header = [*FIXED_COLUMNS_BEFORE, *varied, "seed", "status", "attempts", *metrics,
+                  "steps", "state_hash", "scenario_sha256", "code_version", "sim_sha256",
+                  "wall_s", "host", "error"]
+        rows = []
+        for r, rec in recs:
+            m = rec.get("metrics", {})
+            row = [r.index, r.run_id, *(r.params.get(k, "") for k in varied), r.seed, rec["status"],
+                   rec.get("attempts", 1), *(m.get(k) for k in metrics), rec.get("steps"),
+                   rec.get("state_hash", ""), r.scenario_sha256, rec.get("code_version", ""),
+                   rec.get("sim_sha256", ""), rec.get("wall_s"), rec.get("host", ""),
+                   rec.get("error", "")]
+            rows.append([_cell(v) for v in row])
+        csv_text = _csv(header, rows)
+        atomic_write(self.root / "results.csv", csv_text)
+        self._write_parquet(header, varied, runs)
+        ok = sum(1 for _, rec in recs if rec["status"] == "ok")
+        return {"rows": len(recs), "ok": ok, "failed": len(recs) - ok, "runs": len(runs)}
+
+    def _write_parquet(self, header: list[str], varied: list[str], runs: list[Run]) -> None:
+        import pandas as pd
+
+        text_cols = [c for c in header if c in TEXT_COLUMNS]
+        for k in varied:     # a varied key whose values are all words stays text
+            vals = [r.params.get(k) for r in runs]
+            if all(isinstance(v, str) for v in vals):
+                text_cols.append(k)
+        df = pd.read_csv(self.root / "results.csv", dtype={c: "string" for c in text_cols},
+                         keep_default_na=False, na_values={c: [""] for c in header if c not in text_cols})
+        fd, tmp = tempfile.mkstemp(prefix=".results.parquet.", suffix=".tmp", dir=self.root)
+        os.close(fd)
+        try:
+            df.to_parquet(tmp, engine="pyarrow", index=False)
+            os.chmod(tmp, 0o644)
+            os.replace(tmp, self.root / "results.parquet")
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+
+
+def _cell(v: Any) -> str:
+    """One CSV field: integers as integers, floats by repr (exact), NaN/None empty."""
+    if v is None:
+        return ""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, float):
+        return "" if math.isnan(v) else repr(v)
+    return str(v)
+
+
+def _csv(header: list[str], rows: list[list[str]]) -> str:
+    import csv
+    import io
+
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    w.writerows(rows)
+    return buf.getvalue()

@@ -1,0 +1,303 @@
+"""Tests of swarmtools.sweep with the real simulator (env SWARMSIM).
+
+    .venv/bin/python tools/tests/run.py   (make python-tests)
+
+Sweep files (strict, FILE:LINE errors), the expansion (grid, zip, list,
+stable ids, the seed range), the simulator's check of every combination, a
+local run against direct simulator runs, resuming, failed runs with their
+stderr and bounded retries, an interrupted sweep, and chunked workers (what
+slurm array tasks run) giving byte-identical metrics. The real SLURM run is
+tools/tests/slurm/.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import signal
+import stat
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+from pathlib import Path
+
+from swarmtools.sweep import plan as planmod
+from swarmtools.sweep import spec
+
+ROOT = Path(__file__).resolve().parents[3]
+SWARMSIM = Path(os.environ.get("SWARMSIM", ROOT / "build" / "swarmsim"))
+if not SWARMSIM.is_absolute():
+    SWARMSIM = ROOT / SWARMSIM
+SMALL = ROOT / "tests" / "data" / "scenarios" / "valid_small.yaml"
+VOLATILE = ("wall_s", "host")      # columns that differ between two runs of one sweep
+
+
+def sweep_text(extra: str = "", reps: int = 2) -> str:
+    return (f"name: t\nscenario: {SMALL}\nsteps: 30\n"
+            "axes:\n  - grid:\n      robots.0.count: [2, 3]\n"
+            "  - zip:\n      arena.width: [1.5, 2.0]\n      arena.height: [1.5, 2.0]\n"
+            f"repetitions: {reps}\n{extra}")
+
+
+def swarm_sweep(*args: str, timeout: float = 120) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "swarmtools.sweep", *args], capture_output=True,
+                          text=True, timeout=timeout, check=False)
+
+
+def read_table(folder: Path, drop: tuple[str, ...] = VOLATILE) -> list[dict[str, str]]:
+    with open(folder / "results.csv", newline="") as f:
+        return [{k: v for k, v in row.items() if k not in drop} for row in csv.DictReader(f)]
+
+
+def fake_sim(folder: Path, body: str) -> Path:
+    """A wrapper around the real simulator: `body` (bash) runs first, with
+    $seed set to the run's seed and $check to 1 for --check."""
+    p = folder / "fake_swarmsim"
+    p.write_text("#!/bin/bash\nseed=''; check=0; prev=''\n"
+                 "for a in \"$@\"; do [ \"$prev\" = --seed ] && seed=$a; [ \"$a\" = --check ] && check=1; prev=$a; done\n"
+                 f"{body}\nexec {SWARMSIM} \"$@\"\n")
+    p.chmod(p.stat().st_mode | stat.S_IXUSR)
+    return p
+
+
+class TempDir(unittest.TestCase):
+    def setUp(self) -> None:
+        self._tmp = tempfile.TemporaryDirectory(prefix="sweep_test.")
+        self.dir = Path(self._tmp.name)
+
+    def tearDown(self) -> None:
+        self._tmp.cleanup()
+
+    def write(self, text: str, name: str = "s.yaml") -> Path:
+        p = self.dir / name
+        p.write_text(text)
+        return p
+
+
+class SpecErrors(TempDir):
+    """Every class of mistake in a sweep file is named with its line."""
+
+    CASES = (
+        ("scenario: x.yaml\n", ":1: scenario: no such scenario file"),
+        (f"scenario: {SMALL}\nrepetitions: 2\naxis: []\n", ":3: axis: unknown key 'axis' (did you mean 'axes'?)"),
+        (f"scenario: {SMALL}\nrepetitions: 2\nrepetitions: 3\n", ":3: 'repetitions' given twice (first on line 2)"),
+        (f"scenario: {SMALL}\n", ":1: seeds: give exactly one of"),
+        (f"scenario: {SMALL}\nrepetitions: 0\n", ":2: repetitions: 0 is out of range"),
+        (f"scenario: {SMALL}\nseeds: [1, 1]\n", ":2: seeds: a seed is listed twice"),
+        (f"scenario: {SMALL}\nseeds: {{first: 9007199254740990, count: 3}}\n",
+         ":2: seeds: seeds 9007199254740990..9007199254740992 pass the simulator's seed range [0, 9007199254740991]"),
+        (f"scenario: {SMALL}\nseeds: [-1]\n", ":2: seeds[0]: -1 is out of range [0, 9007199254740991]"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - zip:\n      a.b: [1, 2]\n      c.d: [1]\n",
+         ":5: axes[0].zip: zipped lists differ in length (a.b: 2, c.d: 1)"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - cross: {{a: [1]}}\n",
+         ":4: axes[0]: expected one of grid:, zip:, list:, got cross"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - grid: {{seed: [1, 2]}}\n",
+         ":4: axes[0].grid: seeds are not overrides"),
+        (f"scenario: {SMALL}\nrepetitions: 1\nset: {{robots.0.count: 2}}\naxes:\n  - grid: {{robots.0.count: [1, 2]}}\n",
+         ":5: axes[0]: 'robots.0.count' is already varied or set in set"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - list:\n      - {{a: 1}}\n      - {{b: 2}}\n",
+         ":6: axes[0].list[1]: keys differ from the first entry's (a)"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - grid: {{a: [1, [2]]}}\n",
+         ":4: axes[0].grid.a: expected a single value"),
+        (f"scenario: {SMALL}\nrepetitions: 1\nmetrics: [M_T, M_T]\n", ":3: metrics[1]: 'M_T' listed twice"),
+        ("scenario: [\n", ":2: YAML syntax error"),
+    )
+
+    def test_each_mistake_is_named_with_its_line(self) -> None:
+        for text, want in self.CASES:
+            with self.subTest(want=want):
+                p = self.write(text)
+                with self.assertRaises(spec.SweepError) as cm:
+                    spec.load(p, 9007199254740991)
+                self.assertIn(f"{p}{want}", str(cm.exception))
+
+    def test_bad_value_is_caught_by_the_simulator_before_anything_runs(self) -> None:
+        p = self.write(sweep_text().replace("[2, 3]", "[2, 2.5]"))
+        out = self.dir / "out"
+        r = swarm_sweep("run", str(p), "--out", str(out), "--sim", str(SWARMSIM))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn(f"{p}:6: the simulator rejects the run with robots.0.count=2.5", r.stderr)
+        self.assertIn("expected an integer, got '2.5'", r.stderr)
+        self.assertFalse(out.exists(), "a rejected sweep must write nothing")
+
+    def test_seed_range_is_the_simulators(self) -> None:
+        self.assertEqual(planmod.seed_max(SWARMSIM), 2**53 - 1)
+
+    def test_foreign_folder_is_refused(self) -> None:
+        p = self.write(sweep_text())
+        out = self.dir / "home"
+        out.mkdir()
+        (out / "notes.txt").write_text("mine")
+        r = swarm_sweep("run", str(p), "--out", str(out), "--sim", str(SWARMSIM))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("not empty and not a sweep's folder", r.stderr)
+        self.assertEqual(sorted(x.name for x in out.iterdir()), ["notes.txt"])
+
+
+class Expansion(TempDir):
+    def test_grid_zip_list_and_seeds(self) -> None:
+        p = self.write(sweep_text(reps=3) + "")
+        sw = spec.load(p, 2**53 - 1)
+        runs = planmod.expand(sw)
+        self.assertEqual(len(runs), 2 * 2 * 3)
+        self.assertEqual([r.seed for r in runs[:4]], [1, 2, 3, 1])
+        self.assertEqual(runs[3].params, {"robots.0.count": 2, "arena.width": 2.0, "arena.height": 2.0})
+        self.assertEqual(runs[3].overrides, [("robots.0.count", "2"), ("arena.width", "2.0"),
+                                             ("arena.height", "2.0")])
+        self.assertEqual(len({r.run_id for r in runs}), len(runs))
+        # stable: the same inputs give the same ids, in another file too
+        again = planmod.expand(spec.load(self.write(p.read_text(), "copy.yaml"), 2**53 - 1))
+        self.assertEqual([r.run_id for r in runs], [r.run_id for r in again])
+        # a different scenario file content gives different ids
+        scen = self.write(SMALL.read_text() + "\n# changed\n", "scen.yaml")
+        other = planmod.expand(spec.load(self.write(p.read_text().replace(str(SMALL), str(scen)), "o.yaml"),
+                                         2**53 - 1))
+        self.assertFalse({r.run_id for r in runs} & {r.run_id for r in other})
+
+    def test_list_axis_with_scenarios(self) -> None:
+        scen = self.write(SMALL.read_text(), "second.yaml")
+        p = self.write(f"scenario: {SMALL}\nseeds: {{first: 5, count: 2}}\naxes:\n"
+                       f"  - list:\n      - {{scenario: {SMALL}, robots.0.count: 2}}\n"
+                       f"      - {{scenario: second.yaml, robots.0.count: 3}}\n")
+        runs = planmod.expand(spec.load(p, 2**53 - 1))
+        self.assertEqual([(Path(r.scenario).name, r.seed) for r in runs],
+                         [("valid_small.yaml", 5), ("valid_small.yaml", 6), ("second.yaml", 5), ("second.yaml", 6)])
+        self.assertEqual(runs[2].overrides, [("robots.0.count", "3")])
+        self.assertTrue(Path(runs[2].scenario).samefile(scen))
+
+
+class LocalBackend(TempDir):
+    def run_sweep(self, p: Path, out: Path, *extra: str, sim: Path = SWARMSIM) -> subprocess.CompletedProcess:
+        return swarm_sweep("run", str(p), "--out", str(out), "--sim", str(sim), *extra)
+
+    def test_table_matches_direct_runs_and_resume_runs_nothing(self) -> None:
+        p = self.write(sweep_text())
+        out = self.dir / "out"
+        r = self.run_sweep(p, out, "--jobs", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("8 of 8 runs ok", r.stderr)
+        rows = read_table(out, drop=())
+        self.assertEqual(len(rows), 8)
+        # row 5: robots.0.count=3, 1.5 m, seed 2; the same run made by hand
+        row = rows[5]
+        self.assertEqual((row["robots.0.count"], row["arena.width"], row["seed"]), ("3", "1.5", "2"))
+        direct = self.dir / "direct"
+        subprocess.run([str(SWARMSIM), str(SMALL), "--seed", "2", "--steps", "30", "--lcm", "off", "--quiet",
+                        "--out", str(direct), "--set", "robots.0.count=3", "--set", "arena.width=1.5",
+                        "--set", "arena.height=1.5"], check=True)
+        doc = json.loads((direct / "run_2" / "summary.json").read_text())
+        self.assertEqual(row["state_hash"], doc["state_hash"])
+        for k, v in doc["metrics"].items():
+            self.assertEqual(float(row[k]), float(v), k)
+        self.assertEqual(row["sim_sha256"], planmod.file_sha256(SWARMSIM))
+        self.assertEqual(row["status"], "ok")
+        self.assertTrue((out / "runs" / row["run_id"] / "run_2" / "timeseries.csv").is_file())
+        # pandas reads the Parquet copy in one line, with the same values
+        import pandas as pd
+        df = pd.read_parquet(out / "results.parquet")
+        self.assertEqual(len(df), 8)
+        self.assertEqual(str(df["state_hash"].dtype), "string")
+        self.assertAlmostEqual(df.loc[5, "distance_per_robot_m"], float(row["distance_per_robot_m"]), places=15)
+        # resume: nothing runs again, the records are untouched
+        mtimes = {f.name: f.stat().st_mtime_ns for f in (out / "records").iterdir()}
+        r2 = self.run_sweep(p, out)
+        self.assertEqual(r2.returncode, 0, r2.stderr)
+        self.assertIn("8 already done", r2.stderr)
+        self.assertEqual(mtimes, {f.name: f.stat().st_mtime_ns for f in (out / "records").iterdir()})
+        # one record lost: exactly that run again, same metrics
+        lost = rows[3]["run_id"]
+        (out / "records" / f"{lost}.json").unlink()
+        r3 = self.run_sweep(p, out)
+        self.assertIn("7 already done", r3.stderr)
+        self.assertIn("1 to run", r3.stderr)
+        self.assertEqual(read_table(out), [{k: v for k, v in x.items() if k not in VOLATILE} for x in rows])
+
+    def test_failed_run_keeps_its_stderr_and_is_retried_a_bounded_number_of_times(self) -> None:
+        sim = fake_sim(self.dir, '[ "$check" = 0 ] && [ "$seed" = 2 ] && { echo "boom: out of tokens" >&2; exit 3; }')
+        p = self.write(sweep_text(extra="max_attempts: 2\n"))
+        out = self.dir / "out"
+        r = self.run_sweep(p, out, sim=sim)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("4 of 8 runs ok, 4 failed", r.stderr)
+        rows = read_table(out)
+        failed = [x for x in rows if x["status"] == "failed"]
+        self.assertEqual({x["seed"] for x in failed}, {"2"})
+        self.assertEqual(failed[0]["error"], "exit status 3: boom: out of tokens")
+        self.assertEqual(failed[0]["attempts"], "1")
+        r = self.run_sweep(p, out, sim=sim)      # second and last attempt
+        self.assertIn("4 to run", r.stderr)
+        self.assertEqual({x["attempts"] for x in read_table(out) if x["status"] == "failed"}, {"2"})
+        r = self.run_sweep(p, out, sim=sim)      # none left
+        self.assertIn("4 failed for good, 0 to run", r.stderr)
+        self.assertEqual(r.returncode, 1)
+        r = self.run_sweep(p, out)               # the real simulator, same ids: nothing retried
+        self.assertEqual(r.returncode, 1)
+        # a crash by a signal is named
+        sim2 = fake_sim(self.dir, '[ "$check" = 0 ] && [ "$seed" = 1 ] && kill -SEGV $$')
+        r = self.run_sweep(self.write(sweep_text(reps=1), "one.yaml"), self.dir / "out2", sim=sim2)
+        self.assertEqual(r.returncode, 1)
+        self.assertTrue(all(x["error"].startswith("killed by SIGSEGV") for x in read_table(self.dir / "out2")))
+
+    def test_interrupted_sweep_keeps_finished_runs_and_resumes_to_the_same_table(self) -> None:
+        sim = fake_sim(self.dir, '[ "$check" = 0 ] && sleep 0.4')
+        p = self.write(sweep_text(reps=3))
+        out = self.dir / "out"
+        proc = subprocess.Popen([sys.executable, "-m", "swarmtools.sweep", "run", str(p), "--out", str(out),
+                                 "--sim", str(sim), "--jobs", "2"], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and len(list((out / "records").glob("*.json"))) < 3:
+            time.sleep(0.05)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=60)
+        self.assertEqual(proc.returncode, 130, err)
+        self.assertIn("interrupted by SIGINT", err)
+        self.assertEqual(list(out.rglob("*.tmp")), [], "no temporary file may be left")
+        recs = list((out / "records").glob("*.json"))
+        self.assertTrue(3 <= len(recs) < 12, len(recs))
+        for f in recs:
+            self.assertEqual(json.loads(f.read_text())["status"], "ok")   # whole, and not the killed ones
+        self.assertEqual(len(read_table(out)), len(recs))
+        r = swarm_sweep("run", str(p), "--out", str(out), "--sim", str(SWARMSIM))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        ref = self.dir / "ref"
+        self.assertEqual(swarm_sweep("run", str(p), "--out", str(ref), "--sim", str(SWARMSIM)).returncode, 0)
+        drop = (*VOLATILE, "sim_sha256", "attempts")
+        self.assertEqual(read_table(out, drop), read_table(ref, drop))
+
+    def test_chunked_workers_give_byte_identical_metrics(self) -> None:
+        """What slurm array tasks run, at two chunkings, against the local backend."""
+        p = self.write(sweep_text(reps=3))
+        local = self.dir / "local"
+        self.assertEqual(swarm_sweep("run", str(p), "--out", str(local), "--jobs", "2").returncode, 0)
+        for size in (1, 5):
+            out = self.dir / f"chunk{size}"
+            # plan only (the slurm backend's folder), then the workers by hand
+            self.assertEqual(swarm_sweep("run", str(p), "--out", str(out), "--jobs", "1").returncode, 0)
+            for f in (out / "records").iterdir():
+                f.unlink()
+            ids = [r["run_id"] for r in json.loads((out / "sweep.json").read_text())["runs"]]
+            chunks = [ids[i:i + size] for i in range(0, len(ids), size)]
+            (out / "chunks.json").write_text(json.dumps(chunks))
+            for i in reversed(range(len(chunks))):
+                r = swarm_sweep("worker", str(out), "--chunks", str(out / "chunks.json"), "--index", str(i),
+                                "--sim", str(SWARMSIM), "--jobs", "1")
+                self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(swarm_sweep("merge", str(out), "--quiet").returncode, 0)
+            self.assertEqual(read_table(out), read_table(local))
+
+
+class BuildFlags(unittest.TestCase):
+    def test_no_machine_specific_code_generation(self) -> None:
+        """Rows from different machines compare only if no build uses -march=native."""
+        files = [ROOT / "Makefile", *sorted((ROOT / "tools" / "make").glob("*.mk")), ROOT / "tools" / "deps.sh"]
+        for f in files:
+            for flag in ("-march=native", "-mtune=native", "-mcpu=native"):
+                self.assertNotIn(flag, f.read_text(), f"{f.relative_to(ROOT)} uses {flag}")
+
+
+if __name__ == "__main__":
+    unittest.main()
