@@ -136,6 +136,29 @@ our_stepds() {
     done
 }
 
+# descendants PID: the pids of all processes below PID
+descendants() {
+    local -A kids=()
+    local f stat rest pid ppid queue=("$1") out=()
+    for f in /proc/[0-9]*/stat; do
+        { stat=$(<"$f"); } 2>/dev/null || continue
+        pid=${stat%% *}
+        rest=${stat##*) }    # after "(comm) ": state ppid ...
+        ppid=${rest#* }
+        ppid=${ppid%% *}
+        kids[$ppid]+=" $pid"
+    done
+    while ((${#queue[@]})); do
+        pid=${queue[0]}
+        queue=("${queue[@]:1}")
+        for f in ${kids[$pid]-}; do
+            out+=("$f")
+            queue+=("$f")
+        done
+    done
+    echo "${out[@]-}"
+}
+
 cmd_stop() {
     local dir=$1 rc=0 pid i
     [[ -d $dir ]] || { say "stop: $dir: no such folder (nothing to stop)"; return 0; }
@@ -152,8 +175,13 @@ cmd_stop() {
     fi
     stop_pidfile "$SLURMD_PID" slurmd || rc=1
     stop_pidfile "$CTLD_PID" slurmctld || rc=1
+    # slurmstepds left behind (slurmd gone before their jobs ended, e.g. when
+    # slurmctld had died and the jobs could not be cancelled): they ignore
+    # SIGTERM, so kill their job processes and them at once
     for pid in $(our_stepds); do
-        stop_pid "$pid" slurmstepd || rc=1
+        kill -KILL $(descendants "$pid") 2>/dev/null || true
+        kill -KILL "$pid" 2>/dev/null || true
+        STOPPED+=("$pid:slurmstepd")
     done
     stop_pidfile "$MUNGE_PID" munged || rc=1
     rm -f "$MUNGE_SOCK" "$MUNGE_SOCK.lock"
@@ -360,7 +388,7 @@ cmd_start() {
         sleep 0.1
     done
     [[ $state == idle ]] ||
-        fail "node $host not idle after 30 s (state: '${state:-no answer from slurmctld}')" "$CTLD_LOG" "$SLURMD_LOG"
+        fail "node $host not idle after 30 s (state: '${state:-none: no answer, or no node $host in slurm.conf}')" "$CTLD_LOG" "$SLURMD_LOG"
 
     STARTED=0
     say "cluster up in $DIR: node $host (${state}), slurmctld port $cport, slurmd port $dport"

@@ -130,7 +130,6 @@ import os
 import platform
 import re
 import shlex
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -141,8 +140,15 @@ from typing import Any
 
 import numpy as np
 
+from swarmtools.sweep import cli as sweep_cli
+from swarmtools.sweep import plan as sweep_plan
+from swarmtools.sweep import spec as sweep_spec
+from swarmtools.sweep.spec import Sweep, SweepError
+
 REPO_ROOT = Path(__file__).resolve().parents[3]
 FORMAT = "study_drtm/1"
+SWEEP_FILE = REPO_ROOT / "studies" / "drtm.yaml"
+POLICY_KEY = "robots.0.policy"     # the foragers are the scenarios' first group
 ALPHA = 0.05
 
 POLICIES: tuple[str, ...] = ("drtm", "artm", "frtm")
@@ -267,6 +273,18 @@ class SetupError(StudyError):
     """Bad arguments or a missing binary or scenario (exit status 2)."""
 
     exit_code = 2
+
+
+class Interrupted(StudyError):
+    """SIGINT or SIGTERM during the runs: finished runs are kept (exit 130)."""
+
+    exit_code = 130
+
+
+class Submitted(StudyError):
+    """--backend slurm --no-wait: the jobs are queued, nothing to render yet."""
+
+    exit_code = 0
 
 
 # --------------------------------------------------------------- statistics
@@ -458,17 +476,16 @@ def aggregate_series(series: Sequence[dict[str, np.ndarray]],
     return out
 
 
-def read_group(folder: Path, first_seed: int, reps: int,
-               expect_steps: int | None = None) -> tuple[list[dict[str, Any]], dict[str, Any]]:
-    """Read run_<seed>/ for seeds first_seed .. first_seed+reps-1 in folder.
+def read_runs(run_dirs: Sequence[tuple[Path, int]],
+              expect_steps: int | None = None) -> tuple[list[dict[str, Any]], dict[str, Any]]:
+    """Read the run folders given as (run_<seed>/ folder, seed).
 
     Returns the per-run summaries (see read_summary) and the aggregated time
     series (see aggregate_series).
     """
     runs = []
     series = []
-    for seed in range(first_seed, first_seed + reps):
-        run_dir = folder / f"run_{seed}"
+    for run_dir, seed in run_dirs:
         s = read_summary(run_dir / "summary.json", expect_seed=seed)
         if expect_steps is not None and s["steps"] != expect_steps:
             raise StudyError(f"{run_dir / 'summary.json'}: {s['steps']} steps, expected {expect_steps}")
@@ -476,7 +493,7 @@ def read_group(folder: Path, first_seed: int, reps: int,
         series.append(read_timeseries(run_dir / "timeseries.csv"))
     steps = {r["steps"] for r in runs}
     if len(steps) > 1:
-        raise StudyError(f"{folder}: runs differ in length: {sorted(steps)} steps")
+        raise StudyError(f"{run_dirs[0][0].parent}: runs differ in length: {sorted(steps)} steps")
     return runs, aggregate_series(series)
 
 
@@ -829,37 +846,6 @@ def _json_safe(obj: Any) -> Any:
     return obj
 
 
-def run_cell(sim: Path, scenario: Path, policy: str, folder: Path, args: argparse.Namespace) -> float:
-    """One swarmsim process for one (condition, policy); returns its wall time."""
-    if folder.exists():
-        shutil.rmtree(folder)
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    cmd = [str(sim), str(scenario), "--reps", str(args.reps), "--threads", str(args.threads),
-           "--seed", str(args.seed), "--out", str(folder), "--quiet",
-           # No LCM log per run: 750 runs would write about 5 GB; the study
-           # reads summary.json and timeseries.csv only.
-           "--lcm", "off",
-           "--set", f"robots.0.policy={policy}"]
-    if args.steps is not None:
-        cmd += ["--steps", str(args.steps)]
-    t0 = time.monotonic()
-    try:
-        proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    except OSError as e:
-        raise SetupError(f"cannot run {sim}: {e.strerror}; run `make` first") from None
-    dt = time.monotonic() - t0
-    if proc.returncode != 0:
-        what = {1: "a run failed", 2: "bad arguments or scenario"}.get(proc.returncode, "")
-        if proc.returncode < 0:
-            what = f"killed by signal {-proc.returncode}"
-        msg = [f"swarmsim exited with status {proc.returncode}" + (f" ({what})" if what else ""),
-               f"command: {shlex.join(cmd)}"]
-        err = proc.stderr.strip()
-        msg.append("its stderr:\n" + err if err else "its stderr was empty")
-        raise StudyError("\n".join(msg))
-    return dt
-
-
 def parse_list(text: str | None, allowed: Sequence[str], what: str,
                strip_prefix: str = "") -> list[str]:
     if text is None:
@@ -885,70 +871,134 @@ def parse_list(text: str | None, allowed: Sequence[str], what: str,
     return [a for a in allowed if a in items]
 
 
+def study_sweep(args: argparse.Namespace, sim: Path) -> Sweep:
+    """studies/drtm.yaml, narrowed to the conditions, policies, seeds and steps asked for."""
+    try:
+        sw = sweep_spec.load(args.sweep_file, sweep_plan.seed_max(sim))
+    except SweepError as e:
+        raise SetupError(str(e)) from None
+    conds, pols = sw.axes[0], sw.axes[1]
+    if conds.keys != [sweep_spec.SCENARIO_KEY] or pols.keys != [POLICY_KEY]:
+        raise SetupError(f"{sw.path}: expected a list of scenarios, then a grid of {POLICY_KEY}")
+    scen_dir = Path(args.scenario_dir) if args.scenario_dir else None
+    combos = []
+    for cond in args.conditions:
+        name = f"{CONDITIONS[cond]['scenario']}.yaml"
+        given = [c for c in conds.combos if Path(str(c[sweep_spec.SCENARIO_KEY])).name == name]
+        if not given:
+            raise SetupError(f"{sw.path}: condition {cond} ({name}) is not among its scenarios")
+        value = str(scen_dir.resolve() / name) if scen_dir else str(given[0][sweep_spec.SCENARIO_KEY])
+        if not sweep_spec.resolve_scenario(sw.path, value).is_file():
+            raise SetupError(f"scenario file {sweep_spec.resolve_scenario(sw.path, value)} not found")
+        combos.append({sweep_spec.SCENARIO_KEY: value})
+    conds.combos = combos
+    pols.combos = [c for c in pols.combos if c[POLICY_KEY] in args.policies]
+    if len(pols.combos) != len(args.policies):
+        raise SetupError(f"{sw.path}: its policies are {[c[POLICY_KEY] for c in pols.combos]}")
+    sw.seeds = list(range(args.seed, args.seed + args.reps))
+    sw.steps = args.steps
+    sw.name = "study_drtm_quick" if args.quick else "study_drtm"
+    return sw
+
+
+def condition_of(scenario: str) -> str:
+    stem = Path(scenario).stem
+    for cond, c in CONDITIONS.items():
+        if c["scenario"] == stem:
+            return cond
+    raise StudyError(f"run of an unknown scenario {scenario}")
+
+
 def run_study(args: argparse.Namespace, command: str) -> dict[str, Any]:
+    """Runs the study's sweep (resuming one begun), then reads its table."""
     sim = Path(args.sim)
     if not sim.is_file():
         raise SetupError(f"simulator binary {sim} not found: run `make` first")
     if not os.access(sim, os.X_OK):
         raise SetupError(f"simulator binary {sim} is not executable: run `make` first")
-    scen_dir = Path(args.scenario_dir)
-    scenarios = {}
-    for cond in args.conditions:
-        path = scen_dir / f"{CONDITIONS[cond]['scenario']}.yaml"
-        if not path.is_file():
-            raise SetupError(f"scenario file {path} not found")
-        scenarios[cond] = path
-
+    sw = study_sweep(args, sim)
     out_dir = Path(args.out)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    cells = [(c, p) for c in args.conditions for p in args.policies]
+    sweep_dir = out_dir / "sweep"
     nc, npol = len(args.conditions), len(args.policies)
-    print(f"study_drtm: {len(cells)} cells ({nc} condition{'s' if nc != 1 else ''} x "
-          f"{npol} polic{'ies' if npol != 1 else 'y'}) x {args.reps} reps"
-          f" x {args.steps if args.steps is not None else 'scenario'} steps,"
-          f" {args.threads} threads -> {out_dir}", flush=True)
+    print(f"study_drtm: {nc} condition{'s' if nc != 1 else ''} x {npol} "
+          f"polic{'ies' if npol != 1 else 'y'} x {args.reps} reps"
+          f" x {args.steps if args.steps is not None else 'scenario'} steps as sweep "
+          f"{sweep_dir} ({args.backend}, {args.threads} at a time)", flush=True)
+    t_start = time.monotonic()
+    run_args = argparse.Namespace(**{**vars(args), "out": str(sweep_dir), "jobs": args.threads,
+                                     "quiet": False})
+    try:
+        rc = sweep_cli.run_sweep(sw, run_args, sim)
+    except SweepError as e:
+        raise SetupError(str(e)) from None
+    if rc in (130, 143):
+        raise Interrupted(f"sweep {sweep_dir} interrupted; finished runs are kept: "
+                          "rerun the same command to resume")
+    table = sweep_dir / "results.csv"
+    rows = read_table(table) if table.exists() or not args.no_wait else []
+    if args.backend == "slurm" and args.no_wait and len(rows) < len(sw.seeds) * nc * npol:
+        raise Submitted("jobs submitted; rerun the same command when they are done to render "
+                        "the tables and figures")
+    failed = [r for r in rows if r["status"] != "ok"]
+    if rc != 0 or failed or len(rows) != len(sw.seeds) * nc * npol:
+        lines = [f"{len(failed)} of {len(rows)} runs failed ({table}):"]
+        lines += [f"  {r['scenario']} {r[POLICY_KEY]} seed {r['seed']}: {r['error']}" for r in failed[:5]]
+        raise StudyError("\n".join(lines) if failed else f"sweep ended with status {rc}; see {table}")
+    return results_from_table(rows, sweep_dir, args, command, time.monotonic() - t_start)
 
+
+def read_table(path: Path) -> list[dict[str, str]]:
+    try:
+        with path.open(newline="", encoding="utf-8") as f:
+            return list(csv.DictReader(f))
+    except OSError as e:
+        raise StudyError(f"{path}: cannot read the sweep's table: {e.strerror}") from None
+
+
+def results_from_table(rows: list[dict[str, str]], sweep_dir: Path, args: argparse.Namespace,
+                       command: str, wall: float) -> dict[str, Any]:
+    """The study's results (per condition and policy: runs and mean series)
+    from the sweep's tidy table and its runs' time series."""
     results: dict[str, Any] = {
         "format": FORMAT, "command": command, "cwd": os.getcwd(),
         "settings": {"reps": args.reps, "first_seed": args.seed, "steps": args.steps,
-                     "threads": args.threads, "quick": args.quick, "sim": str(sim),
-                     "conditions": args.conditions, "policies": args.policies,
-                     "control_period_ms": None},
+                     "threads": args.threads, "backend": args.backend, "quick": args.quick,
+                     "sim": str(args.sim), "conditions": args.conditions, "policies": args.policies,
+                     "control_period_ms": None, "sweep": str(sweep_dir)},
         "machine": machine_info(), "source": source_info(), "conditions": {},
     }
-    t_start = time.monotonic()
-    for i, (cond, policy) in enumerate(cells, start=1):
-        folder = out_dir / "runs" / cond / policy
-        print(f"[{i:2d}/{len(cells)}] {cond:5s} {policy}: {args.reps} runs ...", end="", flush=True)
-        try:
-            dt = run_cell(sim, scenarios[cond], policy, folder, args)
-            runs, agg = read_group(folder, args.seed, args.reps, args.steps)
-        except StudyError:
-            print(" FAILED", flush=True)
-            raise
-        summary_path = folder / f"run_{args.seed}" / "summary.json"
-        try:
-            period = json.loads(summary_path.read_text()).get("control_period_ms")
-            if isinstance(period, int):
-                results["settings"]["control_period_ms"] = period
-        except (OSError, ValueError):
-            pass
-        c = results["conditions"].setdefault(cond, {
-            "scenario_file": os.path.relpath(scenarios[cond], REPO_ROOT)
-            if scenarios[cond].resolve().is_relative_to(REPO_ROOT) else str(scenarios[cond]),
-            "desired_food": read_desired_food(scenarios[cond]),
-            "robots": runs[0]["robots"],
-            "policies": {},
-        })
-        c["policies"][policy] = {"wall_s": round(dt, 3), "runs": runs,
-                                 "series": _series_to_json(agg)}
-        fn = [r["metrics"]["food_net"] for r in runs]
-        mt = [r["metrics"]["M_T"] for r in runs]
-        elapsed = time.monotonic() - t_start
-        eta = elapsed / i * (len(cells) - i)
-        print(f" {dt:6.1f} s  (F(T) {fmt_mean_sd(fn)}, M_T {fmt_mean_sd(mt, decimals=0)};"
-              f" elapsed {_hms(elapsed)}, about {_hms(eta)} left)", flush=True)
-    results["wall_time_s"] = time.monotonic() - t_start
+    for cond in args.conditions:
+        for policy in args.policies:
+            cell = [r for r in rows if condition_of(r["scenario"]) == cond and r[POLICY_KEY] == policy]
+            cell.sort(key=lambda r: int(r["seed"]))
+            dirs = [(sweep_dir / "runs" / r["run_id"] / f"run_{r['seed']}", int(r["seed"])) for r in cell]
+            runs, agg = read_runs(dirs, args.steps)
+            for run, row in zip(runs, cell, strict=True):   # the table's values
+                for k in run["metrics"]:
+                    if row.get(k, "") != "":
+                        run["metrics"][k] = float(row[k])
+            scen = sweep_spec.resolve_scenario(Path(args.sweep_file), cell[0]["scenario"]) \
+                if not Path(cell[0]["scenario"]).is_absolute() else Path(cell[0]["scenario"])
+            try:
+                period = json.loads((dirs[0][0] / "summary.json").read_text()).get("control_period_ms")
+                if isinstance(period, int):
+                    results["settings"]["control_period_ms"] = period
+            except (OSError, ValueError):
+                pass
+            c = results["conditions"].setdefault(cond, {
+                "scenario_file": os.path.relpath(scen, REPO_ROOT)
+                if scen.resolve().is_relative_to(REPO_ROOT) else str(scen),
+                "desired_food": read_desired_food(scen),
+                "robots": runs[0]["robots"],
+                "policies": {},
+            })
+            c["policies"][policy] = {"wall_s": round(sum(float(r["wall_s"] or 0) for r in cell), 3),
+                                     "runs": runs, "series": _series_to_json(agg)}
+            fn = [r["metrics"]["food_net"] for r in runs]
+            mt = [r["metrics"]["M_T"] for r in runs]
+            print(f"  {cond:5s} {policy}: F(T) {fmt_mean_sd(fn)}, M_T {fmt_mean_sd(mt, decimals=0)}",
+                  flush=True)
+    results["wall_time_s"] = wall
     results["generated_utc"] = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
     return results
 
@@ -1006,18 +1056,21 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--seed", type=int, default=1, help="first seed (default 1)")
     ap.add_argument("--steps", type=int, default=None,
                     help="steps per run (default: the scenario's, 12000; 2000 with --quick)")
-    ap.add_argument("--threads", type=int, default=os.cpu_count() or 1,
-                    help="simulator threads (default: os.cpu_count() = %(default)s)")
+    ap.add_argument("--threads", "--jobs", type=int, default=os.cpu_count() or 1,
+                    help="local backend: runs at a time (default: os.cpu_count() = %(default)s)")
     ap.add_argument("--out", default=None, help="output folder (default out/study_drtm)")
     ap.add_argument("--conditions", default=None,
                     help="comma-separated subset of " + ",".join(CONDITIONS))
     ap.add_argument("--policies", default=None, help="comma-separated subset of drtm,artm,frtm")
     ap.add_argument("--sim", default=None, help="simulator binary (default build/swarmsim)")
-    ap.add_argument("--scenario-dir", default=None, help="default sim_host/scenarios")
+    ap.add_argument("--scenario-dir", default=None,
+                    help="take the conditions' scenario files from here (default: the sweep file's)")
+    ap.add_argument("--sweep-file", default=None, help="default studies/drtm.yaml")
     ap.add_argument("--quick", action="store_true", help="smoke run: 4 reps x 2000 steps")
     ap.add_argument("--from-json", metavar="PATH", default=None,
                     help="re-render results.md and figures from a results.json; runs nothing")
     ap.add_argument("--no-figures", action="store_true", help="do not draw the PNGs")
+    sweep_cli.add_backend_options(ap)
     return ap
 
 
@@ -1066,7 +1119,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         args.conditions = parse_list(args.conditions, list(CONDITIONS), "condition", "foraging_")
         args.policies = parse_list(args.policies, list(POLICIES), "policy")
         args.sim = args.sim or str(REPO_ROOT / "build" / "swarmsim")
-        args.scenario_dir = args.scenario_dir or str(REPO_ROOT / "sim_host" / "scenarios")
+        args.sweep_file = args.sweep_file or str(SWEEP_FILE)
+        sweep_cli.check_args(args)
         args.out = args.out or str(REPO_ROOT / "out" / ("study_drtm_quick" if args.quick else "study_drtm"))
 
         results = run_study(args, command)
@@ -1076,6 +1130,15 @@ def main(argv: Sequence[str] | None = None) -> int:
               + ("" if args.no_figures else " and figures")
               + f"; total wall time {time.monotonic() - t0:.1f} s ({_hms(time.monotonic() - t0)})")
         return 0
+    except Submitted as e:
+        print(f"study_drtm: {e}")
+        return 0
+    except Interrupted as e:
+        print(f"study_drtm: {e}", file=sys.stderr)
+        return e.exit_code
+    except SweepError as e:
+        print(f"study_drtm: error: {e}", file=sys.stderr)
+        return e.exit_code
     except StudyError as e:
         print(f"study_drtm: error: {e}", file=sys.stderr)
         print(f"study_drtm: stopped after {time.monotonic() - t0:.1f} s; results.md not written",

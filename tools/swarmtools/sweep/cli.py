@@ -197,10 +197,15 @@ def cmd_worker(a: argparse.Namespace) -> int:
 # --------------------------------------------------------------------- main
 def add_run_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", help="sweep folder (default out/sweeps/<name>)")
-    p.add_argument("--backend", choices=("local", "slurm"), default="local")
     p.add_argument("--jobs", type=int, default=0, help="local: runs at a time (default: the CPUs)")
     p.add_argument("--sim", help="simulator binary (default build/swarmsim)")
     p.add_argument("--quiet", action="store_true")
+    add_backend_options(p)
+
+
+def add_backend_options(p: argparse.ArgumentParser) -> None:
+    """--backend and the slurm backend's options (the studies take them too)."""
+    p.add_argument("--backend", choices=("local", "slurm"), default="local")
     s = p.add_argument_group("slurm backend")
     s.add_argument("--chunk-size", type=int, default=10, help="runs per array task (default 10)")
     s.add_argument("--cpus-per-task", type=int, default=1, help="CPUs per array task; runs at a time")

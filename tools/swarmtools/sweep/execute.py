@@ -157,13 +157,13 @@ class Progress:
     """
 
     def __init__(self, name: str, total: int, done_before: int, every: float = 10.0,
-                 stream: Any = sys.stderr):
+                 stream: Any = None):
         self.name, self.total = name, total
         self.ok = done_before
         self.failed = 0
         self.new = 0
         self.t0 = time.monotonic()
-        self.stream = stream
+        self.stream = stream or sys.stderr
         self.tty = hasattr(stream, "isatty") and stream.isatty()
         self.every = 0.5 if self.tty else every
         self.last = 0.0

@@ -19,7 +19,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from .spec import SCENARIO_KEY, Scalar, Sweep, SweepError, set_text
+from .spec import SCENARIO_KEY, Scalar, Sweep, SweepError, resolve_scenario, set_text
 
 
 @dataclass(frozen=True)
@@ -61,12 +61,14 @@ def expand(sw: Sweep) -> list[Run]:
     """Every run: the axes' Cartesian product (first axis outermost), seeds innermost."""
     file_sha: dict[str, str] = {}
     runs: list[Run] = []
+    seen: dict[str, int] = {}
     fixed = [(k, set_text(v)) for k, v in sw.fixed]
     for parts in itertools.product(*(a.combos for a in sw.axes)) if sw.axes else [()]:
         params: dict[str, Scalar] = {}
         for p in parts:
             params.update(p)
-        scenario = str(params.get(SCENARIO_KEY, sw.scenario))
+        scenario = str(resolve_scenario(sw.path, str(params[SCENARIO_KEY]))
+                       if SCENARIO_KEY in params else sw.scenario)
         overrides = fixed + [(k, set_text(v)) for k, v in params.items() if k != SCENARIO_KEY]
         if scenario not in file_sha:
             file_sha[scenario] = file_sha256(scenario)
@@ -74,6 +76,12 @@ def expand(sw: Sweep) -> list[Run]:
         for seed in sw.seeds:
             ident = json.dumps({"scenario": shash, "seed": seed, "steps": sw.steps}, sort_keys=True)
             run_id = hashlib.sha256(ident.encode()).hexdigest()[:16]
+            if run_id in seen:
+                other = ", ".join(f"{k}={set_text(v)}" for k, v in runs[seen[run_id]].params.items())
+                mine = ", ".join(f"{k}={set_text(v)}" for k, v in params.items())
+                raise SweepError(f"{sw.path}: the runs with {other} and with {mine} are the same run "
+                                 "(same scenario content, overrides and seed); list it once")
+            seen[run_id] = len(runs)
             runs.append(Run(len(runs), run_id, scenario, dict(params), overrides, seed, sw.steps, shash))
     return runs
 

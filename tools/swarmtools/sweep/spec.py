@@ -236,10 +236,15 @@ def _scenario_path(r: _Reader, node: yaml.Node, where: str) -> Path:
     v = r.scalar(node, where)
     if not isinstance(v, str):
         raise r.fail(node, where, "expected a scenario file path")
-    p = (r.path.parent / v) if not Path(v).is_absolute() else Path(v)
+    p = resolve_scenario(r.path, v)
     if not p.is_file():
         raise r.fail(node, where, f"no such scenario file: {p}")
     return p
+
+
+def resolve_scenario(sweep_file: Path, value: str) -> Path:
+    """A scenario path as written in a sweep file (relative to that file)."""
+    return (sweep_file.parent / value).resolve()
 
 
 def _axis(r: _Reader, node: yaml.Node, where: str, sw: Sweep) -> Axis:
@@ -294,8 +299,8 @@ def _axis(r: _Reader, node: yaml.Node, where: str, sw: Sweep) -> Axis:
 
 def _axis_value(r: _Reader, node: yaml.Node, where: str, key: str) -> Scalar:
     if key == SCENARIO_KEY:
-        p = _scenario_path(r, node, where)
-        return str(p)
+        _scenario_path(r, node, where)
+        return node.value       # as written: the table shows it so
     return r.scalar(node, where)
 
 

@@ -191,7 +191,7 @@ class TestReaders(unittest.TestCase):
 
     def test_read_group(self):
         m = [write_run(self.dir, seed, steps=95) for seed in (3, 4, 5)]
-        runs, agg = sd.read_group(self.dir, 3, 3, expect_steps=95)
+        runs, agg = sd.read_runs([(self.dir / f"run_{s}", s) for s in (3, 4, 5)], expect_steps=95)
         self.assertEqual([r["seed"] for r in runs], [3, 4, 5])
         self.assertEqual(runs[0]["robots"], 20)
         self.assertEqual(runs[1]["metrics"]["food_net"], m[1]["food_net"])
@@ -236,9 +236,9 @@ class TestReaders(unittest.TestCase):
         write_run(self.dir, 1, steps=100)
         write_run(self.dir, 2, steps=100)
         with self.assertRaisesRegex(sd.StudyError, "run_3.*missing"):
-            sd.read_group(self.dir, 1, 3)
+            sd.read_runs([(self.dir / f"run_{s}", s) for s in (1, 2, 3)])
         with self.assertRaisesRegex(sd.StudyError, "100 steps, expected 200"):
-            sd.read_group(self.dir, 1, 2, expect_steps=200)
+            sd.read_runs([(self.dir / f"run_{s}", s) for s in (1, 2)], expect_steps=200)
 
     def test_timeseries_errors(self):
         write_run(self.dir, 1)
@@ -368,12 +368,17 @@ from pathlib import Path
 {write_run}
 a = sys.argv[1:]
 opt = lambda k, d=None: a[a.index(k) + 1] if k in a else d
+if "--help" in a:
+    print("  seed                               int    1            [0, 9007199254740991]  base random seed")
+    sys.exit(0)
+if "--check" in a:
+    sys.exit(0)
 policy = opt("--set").split("=", 1)[1]
 if os.environ.get("FAKE_SIM_FAIL") == policy:
     sys.stderr.write("swarmsim: run 2 failed: boom\\n")
     sys.exit(1)
 out = Path(opt("--out"))
-reps, seed, steps = int(opt("--reps")), int(opt("--seed")), int(opt("--steps", "120"))
+reps, seed, steps = int(opt("--reps", "1")), int(opt("--seed")), int(opt("--steps", "120"))
 for s in range(seed, seed + reps):
     write_run(out, s, steps=steps, policy=policy)
 if os.environ.get("FAKE_SIM_GARBLE") == policy:
@@ -392,7 +397,7 @@ class TestEndToEnd(unittest.TestCase):
         self.scen = self.dir / "scenarios"
         self.scen.mkdir()
         for c in sd.CONDITIONS.values():
-            (self.scen / f"{c['scenario']}.yaml").write_text("foraging: { desired_food: 20 }\n")
+            (self.scen / f"{c['scenario']}.yaml").write_text(f"# {c['scenario']}\nforaging: {{ desired_food: 20 }}\n")
         self.env = dict(os.environ)
 
     def tearDown(self):
@@ -411,7 +416,7 @@ class TestEndToEnd(unittest.TestCase):
     def test_study(self):
         rc, out, err = self.main("--conditions", "foraging_base,l3", "--policies", "artm,drtm")
         self.assertEqual(rc, 0, err)
-        self.assertIn("[ 4/4] l3    artm: 3 runs", out)
+        self.assertIn("  l3    artm: F(T)", out)
         self.assertIn("total wall time", out)
         md = (self.dir / "out" / "results.md").read_text()
         self.assertIn("### base:", md)
@@ -425,26 +430,32 @@ class TestEndToEnd(unittest.TestCase):
         self.assertEqual([r["seed"] for r in runs], [1, 2, 3])
         self.assertEqual(res["conditions"]["base"]["desired_food"], 20.0)
         self.assertEqual(res["conditions"]["base"]["policies"]["drtm"]["series"]["step"][-1], 40)
-        # a stale run folder is cleared before a cell runs
-        self.assertEqual(sorted(p.name for p in (self.dir / "out/runs/base/drtm").iterdir()),
-                         ["run_1", "run_2", "run_3"])
+        # the runs are a sweep's: its table has one row per run, and a rerun
+        # resumes (runs nothing) and renders the same results
+        table = (self.dir / "out" / "sweep" / "results.csv").read_text().splitlines()
+        self.assertEqual(len(table), 1 + 2 * 2 * 3)
+        self.assertIn("scenario,robots.0.policy,seed,status", table[0])
+        rc, out, err = self.main("--conditions", "foraging_base,l3", "--policies", "artm,drtm")
+        self.assertEqual(rc, 0, err)
+        self.assertIn("12 already done", err)
+        again = json.loads((self.dir / "out" / "results.json").read_text())
+        self.assertEqual(again["conditions"]["l3"]["policies"]["artm"]["runs"],
+                         res["conditions"]["l3"]["policies"]["artm"]["runs"])
 
     def test_run_failure(self):
         os.environ["FAKE_SIM_FAIL"] = "artm"
         rc, out, err = self.main("--conditions", "base")
         self.assertEqual(rc, 1)
-        self.assertIn("swarmsim exited with status 1 (a run failed)", err)
-        self.assertIn("boom", err)
-        self.assertIn("robots.0.policy=artm", err)
-        self.assertIn("FAILED", out)
+        self.assertIn("3 of 9 runs failed", err)
+        self.assertIn("foraging_base.yaml artm seed 1: exit status 1: swarmsim: run 2 failed: boom", err)
         self.assertFalse((self.dir / "out" / "results.md").exists())
 
     def test_garbled_output(self):
         os.environ["FAKE_SIM_GARBLE"] = "drtm"
         rc, _, err = self.main("--conditions", "nf25")
         self.assertEqual(rc, 1)
-        self.assertIn("garbled JSON", err)
-        self.assertIn("run_1", err)
+        self.assertIn("no readable summary.json", err)
+        self.assertIn("foraging_nf25.yaml drtm seed 1", err)
         self.assertFalse((self.dir / "out" / "results.md").exists())
 
     def test_missing_binary_and_bad_args(self):
