@@ -5,11 +5,14 @@
 #   local_cluster.sh start DIR   start it; prints `export SLURM_CONF=DIR/slurm.conf`
 #   local_cluster.sh stop DIR    stop what `start DIR` started (logs are kept)
 #   local_cluster.sh check       are the programs installed? (else: which packages)
+#   local_cluster.sh install     install the missing packages with apt-get (as root),
+#                                or say which and exit 1
 #
 # Everything (munge key/socket, conf, state, spool, pid and log files) is in
 # DIR; the ports are picked free at start, so several clusters (or a leftover)
 # do not collide, and the system's /etc/slurm and /etc/munge are not used.
-# Only stdout line of `start` is the export line; every message goes to stderr.
+# The only line `start` prints on stdout is the export line; every message
+# goes to stderr.
 # See README.md beside this file.
 set -euo pipefail
 
@@ -27,7 +30,7 @@ PROGRAMS=(
 PATH=$PATH:/usr/sbin:/sbin
 
 usage() {
-    echo "usage: $0 start DIR | stop DIR | check" >&2
+    echo "usage: $0 start DIR | stop DIR | check | install" >&2
     exit 2
 }
 
@@ -46,6 +49,21 @@ cmd_check() {
         return 1
     fi
     return 0
+}
+
+cmd_install() {
+    cmd_check 2>/dev/null && return 0
+    if [[ $(id -u) != 0 ]] || ! command -v apt-get >/dev/null; then
+        cmd_check || true
+        say "cannot install them here (not root, or no apt-get): the SLURM tests need them"
+        return 1
+    fi
+    local pkgs=(slurmctld slurmd slurm-client munge)
+    say "installing Debian packages: ${pkgs[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get install -y --no-install-recommends "${pkgs[@]}" >&2 ||
+        { apt-get update >&2 && apt-get install -y --no-install-recommends "${pkgs[@]}" >&2; } || true
+    cmd_check
 }
 
 # ---------------------------------------------------------------- paths
@@ -179,6 +197,7 @@ cmd_stop() {
     # slurmctld had died and the jobs could not be cancelled): they ignore
     # SIGTERM, so kill their job processes and them at once
     for pid in $(our_stepds); do
+        # shellcheck disable=SC2046 # one pid per word
         kill -KILL $(descendants "$pid") 2>/dev/null || true
         kill -KILL "$pid" 2>/dev/null || true
         STOPPED+=("$pid:slurmstepd")
@@ -369,7 +388,7 @@ cmd_start() {
     # retries only a second later, so wait for slurmctld first (10 s at most)
     for ((i = 0; i < 200; i++)); do
         timeout 5 scontrol ping 2>/dev/null | grep -q 'is UP' && break
-        ((i % 20 == 19)) && daemon_died "$CTLD_PID" slurmctld && fail "slurmctld died" "$CTLD_LOG"
+        if ((i % 20 == 19)) && daemon_died "$CTLD_PID" slurmctld; then fail "slurmctld died" "$CTLD_LOG"; fi
         sleep 0.05
     done
     ((i < 200)) || fail "slurmctld does not answer after 10 s (scontrol ping)" "$CTLD_LOG"
@@ -382,8 +401,8 @@ cmd_start() {
         state=$(timeout 5 sinfo -h -N -n "$host" -o %T 2>/dev/null | head -n 1) || state=""
         [[ $state == idle ]] && break
         if ((i % 10 == 9)); then
-            daemon_died "$CTLD_PID" slurmctld && fail "slurmctld died" "$CTLD_LOG"
-            daemon_died "$SLURMD_PID" slurmd && fail "slurmd died" "$SLURMD_LOG" "$CTLD_LOG"
+            if daemon_died "$CTLD_PID" slurmctld; then fail "slurmctld died" "$CTLD_LOG"; fi
+            if daemon_died "$SLURMD_PID" slurmd; then fail "slurmd died" "$SLURMD_LOG" "$CTLD_LOG"; fi
         fi
         sleep 0.1
     done
@@ -399,5 +418,6 @@ case ${1-} in
 start) [[ $# == 2 ]] || usage; cmd_start "$2" ;;
 stop) [[ $# == 2 ]] || usage; cmd_stop "$2" ;;
 check) [[ $# == 1 ]] || usage; cmd_check >/dev/null ;;
+install) [[ $# == 1 ]] || usage; cmd_install >/dev/null ;;
 *) usage ;;
 esac

@@ -53,12 +53,13 @@ fail() {
 line=$(bash "$CLUSTER" start "$DIR") || fail "local_cluster.sh start failed"
 [[ $line =~ ^export\ SLURM_CONF=([^[:space:]]+)$ ]] || fail "unexpected start output: '$line'"
 eval "$line"
-[[ $SLURM_CONF == "$DIR/slurm.conf" ]] || fail "SLURM_CONF is $SLURM_CONF, expected $DIR/slurm.conf"
+[[ $SLURM_CONF -ef "$DIR/slurm.conf" ]] || fail "SLURM_CONF is $SLURM_CONF, expected $DIR/slurm.conf"
 say "cluster up after $(elapsed) s"
 
 # ---- submit
 WORK=$DIR/work
 mkdir -p "$WORK"
+# shellcheck disable=SC2016 # expanded by the job, not here
 jid=$(sbatch --parsable --chdir="$WORK" --output="$WORK/slurm-%A_%a.out" --array=0-3 \
     --wrap 'echo $SLURM_ARRAY_TASK_ID > out_$SLURM_ARRAY_TASK_ID') || fail "sbatch of the array failed"
 jid=${jid%%;*}

@@ -4,6 +4,7 @@
     swarm-sweep plan SWEEP.yaml            expand and check it; run nothing
     swarm-sweep status DIR                 how many runs are done, failed, left
     swarm-sweep merge DIR                  (re)write DIR/results.csv and .parquet
+    swarm-sweep plot DIR --x KEY --y METRIC [--by KEY]   a figure from the table
     swarm-sweep worker DIR --chunks F --index I   one slurm array task (internal)
 
 ``run`` checks every combination with the simulator first, then runs what is
@@ -175,6 +176,16 @@ def cmd_merge(a: argparse.Namespace) -> int:
     return report(store, merge(store, plan), a.quiet)
 
 
+def cmd_plot(a: argparse.Namespace) -> int:
+    from .figure import plot_metric
+    store = Store(Path(a.dir))
+    plan = store.load_plan()
+    out = Path(a.out) if a.out else store.root / f"{a.y}_by_{a.x}.png"
+    plot_metric(store.root / "results.parquet", a.x, a.y, a.by, out, title=plan["name"])
+    print(f"swarm-sweep: wrote {out}")
+    return 0
+
+
 def cmd_worker(a: argparse.Namespace) -> int:
     store = Store(Path(a.dir))
     plan = store.load_plan()
@@ -237,6 +248,12 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("merge", help="write the table of a sweep folder")
     p.add_argument("dir")
     p.add_argument("--quiet", action="store_true")
+    p = sub.add_parser("plot", help="a metric's mean and 95% CI against a varied key")
+    p.add_argument("dir")
+    p.add_argument("--x", required=True, help="a varied key (the x axis)")
+    p.add_argument("--y", required=True, help="a metric")
+    p.add_argument("--by", help="another varied key: one line per value")
+    p.add_argument("--out", help="PNG file (default DIR/<y>_by_<x>.png)")
     p = sub.add_parser("worker", help="run one chunk (a slurm array task)")
     p.add_argument("dir")
     p.add_argument("--chunks", required=True)
@@ -258,7 +275,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         check_args(a)
         return {"run": cmd_run, "plan": cmd_plan, "status": cmd_status, "merge": cmd_merge,
-                "worker": cmd_worker}[a.cmd](a)
+                "plot": cmd_plot, "worker": cmd_worker}[a.cmd](a)
     except SweepError as e:
         print(f"swarm-sweep: {e}", file=sys.stderr)
         return e.exit_code
