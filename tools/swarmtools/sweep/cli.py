@@ -139,8 +139,14 @@ def run_sweep(sw: Sweep, a: argparse.Namespace, sim: Path) -> int:
         print(f"swarm-sweep: follow with `swarm-sweep status {out}`; rerun this command to resume",
               file=sys.stderr)
         return 0
-    slurm.follow(store, runs, arrays, merge_job, progress or Progress(sw.name, len(runs), ok + dead),
-                 sw.max_attempts, opt.poll_s)
+    try:
+        slurm.follow(store, runs, arrays, merge_job, progress or Progress(sw.name, len(runs), ok + dead),
+                     sw.max_attempts, opt.poll_s)
+    except KeyboardInterrupt:
+        print(f"\nswarm-sweep: stopped following; the jobs go on (scancel {' '.join(arrays)} "
+              f"{merge_job} stops them); `swarm-sweep status {out}` counts, rerunning this "
+              "command resumes", file=sys.stderr)
+        return 130
     return report(store, merge(store, plan), a.quiet)
 
 

@@ -72,7 +72,7 @@ class SlurmBackend(unittest.TestCase):
         return self.swarm_sweep("run", str(self.sweep), "--out", str(out), "--backend", "slurm",
                                 "--chunk-size", str(chunk), "--poll", "0.5", "--time", "00:05:00")
 
-    def test_job_array_matches_the_local_backend_and_resumes(self) -> None:
+    def test_job_array_matches_the_local_backend(self) -> None:
         out = self.dir / "slurm"
         r = self.run_slurm(out, chunk=5)
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -90,7 +90,13 @@ class SlurmBackend(unittest.TestCase):
         self.assertIn("12 of 12 runs ok", merge_log.read_text())
         # hosts: the rows say where they ran
         self.assertTrue(all(row["host"] for row in read_table(out, drop=())))
-        # resume: two records lost, exactly those two are submitted again
+
+    def test_resume_submits_only_what_is_missing(self) -> None:
+        out = self.dir / "slurm_resume"
+        r = self.run_slurm(out, chunk=4)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(read_table(out), self.local_table)
+        # two records lost: exactly those two are submitted again
         for row in read_table(out)[4:6]:
             (out / "records" / f"{row['run_id']}.json").unlink()
         r = self.run_slurm(out, chunk=1)
@@ -102,6 +108,24 @@ class SlurmBackend(unittest.TestCase):
         r = self.run_slurm(out, chunk=1)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertNotIn("submitted", r.stderr)
+
+    def test_study_runs_on_slurm_with_the_local_results(self) -> None:
+        """make study-drtm STUDY_ARGS="--backend slurm ...", narrowed to 2 x 2 x 2 short runs."""
+        narrow = ["--quick", "--conditions", "base,l3", "--policies", "drtm,artm", "--reps", "2",
+                  "--steps", "300", "--no-figures", "--sim", str(SWARMSIM)]
+        results = {}
+        for backend in ("local", "slurm"):
+            out = self.dir / f"study_{backend}"
+            r = subprocess.run([sys.executable, "-m", "swarmtools.study.drtm", *narrow, "--out", str(out),
+                                "--backend", backend, "--chunk-size", "3", "--poll", "0.5"],
+                               capture_output=True, text=True, timeout=240, check=False, env=self.env, cwd=ROOT)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertIn("study_drtm: 8 runs; wrote", r.stdout)
+            doc = json.loads((out / "results.json").read_text())
+            results[backend] = {(c, p): [run["metrics"] for run in cell["runs"]]
+                                for c, cond in doc["conditions"].items() for p, cell in cond["policies"].items()}
+        self.assertEqual(len(results["slurm"]), 4)
+        self.assertEqual(results["slurm"], results["local"])
 
 
 if __name__ == "__main__":
