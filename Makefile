@@ -114,9 +114,11 @@ $(BUILD)/tests/asan/%: tests/%.c $(BUILD)/libswarm-asan.a
 
 # ---------------------------------------------------------------- run
 RUN_SCENARIO ?= sim_host/scenarios/foraging_base.yaml
+# make run's own folder: each `make run` replaces it whole (--replace removes
+# only a folder swarmsim made), so two scenarios' files never mix in it.
 RUN_OUT ?= out/run
 run: deps $(BUILD)/swarmsim
-	$(BUILD)/swarmsim $(RUN_SCENARIO) --out $(RUN_OUT) --frames 1000 $(RUN_ARGS)
+	$(BUILD)/swarmsim $(RUN_SCENARIO) --out $(RUN_OUT) $(if $(findstring --resume,$(RUN_ARGS)),,--replace) --frames 1000 $(RUN_ARGS)
 
 # ---------------------------------------------------------------- tests
 # Each CMocka binary prints its own summary; CMOCKA_MESSAGE_OUTPUT stays on

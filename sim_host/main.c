@@ -1,22 +1,87 @@
 /*
  * main.c - the swarmsim command line.
  *
- * Exit codes: 0 success, 1 a run failed (I/O, placement), 2 bad command line
- * or scenario (nothing is written).
+ * Exit codes: 0 success, 1 a run failed (I/O), 2 bad command line or
+ * scenario, robots that cannot be placed, an LCM URL no provider takes, an
+ * output folder it may not use (nothing is written), 130 / 143 stopped by
+ * SIGINT / SIGTERM (finished runs kept; --resume continues).
  */
 #include <errno.h>
 #include <inttypes.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "registry.h"
+#include "version.h"
 #include "core/runner.h"
 #include "core/scenario.h"
 #include "core/telemetry.h"
 
 #define MAX_SETS 256
+#define COMMAND_MAX 4096
+
+/* The signal that asked to stop (0: none); the runner polls it. */
+static volatile sig_atomic_t stop_signal;
+
+static void on_stop_signal(int sig)
+{
+    stop_signal = sig;
+}
+
+static void catch_stop_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+/* argv as one shell-quoted line (provenance: how to run it again). */
+static void command_line(int argc, char **argv, char *buf, size_t len)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < argc && n + 4 < len; i++) {
+        const char *a = argv[i];
+        int plain = *a != '\0' && strspn(a, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                               "0123456789_-+=./,:@%") == strlen(a);
+        if (i) buf[n++] = ' ';
+        if (!plain) buf[n++] = '\'';
+        for (; *a && n + 6 < len; a++) {
+            if (*a == '\'' && !plain) {
+                memcpy(buf + n, "'\\''", 4);
+                n += 4;
+            } else {
+                buf[n++] = *a;
+            }
+        }
+        if (!plain) buf[n++] = '\'';
+        buf[n] = '\0';
+    }
+}
+
+/* The effective scenario (file + overrides) as YAML text, malloc'd. */
+static char *effective_scenario(const char *path, const scenario_override_t *sets, size_t n,
+                                size_t *len, char err[SCENARIO_ERROR_MAX])
+{
+    char *text = NULL;
+    FILE *f = open_memstream(&text, len);
+    if (!f) {
+        snprintf(err, SCENARIO_ERROR_MAX, "out of memory");
+        return NULL;
+    }
+    int rc = scenario_write_effective(path, sets, n, f, err);
+    if (fclose(f) != 0 || rc != 0) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}
 
 static void usage(FILE *f)
 {
@@ -54,11 +119,18 @@ static void usage(FILE *f)
 "  --realtime X    with telemetry on: run no faster than X times real time\n"
 "                  (to watch a run live)\n"
 "  --quiet         print nothing on success (errors still go to stderr)\n"
+"  --replace       the --out folder may hold an earlier invocation's outputs:\n"
+"                  remove it first (only a folder swarmsim made, marked\n"
+"                  .swarmsim-out); without it a non-empty --out is an error\n"
+"  --resume        continue an interrupted invocation in its --out folder\n"
+"                  (same scenario, overrides, seeds, steps and outputs): its\n"
+"                  finished runs are kept, the others run\n"
 "  --check         load the scenario and its --set overrides, report what is\n"
 "                  wrong, and run nothing (exit 0 or 2)\n"
 "  --help          this text, the controllers and every scenario key\n"
 "\n"
-"exit status: 0 ok, 1 a run failed, 2 bad arguments or scenario (nothing written)\n"
+"exit status: 0 ok, 1 a run failed, 2 bad arguments or scenario (nothing written),\n"
+"130 / 143 stopped by SIGINT / SIGTERM: finished runs are kept, --resume continues\n"
 "\n", f);
     fputs("controllers (a group's `controller:`):\n", f);
     for (size_t i = 0; registry_controller_at(i); i++) {
@@ -103,6 +175,7 @@ int main(int argc, char **argv)
     size_t nsets = 0;
     uint64_t seed = 0, reps = 1, threads = 0, steps = 0, frames = 0, frame_px = 800;
     int have_seed = 0, have_steps = 0, quiet = 0, check_only = 0;
+    outdir_mode_t out_mode = OUTDIR_NEW;
     telemetry_options_t telemetry;
     telemetry_default_options(&telemetry);
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
@@ -120,6 +193,14 @@ int main(int argc, char **argv)
             continue;
         } else if (!strcmp(a, "--check")) {
             check_only = 1;
+            continue;
+        } else if (!strcmp(a, "--replace") || !strcmp(a, "--resume")) {
+            outdir_mode_t m = a[3] == 'e' && a[4] == 'p' ? OUTDIR_REPLACE : OUTDIR_RESUME;
+            if (out_mode != OUTDIR_NEW && out_mode != m) {
+                fprintf(stderr, "swarmsim: --replace and --resume exclude each other\n");
+                return 2;
+            }
+            out_mode = m;
             continue;
         } else if (a[0] != '-') {
             if (path) {
@@ -203,6 +284,12 @@ int main(int argc, char **argv)
         free(sc);
         return 2;
     }
+    if (telemetry.realtime > 0.0 && !telemetry.enabled) {
+        fprintf(stderr, "swarmsim: --realtime paces live telemetry for watching; with --lcm off there "
+                "is nothing to watch (drop one of them)\n");
+        free(sc);
+        return 2;
+    }
     if (check_only) {   /* a sweep validates each combination of overrides this way */
         if (!quiet) {
             printf("swarmsim: %s: ok\n", path);
@@ -215,6 +302,15 @@ int main(int argc, char **argv)
         snprintf(default_out, sizeof default_out, "out/%s", sc->name);
         out_dir = default_out;
     }
+    size_t text_len = 0;
+    char *text = effective_scenario(path, sets, nsets, &text_len, err);
+    if (!text) {
+        fprintf(stderr, "swarmsim: %s\n", err);
+        free(sc);
+        return 2;
+    }
+    char command[COMMAND_MAX];
+    command_line(argc, argv, command, sizeof command);
     run_options_t opt = {
         .scenario = sc,
         .seed = first_seed,
@@ -227,11 +323,28 @@ int main(int argc, char **argv)
         .quiet = quiet,
         .progress = !quiet,
         .telemetry = telemetry,
+        .out_mode = out_mode,
+        .scenario_text = text,
+        .provenance = { .code_version = SWARMSIM_VERSION, .command = command, .overrides = sets,
+                        .override_count = nsets, .scenario_hash = summary_text_hash(text, text_len) },
+        .stop = &stop_signal,
     };
+    catch_stop_signals();
     int rc = runner_run(&opt, err);
-    if (rc != 0) {
-        fprintf(stderr, "swarmsim: %s\n", err);
-    }
+    free(text);
     free(sc);
-    return rc ? 1 : 0;
+    switch (rc) {
+    case RUNNER_OK:
+        return 0;
+    case RUNNER_SETUP_ERROR:
+        fprintf(stderr, "swarmsim: %s\n", err);
+        return 2;
+    case RUNNER_STOPPED:
+        fprintf(stderr, "swarmsim: %s by %s: %s\n", stop_signal ? "interrupted" : "stopped",
+                stop_signal == SIGTERM ? "SIGTERM" : "SIGINT", err);
+        return 128 + (stop_signal ? (int)stop_signal : SIGINT);
+    default:
+        fprintf(stderr, "swarmsim: %s\n", err);
+        return 1;
+    }
 }

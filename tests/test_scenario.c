@@ -202,19 +202,21 @@ static void test_defaults(void **state)
     assert_int_equal(sc->output.timeseries_every, 10);
 }
 
-/* An empty file, a comment-only file, a null document and empty sections
- * all give exactly the defaults (plus path and name). */
+/* An empty file, a comment-only file, a null document (each with an
+ * override: alone they are an error, below) and empty sections all give
+ * exactly the defaults (plus path and name). */
 static void test_empty_documents_give_defaults(void **state)
 {
     static const char *const docs[] = {
         "", "# nothing here\n", "---\n", "~\n", "robots:\nobjects:\narena: {}\n",
     };
+    static const char *const sets[] = { "seed=1", NULL };
     fixture_t *fx = *state;
     scenario_t *want = malloc(sizeof *want);
     size_t i;
     assert_non_null(want);
     for (i = 0; i < sizeof docs / sizeof docs[0]; i++) {
-        assert_int_equal(load_sets(fx, "empty.yaml", docs[i], NULL), 0);
+        assert_int_equal(load_sets(fx, "empty.yaml", docs[i], sets), 0);
         scenario_defaults(want);
         snprintf(want->path, sizeof want->path, "%s", fx->path);
         snprintf(want->name, sizeof want->name, "empty");
@@ -223,6 +225,17 @@ static void test_empty_documents_give_defaults(void **state)
         assert_memory_equal(fx->sc, want, sizeof *want);
     }
     free(want);
+}
+
+/* A file that says nothing, with no override, is a mistake (a wrong or
+ * truncated file), not a request for the defaults. */
+static void test_empty_file_alone_is_an_error(void **state)
+{
+    static const char *const docs[] = { "", "# nothing here\n", "---\n", "~\n" };
+    fixture_t *fx = *state;
+    for (size_t i = 0; i < sizeof docs / sizeof docs[0]; i++) {
+        expect_load_error(fx, docs[i], 0, "empty scenario: it sets nothing");
+    }
 }
 
 static void test_name_from_path(void **state)
@@ -842,11 +855,12 @@ static void test_group_params(void **state)
 static void test_group_policy(void **state)
 {
     fixture_t *fx = *state;
-    assert_int_equal(load(fx, "ircom: {payload_bits: 16}\nrobots:\n  - controller: forager\n"), 0);
+    assert_int_equal(load(fx, "ircom: {payload_bits: 16}\nforaging: {information: global}\n"
+                              "robots:\n  - controller: forager\n"), 0);
     assert_string_equal(fx->sc->groups[0].policy, "drtm");     /* the first */
     assert_int_equal(fx->sc->groups[0].policy_index, 0);
     expect_load_error(fx, "ircom: {payload_bits: 16}\nrobots:\n  - controller: forager\n"
-                          "    policy: xtrm\n", 4,
+                          "    policy: xtrm\nforaging: {information: global}\n", 4,
                       "robots[0].policy: unknown policy 'xtrm' for controller 'forager' "
                       "(valid: drtm, artm, frtm)");
     expect_load_error(fx, RW "    policy: drtm\n", 3,
@@ -884,14 +898,20 @@ static void test_placements(void **state)
     assert_int_equal(load(fx, RW "    count: 0\n    placement: {shape: poses}\n"), 0);
 }
 
-/* A controller that sends 16-bit messages on an 8-bit platform is a load
- * error, not a run where the foragers never leave the nest. */
+/* A controller that sends 16-bit messages on an 8-bit platform, or one
+ * without the task that is its world, is a load error, not a run where the
+ * foragers never leave the nest. */
 static void test_controller_needs(void **state)
 {
     fixture_t *fx = *state;
-    expect_load_error(fx, "robots:\n  - controller: random_walk\n  - controller: forager\n", 3,
+    expect_load_error(fx, "robots:\n  - controller: random_walk\n  - controller: forager\n"
+                          "foraging: {information: global}\n", 3,
                       "robots[1].controller: controller 'forager' sends 16-bit IR messages but "
                       "ircom.payload_bits is 8 (set ircom.payload_bits: 16");
+    expect_load_error(fx, "ircom: {payload_bits: 16}\nrobots:\n  - controller: random_walk\n"
+                          "  - controller: nest_beacon\n", 4,
+                      "robots[1].controller: controller 'nest_beacon' needs the foraging task, its "
+                      "world");
     assert_int_equal(load(fx, "robots:\n  - controller: forager\n    count: 0\n"), 0);
 }
 
@@ -951,6 +971,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         T(test_defaults),
+        T(test_empty_file_alone_is_an_error),
         T(test_empty_documents_give_defaults),
         T(test_name_from_path),
         T(test_full_file),

@@ -49,27 +49,38 @@ static float obstacle_gap(const obstacle_t *o, vec2_t p)
     return inside ? -best - EPUCK_BODY_RADIUS_M : best - EPUCK_BODY_RADIUS_M;
 }
 
-/* Whether robot `i` may stand at (x, y), given the robots in `placed`. */
-static int free_spot(const struct sim *sim, const uint8_t *placed, float spacing, float x, float y)
+/* Why a robot may not stand at (x, y), given the robots in `placed`: NULL
+ * when it may, else a phrase for messages (written into why[]). */
+static const char *spot_problem(const struct sim *sim, const uint8_t *placed, float spacing, float x, float y,
+                                char why[96])
 {
     float margin = EPUCK_BODY_RADIUS_M + PLACE_MARGIN;
     if (!(fabsf(x) <= sim->hw - margin && fabsf(y) <= sim->hh - margin)) {
-        return 0;
+        return "is not inside the arena";
     }
     for (uint32_t j = 0; j < sim->n; j++) {
         if (placed[j]) {
             float dx = sim->robots[j].x - x, dy = sim->robots[j].y - y;
             if (dx * dx + dy * dy < spacing * spacing) {
-                return 0;
+                snprintf(why, 96, "is closer than %g m to robot %u", (double)spacing, j);
+                return why;
             }
         }
     }
     for (uint32_t k = 0; k < sim->n_obstacles; k++) {
         if (obstacle_gap(&sim->obstacles[k], v2(x, y)) < PLACE_MARGIN) {
-            return 0;
+            snprintf(why, 96, "is on objects[%u]", k);
+            return why;
         }
     }
-    return 1;
+    return NULL;
+}
+
+/* Whether robot `i` may stand at (x, y), given the robots in `placed`. */
+static int free_spot(const struct sim *sim, const uint8_t *placed, float spacing, float x, float y)
+{
+    char why[96];
+    return spot_problem(sim, placed, spacing, x, y, why) == NULL;
 }
 
 static float heading_rad(float deg) { return deg * (float)UNITS_PI / 180.0f; }
@@ -148,6 +159,18 @@ static int place_group(struct sim *sim, const robot_group_t *grp, uint32_t gi, u
                                                : heading_rad(grp->heading);
                 ok = 1;
             }
+        }
+        if (!ok && p->shape == PLACE_GRID) {
+            /* A grid spot is fixed: say what is in its way, and what helps. */
+            char why[96];
+            float x, y;
+            draw_spot(sim, grp, k, rnd, &x, &y);
+            const char *problem = spot_problem(sim, placed, spacing, x, y, why);
+            snprintf(err, 256, "robots[%u] (%s): grid spot %u of %u at (%.3f, %.3f) m %s; grid spots "
+                     "do not move, so shift or resize the grid (placement x, y, width, height) or "
+                     "use shape: rectangle, whose random spots avoid obstacles",
+                     gi, grp->name, k + 1, grp->count, (double)x, (double)y, problem ? problem : "is taken");
+            return -1;
         }
         if (!ok) {
             snprintf(err, 256, "cannot place robot %u of %u of robots[%u] (%s, placement %s): no free "

@@ -4,17 +4,19 @@
  * Workers take repetition indices from a shared counter; each repetition is
  * a self-contained sim, so which worker runs it cannot change its result.
  * Results are stored by repetition index and aggregated in that order.
+ * A run's files get their final names only when the whole run finished
+ * (runner.h): a stop or a failure anywhere discards unfinished runs.
  */
 #include "runner.h"
 
 #include <errno.h>
+#include <inttypes.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -29,7 +31,7 @@ typedef struct rep_result {
     metric_list_t metrics;
     uint64_t state_hash;
     uint64_t steps;                /**< done: fewer than asked when a task stopped the run */
-    int failed;
+    int done;                      /**< finished, outputs under their final names */
 } rep_result_t;
 
 typedef struct job {
@@ -50,23 +52,6 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static int mkdirs(const char *path)
-{
-    char buf[PATH_MAX_LEN];
-    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
-        errno = ENAMETOOLONG;
-        return -1;
-    }
-    for (char *p = buf + 1; *p; p++) {
-        if (*p == '/') {
-            *p = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    }
-    return (mkdir(buf, 0777) != 0 && errno != EEXIST) ? -1 : 0;
-}
-
 static void fail(job_t *job, const char *fmt, const char *a, const char *b)
 {
     pthread_mutex_lock(&job->err_lock);
@@ -75,68 +60,6 @@ static void fail(job_t *job, const char *fmt, const char *a, const char *b)
         atomic_store(&job->failed, 1);
     }
     pthread_mutex_unlock(&job->err_lock);
-}
-
-static void json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
-        else if (c < 0x20) fprintf(f, "\\u%04x", c);
-        else fputc(c, f);
-    }
-    fputc('"', f);
-}
-
-/* Numbers print with up to 10 significant digits: enough for every
- * metric, and the same bits always print the same text. */
-static void json_number(FILE *f, double v)
-{
-    if (!isfinite(v)) fputs("null", f);
-    else fprintf(f, "%.10g", v);
-}
-
-/* "groups": [{name, controller, policy, count}, ...], "tasks": [...] */
-static void write_groups_and_tasks(FILE *f, const scenario_t *sc)
-{
-    fputs("  \"groups\": [", f);
-    for (uint32_t g = 0; g < sc->group_count; g++) {
-        const robot_group_t *grp = &sc->groups[g];
-        fputs(g ? ",\n    {\"name\": " : "\n    {\"name\": ", f);
-        json_string(f, grp->name);
-        fputs(", \"controller\": ", f);
-        json_string(f, grp->controller);
-        fputs(", \"policy\": ", f);
-        json_string(f, grp->policy);
-        fprintf(f, ", \"count\": %u}", grp->count);
-    }
-    fputs(sc->group_count ? "\n  ],\n  \"tasks\": [" : "],\n  \"tasks\": [", f);
-    for (uint32_t t = 0; t < sc->task_count; t++) {
-        if (t) fputs(", ", f);
-        json_string(f, sc->tasks[t].def->name);
-    }
-    fputs("],\n", f);
-}
-
-static void write_run_summary(FILE *f, const run_options_t *opt, uint64_t seed, const rep_result_t *r)
-{
-    const scenario_t *sc = opt->scenario;
-    fputs("{\n  \"scenario\": ", f);
-    json_string(f, sc->name);
-    fputs(",\n  \"scenario_file\": ", f);
-    json_string(f, sc->path);
-    fprintf(f, ",\n  \"seed\": %llu,\n", (unsigned long long)seed);
-    write_groups_and_tasks(f, sc);
-    fprintf(f, "  \"robots\": %u,\n  \"steps\": %llu,\n  \"control_period_ms\": %u,\n",
-            scenario_robot_count(sc), (unsigned long long)r->steps, sc->control_period_ms);
-    fprintf(f, "  \"state_hash\": \"%016llx\",\n  \"metrics\": {\n", (unsigned long long)r->state_hash);
-    for (unsigned k = 0; k < r->metrics.count; k++) {
-        fprintf(f, "    \"%s\": ", r->metrics.name[k]);
-        json_number(f, r->metrics.value[k]);
-        fputs(k + 1 < r->metrics.count ? ",\n" : "\n", f);
-    }
-    fputs("  }\n}\n", f);
 }
 
 /* Opens path.tmp for writing; commit() renames it over path. */
@@ -189,24 +112,51 @@ static int render_frame(job_t *job, const sim_t *sim, render_ctx_t **ctx, const 
     return 0;
 }
 
+static int stopping(const job_t *job)
+{
+    return atomic_load(&job->failed) || (job->opt->stop && *job->opt->stop);
+}
+
+/* Writes `text` to path (through path.tmp).  0 or -1 (errno). */
+static int write_text(const char *path, const char *text)
+{
+    char tmp[PATH_MAX_LEN + 8];
+    FILE *f = open_tmp(path, tmp, sizeof tmp);
+    if (!f) return -1;
+    fputs(text, f);
+    return commit(f, tmp, path);
+}
+
+/* One repetition, written in run_<seed>.partial/ and renamed run_<seed>/
+ * when it finished; removed when it did not. */
 static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
 {
     const run_options_t *opt = job->opt;
     const scenario_t *sc = opt->scenario;
     uint64_t seed = opt->seed + rep;
-    char err[256], dir[PATH_MAX_LEN - 64], path[PATH_MAX_LEN], tmp[PATH_MAX_LEN + 8];
+    char err[256], final_dir[PATH_MAX_LEN - 80], dir[PATH_MAX_LEN - 64], path[PATH_MAX_LEN];
+    char tmp[PATH_MAX_LEN + 8];
     rep_result_t *res = &job->results[rep];
 
-    snprintf(dir, sizeof dir, "%s/run_%llu", opt->out_dir, (unsigned long long)seed);
+    snprintf(final_dir, sizeof final_dir, "%s/run_%" PRIu64, opt->out_dir, seed);
+    snprintf(dir, sizeof dir, "%s.partial", final_dir);
+    outdir_remove_tree(dir);      /* a run stopped by an earlier invocation */
     sim_t *sim = sim_create(sc, seed, err);
     if (!sim) {
         fail(job, "%s: %s", sc->path, err);
         return;
     }
     snprintf(path, sizeof path, "%s/frames", dir);
-    if (mkdirs(opt->frames_every ? path : dir) != 0) {
+    if (outdir_mkdirs(opt->frames_every ? path : dir) != 0) {
         fail(job, "%s: cannot create: %s", dir, strerror(errno));
         sim_destroy(sim);
+        return;
+    }
+    snprintf(path, sizeof path, "%s/" SUMMARY_SCENARIO_COPY, dir);
+    if (write_text(path, opt->scenario_text) != 0) {
+        fail(job, "%s: cannot write: %s", path, strerror(errno));
+        sim_destroy(sim);
+        outdir_remove_tree(dir);
         return;
     }
     telemetry_t *tel = NULL;
@@ -214,6 +164,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     if (telemetry_open(&opt->telemetry, sim, path, &tel, err) != 0) {
         fail(job, "%s%s", "", err);
         sim_destroy(sim);
+        outdir_remove_tree(dir);
         return;
     }
     snprintf(path, sizeof path, "%s/timeseries.csv", dir);
@@ -222,6 +173,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         fail(job, "%s: cannot write: %s", path, strerror(errno));
         telemetry_close(tel, 0, err);
         sim_destroy(sim);
+        outdir_remove_tree(dir);
         return;
     }
     telemetry_begin(tel, sim, opt->steps);
@@ -235,7 +187,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     uint32_t every = sc->output.timeseries_every;
     int ok = 1;
     uint64_t s = 0;
-    for (; s < opt->steps && ok && !sim_done(sim) && !atomic_load(&job->failed); s++) {
+    for (; s < opt->steps && ok && !sim_done(sim) && !stopping(job); s++) {
         if (s % every == 0) {
             metrics_sample(sim, &row);
             write_row(ts, &row);
@@ -250,32 +202,58 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     /* A run a task stopped early counts its remaining steps as done. */
     atomic_fetch_add(&job->steps_done, opt->steps - s);
     res->steps = sim_step_count(sim);
-    if (ok && !atomic_load(&job->failed)) {
+    ok = ok && !stopping(job);
+    if (ok) {
         metrics_sample(sim, &row);
         write_row(ts, &row);
         if (opt->frames_every) {
             ok = render_frame(job, sim, render, dir) == 0;
         }
     }
-    if (commit(ts, tmp, path) != 0 && ok) {
+    if (!ok) {
+        fclose(ts);                /* unfinished: no final name for any of it */
+        remove(tmp);
+    } else if (commit(ts, tmp, path) != 0) {
         fail(job, "%s: cannot write: %s", path, strerror(errno));
         ok = 0;
     }
-    if (ok && !atomic_load(&job->failed)) {
+    if (ok) {
         metrics_final(sim, &res->metrics);
         res->state_hash = sim_state_hash(sim);
         telemetry_end(tel, sim, &res->metrics, res->state_hash);
         snprintf(path, sizeof path, "%s/summary.json", dir);
         FILE *f = open_tmp(path, tmp, sizeof tmp);
-        if (f) write_run_summary(f, opt, seed, res);
+        if (f) summary_write_run(f, sc, &opt->provenance, seed, res->steps, res->state_hash, &res->metrics);
         if (!f || commit(f, tmp, path) != 0) {
             fail(job, "%s: cannot write: %s", path, strerror(errno));
+            ok = 0;
         }
     }
-    if (telemetry_close(tel, ok && !atomic_load(&job->failed), err) != 0) {
-        fail(job, "%s%s", "", err);
+    if (ok) {
+        snprintf(path, sizeof path, "%s/" SUMMARY_EXACT_METRICS, dir);
+        FILE *f = open_tmp(path, tmp, sizeof tmp);
+        if (f) summary_write_exact(f, &res->metrics);
+        if (!f || commit(f, tmp, path) != 0) {
+            fail(job, "%s: cannot write: %s", path, strerror(errno));
+            ok = 0;
+        }
+    }
+    if (telemetry_close(tel, ok, err) != 0) {
+        if (ok) fail(job, "%s%s", "", err);
+        ok = 0;
     }
     sim_destroy(sim);
+    /* The run's last check: a sibling failing or a signal during its final
+     * writes still leaves it unfinished, never half-named. */
+    if (ok && !stopping(job)) {
+        if (rename(dir, final_dir) != 0) {
+            fail(job, "%s: cannot rename to its final name: %s", dir, strerror(errno));
+        } else {
+            res->done = 1;
+            return;
+        }
+    }
+    outdir_remove_tree(dir);
 }
 
 static void *worker(void *arg)
@@ -284,10 +262,12 @@ static void *worker(void *arg)
     render_ctx_t *render = NULL;
     for (;;) {
         uint32_t rep = atomic_fetch_add(&job->next_rep, 1);
-        if (rep >= job->opt->reps || atomic_load(&job->failed)) {
+        if (rep >= job->opt->reps || stopping(job)) {
             break;
         }
-        run_rep(job, rep, &render);
+        if (!job->results[rep].done) {     /* done: kept from an earlier invocation */
+            run_rep(job, rep, &render);
+        }
     }
     render_destroy(render);
     /* The wall time ends when the work does, not when the main thread's
@@ -315,86 +295,132 @@ static void progress(const job_t *job, double elapsed, int final)
     fflush(stderr);
 }
 
+/* OUT/summary.json over the finished runs (and echoed when asked). */
 static int write_aggregate(const run_options_t *opt, const rep_result_t *res, FILE *echo)
 {
     char path[PATH_MAX_LEN], tmp[PATH_MAX_LEN + 8];
+    const metric_list_t **done = calloc(opt->reps, sizeof *done);
+    uint32_t n = 0;
+    if (!done) return -1;
+    for (uint32_t r = 0; r < opt->reps; r++) {
+        if (res[r].done) done[n++] = &res[r].metrics;
+    }
     snprintf(path, sizeof path, "%s/summary.json", opt->out_dir);
     FILE *f = open_tmp(path, tmp, sizeof tmp);
-    if (!f) return -1;
-    for (int pass = 0; pass < 2; pass++) {
-        FILE *o = pass ? echo : f;
-        if (!o) continue;
-        fputs("{\n  \"scenario\": ", o);
-        json_string(o, opt->scenario->name);
-        fputs(",\n", o);
-        write_groups_and_tasks(o, opt->scenario);
-        fprintf(o, "  \"reps\": %u,\n  \"first_seed\": %llu,\n  \"steps\": %llu,\n  \"metrics\": {\n",
-                opt->reps, (unsigned long long)opt->seed, (unsigned long long)opt->steps);
-        const metric_list_t *m0 = &res[0].metrics;
-        for (unsigned k = 0; k < m0->count; k++) {
-            double sum = 0, sq = 0, lo = INFINITY, hi = -INFINITY;
-            for (uint32_t r = 0; r < opt->reps; r++) {
-                double v = res[r].metrics.value[k];
-                sum += v;
-                lo = fmin(lo, v);
-                hi = fmax(hi, v);
-            }
-            double mean = sum / opt->reps;
-            for (uint32_t r = 0; r < opt->reps; r++) {
-                double d = res[r].metrics.value[k] - mean;
-                sq += d * d;
-            }
-            double sd = opt->reps > 1 ? sqrt(sq / (opt->reps - 1)) : 0.0;
-            fprintf(o, "    \"%s\": {\"mean\": ", m0->name[k]);
-            json_number(o, mean);
-            fputs(", \"sd\": ", o);
-            json_number(o, sd);
-            fputs(", \"min\": ", o);
-            json_number(o, lo);
-            fputs(", \"max\": ", o);
-            json_number(o, hi);
-            fputs(k + 1 < m0->count ? "},\n" : "}\n", o);
+    int rc = -1;
+    if (f) {
+        summary_write_aggregate(f, opt->scenario, &opt->provenance, opt->seed, opt->reps, opt->steps, done, n);
+        if (echo) {
+            summary_write_aggregate(echo, opt->scenario, &opt->provenance, opt->seed, opt->reps, opt->steps,
+                                    done, n);
         }
-        fputs("  }\n}\n", o);
+        rc = commit(f, tmp, path);
     }
-    return commit(f, tmp, path);
+    free(done);
+    return rc;
+}
+
+/* One line that names the invocation: what --resume requires to be equal. */
+static void identity(const run_options_t *opt, char *buf, size_t len)
+{
+    const telemetry_options_t *t = &opt->telemetry;
+    snprintf(buf, len, "swarmsim-out/1 scenario=%016" PRIx64 " seeds=%" PRIu64 "+%u steps=%" PRIu64
+             " frames=%ux%u telemetry=%s/%g/%g", opt->provenance.scenario_hash, opt->seed, opt->reps,
+             opt->steps, opt->frames_every, opt->frame_px, !t->enabled ? "off" : t->url ? "url" : "log",
+             t->robot_hz, t->swarm_hz);
+}
+
+/* --resume: the runs an earlier invocation finished, read back. */
+static uint32_t load_finished(const run_options_t *opt, const metric_list_t *names, rep_result_t *res)
+{
+    uint32_t n = 0;
+    for (uint32_t r = 0; r < opt->reps; r++) {
+        char path[PATH_MAX_LEN];
+        snprintf(path, sizeof path, "%s/run_%" PRIu64 "/summary.json", opt->out_dir, opt->seed + r);
+        if (summary_read_run(path, opt->seed + r, names, &res[r].metrics, &res[r].steps,
+                             &res[r].state_hash) == 0) {
+            res[r].done = 1;
+            n++;
+        } else {
+            /* Not finished (or not readable): it runs again from scratch. */
+            snprintf(path, sizeof path, "%s/run_%" PRIu64, opt->out_dir, opt->seed + r);
+            outdir_remove_tree(path);
+        }
+    }
+    return n;
+}
+
+/* Before anything is written: can the runs start at all?  A scenario whose
+ * robots cannot be placed, or an LCM URL no provider takes, is a setup
+ * error (exit 2, no folder).  Fills `names` with the run's metrics. */
+static int check_setup(const run_options_t *opt, metric_list_t *names, char err[512])
+{
+    char e[256];
+    sim_t *probe = sim_create(opt->scenario, opt->seed, e);
+    if (!probe) {
+        snprintf(err, 512, "%.250s: %s", opt->scenario->path, e);
+        return -1;
+    }
+    metrics_final(probe, names);
+    sim_destroy(probe);
+    if (opt->telemetry.enabled && opt->telemetry.url && telemetry_check_url(opt->telemetry.url, e) != 0) {
+        snprintf(err, 512, "%s", e);
+        return -1;
+    }
+    return 0;
 }
 
 int runner_run(const run_options_t *opt, char err[512])
 {
     job_t job;
+    metric_list_t names;
+    char ident[OUTDIR_ERR_MAX], path[PATH_MAX_LEN];
     memset(&job, 0, sizeof job);
     job.opt = opt;
-    job.results = calloc(opt->reps, sizeof *job.results);
-    if (!job.results || mkdirs(opt->out_dir) != 0) {
-        snprintf(err, 512, "%s: cannot create: %s", opt->out_dir, job.results ? strerror(errno) : "out of memory");
-        free(job.results);
-        return -1;
+    if (check_setup(opt, &names, err) != 0) {
+        return RUNNER_SETUP_ERROR;
     }
+    identity(opt, ident, sizeof ident);
+    if (outdir_prepare(opt->out_dir, opt->out_mode, ident, err) != 0) {
+        return RUNNER_SETUP_ERROR;
+    }
+    snprintf(path, sizeof path, "%s/" SUMMARY_SCENARIO_COPY, opt->out_dir);
+    job.results = calloc(opt->reps, sizeof *job.results);
+    if (!job.results || write_text(path, opt->scenario_text) != 0) {
+        snprintf(err, 512, "%.400s: cannot write: %s", path, job.results ? strerror(errno) : "out of memory");
+        free(job.results);
+        return RUNNER_FAILED;
+    }
+    uint32_t kept = opt->out_mode == OUTDIR_RESUME ? load_finished(opt, &names, job.results) : 0;
     pthread_mutex_init(&job.err_lock, NULL);
     atomic_init(&job.next_rep, 0);
-    atomic_init(&job.steps_done, 0);
+    atomic_init(&job.steps_done, (unsigned long long)kept * opt->steps);
     atomic_init(&job.failed, 0);
+    if (kept && !opt->quiet) {
+        fprintf(stderr, "swarmsim: --resume: %u of %u runs already finished in %s\n", kept, opt->reps,
+                opt->out_dir);
+    }
 
-    uint32_t nthreads = opt->threads < opt->reps ? opt->threads : opt->reps;
+    uint32_t todo = opt->reps - kept;
+    uint32_t nthreads = opt->threads < todo ? opt->threads : (todo ? todo : 1);
     pthread_t *tid = calloc(nthreads, sizeof *tid);
     uint32_t started = 0;
     double t0 = now_s();
-    for (; tid && started < nthreads; started++) {
+    for (; tid && todo && started < nthreads; started++) {
         if (pthread_create(&tid[started], NULL, worker, &job) != 0) break;
     }
-    if (started == 0) {
+    if (started == 0 && todo) {
         worker(&job);   /* no threads available: run here */
     }
     int shown = 0, tty = opt->progress && isatty(STDERR_FILENO);
     /* Only a progress line needs the main thread awake; otherwise it joins at
      * once (polling would add up to 100 ms to every short run of a sweep). */
     while (tty && started > 0 && atomic_load(&job.steps_done) < (uint64_t)opt->reps * opt->steps
-           && !atomic_load(&job.failed)) {
+           && !stopping(&job)) {
         struct timespec nap = { 0, 100 * 1000 * 1000 };
         nanosleep(&nap, NULL);
         double el = now_s() - t0;
-        if (tty && el > 1.0) {
+        if (el > 1.0) {
             progress(&job, el, 0);
             shown = 1;
         }
@@ -404,39 +430,48 @@ int runner_run(const run_options_t *opt, char err[512])
     }
     double wall = (job.t_end > t0 ? job.t_end : now_s()) - t0;
     free(tid);
-    if (shown) progress(&job, wall, 1);
+    if (shown) {
+        progress(&job, wall, 1);   /* ends the line, whatever happened */
+    }
 
-    int rc = 0;
+    uint32_t done = 0;
+    for (uint32_t r = 0; r < opt->reps; r++) done += job.results[r].done != 0;
+    int rc = RUNNER_OK;
+    int stopped = opt->stop && *opt->stop;
     if (atomic_load(&job.failed)) {
         snprintf(err, 512, "%s", job.err);
-        rc = -1;
-    } else {
-        char path[PATH_MAX_LEN];
-        snprintf(path, sizeof path, "%s/run_%llu/summary.json", opt->out_dir, (unsigned long long)opt->seed);
-        if (opt->reps > 1) {
-            if (write_aggregate(opt, job.results, opt->quiet ? NULL : stdout) != 0) {
-                snprintf(err, 512, "%s/summary.json: cannot write: %s", opt->out_dir, strerror(errno));
-                rc = -1;
-            }
-        } else if (!opt->quiet) {
-            FILE *f = fopen(path, "r");
-            int c;
-            while (f && (c = fgetc(f)) != EOF) putchar(c);
-            if (f) fclose(f);
+        rc = RUNNER_FAILED;
+    } else if (stopped || done < opt->reps) {
+        snprintf(err, 512, "stopped: %u of %u runs finished in %s (each run_<seed>/ complete); "
+                 "--resume continues", done, opt->reps, opt->out_dir);
+        rc = RUNNER_STOPPED;
+    }
+    /* The aggregate covers the finished runs, also when stopped early. */
+    if ((opt->reps > 1 || rc != RUNNER_OK) && done > 0) {
+        if (write_aggregate(opt, job.results, opt->quiet || rc != RUNNER_OK ? NULL : stdout) != 0 &&
+            rc == RUNNER_OK) {
+            snprintf(err, 512, "%s/summary.json: cannot write: %s", opt->out_dir, strerror(errno));
+            rc = RUNNER_FAILED;
         }
-        if (!opt->quiet && rc == 0) {
-            /* The steps the runs really did: a task may have stopped them. */
-            double steps = 0.0;
-            for (uint32_t r = 0; r < opt->reps; r++) steps += (double)job.results[r].steps;
-            double robot_steps = steps * scenario_robot_count(opt->scenario);
-            double sim_time = steps * opt->scenario->control_period_ms / 1000.0;
-            printf("outputs: %s/ (run_<seed>/summary.json, timeseries.csv%s%s)\n", opt->out_dir,
-                   opt->frames_every ? ", frames/*.png" : "",
-                   opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
-            fprintf(stderr, "swarmsim: %u run(s), %.0f steps x %u robots in %.3f s wall on %u thread(s): "
-                    "%.0f robot-steps/s, %.0fx real time\n", opt->reps, steps,
-                    scenario_robot_count(opt->scenario), wall, nthreads, robot_steps / wall, sim_time / wall);
-        }
+    } else if (rc == RUNNER_OK && !opt->quiet) {
+        snprintf(path, sizeof path, "%s/run_%" PRIu64 "/summary.json", opt->out_dir, opt->seed);
+        FILE *f = fopen(path, "r");
+        int c;
+        while (f && (c = fgetc(f)) != EOF) putchar(c);
+        if (f) fclose(f);
+    }
+    if (!opt->quiet && rc == RUNNER_OK) {
+        /* The steps the runs really did: a task may have stopped them. */
+        double steps = 0.0;
+        for (uint32_t r = 0; r < opt->reps; r++) steps += (double)job.results[r].steps;
+        double robot_steps = steps * scenario_robot_count(opt->scenario);
+        double sim_time = steps * opt->scenario->control_period_ms / 1000.0;
+        printf("outputs: %s/ (run_<seed>/summary.json, scenario.yaml, timeseries.csv%s%s)\n", opt->out_dir,
+               opt->frames_every ? ", frames/*.png" : "",
+               opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
+        fprintf(stderr, "swarmsim: %u run(s), %.0f steps x %u robots in %.3f s wall on %u thread(s): "
+                "%.0f robot-steps/s, %.0fx real time\n", opt->reps, steps,
+                scenario_robot_count(opt->scenario), wall, nthreads, robot_steps / wall, sim_time / wall);
     }
     pthread_mutex_destroy(&job.err_lock);
     free(job.results);

@@ -3,21 +3,32 @@
  * their outputs.  Repetition r uses seed (base seed + r) and its results
  * depend only on that seed, never on the thread count or scheduling.
  *
- * Outputs, under `out_dir`:
- *   run_<seed>/summary.json     scenario, seed, controller, metrics
+ * Outputs, under `out_dir` (prepared by outdir.h: never mixed with another
+ * invocation's):
+ *   .swarmsim-out               the marker: this invocation's identity
+ *   scenario.yaml               the effective scenario (file + overrides)
+ *   run_<seed>/summary.json     scenario, provenance, seed, metrics
+ *   run_<seed>/scenario.yaml    the same effective scenario, with the run
  *   run_<seed>/timeseries.csv   one row every output.timeseries_every steps
  *   run_<seed>/frames/frame_N.png  with frames_every > 0 (and the last frame)
  *   run_<seed>/telemetry.lcmlog LCM telemetry (telemetry.h), unless it goes
  *                               to an LCM URL or is off
- *   summary.json                with reps > 1: mean and sd of every metric
- * Every file is written to a temporary name and renamed when complete.
+ *   summary.json                with reps > 1, or when stopped early: mean
+ *                               and sd of every metric over the finished
+ *                               runs, and how many of how many
+ * A run is written in run_<seed>.partial/ and renamed run_<seed>/ when it
+ * finished: a run stopped (SIGINT, SIGTERM) or failed half-way, or one a
+ * failing sibling stopped, leaves nothing under a final name.
  */
 #ifndef SIM_RUNNER_H
 #define SIM_RUNNER_H
 
+#include <signal.h>
 #include <stdint.h>
 
+#include "outdir.h"
 #include "scenario.h"
+#include "summary.h"
 #include "telemetry.h"
 
 typedef struct run_options {
@@ -27,14 +38,27 @@ typedef struct run_options {
     uint32_t threads;       /**< >= 1 */
     uint64_t steps;         /**< control steps per run */
     const char *out_dir;
+    outdir_mode_t out_mode; /**< new, replace or resume */
     uint32_t frames_every;  /**< 0: no pictures */
     uint32_t frame_px;      /**< picture side, pixels */
     int quiet;              /**< no summary on stdout */
     int progress;           /**< progress bar on stderr (when it takes > 1 s) */
     telemetry_options_t telemetry;  /**< all zero: no telemetry */
+    const char *scenario_text;      /**< the effective scenario (scenario.yaml) */
+    provenance_t provenance;        /**< scenario_hash is filled by runner_run */
+    /** Set (to the signal number) by a signal handler to stop early; NULL: never. */
+    volatile sig_atomic_t *stop;
 } run_options_t;
 
-/** Runs everything.  Returns 0, or -1 with a message in `err`. */
+enum {
+    RUNNER_OK = 0,
+    RUNNER_FAILED = -1,       /**< a run failed (exit 1) */
+    RUNNER_SETUP_ERROR = -2,  /**< nothing ran, no folder written (exit 2) */
+    RUNNER_STOPPED = -3       /**< *stop was set: finished runs kept (exit 128 + signal) */
+};
+
+/** Runs everything.  Returns a RUNNER_* code, with a message in `err`
+ *  unless RUNNER_OK. */
 int runner_run(const run_options_t *opt, char err[512]);
 
 #endif

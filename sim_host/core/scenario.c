@@ -707,10 +707,42 @@ static int check_inside(const loader_t *ld, const ynode_t *root, const scenario_
 }
 
 /* What a controller needs of the platform the scenario models. */
+/* The registered task that lists `controller` as needing it, or NULL. */
+static const task_def_t *task_needed_by(const char *controller)
+{
+    const task_def_t *t;
+    for (size_t i = 0; (t = registry_task_at(i)) != NULL; i++) {
+        for (size_t k = 0; t->controllers != NULL && t->controllers[k] != NULL; k++) {
+            if (strcmp(t->controllers[k], controller) == 0) return t;
+        }
+    }
+    return NULL;
+}
+
+static int has_task(const scenario_t *sc, const task_def_t *def)
+{
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        if (sc->tasks[t].def == def) return 1;
+    }
+    return 0;
+}
+
 static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
 {
     for (uint32_t g = 0; g < sc->group_count; g++) {
         const robot_group_t *grp = &sc->groups[g];
+        const task_def_t *world = task_needed_by(grp->def->name);
+        if (grp->count > 0 && world != NULL && !has_task(sc, world)) {
+            char path[SCHEMA_PATH_MAX], at[SCHEMA_PATH_MAX];
+            snprintf(path, sizeof path, "robots.%u.controller", g);
+            const ynode_t *node = schema_find(root, path);
+            schema_index_path(at, "robots", g);
+            schema_join(path, at, "controller");
+            return schema_fail(ld, node, path,
+                               "controller '%s' needs the %s task, its world (without it the robots "
+                               "have nothing to do): add a `%s:` section (swarmsim --help lists its keys)",
+                               grp->def->name, world->name, world->name);
+        }
         if (grp->count > 0 && grp->def->ircom_bits > sc->ircom.payload_bits) {
             char path[SCHEMA_PATH_MAX];
             snprintf(path, sizeof path, "robots.%u.controller", g);
@@ -766,9 +798,15 @@ static int set_path_and_name(const loader_t *ld, const char *path, scenario_t *o
     return 0;
 }
 
-/* A file with no document, or a null one, is an empty mapping. */
-static int check_root(const loader_t *ld, ynode_t **root)
+/* A file with no document, or a null one, is an empty mapping when
+ * overrides follow; alone it says nothing to run, so it is an error. */
+static int check_root(const loader_t *ld, ynode_t **root, size_t override_count)
 {
+    if (ytree_is_null(*root) && override_count == 0) {
+        return schema_fail(ld, NULL, "", "empty scenario: it sets nothing (a wrong or truncated "
+                           "file?); write at least its robots, e.g. robots: [{count: 20, "
+                           "controller: random_walk}]");
+    }
     if (ytree_is_null(*root)) {
         ytree_free(*root);
         *root = ytree_new_mapping(0, NULL);
@@ -822,7 +860,7 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
     if (ytree_parse_file(path, &root, err, SCENARIO_ERROR_MAX) != 0) {
         return -1;
     }
-    rc = check_root(&ld, &root);
+    rc = check_root(&ld, &root, override_count);
     for (size_t i = 0; rc == 0 && i < override_count; i++) {
         rc = ytree_apply_override(&root, overrides[i].text, err, SCENARIO_ERROR_MAX);
     }
@@ -834,6 +872,25 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
     }
     if (rc == 0) {
         rc = cross_check(&ld, root, out);
+    }
+    ytree_free(root);
+    return rc == 0 ? 0 : -1;
+}
+
+int scenario_write_effective(const char *path, const scenario_override_t *overrides,
+                             size_t override_count, FILE *out, char err[SCENARIO_ERROR_MAX])
+{
+    loader_t ld = { path, err, SCENARIO_ERROR_MAX };
+    ynode_t *root = NULL;
+    if (ytree_parse_file(path, &root, err, SCENARIO_ERROR_MAX) != 0) {
+        return -1;
+    }
+    int rc = check_root(&ld, &root, override_count);
+    for (size_t i = 0; rc == 0 && i < override_count; i++) {
+        rc = ytree_apply_override(&root, overrides[i].text, err, SCENARIO_ERROR_MAX);
+    }
+    if (rc == 0) {
+        rc = ytree_write(out, root, err, SCENARIO_ERROR_MAX);
     }
     ytree_free(root);
     return rc == 0 ? 0 : -1;

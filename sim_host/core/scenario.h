@@ -212,6 +212,15 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
                   size_t override_count, scenario_t *out,
                   char err[SCENARIO_ERROR_MAX]);
 
+/**
+ * Writes the effective scenario to `out` as YAML: the file's tree with the
+ * overrides applied (comments are not kept; absent keys keep meaning their
+ * defaults), so that loading it gives what scenario_load gave.  Call it
+ * after scenario_load succeeded.  Returns 0, or -1 with a message in `err`.
+ */
+int scenario_write_effective(const char *path, const scenario_override_t *overrides,
+                             size_t override_count, FILE *out, char err[SCENARIO_ERROR_MAX]);
+
 /** Every robot of every group. */
 uint32_t scenario_robot_count(const scenario_t *sc);
 

@@ -63,6 +63,11 @@ typedef struct task_def {
     const param_desc_t *params;   /**< scalar keys of the section */
     const param_section_t *sections;  /**< nested mappings, {NULL}-terminated, or NULL */
     void (*default_config)(void *config);
+    /** Controllers that mean nothing without this task (it is their world:
+     *  a forager with no tokens and no nest never leaves home), NULL-
+     *  terminated, or NULL.  A scenario with such robots and without the
+     *  task is an error. */
+    const char *const *controllers;
 
     /** Cross-checks after loading.  Returns 0, or -1 with the key (relative
      *  to the section, "nest.diameter"; "" for the section) and a message. */

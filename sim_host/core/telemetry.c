@@ -105,6 +105,18 @@ static int parse_hz(const char *text, const char *stop, double *out)
     return 0;
 }
 
+int telemetry_check_url(const char *url, char err[256])
+{
+    lcm_t *lcm = lcm_create(url);
+    if (!lcm) {
+        snprintf(err, 256, "--lcm %s: no LCM provider takes this URL (udpm://GROUP:PORT?ttl=0, "
+                 "file://PATH?mode=w, memq://)", url);
+        return -1;
+    }
+    lcm_destroy(lcm);
+    return 0;
+}
+
 int telemetry_parse_rate(const char *text, telemetry_options_t *opt)
 {
     double robot, swarm = opt->swarm_hz;

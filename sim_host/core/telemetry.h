@@ -61,6 +61,10 @@ void telemetry_default_options(telemetry_options_t *opt);
  *  `opt`.  Returns 0, or -1 if the text is not that. */
 int telemetry_parse_rate(const char *text, telemetry_options_t *opt);
 
+/** Whether an LCM provider takes `url` (opened and closed at once).
+ *  Returns 0, or -1 with a message in `err`. */
+int telemetry_check_url(const char *url, char err[256]);
+
 typedef struct telemetry telemetry_t;
 
 /** Opens the telemetry of the run of `sim`: the URL of `opt`, or when it is

@@ -690,3 +690,83 @@ int ytree_apply_override(ynode_t **root, const char *text, char *err, size_t err
     }
     return 0;
 }
+
+/* ------------------------------------------------------------ writing */
+
+static int emit(yaml_emitter_t *e, yaml_event_t *ev)
+{
+    return yaml_emitter_emit(e, ev) ? 0 : -1;   /* the emitter frees ev */
+}
+
+static int emit_node(yaml_emitter_t *e, const ynode_t *n)
+{
+    yaml_event_t ev;
+    if (n == NULL) {
+        yaml_scalar_event_initialize(&ev, NULL, NULL, (yaml_char_t *)"~", 1, 1, 1, YAML_PLAIN_SCALAR_STYLE);
+        return emit(e, &ev);
+    }
+    switch (n->kind) {
+    case YNODE_SCALAR:
+        /* A quoted scalar stays quoted (a string); a plain one stays plain
+         * where YAML allows, so numbers and booleans read back as such. */
+        yaml_scalar_event_initialize(&ev, NULL, NULL, (yaml_char_t *)n->text, (int)strlen(n->text),
+                                     !n->quoted, n->quoted,
+                                     n->quoted ? YAML_DOUBLE_QUOTED_SCALAR_STYLE : YAML_ANY_SCALAR_STYLE);
+        return emit(e, &ev);
+    case YNODE_MAPPING:
+        yaml_mapping_start_event_initialize(&ev, NULL, NULL, 1, YAML_BLOCK_MAPPING_STYLE);
+        if (emit(e, &ev) != 0) return -1;
+        for (size_t i = 0; i < n->count; i++) {
+            if (emit_node(e, n->pairs[i].key) != 0 || emit_node(e, n->pairs[i].value) != 0) return -1;
+        }
+        yaml_mapping_end_event_initialize(&ev);
+        return emit(e, &ev);
+    case YNODE_SEQUENCE:
+        yaml_sequence_start_event_initialize(&ev, NULL, NULL, 1, YAML_BLOCK_SEQUENCE_STYLE);
+        if (emit(e, &ev) != 0) return -1;
+        for (size_t i = 0; i < n->count; i++) {
+            if (emit_node(e, n->items[i]) != 0) return -1;
+        }
+        yaml_sequence_end_event_initialize(&ev);
+        return emit(e, &ev);
+    }
+    return -1;
+}
+
+static int write_to_file(void *data, unsigned char *buffer, size_t size)
+{
+    return fwrite(buffer, 1, size, (FILE *)data) == size;
+}
+
+int ytree_write(FILE *f, const ynode_t *root, char *err, size_t errlen)
+{
+    yaml_emitter_t e;
+    yaml_event_t ev;
+    if (!yaml_emitter_initialize(&e)) {
+        snprintf(err, errlen, "YAML writer: out of memory");
+        return -1;
+    }
+    yaml_emitter_set_output(&e, write_to_file, f);
+    yaml_emitter_set_unicode(&e, 1);
+    yaml_emitter_set_width(&e, 100);
+    yaml_stream_start_event_initialize(&ev, YAML_UTF8_ENCODING);
+    int rc = emit(&e, &ev);
+    if (rc == 0) {
+        yaml_document_start_event_initialize(&ev, NULL, NULL, NULL, 1);
+        rc = emit(&e, &ev);
+    }
+    if (rc == 0) rc = emit_node(&e, root);
+    if (rc == 0) {
+        yaml_document_end_event_initialize(&ev, 1);
+        rc = emit(&e, &ev);
+    }
+    if (rc == 0) {
+        yaml_stream_end_event_initialize(&ev);
+        rc = emit(&e, &ev);
+    }
+    if (rc != 0) {
+        snprintf(err, errlen, "YAML writer: %s", e.problem ? e.problem : "write error");
+    }
+    yaml_emitter_delete(&e);
+    return rc;
+}

@@ -12,6 +12,7 @@
 #define SIM_YAML_TREE_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 typedef enum ynode_kind { YNODE_SCALAR, YNODE_MAPPING, YNODE_SEQUENCE } ynode_kind_t;
 
@@ -52,6 +53,11 @@ int ytree_parse_file(const char *path, ynode_t **root, char *err, size_t errlen)
  * outlive the tree.  Returns 0, or -1 with "--set TEXT: path: what" in `err`.
  */
 int ytree_apply_override(ynode_t **root, const char *text, char *err, size_t errlen);
+
+/** Writes the tree as a YAML document (block style; quoted scalars stay
+ *  quoted, plain ones plain where YAML allows), so that parsing it again
+ *  gives the same tree.  Returns 0, or -1 with a message in `err`. */
+int ytree_write(FILE *f, const ynode_t *root, char *err, size_t errlen);
 
 /** An empty mapping node (NULL if out of memory). */
 ynode_t *ytree_new_mapping(int line, const char *origin);

@@ -141,6 +141,15 @@ expect_error "--set: a later override replaces an earlier one" \
     "swarmsim: --set robots.0.count=1.5: robots[0].count: expected an integer, got '1.5'" \
     "$ok" --set robots.0.count=3 --set robots.0.count=1.5
 
+# ---- meaningless setups
+: >"$tmp/empty.yaml"
+expect_error "an empty scenario file" \
+    "swarmsim: $tmp/empty.yaml: empty scenario: it sets nothing" \
+    "$tmp/empty.yaml"
+expect_error "a forager without its task" \
+    "swarmsim: $d/forager_without_task.yaml:5: robots[0].controller: controller 'forager' needs the foraging task" \
+    "$d/forager_without_task.yaml"
+
 # ---- the one seed range [0, 2^53 - 1], for --seed and every repetition's seed
 expect_error "--seed past the seed range" \
     "swarmsim: --seed: '9007199254740992' is not an integer in [0, 9007199254740991]" \

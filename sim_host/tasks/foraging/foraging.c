@@ -519,6 +519,9 @@ static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
     }
 }
 
+/* Robots of these controllers need the foraging world to do anything. */
+static const char *const foraging_controllers[] = { "forager", "nest_beacon", NULL };
+
 const task_def_t foraging_task = {
     .name = "foraging",
     .doc = "seed 000: food tokens, the nest and its ground-truth energy ledger",
@@ -526,6 +529,7 @@ const task_def_t foraging_task = {
     .params = foraging_params,
     .sections = foraging_sections,
     .default_config = foraging_default_config,
+    .controllers = foraging_controllers,
     .check = foraging_check,
     .configure = foraging_configure,
     .create = foraging_create,
