@@ -67,12 +67,13 @@ Outputs (in ``--out``, default ``out/study_drtm``)
     series behind the figures, so that ``--from-json`` can re-render
     ``results.md`` and the figures without running anything.
 ``food_<condition>.png``
-    net food in the nest F(t) (mean, shaded +- sd) per policy, and the desired
-    level F_d dashed (paper Figures 5, 10, 12, 14, 16).
+    net food in the nest F(t) (mean line, light band: the mean's 95 %
+    confidence interval) per policy, and the desired level F_d dashed (paper
+    Figures 5, 10, 12, 14, 16).
 ``oae_<condition>.png``
-    cumulative OAEs (mean +- sd) per policy (Figures 6, 11, 13, 15, 17).
+    cumulative OAEs (the same way) per policy (Figures 6, 11, 13, 15, 17).
 ``active_<condition>.png``
-    number of active robots, searching + returning (mean +- sd) per policy.
+    number of active robots, searching + returning, per policy.
 ``runs/<condition>/<policy>/run_<seed>/``
     the simulator's own outputs (summary.json, timeseries.csv); each cell's
     folder is emptied before it is run.
@@ -155,7 +156,7 @@ POLICIES: tuple[str, ...] = ("drtm", "artm", "frtm")
 POLICY_LABEL = {"drtm": "DRTM", "artm": "ARTM", "frtm": "FRTM"}
 POLICY_COLOUR = {"drtm": "tab:blue", "artm": "tab:red", "frtm": "tab:green"}
 # FRTM dotted, drawn last: it can coincide with ARTM (same start threshold).
-POLICY_STYLE = {"drtm": "-", "artm": "-", "frtm": ":"}
+POLICY_STYLE = {"drtm": "-", "artm": "--", "frtm": ":"}
 
 # name -> scenario file stem, label, where in the paper, row of Table 2 or 4
 CONDITIONS: dict[str, dict[str, str]] = {
@@ -741,6 +742,7 @@ def render_figures(results: dict[str, Any], out_dir: Path) -> dict[str, list[str
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from scipy import stats
 
     specs = (
         ("food", "food_nest", "net food in the nest F(t) (tokens)", "Net food in the nest F(t)"),
@@ -752,7 +754,7 @@ def render_figures(results: dict[str, Any], out_dir: Path) -> dict[str, list[str
         pols = _policies_run(results, cond)
         made[cond] = []
         for prefix, key, ylabel, title in specs:
-            fig, ax = plt.subplots(figsize=(7.0, 4.2))
+            fig, ax = plt.subplots(figsize=(7.0, 4.6))
             reps = set()
             for p in pols:
                 ser = c["policies"][p].get("series") or {}
@@ -761,19 +763,24 @@ def render_figures(results: dict[str, Any], out_dir: Path) -> dict[str, list[str
                 t = np.asarray(ser["time_s"], dtype=float)
                 m = np.asarray(ser[key]["mean"], dtype=float)
                 sd = np.asarray(ser[key]["sd"], dtype=float)
-                reps.add(ser.get("n", len(c["policies"][p]["runs"])))
+                n = int(ser.get("n", len(c["policies"][p]["runs"])))
+                reps.add(n)
+                # A light band of the mean's 95 % confidence interval under a
+                # strong mean line: three policies stay apart where bands
+                # overlap (an sd band hid them).
+                half = sd / np.sqrt(n) * float(stats.t.ppf(0.975, n - 1)) if n > 1 else np.zeros_like(sd)
+                lo = m - half if key != "active" else np.maximum(m - half, 0.0)   # counts: not below 0
+                ax.fill_between(t, lo, m + half, color=POLICY_COLOUR[p], alpha=0.12, lw=0)
                 ax.plot(t, m, color=POLICY_COLOUR[p], ls=POLICY_STYLE[p],
-                        lw=1.8 if p == "frtm" else 1.4, label=POLICY_LABEL[p])
-                lo = m - sd if key != "active" else np.maximum(m - sd, 0.0)   # counts: not below 0
-                ax.fill_between(t, lo, m + sd, color=POLICY_COLOUR[p], alpha=0.2, lw=0)
+                        lw=2.0 if p == "frtm" else 1.6, label=POLICY_LABEL[p])
             if prefix == "food" and c.get("desired_food") is not None:
                 fd = c["desired_food"]
                 ax.axhline(fd, color="black", ls="--", lw=1.0, label=f"F_d = {fd:g}")
                 lo, hi = ax.get_ylim()          # room above F_d for the legend
                 ax.set_ylim(lo, max(hi, fd + 0.25 * (max(hi, fd) - lo)))
             n_txt = "/".join(str(n) for n in sorted(reps)) or "0"
-            ax.set_title(f"{title}\n{cond}: {CONDITIONS[cond]['label']}; "
-                         f"mean ± sd of {n_txt} reps per policy", fontsize=10)
+            ax.set_title(f"{title}\n{cond}: {CONDITIONS[cond]['label']}\n"
+                         f"mean and 95 % CI of the mean, {n_txt} reps per policy", fontsize=10)
             ax.set_xlabel("time (s)")
             ax.set_ylabel(ylabel)
             ax.grid(True, alpha=0.3)
