@@ -528,6 +528,38 @@ static void test_names(void **state)
     assert_int_equal(F.walk.params.speed_steps_s, SPEED);
 }
 
+/* Garbled and hostile frames (every kind, every id, any range, many a
+ * step) and garbage blobs for 30,000 steps under each policy: the forager
+ * stays in its states, its wheel speeds within the motors' range, its
+ * probabilities in [0, 1] (and UBSan sees no overflow). */
+static void test_hostile_inbox(void **state)
+{
+    static const ta_policy_t policies[] = { TA_DRTM, TA_ARTM, TA_FRTM };
+    uint32_t x = 777u, i, k, pol;
+    (void)state;
+    for (pol = 0; pol < 3u; pol++) {
+        start(policies[pol]);
+        for (i = 0; i < 30000u; i++) {
+            for (k = 0; k < 10u; k++) {
+                x = x * 1664525u + 1013904223u;
+                (void)fake_hal_push(&H, (uint16_t)(x >> 16), (uint16_t)(x & 2047u), (int16_t)(x % 6283u) - 3141);
+            }
+            x = x * 1664525u + 1013904223u;
+            if (x & 1u) {
+                fake_hal_show_blob(&H, (uint8_t)((x >> 1) % 4u), (int16_t)((x >> 8) % 2000u) - 1000,
+                                   (uint16_t)((x >> 20) % 1200u));
+            } else {
+                fake_hal_clear_blobs(&H);
+            }
+            H.proximity[(x >> 3) % HAL_IR_COUNT] = (uint16_t)(x >> 12);
+            step();
+            assert_true(F.state <= FORAGER_DEPOSIT);
+            assert_true(H.left >= -1000 && H.left <= 1000 && H.right >= -1000 && H.right <= 1000);
+            assert_true(F.P_s >= 0.0f && F.P_s <= 1.0f);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -551,6 +583,7 @@ int main(void)
         cmocka_unit_test(test_frtm_theta_fixed),
         cmocka_unit_test(test_n_per_robot_in_range),
         cmocka_unit_test(test_names),
+        cmocka_unit_test(test_hostile_inbox),
     };
     return cmocka_run_group_tests_name("forager", tests, NULL, NULL);
 }

@@ -121,6 +121,7 @@ static void test_deposits_add_token_energy(void **state)
     (void)state;
     nest_beacon_default_params(&p);
     start(&p, 1);
+    steps(60);                   /* robots have been out foraging a while */
     report(NL_DEPOSITS, 3u, 1u);
     step();
     assert_int_equal(B.ledger_units, 7500 + 1500);
@@ -131,6 +132,7 @@ static void test_deposits_add_token_energy(void **state)
     assert_int_equal(B.ledger_units, 9000);
     assert_int_equal(B.deposits_total, 1);
     /* The report of total 2 was lost; total 3 brings both. */
+    steps(60);
     report(NL_DEPOSITS, 3u, 3u);
     step();
     assert_int_equal(B.ledger_units, 9000 + 3000);
@@ -148,15 +150,93 @@ static void test_counts_heal_across_wrap(void **state)
     (void)state;
     nest_beacon_default_params(&p);
     start(&p, 1);
+    steps(254);
     /* Baseline 0: a first report of 250 means 250 events since the start. */
     report(NL_OAES, 9u, 250u);
     step();
     assert_int_equal(B.oae_total, 250);
     /* 250 -> 260 is sent as 250 -> 4: ten more. */
+    steps(20);
     report(NL_OAES, 9u, 260u);
     step();
     assert_int_equal(B.oae_total, 260);
     assert_int_equal(B.ledger_units, 7500 - 2600);
+}
+
+/* Reports credit no faster than a robot can act: a deposit per
+ * min_deposit_steps, an OAE per step, since the robot was last credited;
+ * what a report claims beyond that is credited by later reports (its total
+ * is cumulative), so a real rise is never lost, only spread out. */
+static void test_reports_credit_no_faster_than_a_robot(void **state)
+{
+    nest_beacon_params_t p;
+    (void)state;
+    nest_beacon_default_params(&p);
+    start(&p, 1);
+    steps(39);                   /* budget 40 after the next step's ageing */
+    report(NL_DEPOSITS, 5u, 5u); /* five deposits claimed at once */
+    step();
+    assert_int_equal(B.deposits_total, 2);                   /* 40 / 20 */
+    steps(59);
+    report(NL_DEPOSITS, 5u, 5u); /* the same total later: the rest is paid */
+    step();
+    assert_int_equal(B.deposits_total, 5);
+    assert_int_equal(B.ledger_units, 7500 + 5 * 1500);
+    /* OAEs: one a step. */
+    steps(9);
+    report(NL_OAES, 6u, 200u);
+    step();
+    assert_int_equal(B.oae_total, 110);  /* robot 6's budget: the 110 steps since the start */
+}
+
+/* The defect a review found: robot 0 alternately reporting cumulative
+ * totals 255 and 254 (frames 0x40FF / 0x40FE), 8 a step, wrapped the signed
+ * 32-bit ledger at step 1,397 (undefined behaviour; -128 tokens broadcast).
+ * Now the ledger saturates and the liar gains one token per 20 steps. */
+static void test_hostile_deposit_stream_stays_bounded(void **state)
+{
+    nest_beacon_params_t p;
+    uint32_t i, k;
+    (void)state;
+    nest_beacon_default_params(&p);
+    start(&p, 0);
+    for (i = 0; i < 20000u; i++) {
+        for (k = 0; k < 8u; k++) {
+            assert_true(fake_hal_push(&H, (k & 1u) ? 0x40FEu : 0x40FFu, 50u, 0));
+        }
+        step();
+        assert_true(B.ledger_units <= NB_LEDGER_LIMIT_TOKENS * 1500);
+        assert_true(B.food_q4 >= 0);         /* never wrapped negative */
+    }
+    assert_true(B.deposits_total <= 20000u / 20u + 1u);
+    assert_true(B.deposits_total >= 20000u / 20u - 1u);
+    /* The broadcast F(t) is the 12-bit maximum, not a wrapped value. */
+    assert_int_equal(nest_link_encode_food(B.food_q4), nest_link_encode_food(NL_FOOD_Q4_MAX));
+}
+
+/* Garbled frames of every kind from every id, many a step: the ledger and
+ * every counter stay within their bounds (and UBSan sees no overflow). */
+static void test_garbled_stream_stays_bounded(void **state)
+{
+    nest_beacon_params_t p;
+    uint32_t x = 12345u, i, k;
+    (void)state;
+    nest_beacon_default_params(&p);
+    start(&p, 0);
+    for (i = 0; i < 30000u; i++) {
+        for (k = 0; k < 12u; k++) {
+            x = x * 1664525u + 1013904223u;
+            (void)fake_hal_push(&H, (uint16_t)(x >> 16), (uint16_t)(x & 1023u), 0);
+        }
+        step();
+        assert_true(B.ledger_units <= NB_LEDGER_LIMIT_TOKENS * 1500);
+        assert_true(B.ledger_units >= -NB_LEDGER_LIMIT_TOKENS * 1500);
+        assert_true(B.food_q4 >= NL_FOOD_Q4_MIN * 16 && B.food_q4 <= 2048 * 16);
+        assert_true(B.n_waiting <= NB_SLOTS);
+    }
+    /* 64 ids could not have done more than this in 30,000 steps. */
+    assert_true(B.deposits_total <= 64u * (30000u / 20u + 1u));
+    assert_true(B.oae_total <= 64u * 30000u);
 }
 
 static void test_oae_window(void **state)
@@ -166,25 +246,25 @@ static void test_oae_window(void **state)
     (void)state;
     nest_beacon_default_params(&p);
     start(&p, 1);
-    /* Two OAEs in the first step: E_a = 10 each, in the window for T2 = 400
-     * steps (the step of the report included). */
-    report(NL_OAES, 2u, 2u);
+    /* An OAE in the first step (a robot can have one a step): E_a = 10, in
+     * the window for T2 = 400 steps (the step of the report included). */
+    report(NL_OAES, 2u, 1u);
     step();
-    assert_int_equal(B.ledger_units, 7500 - 20);
-    assert_int_equal(B.oae_total, 2);
-    assert_int_equal(B.m_t2, 2);
+    assert_int_equal(B.ledger_units, 7500 - 10);
+    assert_int_equal(B.oae_total, 1);
+    assert_int_equal(B.m_t2, 1);
     for (k = 1; k < 400u; k++) {
         step();
-        assert_int_equal(B.m_t2, 2);
+        assert_int_equal(B.m_t2, 1);
     }
     step();   /* step 400: out of the window */
     assert_int_equal(B.m_t2, 0);
-    assert_int_equal(B.oae_total, 2);
-    assert_int_equal(B.ledger_units, 7500 - 20);
-    /* Three more from the same robot (total 5) enter a fresh window. */
+    assert_int_equal(B.oae_total, 1);
+    assert_int_equal(B.ledger_units, 7500 - 10);
+    /* Four more from the same robot (total 5) enter a fresh window. */
     report(NL_OAES, 2u, 5u);
     step();
-    assert_int_equal(B.m_t2, 3);
+    assert_int_equal(B.m_t2, 4);
     assert_int_equal(B.oae_total, 5);
     assert_int_equal(B.ledger_units, 7500 - 50);
 }
@@ -331,6 +411,7 @@ static void test_broadcast_negative_and_mean_oae(void **state)
     nest_beacon_default_params(&p);
     p.f0_tokens = -3;
     start(&p, 1);
+    steps(36);                  /* a robot has at most one OAE a step */
     report(NL_OAES, 1u, 37u);   /* M_T2 = 37: M_A = 37 / 20 = 1.85 = 473/256 */
     step();
     assert_int_equal(nest_link_decode(H.last_sent, &f), NL_BEACON);
@@ -373,6 +454,9 @@ int main(void)
         cmocka_unit_test(test_movement_cost),
         cmocka_unit_test(test_deposits_add_token_energy),
         cmocka_unit_test(test_counts_heal_across_wrap),
+        cmocka_unit_test(test_reports_credit_no_faster_than_a_robot),
+        cmocka_unit_test(test_hostile_deposit_stream_stays_bounded),
+        cmocka_unit_test(test_garbled_stream_stays_bounded),
         cmocka_unit_test(test_oae_window),
         cmocka_unit_test(test_oae_window_sums_robots_and_bins),
         cmocka_unit_test(test_t2_clamped),

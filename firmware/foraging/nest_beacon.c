@@ -13,6 +13,7 @@ void nest_beacon_default_params(nest_beacon_params_t *params)
     params->e_a = 10u;
     params->t2_steps = 400u;   /* L / (2 v) = 4 m / 0.1 m/s = 40 s at 10 Hz */
     params->wait_timeout_steps = 5u;
+    params->min_deposit_steps = 20u;
 }
 
 void nest_beacon_init(nest_beacon_t *self, const nest_beacon_params_t *params, uint32_t seed)
@@ -29,6 +30,9 @@ void nest_beacon_reset(nest_beacon_t *self)
 
     if (self->params.token_energy == 0u) {
         self->params.token_energy = 1u;   /* F = ledger / token_energy */
+    }
+    if (self->params.min_deposit_steps == 0u) {
+        self->params.min_deposit_steps = 1u;
     }
     if (self->params.wait_timeout_steps == 0u) {
         self->params.wait_timeout_steps = 1u;
@@ -49,6 +53,8 @@ void nest_beacon_reset(nest_beacon_t *self)
         self->last_deposits[i] = 0u;
         self->last_oaes[i] = 0u;
         self->age_steps[i] = NB_AGE_NEVER;
+        self->deposit_budget[i] = 0u;   /* robots start at home: nothing to credit yet */
+        self->oae_budget[i] = 0u;
     }
     for (i = 0; i < NB_MAX_BINS; i++) {
         self->bins[i] = 0u;
@@ -120,15 +126,55 @@ static void age_slots(nest_beacon_t *self)
         if (self->age_steps[i] < NB_AGE_NEVER) {
             self->age_steps[i]++;
         }
+        if (self->deposit_budget[i] < NB_BUDGET_MAX) {
+            self->deposit_budget[i]++;
+        }
+        if (self->oae_budget[i] < NB_BUDGET_MAX) {
+            self->oae_budget[i]++;
+        }
     }
+}
+
+/* ledger += delta, saturating at +- NB_LEDGER_LIMIT_TOKENS tokens.  Every
+ * change of the ledger goes through here: reports are untrusted input. */
+static void ledger_add(nest_beacon_t *self, int32_t delta)
+{
+    int32_t lim = (int32_t)NB_LEDGER_LIMIT_TOKENS * (int32_t)self->params.token_energy;
+    int32_t e = self->ledger_units;
+    if (delta > 0) {
+        e = (e > lim - delta) ? lim : e + delta;
+    } else if (delta < 0) {
+        e = (e < -lim - delta) ? -lim : e + delta;
+    }
+    self->ledger_units = e;
+}
+
+static uint32_t add_saturated(uint32_t total, uint8_t n)
+{
+    return (total > 0xFFFFFFFFu - n) ? 0xFFFFFFFFu : total + n;
+}
+
+/* What a cumulative report (mod 256) may credit: the rise since what was
+ * last credited, but no more than the robot's budget pays for at `cost`
+ * steps a unit.  `last` advances only by what is credited, so the rest of
+ * a real rise (a lost report's share) is credited by a later report, and a
+ * lying or garbled stream gains no faster than a real robot could. */
+static uint8_t credit(uint8_t reported, uint8_t *last, uint8_t *budget, uint8_t cost)
+{
+    uint8_t rise = nest_link_count_diff(reported, *last);
+    uint8_t affordable = (uint8_t)(*budget / cost);
+    uint8_t n = rise < affordable ? rise : affordable;
+    *last = (uint8_t)(*last + n);
+    *budget = (uint8_t)(*budget - n * cost);
+    return n;
 }
 
 static void add_oaes(nest_beacon_t *self, uint8_t n)
 {
     uint16_t room = (uint16_t)(65535u - self->bins[self->bin]);
     uint16_t binned = (n > room) ? room : n;   /* a bin saturates rather than wraps */
-    self->oae_total += n;
-    self->ledger_units -= (int32_t)n * (int32_t)self->params.e_a;
+    self->oae_total = add_saturated(self->oae_total, n);
+    ledger_add(self, -(int32_t)n * (int32_t)self->params.e_a);
     self->bins[self->bin] = (uint16_t)(self->bins[self->bin] + binned);
     self->m_t2 += binned;   /* M_T2 stays the sum of the bins */
 }
@@ -138,19 +184,18 @@ static void read_reports(nest_beacon_t *self, hal_t *hal)
     hal_ircom_msg_t msg;
     nest_link_frame_t f;
     while (hal_ircom_receive(hal, &msg) == HAL_OK) {
-        uint8_t diff;
+        uint8_t n;
         switch (nest_link_decode(msg.value, &f)) {
         case NL_DEPOSITS:
-            diff = nest_link_count_diff((uint8_t)f.value, self->last_deposits[f.robot_id]);
-            self->last_deposits[f.robot_id] = (uint8_t)f.value;
-            self->deposits_total += diff;
-            self->ledger_units += (int32_t)diff * (int32_t)self->params.token_energy;
+            n = credit((uint8_t)f.value, &self->last_deposits[f.robot_id],
+                       &self->deposit_budget[f.robot_id], self->params.min_deposit_steps);
+            self->deposits_total = add_saturated(self->deposits_total, n);
+            ledger_add(self, (int32_t)n * (int32_t)self->params.token_energy);
             self->age_steps[f.robot_id] = 0u;
             break;
         case NL_OAES:
-            diff = nest_link_count_diff((uint8_t)f.value, self->last_oaes[f.robot_id]);
-            self->last_oaes[f.robot_id] = (uint8_t)f.value;
-            add_oaes(self, diff);
+            n = credit((uint8_t)f.value, &self->last_oaes[f.robot_id], &self->oae_budget[f.robot_id], 1u);
+            add_oaes(self, n);
             self->age_steps[f.robot_id] = 0u;
             break;
         default:
@@ -201,8 +246,8 @@ static void keep_ledger(nest_beacon_t *self, hal_t *hal)
 
     active = (self->params.n_robots > self->n_waiting)
              ? (uint16_t)(self->params.n_robots - self->n_waiting) : 0u;
-    self->ledger_units -= consumption_units(self, hal_control_period_ms(hal));
-    self->ledger_units -= (int32_t)((uint32_t)active * self->params.move_cost);
+    ledger_add(self, -consumption_units(self, hal_control_period_ms(hal)));
+    ledger_add(self, -(int32_t)((uint32_t)active * self->params.move_cost));
 
     self->food_q4 = nest_beacon_food_q4(self);   /* the ledger is final for this step */
     broadcast(self, hal);

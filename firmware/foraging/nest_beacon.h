@@ -59,6 +59,11 @@
 #define NB_SLOTS NL_ID_COUNT
 /** Age of a slot never heard (saturated). */
 #define NB_AGE_NEVER 255u
+/** The ledger saturates at +- this many tokens (a 12-bit broadcast carries
+ *  +- 128): no stream of reports, however hostile, can wrap it. */
+#define NB_LEDGER_LIMIT_TOKENS 4096
+/** Most steps of report budget a robot can save up (a uint8_t). */
+#define NB_BUDGET_MAX 255u
 
 typedef struct nest_beacon_params {
     uint16_t n_robots;                     /**< N_r, robots in the swarm */
@@ -70,6 +75,8 @@ typedef struct nest_beacon_params {
     uint16_t t2_steps;                     /**< T2, OAE window, steps (400; 10..640) */
     uint8_t wait_timeout_steps;            /**< a robot counts as waiting this many steps
                                                 after its last report (5; 1..254) */
+    uint8_t min_deposit_steps;             /**< a robot is credited at most one deposit
+                                                per this many steps (20: 2 s; >= 1) */
 } nest_beacon_params_t;
 
 typedef enum nest_beacon_state {
@@ -94,6 +101,10 @@ typedef struct nest_beacon {
     uint8_t last_deposits[NB_SLOTS];  /**< last deposit total heard, mod 256 */
     uint8_t last_oaes[NB_SLOTS];      /**< last OAE total heard, mod 256 */
     uint8_t age_steps[NB_SLOTS];      /**< steps since last heard, NB_AGE_NEVER if never */
+    /* What a robot may still be credited: one step of budget a step, one
+     * deposit costs min_deposit_steps, one OAE one step (a token bucket). */
+    uint8_t deposit_budget[NB_SLOTS];
+    uint8_t oae_budget[NB_SLOTS];
 
     /* OAE window. */
     uint16_t bins[NB_MAX_BINS];    /**< OAEs reported per bin */
@@ -110,7 +121,8 @@ typedef struct nest_beacon {
 
 /* The controller contract (controller.h): default_params N_r 20, F0 5
  * tokens, 1500 units per token, 2 tokens/min, move cost 1, E_a 10, T2 400
- * steps (40 s), wait timeout 5 steps; init
+ * steps (40 s), wait timeout 5 steps, a deposit credited at most every 20
+ * steps; init
  * copies params, keeps seed, resets; reset: ledger at F0, every id unheard
  * with totals 0, empty OAE window; step reads the reports, updates the
  * ledger, broadcasts; state_name "start", "run". */
