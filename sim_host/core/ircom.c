@@ -98,13 +98,16 @@ void ircom_deliver(struct sim *sim)
         }
         uint16_t value = (uint16_t)s->ircom_tx;
         s->ircom_tx = -1;
+        if (faults_radio_out(sim, i)) {
+            continue;           /* a dead radio: the message never leaves */
+        }
         uint32_t n = sim_gather_robots(sim, s->x - reach, s->y - reach, s->x + reach, s->y + reach, near,
                                        IRCOM_MAX_NEAR);
         for (uint32_t k = 0; k < n; k++) {
             uint32_t j = near[k];
             const sim_robot_t *r = &sim->robots[j];
             float dx = r->x - s->x, dy = r->y - s->y;
-            if (j == i || dx * dx + dy * dy > reach * reach || blocked(sim, i, j)) {
+            if (j == i || dx * dx + dy * dy > reach * reach || faults_radio_out(sim, j) || blocked(sim, i, j)) {
                 continue;
             }
             receive(sim, j, i, value);

@@ -223,7 +223,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         telemetry_end(tel, sim, &res->metrics, res->state_hash);
         snprintf(path, sizeof path, "%s/summary.json", dir);
         FILE *f = open_tmp(path, tmp, sizeof tmp);
-        if (f) summary_write_run(f, sc, &opt->provenance, seed, res->steps, res->state_hash, &res->metrics);
+        if (f) summary_write_run(f, sc, &opt->provenance, sim, seed, res->steps, res->state_hash, &res->metrics);
         if (!f || commit(f, tmp, path) != 0) {
             fail(job, "%s: cannot write: %s", path, strerror(errno));
             ok = 0;

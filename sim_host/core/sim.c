@@ -275,7 +275,7 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
         sim_destroy(sim);
         return NULL;
     }
-    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0) {
+    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0 || faults_create(sim, err) != 0) {
         sim_destroy(sim);
         return NULL;
     }
@@ -307,6 +307,7 @@ void sim_destroy(sim_t *sim)
         }
     }
     world_destroy(sim);
+    faults_destroy(sim);
     grid_free(&sim->robot_grid);
     grid_free(&sim->obstacle_grid);
     for (uint32_t g = 0; sim->ctrl_blocks && g < sim->sc->group_count; g++) {
@@ -328,6 +329,7 @@ void sim_destroy(sim_t *sim)
 void sim_step(sim_t *sim)
 {
     sim->n_events = 0;
+    faults_begin_step(sim);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->before_control) {
             sim->tasks[t].def->before_control(sim->tasks[t].self, sim);
@@ -339,13 +341,14 @@ void sim_step(sim_t *sim)
     for (uint32_t k = 0; k < sim->n; k++) {
         uint32_t i = sim->step_order[k];
         sim_robot_t *r = &sim->robots[i];
-        if (r->ctrl) {
+        if (r->ctrl && !faults_stopped(sim, i)) {
             r->def->step(r->ctrl, &r->hal);
             if (sim->robot_tx) {
                 robot_telemetry_of(sim, i);
             }
         }
     }
+    faults_transmit(sim);
     ircom_deliver(sim);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->after_control) {

@@ -28,6 +28,7 @@ uint16_t hal_ir_proximity(hal_t *hal, uint8_t index)
     }
     if (r->ir_stamp != stamp(hal)) {
         sensors_ir(hal->sim, hal->index, r->ir);
+        faults_ir(hal->sim, hal->index, r->ir);
         r->ir_stamp = stamp(hal);
     }
     return r->ir[index];
@@ -50,7 +51,7 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
 {
     sim_robot_t *r = robot(hal);
     if (r->camera_stamp != stamp(hal)) {
-        r->blob_count = sensors_camera(hal->sim, hal->index, r->blobs);
+        r->blob_count = faults_camera_blind(hal->sim, hal->index) ? 0 : sensors_camera(hal->sim, hal->index, r->blobs);
         r->camera_stamp = stamp(hal);
     }
     uint8_t n = r->blob_count < max ? r->blob_count : max;

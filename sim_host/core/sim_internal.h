@@ -8,6 +8,7 @@
 
 #include <box2d/box2d.h>
 
+#include "faults.h"
 #include "geometry.h"
 #include "grid.h"
 #include "hal.h"
@@ -57,7 +58,24 @@ typedef struct sim_robot {
     void *ctrl;                    /**< controller state, or NULL when it has none */
     uint8_t moves;                 /**< 0: a static body */
     uint8_t escaped;
+
+    /* Faults (faults.h): how many of each kind are active, and their values. */
+    uint8_t fault_on[FAULT_KIND_COUNT];
+    uint8_t radio_bursting;        /**< in a radio_bursts dropout now */
+    float drift;                   /**< wheel_drift factor */
+    float ir_noise_sd;             /**< ir_noise, counts */
+    sim_rand_t fault_rand;         /**< babble bits, ir_noise, bursts */
 } sim_robot_t;
+
+/** One fault of one robot, as drawn for this run. */
+typedef struct fault_run {
+    uint32_t robot;
+    uint8_t kind;                  /**< fault_kind_t */
+    uint8_t active, bad;           /**< bad: in a radio burst */
+    uint64_t on_step, off_step;    /**< UINT64_MAX: never */
+    float value, duration;
+    double start_s, end_s;         /**< NaN until it happens */
+} fault_run_t;
 
 typedef struct obstacle {
     int shape;                     /**< object_shape_t */
@@ -142,6 +160,9 @@ struct sim {
     robot_telemetry_t *robot_tx;
     robot_link_t *links;
     uint32_t link_budget;          /**< bytes per step the UART carries */
+
+    fault_run_t *faults;           /**< faults.h */
+    uint32_t n_faults;
 
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;

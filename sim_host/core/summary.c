@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "faults.h"
 #include "task.h"
 
 static void json_string(FILE *f, const char *s)
@@ -69,10 +70,13 @@ static void write_head(FILE *f, const scenario_t *sc, const provenance_t *pv)
     fputs(",\n", f);
 }
 
-void summary_write_run(FILE *f, const scenario_t *sc, const provenance_t *pv, uint64_t seed,
-                       uint64_t steps, uint64_t state_hash, const metric_list_t *m)
+void summary_write_run(FILE *f, const scenario_t *sc, const provenance_t *pv, const sim_t *sim,
+                       uint64_t seed, uint64_t steps, uint64_t state_hash, const metric_list_t *m)
 {
     write_head(f, sc, pv);
+    if (sim != NULL && sim_has_faults(sc)) {
+        faults_write_json(sim, f);
+    }
     fprintf(f, "  \"seed\": %" PRIu64 ",\n  \"robots\": %u,\n  \"steps\": %" PRIu64 ",\n"
             "  \"control_period_ms\": %u,\n", seed, scenario_robot_count(sc), steps, sc->control_period_ms);
     fprintf(f, "  \"state_hash\": \"%016" PRIx64 "\",\n  \"metrics\": {\n", state_hash);

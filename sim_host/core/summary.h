@@ -31,9 +31,9 @@ typedef struct provenance {
     uint64_t scenario_hash;          /**< FNV-1a of the effective scenario's text */
 } provenance_t;
 
-/** One finished run. */
-void summary_write_run(FILE *f, const scenario_t *sc, const provenance_t *pv, uint64_t seed,
-                       uint64_t steps, uint64_t state_hash, const metric_list_t *m);
+/** One finished run (`sim`, when given, adds its injected faults). */
+void summary_write_run(FILE *f, const scenario_t *sc, const provenance_t *pv, const sim_t *sim,
+                       uint64_t seed, uint64_t steps, uint64_t state_hash, const metric_list_t *m);
 
 /** Mean, sd, min and max of each metric over the `done` finished runs of
  *  `reps` asked for (seeds first_seed ..); `complete` is done == reps. */

@@ -64,8 +64,8 @@ typedef struct task_def {
     const param_section_t *sections;  /**< nested mappings, {NULL}-terminated, or NULL */
     void (*default_config)(void *config);
     /** Controllers that mean nothing without this task (it is their world:
-     *  a forager with no tokens and no nest never leaves home), NULL-
-     *  terminated, or NULL.  A scenario with such robots and without the
+     *  without it their robots have nothing to do), NULL-terminated, or
+     *  NULL.  A scenario with such robots and without the
      *  task is an error. */
     const char *const *controllers;
 
@@ -99,6 +99,11 @@ typedef struct task_def {
     /** Summary metrics, the same way. */
     const metric_desc_t *summary;
     void (*final)(const void *self, const sim_t *sim, double *values);
+
+    /** For a `liar` fault: the well-formed but false message robot `robot`
+     *  sends this step (seed 000: a deposit report every step), or NULL
+     *  when the task's controllers cannot lie. */
+    uint16_t (*lie)(const void *self, const sim_t *sim, uint32_t robot);
 
     /** Appends its picture of the current step. */
     void (*draw)(const void *self, const sim_t *sim, drawing_t *out);

@@ -111,6 +111,9 @@ void world_drive(struct sim *sim)
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_robot_t *r = &sim->robots[i];
         double l = r->cmd_left, rr = r->cmd_right;
+        if (faults_stopped(sim, i)) {
+            l = rr = 0.0;       /* a stopped robot's motors are off */
+        }
         /* Motor steps are counted as commanded: a blocked stepper still steps. */
         r->steps_left += l * sim->dt;
         r->steps_right += rr * sim->dt;
@@ -121,6 +124,7 @@ void world_drive(struct sim *sim)
             l *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
             rr *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
         }
+        faults_wheels(sim, i, &l, &rr);
         double v = 0.5 * (l + rr) * EPUCK_STEP_M;
         double w = (rr - l) * EPUCK_STEP_M / EPUCK_AXLE_M;
         b2Body_SetLinearVelocity(r->body, (b2Vec2){ (float)(v * cos(r->theta)), (float)(v * sin(r->theta)) });

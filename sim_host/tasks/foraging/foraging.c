@@ -519,6 +519,14 @@ static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
     }
 }
 
+/* A lying forager (fault `liar`): a deposit report every step, its
+ * cumulative total rising by one a step, well-formed for the beacon. */
+static uint16_t foraging_lie(const void *self, const sim_t *sim, uint32_t robot)
+{
+    (void)self;
+    return nest_link_encode_deposits((uint16_t)robot, (uint32_t)sim_step_count(sim) + 1u);
+}
+
 /* Robots of these controllers need the foraging world to do anything. */
 static const char *const foraging_controllers[] = { "forager", "nest_beacon", NULL };
 
@@ -543,6 +551,7 @@ const task_def_t foraging_task = {
     .summary = foraging_summary,
     .final = foraging_final,
     .draw = foraging_draw,
+    .lie = foraging_lie,
 };
 
 /* ---------------------------------------------------------------- for tests */
