@@ -6,3 +6,9 @@ STUDY_ARGS ?=
 .PHONY: study-drtm
 study-drtm: deps $(BUILD)/swarmsim
 	$(PYTHON) -m swarmtools.study.drtm --sim $(BUILD)/swarmsim $(STUDY_ARGS)
+
+# Seed 000 under faults (swarmtools.study.faults): studies/faults_drtm.yaml,
+# 5 conditions x 20 seeds, through the sweep engine.
+.PHONY: study-faults
+study-faults: deps $(BUILD)/swarmsim
+	$(PYTHON) -m swarmtools.study.faults --sim $(BUILD)/swarmsim $(STUDY_ARGS)

@@ -32,6 +32,7 @@ typedef struct foraging {
     uint32_t n_robots;
     uint8_t *is_forager;     /**< per robot: runs the forager (has the gripper) */
     uint32_t n_foragers;     /**< N_r */
+    int64_t beacon;          /**< the nest beacon's robot index, -1 without one */
     char *task;              /**< per robot: last task state 'W', 'S', 'R' (foragers) */
 
     uint32_t n_tokens;
@@ -262,9 +263,13 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
         foraging_destroy(f);
         return NULL;
     }
+    f->beacon = -1;
     for (uint32_t i = 0; i < n; i++) {
         f->carried[i] = -1;
         f->is_forager[i] = sim_robot_def(sim, i) == &forager_def;
+        if (sim_robot_def(sim, i) == &nest_beacon_def) {
+            f->beacon = (int64_t)i;
+        }
         f->n_foragers += f->is_forager[i];
         f->task[i] = f->is_forager[i] ? 'W' : 0;
     }
@@ -457,19 +462,24 @@ static const metric_desc_t foraging_columns[] = {
     { "searching", "robots", "foragers in S_S" },
     { "returning", "robots", "foragers in S_R" },
     { "active", "robots", "foragers in S_S or S_R" },
+    { "food_beacon", "tokens", "F(t) as the beacon's ledger has it (what it broadcasts; none with "
+      "global information)" },
     { NULL, NULL, NULL }
 };
 
 static void foraging_sample(const void *self, const sim_t *sim, double *v)
 {
     const foraging_t *f = self;
-    (void)sim;
     v[0] = f->food;
     v[1] = (double)f->delivered;
     v[2] = f->waiting;
     v[3] = f->searching;
     v[4] = f->returning;
     v[5] = f->searching + f->returning;
+    v[6] = f->beacon >= 0
+           ? (double)((const nest_beacon_t *)sim_robot_controller_const(sim, (uint32_t)f->beacon))->food_q4
+                 / NL_FOOD_PER_TOKEN
+           : NAN;
 }
 
 static const metric_desc_t foraging_summary[] = {
