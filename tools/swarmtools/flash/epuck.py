@@ -238,7 +238,9 @@ class Serial:
             termios.tcflush(self.fd, termios.TCIOFLUSH)
         except termios.error as e:
             os.close(self.fd)
-            raise FlashError(f'{path} is not a serial device: {e}') from None
+            # termios.error carries (errno, text): say the text, not the tuple
+            why = e.args[1] if len(e.args) > 1 else str(e)
+            raise FlashError(f'{path} is not a serial device: {why}') from None
 
     def write(self, data):
         view = memoryview(data)
@@ -253,6 +255,23 @@ class Serial:
                 select.select([], [self.fd], [], 0.1)
             except OSError as e:
                 raise FlashError(f'{self.path}: write failed: {e.strerror}') from None
+
+    def read_some(self, timeout, limit=4096):
+        """What has arrived (up to `limit` bytes), or b'' after `timeout` s."""
+        r, _, _ = select.select([self.fd], [], [], max(timeout, 0.0))
+        if not r:
+            return b''
+        try:
+            b = os.read(self.fd, limit)
+        except BlockingIOError:
+            return b''
+        except OSError as e:
+            if e.errno == errno.EIO:
+                raise FlashError(f'{self.path}: the connection was lost') from None
+            raise FlashError(f'{self.path}: read failed: {e.strerror}') from None
+        if not b:
+            raise FlashError(f'{self.path}: the connection was closed')
+        return b
 
     def read_byte(self, timeout):
         """One byte, or None after `timeout` seconds."""
@@ -277,20 +296,25 @@ class Serial:
 
 def handshake(port, tries, period=0.1, reply_timeout=1.0):
     """Sends 0xC1 every `period` s until 'q' then 'K' come back.  Bytes
-    before the 'q' (what the running program was sending) are ignored."""
+    before the 'q' (what the running program was sending) are ignored, read
+    in bulk and never past the period's end, so that a robot flooding the
+    line does not slow the handshake down."""
     for _ in range(tries):
         port.write(bytes([HANDSHAKE]))
         end = time.monotonic() + period
-        while True:
-            b = port.read_byte(end - time.monotonic())
-            if b is None:
+        while time.monotonic() < end:
+            chunk = port.read_some(end - time.monotonic())
+            if not chunk:
                 break
-            if b == PIC_TYPE:
-                k = port.read_byte(reply_timeout)
-                if k == ord('K'):
-                    return
-                if k is None:
-                    raise FlashError("the bootloader sent 'q' but no 'K'")
+            q = chunk.rfind(bytes([PIC_TYPE]))
+            if q < 0:
+                continue
+            rest = chunk[q + 1:]
+            k = rest[0] if rest else port.read_byte(reply_timeout)
+            if k == ord('K'):
+                return
+            if k is None:
+                raise FlashError("the bootloader sent 'q' but no 'K'")
     raise FlashError(f'no answer from the bootloader after {tries} tries '
                      f'({tries * period:.1f} s): reset the robot right after starting the upload, '
                      'and check that nothing else holds the serial port')

@@ -92,8 +92,9 @@ class Bootloader(threading.Thread):
     """The dsPIC Tiny Bootloader on the master side of a pty."""
 
     def __init__(self, master, answer_after=1, noise=b'', nak=None, stop_after=None,
-                 silent=False, initial=None):
+                 silent=False, initial=None, flood=False):
         super().__init__(daemon=True)
+        self.flood = flood                  # the program floods the line until the answer
         self.fd = master
         self.answer_after = answer_after    # answer the n-th 0xC1
         self.noise = noise                  # bytes the user program sends first
@@ -129,6 +130,17 @@ class Bootloader(threading.Thread):
     def run(self):
         if self.noise:
             self.send(self.noise)
+        flooding = threading.Event()
+        if self.flood:
+            flooding.set()
+
+            def flood():
+                while flooding.is_set() and not self.stop.is_set():
+                    try:
+                        self.send(b'x' * 256)    # no 'q' in it
+                    except OSError:
+                        return
+            threading.Thread(target=flood, daemon=True).start()
         seen = 0
         while True:
             b = self.read(1, timeout=10.0)
@@ -140,6 +152,8 @@ class Bootloader(threading.Thread):
             seen += 1
             if not self.silent and seen >= self.answer_after:
                 break
+        flooding.clear()
+        time.sleep(0.05)
         self.send(b'qK')
         index = 0
         while True:
@@ -311,6 +325,54 @@ class TestFlashing(PtyCase):
         self.assertIn('EEPROM', r.stderr)
         self.assertIn('configuration', r.stderr)
         self.assertTrue(all(pc < 0x18000 for pc in boot.flash))
+
+    def test_handshake_keeps_its_pace_under_a_flood(self):
+        """The robot's program floods the line: each try still ends on time,
+        so the 5th 0xC1 arrives within 8 tries (a try used to last as long as
+        the flood)."""
+        boot = Bootloader(self.master, answer_after=5, flood=True)
+        r = self.flash(self.hexfile(make_hex(sample_program())), '--handshake-tries', '8', boot=boot)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(boot.errors, [])
+
+    def test_each_handshake_try_ends_while_bytes_never_stop(self):
+        """A port that always has bytes to read (never a 'q'): every try must
+        still end after its period, so 3 tries send 3 handshakes and give up
+        (a try used to read until the line fell silent: forever here)."""
+        class EndlessPort:
+            def __init__(self):
+                self.written = b''
+
+            def write(self, data):
+                self.written += data
+
+            def read_some(self, timeout, limit=4096):
+                return b'x' * 64
+
+            def read_byte(self, timeout):
+                return ord('x')
+
+        port = EndlessPort()
+        outcome = []
+
+        def run():
+            try:
+                ef.handshake(port, 3, period=0.05)
+                outcome.append('answered')
+            except ef.FlashError as e:
+                outcome.append(str(e))
+        t = threading.Thread(target=run, daemon=True)
+        t.start()
+        t.join(10)
+        self.assertFalse(t.is_alive(), 'the handshake never ended')
+        self.assertEqual(port.written, bytes([0xC1]) * 3)
+        self.assertIn('no answer from the bootloader after 3 tries', outcome[0])
+
+    def test_not_a_serial_device_says_why_in_words(self):
+        r = self.flash(self.hexfile(make_hex(sample_program())), device='/dev/null')
+        self.assertEqual(r.returncode, 1)
+        self.assertIn('/dev/null is not a serial device: Inappropriate ioctl for device', r.stderr)
+        self.assertNotIn('(25,', r.stderr)
 
     def test_missing_device(self):
         r = self.flash(self.hexfile(make_hex(sample_program())),
