@@ -271,7 +271,7 @@ static void test_liar_is_bounded_by_the_beacon(void **state)
     (void)state;
     char err[SCENARIO_ERROR_MAX];
     scenario_override_t ov[] = { { "robots.0.faults=[{kind: liar, fraction: 0.05, at: 0}]" },
-                                 { "robots.0.params.alpha=100" } };   /* honest robots stay home */
+                                 { "foraging.desired_food=1" } };   /* S < 0: everyone stays home, in range */
     scenario_t *sc = calloc(1, sizeof *sc);
     assert_non_null(sc);
     if (scenario_load("../sim_host/scenarios/foraging_base.yaml", ov, 2, sc, err) != 0) fail_msg("%s", err);

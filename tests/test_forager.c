@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
+#include <string.h>
 #include <cmocka.h>
 
 #include "fake_hal.h"
@@ -26,11 +27,16 @@ static void start_with(const forager_params_t *p, uint32_t seed)
     forager_init(&F, p, seed);
 }
 
+/* The motion and decision tests below start from eq 6 as written (theta
+ * = 0 at the start, so P_s = 1) and outside the nest (no leaving phase);
+ * the defaults of both are tested on their own further down. */
 static void start(ta_policy_t policy)
 {
     forager_params_t p;
     forager_default_params(&p);
     p.policy = policy;
+    p.drtm_theta = (uint8_t)TA_THETA_RAW;
+    p.leave_nest = 0u;
     start_with(&p, 42u);
 }
 
@@ -80,12 +86,25 @@ static void to_search(void)
     assert_int_equal(F.state, FORAGER_SEARCH);
 }
 
+/* Approach a token (near and centred), then hold it centred for
+ * grasp_confirm steps: RETURN. */
+static void grasp(void)
+{
+    uint8_t k;
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 0, 400u);
+    step();
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 0, HELD_MRAD);
+    for (k = 0; k < F.params.grasp_confirm; k++) {
+        assert_int_equal(F.state, FORAGER_SEARCH);
+        step();
+    }
+    assert_int_equal(F.state, FORAGER_RETURN);
+}
+
 static void to_return(void)
 {
     to_search();
-    fake_hal_show_blob(&H, HAL_COLOUR_RED, 0, HELD_MRAD);
-    step();
-    assert_int_equal(F.state, FORAGER_RETURN);
+    grasp();
 }
 
 static void test_leaves_after_t1_when_theta_zero(void **state)
@@ -181,9 +200,27 @@ static void test_search_to_return_on_wide_blob(void **state)
     fake_hal_show_blob(&H, HAL_COLOUR_GREEN, 0, 900u);
     step();
     assert_int_equal(F.state, FORAGER_SEARCH);
+    /* A wide red blob with no approach just before it (another robot's
+     * token passing in front) is not a grasp, however long it stays. */
+    fake_hal_clear_blobs(&H);
+    for (int k = 0; k < 12; k++) {
+        step();
+    }
     fake_hal_show_blob(&H, HAL_COLOUR_RED, 40, HELD_MRAD);
+    for (int k = 0; k < 10; k++) {
+        step();
+        assert_int_equal(F.state, FORAGER_SEARCH);
+    }
+    /* Approached, then wide but off centre: not held either. */
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 0, 400u);
     step();
-    assert_int_equal(F.state, FORAGER_RETURN);
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 400, HELD_MRAD);
+    step();
+    step();
+    step();
+    assert_int_equal(F.state, FORAGER_SEARCH);
+    /* Approached and held centred for grasp_confirm (3) steps: RETURN. */
+    grasp();
     assert_int_equal(F.carrying, 1);
     assert_int_equal(forager_paper_state(F.state), 'R');
 }
@@ -385,8 +422,7 @@ static void test_inbox_drained_while_searching(void **state)
     step();
     assert_int_equal(H.in_count, 0);
     /* ... is not taken for the nest once the token is grasped. */
-    fake_hal_show_blob(&H, HAL_COLOUR_RED, 0, HELD_MRAD);
-    step();
+    grasp();
     step();
     assert_int_equal(F.state, FORAGER_RETURN);
 }
@@ -528,6 +564,114 @@ static void test_names(void **state)
     assert_int_equal(F.walk.params.speed_steps_s, SPEED);
 }
 
+/* DRTM's threshold modes: offset (the default) starts at theta0 = 3.3 and
+ * rises with traffic; clip starts at theta_min = 1; both stay in [1, 10];
+ * raw is eq 6 as written. */
+static void test_drtm_theta_modes_and_bounds(void **state)
+{
+    static const struct { uint8_t mode; float start, mid, top; } cases[] = {
+        /* mid: k = 0.875, M_A = 473/256: eq 6 = 6.3203 */
+        { TA_THETA_OFFSET, 3.3f, 3.3f + 6.3203125f, 10.0f },
+        { TA_THETA_CLIP, 1.0f, 6.3203125f, 10.0f },
+        { TA_THETA_RAW, 0.0f, 6.3203125f, 3.0f * 0.875f + 2.0f * 4000.0f / 256.0f },
+    };
+    (void)state;
+    for (unsigned c = 0; c < 3; c++) {
+        forager_params_t p;
+        forager_default_params(&p);
+        p.drtm_theta = cases[c].mode;
+        p.leave_nest = 0u;
+        start_with(&p, 42u);
+        assert_float_equal(F.theta, cases[c].start, 1e-6);
+        for (uint32_t i = 0; i < T1; i++) {
+            beacon(FOOD_Q4(19), 6u, 473u, 300u);
+            step();
+        }
+        assert_float_equal(F.theta, cases[c].mid, 1e-4);
+        for (uint32_t i = 0; i < T1 && F.state == FORAGER_WAIT; i++) {
+            beacon(FOOD_Q4(19), 6u, 4000u, 300u);   /* congestion: M_A = 15.6 */
+            step();
+        }
+        assert_float_equal(F.theta, cases[c].top, 1e-3);
+    }
+    forager_params_t d;
+    forager_default_params(&d);
+    assert_int_equal(d.drtm_theta, TA_THETA_OFFSET);
+}
+
+/* T1 is a minimum waiting time: once it has passed the robot draws every
+ * step (the default), or only every T1 (decide_each_step = 0). */
+static void test_decision_cadence(void **state)
+{
+    (void)state;
+    for (int each = 0; each < 2; each++) {
+        forager_params_t p;
+        forager_default_params(&p);
+        p.drtm_theta = (uint8_t)TA_THETA_RAW;
+        p.leave_nest = 0u;
+        p.decide_each_step = (uint8_t)each;
+        start_with(&p, 42u);
+        /* S = 20 - 19.75 = 0.25 against theta = 3 * 14/16 = 2.625: P_s is
+         * small but not 0; count the draws by the roulette's stream. */
+        uint32_t draws = 0;
+        for (uint32_t i = 0; i < 4u * T1 && F.state == FORAGER_WAIT; i++) {
+            rng_t before = F.rng;
+            beacon(4 * 79, 6u, 0u, 300u);
+            step();
+            draws += memcmp(&before, &F.rng, sizeof before) != 0;
+        }
+        if (each) {
+            assert_true(draws >= 3u * T1);   /* every step from T1 on */
+        } else {
+            assert_int_equal(draws, 4u);     /* at T1, 2 T1, 3 T1, 4 T1 */
+        }
+    }
+}
+
+/* Leaving the nest: the robot turns away from the lamp and drives out,
+ * ignores red blobs meanwhile, and stops leaving once the beacon is heard
+ * from outside the nest (or after leave_max_steps). */
+static void test_leaving_the_nest(void **state)
+{
+    forager_params_t p;
+    (void)state;
+    forager_default_params(&p);
+    p.drtm_theta = (uint8_t)TA_THETA_RAW;   /* P_s = 1: leaves at T1 */
+    start_with(&p, 42u);
+    wait_steps(T1, FOOD_Q4(5), 20u);
+    assert_int_equal(F.state, FORAGER_SEARCH);
+    assert_int_equal(F.leaving, 1);
+    /* The lamp straight ahead (IR0, -17 deg): away from it is behind, so
+     * the robot turns in place. */
+    H.ambient[0] = 1000u;
+    hear_beacon_steps(1, 300u);
+    assert_true(H.left == -H.right && H.left != 0);
+    /* The lamp behind on the left (IR4, +150 deg): away from it is 30 deg
+     * to the right, so it drives on, turning right. */
+    H.ambient[0] = 4000u;
+    H.ambient[4] = 1000u;
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 0, 400u);   /* a token in the nest? not now */
+    hear_beacon_steps(1, 300u);
+    assert_true(H.left > 0 && H.left > H.right);
+    assert_int_equal(F.approach, 0);
+    assert_int_equal(F.state, FORAGER_SEARCH);
+    /* Out: the beacon heard three times from beyond the nest's 750 + 100 mm. */
+    hear_beacon_steps(2, 900u);
+    assert_int_equal(F.leaving, 1);
+    hear_beacon_steps(1, 900u);
+    assert_int_equal(F.leaving, 0);
+    /* And the lamp never goes out of view: it gives up after 300 steps. */
+    start_with(&p, 42u);
+    wait_steps(T1, FOOD_Q4(5), 20u);
+    H.ambient[2] = 1000u;   /* the lamp in view all along */
+    for (uint32_t i = 0; i < 299u; i++) {
+        hear_beacon_steps(1, 300u);
+        assert_int_equal(F.leaving, 1);
+    }
+    hear_beacon_steps(1, 300u);
+    assert_int_equal(F.leaving, 0);
+}
+
 /* Garbled and hostile frames (every kind, every id, any range, many a
  * step) and garbage blobs for 30,000 steps under each policy: the forager
  * stays in its states, its wheel speeds within the motors' range, its
@@ -584,6 +728,9 @@ int main(void)
         cmocka_unit_test(test_n_per_robot_in_range),
         cmocka_unit_test(test_names),
         cmocka_unit_test(test_hostile_inbox),
+        cmocka_unit_test(test_drtm_theta_modes_and_bounds),
+        cmocka_unit_test(test_decision_cadence),
+        cmocka_unit_test(test_leaving_the_nest),
     };
     return cmocka_run_group_tests_name("forager", tests, NULL, NULL);
 }

@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "core/scenario.h"
+#include "core/metrics.h"
 #include "core/sim.h"
 #include "foraging/forager.h"
 #include "foraging/nest_beacon.h"
@@ -128,6 +129,40 @@ static void test_base_run_collects_and_balances(void **state)
     free(sc);
 }
 
+static double metric(const sim_t *sim, const char *name)
+{
+    metric_list_t m;
+    metrics_final(sim, &m);
+    for (unsigned k = 0; k < m.count; k++) {
+        if (!strcmp(m.name[k], name)) return m.value[k];
+    }
+    fail_msg("no metric %s", name);
+    return NAN;
+}
+
+/* A full base run (seed 000's 1200 s) with the beacon: robots leave the nest
+ * in seconds (turning away from the lamp; keeping their heading they took
+ * about 27 s and crossed the nest again), and the beacon's F(t) tracks the
+ * ground truth: no phantom deposits (a token another robot carries is not
+ * one's own) leave it above the truth. */
+static void test_beacon_tracks_the_truth_and_robots_leave_the_nest(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 3; seed++) {
+        scenario_t *sc = load("drtm", "beacon");
+        sim_t *sim = make(sc, seed);
+        for (int k = 0; k < 12000; k++) sim_step(sim);
+        double exit_s = metric(sim, "exit_time_s"), err_mean = metric(sim, "beacon_error_mean"),
+               err_max = metric(sim, "beacon_error_max");
+        if (!(exit_s < 10.0 && err_mean <= 1.0 && err_max <= 3.0)) {
+            fail_msg("seed %llu: exit %.2f s, |F_beacon - F| mean %.2f, max %.2f", (unsigned long long)seed,
+                     exit_s, err_mean, err_max);
+        }
+        sim_destroy(sim);
+        free(sc);
+    }
+}
+
 /* A robot that loses its token searches again. */
 static void test_lost_token_goes_back_to_search(void **state)
 {
@@ -157,8 +192,8 @@ static void test_lost_token_goes_back_to_search(void **state)
 }
 
 /* At the start every robot waits in the nest, and with S(0) = 15 > 0 and
- * theta = 0 (DRTM, eq 6 with k = M_A = 0) they all leave at the first
- * decision, after T1 steps. */
+ * theta = 3.3 (DRTM's default: theta0 + eq 6 with k = M_A = 0) P_s is at
+ * least 0.95: they all leave within the first draws after T1 steps. */
 static void test_everyone_leaves_at_first_decision(void **state)
 {
     (void)state;
@@ -167,7 +202,7 @@ static void test_everyone_leaves_at_first_decision(void **state)
     assert_int_equal(sim_robot_count(sim), 20);   /* no beacon */
     for (int k = 0; k < 49; k++) sim_step(sim);
     assert_int_equal(truth(sim).waiting, 20);
-    for (int k = 0; k < 2; k++) sim_step(sim);
+    for (int k = 0; k < 3; k++) sim_step(sim);
     assert_int_equal(truth(sim).waiting, 0);
     sim_destroy(sim);
     free(sc);
@@ -197,6 +232,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_base_run_collects_and_balances),
+        cmocka_unit_test(test_beacon_tracks_the_truth_and_robots_leave_the_nest),
         cmocka_unit_test(test_lost_token_goes_back_to_search),
         cmocka_unit_test(test_everyone_leaves_at_first_decision),
         cmocka_unit_test(test_full_nest_keeps_everyone_home),

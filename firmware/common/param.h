@@ -83,6 +83,9 @@ typedef struct param_desc {
 /** One of `list` (NULL-terminated words) in an int field, stored as the index. */
 #define PARAM_ENUM_FIELD(T, f, list) \
     .type = PARAM_ENUM, .offset = FIELD_OFFSET_AS(T, f, int), .size = FIELD_SIZE(T, f), .choices = (list)
+/** One of `list` in a uint8_t field (firmware parameters: fixed width). */
+#define PARAM_ENUM_U8_FIELD(T, f, list) \
+    .type = PARAM_ENUM, .offset = FIELD_OFFSET_AS(T, f, uint8_t), .size = FIELD_SIZE(T, f), .choices = (list)
 /** A string in a char array field. */
 #define PARAM_STRING_FIELD(T, f) \
     .type = PARAM_STRING, .offset = FIELD_OFFSET_AS(T, f, char[FIELD_SIZE(T, f)]), .size = FIELD_SIZE(T, f)

@@ -8,6 +8,8 @@
 /* 90 degrees in mrad: a light farther round than this is behind. */
 /* A blob this close to straight ahead is centred, mrad. */
 #define CENTRED_MRAD 150
+/* Steps after steering at a near, centred token in which a grasp counts. */
+#define APPROACH_STEPS 10u
 /* No beacon frame this step. */
 #define NO_RANGE 0xFFFFu
 
@@ -40,6 +42,11 @@ void forager_default_params(forager_params_t *params)
     params->nest_confirm = 3u;
     params->light_detect = 3600u;
     params->deposit_steps = 5u;
+    params->drtm_theta = (uint8_t)TA_THETA_OFFSET;
+    params->decide_each_step = 1u;
+    params->leave_nest = 1u;
+    params->leave_max_steps = 300u;   /* 30 s: the nest's radius twice over at 0.05 m/s */
+    params->grasp_confirm = 3u;
     random_walk_default_params(&params->walk);
     params->walk.speed_steps_s = params->speed_steps_s;
     /* Search: a tumble every 20 s on average, a 1 m run at 0.05 m/s (a
@@ -69,9 +76,11 @@ void forager_reset(forager_t *self)
 
     self->state = FORAGER_WAIT;
     self->t1 = 0u;
-    /* All robots start in the nest with no OAE: eq 6 gives 0 for DRTM. */
-    self->theta = (p->policy == TA_DRTM) ? ta_drtm_threshold(p->alpha, p->beta, 0.0f, 0.0f)
-                                         : p->theta0;
+    /* All robots start in the nest with no OAE: k = M_A = 0. */
+    self->theta = (p->policy == TA_DRTM)
+                  ? ta_drtm_theta(p->drtm_theta, p->alpha, p->beta, 0.0f, 0.0f, p->theta0, p->theta_min,
+                                  p->theta_max)
+                  : p->theta0;
     self->S = 0.0f;
     self->S_prev = 0.0f;
     self->P_s = 0.0f;
@@ -89,6 +98,11 @@ void forager_reset(forager_t *self)
     self->lost = 0u;
     self->timer = 0u;
     self->report_oaes = 0u;
+    self->leaving = 0u;
+    self->leave_steps = 0u;
+    self->out_frames = 0u;
+    self->approach = 0u;
+    self->grasp_steps = 0u;
 }
 
 /* ------------------------------------------------------------ sensing */
@@ -129,6 +143,13 @@ static void read_inbox(forager_t *self, hal_t *hal)
             }
         } else {
             self->nest_frames = 0u;
+        }
+        if ((uint32_t)msg.range_mm >= (uint32_t)p->nest_radius_mm + p->nest_margin_mm) {
+            if (self->out_frames < 255u) {
+                self->out_frames++;
+            }
+        } else {
+            self->out_frames = 0u;
         }
     }
 }
@@ -171,9 +192,9 @@ static void steer(const forager_t *self, hal_t *hal, int16_t bearing_mrad)
     hal_set_wheel_speeds(hal, clamp_speed(v - d), clamp_speed(v + d));
 }
 
-/* Phototaxis toward the brightest ambient sensor (lowest reading).
- * Returns 0 when no sensor sees the light. */
-static uint8_t phototaxis(const forager_t *self, hal_t *hal)
+/* Phototaxis toward (away = 0) or away from (away = 1) the brightest
+ * ambient sensor (lowest reading).  Returns 0 when no sensor sees the light. */
+static uint8_t phototaxis(const forager_t *self, hal_t *hal, uint8_t away)
 {
     uint16_t best = HAL_RAW_MAX;
     uint8_t best_i = 0u;
@@ -191,6 +212,9 @@ static uint8_t phototaxis(const forager_t *self, hal_t *hal)
         return 0u;
     }
     bearing = hal_ir_bearing_mrad(hal, best_i);
+    if (away != 0u) {   /* the opposite direction, in (-pi, pi] */
+        bearing = (int16_t)(bearing > 0 ? bearing - UNITS_PI_MRAD : bearing + UNITS_PI_MRAD);
+    }
     if (bearing > UNITS_HALF_PI_MRAD) {
         hal_set_wheel_speeds(hal, (int16_t)-w, w);   /* behind on the left: turn CCW */
     } else if (bearing < -UNITS_HALF_PI_MRAD) {
@@ -216,6 +240,11 @@ static void enter_wait(forager_t *self, hal_t *hal)
 static void enter_search(forager_t *self, hal_t *hal)
 {
     self->state = FORAGER_SEARCH;
+    self->leaving = self->params.leave_nest;
+    self->leave_steps = 0u;
+    self->out_frames = 0u;
+    self->approach = 0u;
+    self->grasp_steps = 0u;
     self->walk.state = RW_FORWARD;
     self->walk.turn_sign = 1;
     self->walk.turn_steps_left = 0;
@@ -239,13 +268,14 @@ static void enter_deposit(forager_t *self, hal_t *hal)
 
 /* ------------------------------------------------------------ states */
 
-/* Eqs 2-7 and the roulette, at the end of each T1 in the nest. */
-static void decide(forager_t *self, hal_t *hal)
+/* Eqs 2-7 and the roulette in the nest; `update` once per T1: the
+ * threshold's own dynamics (ARTM's step) move at the paper's decision
+ * period whatever the drawing cadence. */
+static void decide(forager_t *self, hal_t *hal, uint8_t update)
 {
     const forager_params_t *p = &self->params;
     float food_tokens;
 
-    self->t1 = 0u;
     if (self->beacon_known != FORAGER_KNOWS_ALL) {
         self->P_s = 0.0f;   /* nothing to go on: stay */
         return;
@@ -257,19 +287,24 @@ static void decide(forager_t *self, hal_t *hal)
     self->M_A = (float)self->beacon_mean_oae_q8 / (float)NL_MEAN_OAE_PER_UNIT;
     switch (p->policy) {
     case TA_DRTM:
-        self->theta = ta_drtm_threshold(p->alpha, p->beta, self->k, self->M_A);
+        self->theta = ta_drtm_theta(p->drtm_theta, p->alpha, p->beta, self->k, self->M_A, p->theta0,
+                                    p->theta_min, p->theta_max);
         break;
     case TA_ARTM:
-        self->theta = ta_artm_update(self->theta, self->S,
-                                     self->decided != 0u ? self->S_prev : self->S,
-                                     p->artm_delta, p->theta_min, p->theta_max);
+        if (update != 0u) {
+            self->theta = ta_artm_update(self->theta, self->S,
+                                         self->decided != 0u ? self->S_prev : self->S,
+                                         p->artm_delta, p->theta_min, p->theta_max);
+        }
         break;
     default:
         self->theta = p->theta0;
         break;
     }
-    self->S_prev = self->S;
-    self->decided = 1u;
+    if (update != 0u) {
+        self->S_prev = self->S;
+        self->decided = 1u;
+    }
     self->P_s = ta_probability(self->S, self->theta, self->n);
     if (ta_roulette(&self->rng, self->P_s) != 0u) {
         enter_search(self, hal);
@@ -289,22 +324,68 @@ static void send_report(forager_t *self, hal_t *hal)
 
 static void wait_step(forager_t *self, hal_t *hal)
 {
+    const forager_params_t *p = &self->params;
     hal_set_wheel_speeds(hal, 0, 0);
     send_report(self, hal);
     self->t1++;
-    if (self->t1 >= self->params.t1_steps) {
-        decide(self, hal);
+    if (self->t1 >= p->t1_steps) {
+        /* Drawing every step after T1 (a minimum waiting time), the count
+         * goes T1, ..., 2 T1 - 1, then back to T1: an update every T1. */
+        if ((uint32_t)self->t1 >= 2u * (uint32_t)p->t1_steps) {
+            self->t1 = p->t1_steps;
+        }
+        decide(self, hal, (uint8_t)(self->t1 == p->t1_steps));
+        if (p->decide_each_step == 0u || self->state != FORAGER_WAIT) {
+            self->t1 = 0u;
+        }
     }
+}
+
+/* Leaving the nest: away from the lamp, round obstacles, until the beacon
+ * is heard from outside the nest.  Returns 1 while still leaving. */
+static uint8_t leave_step(forager_t *self, hal_t *hal)
+{
+    const forager_params_t *p = &self->params;
+    self->leave_steps++;
+    if (self->out_frames >= p->nest_confirm || self->leave_steps >= p->leave_max_steps) {
+        self->leaving = 0u;
+        return 0u;
+    }
+    if (random_walk_front_proximity(hal) > p->walk.avoid_enter || self->walk.state == RW_AVOID) {
+        random_walk_step(&self->walk, hal);
+    } else if (phototaxis(self, hal, 1u) == 0u) {
+        self->leaving = 0u;   /* the lamp is out of sight: out of the nest */
+        return 0u;
+    }
+    return 1u;
 }
 
 static void search_step(forager_t *self, hal_t *hal)
 {
     hal_blob_t blob;
     const forager_params_t *p = &self->params;
-    uint8_t seen = widest_red(hal, &blob);
+    uint8_t seen;
 
-    self->carrying = (uint8_t)(seen != 0u && blob.width_mrad >= p->grasp_width_mrad);
-    if (self->carrying != 0u) {
+    self->carrying = 0u;
+    if (self->leaving != 0u && leave_step(self, hal) != 0u) {
+        return;
+    }
+    seen = widest_red(hal, &blob);
+    /* Held: wide and centred for grasp_confirm steps in a row, right after
+     * approaching it (a token carried past by another robot is neither). */
+    if (seen != 0u && blob.width_mrad >= p->grasp_width_mrad && self->approach != 0u
+        && blob.bearing_mrad > -CENTRED_MRAD && blob.bearing_mrad < CENTRED_MRAD) {
+        if (self->grasp_steps < 255u) {
+            self->grasp_steps++;
+        }
+    } else {
+        self->grasp_steps = 0u;
+    }
+    if (self->approach != 0u) {
+        self->approach--;
+    }
+    if (self->grasp_steps >= p->grasp_confirm) {
+        self->carrying = 1u;
         enter_return(self);   /* acts from the next step */
     } else if (seen != 0u) {
         /* The token's own IR echo is not an obstacle when we are about to
@@ -315,6 +396,11 @@ static void search_step(forager_t *self, hal_t *hal)
             random_walk_step(&self->walk, hal);
         } else {
             steer(self, hal, blob.bearing_mrad);
+            if (near != 0u && blob.width_mrad < p->grasp_width_mrad) {
+                /* A token growing in view as we drive at it: a grasp may
+                 * follow (one that is wide at once was not approached). */
+                self->approach = APPROACH_STEPS;
+            }
         }
     } else {
         random_walk_step(&self->walk, hal);
@@ -342,7 +428,7 @@ static void return_step(forager_t *self, hal_t *hal)
     } else if (random_walk_front_proximity(hal) > p->walk.avoid_enter
                || self->walk.state == RW_AVOID) {
         random_walk_step(&self->walk, hal);
-    } else if (phototaxis(self, hal) == 0u) {
+    } else if (phototaxis(self, hal, 0u) == 0u) {
         random_walk_step(&self->walk, hal);
     }
 }

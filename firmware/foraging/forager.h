@@ -6,15 +6,27 @@
  *   WAIT    [S_W]  in the nest, wheels stopped.  Reads the nest beacon's
  *                  frames (nest_link.h: F(t), N_W, M_A and its range) and
  *                  sends one report per step, alternating its deposit total
- *                  and its OAE total.  Every T1 steps it decides (eqs 2-7):
+ *                  and its OAE total.  After T1 steps it decides (eqs 2-7):
  *                  P_s from the policy's threshold and its own n, then a
- *                  roulette draw: SEARCH, or wait another T1.  Without every
+ *                  roulette draw: SEARCH, or wait; with decide_each_step
+ *                  (T1 is the paper's "minimum waiting time") it draws
+ *                  again every step, else after another T1.  The threshold
+ *                  moves (ARTM's update) once per T1 in either case.  Without every
  *                  beacon quantity heard at least once, P_s = 0.
- *   SEARCH [S_S]  A(t) = 0: random walk (random_walk.h).  A(t) = 1 when a
- *                  red blob (a token) is seen: steer toward it, proportional
- *                  to its bearing.  A red blob at least grasp_width_mrad
- *                  wide is a token held by the passive gripper right in
- *                  front of the lens: RETURN.
+ *   SEARCH [S_S]  Leaving the nest first (leave_nest): it turns away from
+ *                  the lamp (the brightest ambient sensor) and drives out,
+ *                  avoiding obstacles, until nest_confirm beacon frames in
+ *                  a row come from beyond the nest radius (or the light is
+ *                  lost, or leave_max_steps pass); tokens are not in the
+ *                  nest, so it ignores red blobs meanwhile (another robot's
+ *                  carried token is not its food).  Then A(t) = 0: random
+ *                  walk (random_walk.h).  A(t) = 1 when a red blob (a
+ *                  token) is seen: steer toward it, proportional to its
+ *                  bearing.  A red blob at least grasp_width_mrad wide and
+ *                  centred for grasp_confirm steps in a row, right after an
+ *                  approach to it, is a token held by the passive gripper
+ *                  in front of the lens: RETURN.  (A token another robot
+ *                  carries past is wide for a moment, not centred and held.)
  *   RETURN [S_R]  A(t) = 0: random walk; A(t) = 1 when the nest light is
  *                  seen (some ambient reading below light_detect): steer to
  *                  the brightest sensor, turning in place when it is behind.
@@ -75,6 +87,15 @@ typedef struct forager_params {
                                       arrival: the range estimate is noisy (3) */
     uint16_t light_detect;       /**< ambient below this = nest light seen, counts (3600) */
     uint8_t deposit_steps;       /**< steps of backing out of a deposited token (5) */
+    uint8_t drtm_theta;          /**< ta_theta_mode_t: how theta0 and the bounds enter DRTM
+                                      (TA_THETA_OFFSET: theta0 + eq 6 in [theta_min, theta_max]) */
+    uint8_t decide_each_step;    /**< 1: once T1 has passed, draw every step (T1 a minimum
+                                      waiting time, the paper's wording); 0: draw every T1 */
+    uint8_t leave_nest;          /**< 1: leaving the nest, turn away from the lamp until
+                                      the beacon is heard from outside the nest (1) */
+    uint16_t leave_max_steps;    /**< give up turning away after this many steps (300) */
+    uint8_t grasp_confirm;       /**< steps a wide red blob must stay centred, after an
+                                      approach, to count as a token grasped (3) */
     random_walk_params_t walk;   /**< A(t) = 0 motion and obstacle avoidance; its
                                       speed_steps_s is replaced by speed_steps_s */
 } forager_params_t;
@@ -124,14 +145,20 @@ typedef struct forager {
     uint8_t lost;                /**< RETURN: steps without the held token */
     uint16_t timer;              /**< DEPOSIT: steps backed (up to 2 * deposit_steps) */
     uint8_t report_oaes;         /**< next report: 0 deposits, 1 OAEs */
+
+    uint8_t leaving;             /**< SEARCH: still turning away from the lamp */
+    uint16_t leave_steps;        /**< steps spent leaving */
+    uint8_t out_frames;          /**< beacon frames in a row heard from outside the nest */
+    uint8_t approach;            /**< steps left in which a grasp may follow an approach */
+    uint8_t grasp_steps;         /**< steps in a row with a wide, centred red blob */
 } forager_t;
 
 /* The controller contract (controller.h):
  *   default_params  seed 000's values (forager_params_t's comments), DRTM;
  *   init            copies params, keeps seed, resets;
  *   reset           WAIT with t1 = 0, nothing heard or deposited, theta at
- *                   its start (DRTM: eq 6 with k = M_A = 0, i.e. 0; ARTM,
- *                   FRTM: theta0), n drawn afresh from the seeded stream,
+ *                   its start (DRTM: its drtm_theta mode with k = M_A = 0,
+ *                   3.3 by default; ARTM, FRTM: theta0), n drawn afresh,
  *                   the walk reset (OAE count 0);
  *   step            one control step;
  *   state_name      "wait", "search", "return", "deposit". */

@@ -8,6 +8,9 @@
 #include "foraging/forager.h"
 #include "foraging/nest_link.h"
 
+/* ta_theta_mode_t's names, in its order. */
+static const char *const drtm_theta_modes[] = { "offset", "clip", "raw", NULL };
+
 #define FP forager_params_t
 static const param_desc_t forager_params[] = {
     { .key = "alpha", PARAM_FIELD(FP, alpha, float), .min = 0, .max = 1000,
@@ -43,6 +46,17 @@ static const param_desc_t forager_params[] = {
       .doc = "ambient below this means the nest light is seen, counts" },
     { .key = "deposit_steps", PARAM_FIELD(FP, deposit_steps, uint8_t), .min = 1, .max = 255,
       .doc = "steps of backing out of a deposited token" },
+    { .key = "drtm_theta", PARAM_ENUM_U8_FIELD(FP, drtm_theta, drtm_theta_modes),
+      .doc = "DRTM threshold: offset = theta0 + eq 6 in [theta_min, theta_max]; clip = eq 6 in the "
+             "bounds; raw = eq 6 (README, seed 000)" },
+    { .key = "decide_each_step", PARAM_BOOL_FIELD(FP, decide_each_step),
+      .doc = "true: once T1 has passed, draw every step (T1 a minimum wait); false: every T1" },
+    { .key = "leave_nest", PARAM_BOOL_FIELD(FP, leave_nest),
+      .doc = "true: leaving the nest, turn away from the lamp until out of the nest" },
+    { .key = "leave_max_steps", PARAM_FIELD(FP, leave_max_steps, uint16_t), .min = 1, .max = 60000,
+      .doc = "stop turning away from the lamp after this many steps" },
+    { .key = "grasp_confirm", PARAM_FIELD(FP, grasp_confirm, uint8_t), .min = 1, .max = 255,
+      .doc = "steps a wide red blob must stay centred after an approach to count as grasped" },
     RANDOM_WALK_TUNING_PARAMS(FP, walk.),
     PARAM_END
 };

@@ -28,6 +28,25 @@ float ta_drtm_threshold(float alpha, float beta, float k, float M_A)
     return alpha * k + beta * M_A;
 }
 
+float ta_drtm_theta(uint8_t mode, float alpha, float beta, float k, float M_A, float theta0, float theta_min,
+                    float theta_max)
+{
+    float theta = ta_drtm_threshold(alpha, beta, k, M_A);
+    if (mode == TA_THETA_RAW) {
+        return theta;
+    }
+    if (mode == TA_THETA_OFFSET) {
+        theta += theta0;
+    }
+    if (theta < theta_min) {
+        theta = theta_min;
+    }
+    if (theta > theta_max) {
+        theta = theta_max;
+    }
+    return theta;
+}
+
 /* r^n by repeated multiplication (n is small: 2..9 in seed 000). */
 static float power(float r, uint8_t n)
 {

@@ -61,6 +61,20 @@ float ta_mean_oae(uint32_t M_T2, uint16_t N_r);
 /** Eq 6: DRTM threshold theta = alpha * k + beta * M_A (not clipped). */
 float ta_drtm_threshold(float alpha, float beta, float k, float M_A);
 
+/** How theta0 and the bounds [theta_min, theta_max] enter DRTM's eq 6; seed
+ *  000 gives eq 6 alone and, "following the ARTM", theta_t0 = 3.3 with
+ *  1 <= theta <= 10, and says theta "is 3.3" at the start and "becomes
+ *  larger" as robots forage, while eq 6 is 0 there (k = M_A = 0). */
+typedef enum {
+    TA_THETA_OFFSET = 0,   /**< theta0 + eq 6, clipped to the bounds: 3.3 at the start, rising */
+    TA_THETA_CLIP = 1,     /**< eq 6 clipped to the bounds: 1 at the start */
+    TA_THETA_RAW = 2       /**< eq 6 as written (the real-robot section's theta = 0 at the start) */
+} ta_theta_mode_t;
+
+/** DRTM's threshold under `mode`. */
+float ta_drtm_theta(uint8_t mode, float alpha, float beta, float k, float M_A, float theta0, float theta_min,
+                    float theta_max);
+
 /** Eq 7: probability of leaving the nest, S^n / (S^n + theta^n).
  *  0 when S <= 0; 1 when theta <= 0 (and S > 0).  Computed as
  *  1 / (1 + (theta/S)^n) or r^n / (1 + r^n) with r = S/theta, whichever

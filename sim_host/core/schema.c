@@ -318,7 +318,12 @@ static int fill_enum(const loader_t *ld, const param_desc_t *d, const ynode_t *v
     }
     for (i = 0; d->choices[i] != NULL; i++) {
         if (strcmp(v->text, d->choices[i]) == 0) {
-            memcpy(dst, &i, sizeof i);
+            if (d->size == 1) {   /* a uint8_t field (firmware parameters) */
+                uint8_t b = (uint8_t)i;
+                memcpy(dst, &b, 1);
+            } else {
+                memcpy(dst, &i, sizeof i);
+            }
             return 0;
         }
         schema_consider(v->text, d->choices[i], &best, &dist);
@@ -578,7 +583,7 @@ static void format_value(const param_desc_t *d, const void *base, char *buf, siz
         break;
     case PARAM_DOUBLE: format_number(v.d, buf, len); break;
     case PARAM_STRING: snprintf(buf, len, "%s", p[0] ? p : "-"); break;
-    case PARAM_ENUM: snprintf(buf, len, "%s", d->choices[v.i]); break;
+    case PARAM_ENUM: snprintf(buf, len, "%s", d->choices[d->size == 1 ? v.u8 : v.i]); break;
     }
 }
 

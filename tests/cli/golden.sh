@@ -22,11 +22,11 @@ trap 'rm -rf "$tmp"' EXIT
 # scenario (sim_host/scenarios/)  state hash after its full duration
 pins=(
     "random_walk     8f5ca44c91abbef0"
-    "foraging_base   08689bf30086b944"
-    "foraging_nf25   84bfe947dcd2d9f6"
-    "foraging_ea20   196183229b92590d"
-    "foraging_nr30   116b3d16c7b0e23a"
-    "foraging_l3     964c2238c4c6fc44"
+    "foraging_base   1da768cb65431788"
+    "foraging_nf25   b7593a44d1fd1288"
+    "foraging_ea20   a454bd7a0f40577e"
+    "foraging_nr30   2a8b66a670289954"
+    "foraging_l3     e9045f8267c722b4"
     "phototaxis_gather f8ae7bdce4060218"
 )
 

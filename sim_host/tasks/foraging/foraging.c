@@ -33,6 +33,9 @@ typedef struct foraging {
     uint8_t *is_forager;     /**< per robot: runs the forager (has the gripper) */
     uint32_t n_foragers;     /**< N_r */
     int64_t beacon;          /**< the nest beacon's robot index, -1 without one */
+    int64_t *leave_step;     /**< per robot: step it chose S_S inside the nest, -1 otherwise */
+    uint64_t exit_steps, exits;   /**< steps from that choice to out of the nest, summed; how many */
+    double beacon_error_sum, beacon_error_max;   /**< |F_beacon - F| over the steps */
     char *task;              /**< per robot: last task state 'W', 'S', 'R' (foragers) */
 
     uint32_t n_tokens;
@@ -150,13 +153,39 @@ static int foraging_check(const void *config, const scenario_t *sc, char key[64]
                  "nest_beacon group (or set its count to 0)");
         return -1;
     }
+    /* The beacon keeps its ledger in whole energy units (uint16 constants)
+     * and the consumption in 1/1000 token per minute: a value it cannot
+     * hold would make its ledger and the ground truth differ silently. */
+    const struct { const char *key; double v, scale; } held[] = {
+        { "token_energy", c->token_energy, 1.0 }, { "move_cost", c->move_cost, 1.0 },
+        { "oae_energy", c->oae_energy, 1.0 }, { "consumption", c->consumption, 1000.0 },
+    };
+    for (size_t i = 0; c->information == FORAGING_INFO_BEACON && i < sizeof held / sizeof held[0]; i++) {
+        double u = held[i].v * held[i].scale;
+        if (fabs(u - round(u)) > 1e-6 * fmax(1.0, fabs(u)) || u > 65535.0) {
+            snprintf(key, 64, "%s", held[i].key);
+            snprintf(msg, 256, "%g is not what the nest beacon can count: it holds %s up to %g (use "
+                     "such a value, or information: global)", held[i].v,
+                     held[i].scale > 1.0 ? "multiples of 0.001 token/min" : "whole energy units",
+                     65535.0 / held[i].scale);
+            return -1;
+        }
+    }
     return 0;
+}
+
+/* The arena's side L for eq 4 (k = active / L^2) and T2 = L / (2 v): the
+ * side of the square of the same area, so that a rectangle's L^2 is its
+ * area (seed 000's arenas are square; its robot arena is 1.2 x 1.5 m). */
+static double arena_side(const scenario_t *sc)
+{
+    return sqrt((double)sc->arena.width * (double)sc->arena.height);
 }
 
 /* T2 = L / (2 v) (seed 000, eq 5), s: the window of M_A. */
 static double t2_s(const scenario_t *sc, const foraging_config_t *c)
 {
-    return sc->arena.width / (2.0 * c->robot_speed);
+    return arena_side(sc) / (2.0 * c->robot_speed);
 }
 
 /* What a robot is built with (seed 000): the forager knows F_d, N_r, L, the
@@ -169,7 +198,7 @@ static void foraging_configure(const void *config, const scenario_t *sc, const r
         forager_params_t *p = params;
         p->f_d_tokens = c->desired_food;
         p->n_robots = (uint16_t)robots_running(sc, &forager_def);
-        p->arena_l_mm = (uint16_t)lround(fmin(sc->arena.width, 65.535) * 1000.0);
+        p->arena_l_mm = (uint16_t)lround(fmin(arena_side(sc), 65.535) * 1000.0);
         p->nest_radius_mm = (uint16_t)lround(fmin(c->nest.diameter / 2.0, 65.535) * 1000.0);
         p->speed_steps_s = (int16_t)lround(fmin(c->robot_speed / EPUCK_STEP_M, 1000.0));
         p->walk.speed_steps_s = p->speed_steps_s;
@@ -229,6 +258,7 @@ static void foraging_destroy(void *self)
     }
     free(f->is_forager);
     free(f->task);
+    free(f->leave_step);
     free(f->tokens);
     free(f->carrier);
     free(f->carried);
@@ -251,13 +281,14 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
     f->n_tokens = c->food_count;
     f->is_forager = calloc(n1, 1);
     f->task = calloc(n1, 1);
+    f->leave_step = malloc(n1 * sizeof *f->leave_step);
     f->tokens = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->tokens);
     f->carrier = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->carrier);
     f->carried = malloc(n1 * sizeof *f->carried);
     /* T2 in control steps. */
     f->window_len = (uint32_t)fmax(1.0, floor(t2_s(sc, c) * 1000.0 / sc->control_period_ms + 0.5));
     f->oae_window = calloc(f->window_len, sizeof *f->oae_window);
-    if (!f->is_forager || !f->task || !f->tokens || !f->carrier || !f->carried
+    if (!f->is_forager || !f->task || !f->leave_step || !f->tokens || !f->carrier || !f->carried
         || !f->oae_window) {
         snprintf(err, 256, "out of memory for %u food tokens", f->n_tokens);
         foraging_destroy(f);
@@ -266,6 +297,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
     f->beacon = -1;
     for (uint32_t i = 0; i < n; i++) {
         f->carried[i] = -1;
+        f->leave_step[i] = -1;
         f->is_forager[i] = sim_robot_def(sim, i) == &forager_def;
         if (sim_robot_def(sim, i) == &nest_beacon_def) {
             f->beacon = (int64_t)i;
@@ -383,6 +415,19 @@ static void foraging_update(void *self, sim_t *sim)
         if (f->task[i] == 'R' && st == 'S') {
             sim_event(sim, i, "token_lost", "the forager gave up its token", 0);
         }
+        /* Leaving the nest: from choosing S_S inside it to the body's
+         * centre outside the nest disk (or to the next state change). */
+        double x, y, th;
+        sim_robot_pose(sim, i, &x, &y, &th);
+        if (f->task[i] == 'W' && st == 'S' && in_nest(f, (float)x, (float)y)) {
+            f->leave_step[i] = (int64_t)sim_step_count(sim);
+        } else if (f->leave_step[i] >= 0 && (st != 'S' || !in_nest(f, (float)x, (float)y))) {
+            if (st == 'S') {
+                f->exit_steps += sim_step_count(sim) - (uint64_t)f->leave_step[i];
+                f->exits++;
+            }
+            f->leave_step[i] = -1;
+        }
         f->task[i] = st;
     }
     /* One unit per step per robot in S_S or S_R (seed 000, 3.1). */
@@ -401,6 +446,12 @@ static void foraging_update(void *self, sim_t *sim)
     f->nest_units = c->consumption * c->token_energy * minutes;
     f->food = balance(f);
     f->deviation_sum += fabs(c->desired_food - f->food);
+    if (f->beacon >= 0) {   /* how far the beacon's belief is from the truth */
+        const nest_beacon_t *b = sim_robot_controller_const(sim, (uint32_t)f->beacon);
+        double err = fabs((double)b->food_q4 / NL_FOOD_PER_TOKEN - f->food);
+        f->beacon_error_sum += err;
+        f->beacon_error_max = fmax(f->beacon_error_max, err);
+    }
 }
 
 /* Ideal global information: the true nest state, in the frames a nest
@@ -490,6 +541,9 @@ static const metric_desc_t foraging_summary[] = {
     { "food_collected", "tokens", "tokens delivered" },
     { "food_net", "tokens", "F(T)" },
     { "food_dropped", "tokens", "tokens let go outside the nest" },
+    { "exit_time_s", "s", "mean time from choosing to forage in the nest to leaving its disk" },
+    { "beacon_error_mean", "tokens", "mean |F_beacon - F| over the steps (none with global information)" },
+    { "beacon_error_max", "tokens", "largest |F_beacon - F|" },
     { NULL, NULL, NULL }
 };
 
@@ -506,6 +560,10 @@ static void foraging_final(const void *self, const sim_t *sim, double *v)
     v[4] = (double)f->delivered;
     v[5] = f->food;
     v[6] = (double)f->dropped;
+    v[7] = f->exits ? (double)f->exit_steps / (double)f->exits * sim_scenario(sim)->control_period_ms / 1000.0
+                    : NAN;
+    v[8] = f->beacon >= 0 && steps > 0 ? f->beacon_error_sum / steps : NAN;
+    v[9] = f->beacon >= 0 ? f->beacon_error_max : NAN;
 }
 
 static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
