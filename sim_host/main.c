@@ -14,6 +14,7 @@
 #include "registry.h"
 #include "core/runner.h"
 #include "core/scenario.h"
+#include "core/sim_video.h"
 #include "core/telemetry.h"
 
 #define MAX_SETS 256
@@ -60,6 +61,7 @@ static void usage(FILE *f)
 "\n"
 "exit status: 0 ok, 1 a run failed, 2 bad arguments or scenario (nothing written)\n"
 "\n", f);
+    video_print_usage(f);
     fputs("controllers (a group's `controller:`):\n", f);
     for (size_t i = 0; registry_controller_at(i); i++) {
         const controller_def_t *c = registry_controller_at(i);
@@ -105,6 +107,7 @@ int main(int argc, char **argv)
     int have_seed = 0, have_steps = 0, quiet = 0, check_only = 0;
     telemetry_options_t telemetry;
     telemetry_default_options(&telemetry);
+    video_options_t video = VIDEO_OPTIONS_DEFAULT;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     threads = cpus > 0 ? (uint64_t)cpus : 1;
 
@@ -163,6 +166,8 @@ int main(int argc, char **argv)
                 fprintf(stderr, "swarmsim: --realtime: '%s' is not a factor in (0, 1e6]\n", v);
                 return 2;
             }
+        } else if (video_parse_option(a, v, &video, &bad)) {
+            /* --video, --video-every, --video-fps (core/sim_video.c) */
         } else if (!strcmp(a, "--out")) {
             out_dir = v;
         } else if (!strcmp(a, "--set")) {
@@ -182,6 +187,9 @@ int main(int argc, char **argv)
     if (!path) {
         fprintf(stderr, "swarmsim: no scenario given\n");
         usage(stderr);
+        return 2;
+    }
+    if (video_check_options(&video) != 0) {   /* ffmpeg, the folder: before any run */
         return 2;
     }
 
@@ -227,6 +235,7 @@ int main(int argc, char **argv)
         .quiet = quiet,
         .progress = !quiet,
         .telemetry = telemetry,
+        .video = video,
     };
     int rc = runner_run(&opt, err);
     if (rc != 0) {

@@ -235,6 +235,12 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     uint32_t every = sc->output.timeseries_every;
     int ok = 1;
     uint64_t s = 0;
+    sim_video_t *video = NULL;   /* the first repetition only (sim_video.h) */
+    if (rep == 0 && opt->video.path
+        && !(video = sim_video_open(&opt->video, sim, opt->frame_px, opt->quiet, err))) {
+        fail(job, "%s%s", "", err);
+        ok = 0;
+    }
     for (; s < opt->steps && ok && !sim_done(sim) && !atomic_load(&job->failed); s++) {
         if (s % every == 0) {
             metrics_sample(sim, &row);
@@ -242,6 +248,10 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         }
         if (opt->frames_every && s % opt->frames_every == 0) {
             ok = render_frame(job, sim, render, dir) == 0;
+        }
+        if (ok && video && sim_video_step(video, sim, err) != 0) {
+            fail(job, "%s%s", "", err);
+            ok = 0;
         }
         sim_step(sim);
         telemetry_step(tel, sim);
@@ -256,6 +266,11 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         if (opt->frames_every) {
             ok = render_frame(job, sim, render, dir) == 0;
         }
+    }
+    /* The video gets its name only if the run got this far intact. */
+    if (video && sim_video_close(video, sim, ok && !atomic_load(&job->failed), err) != 0) {
+        fail(job, "%s%s", "", err);
+        ok = 0;
     }
     if (commit(ts, tmp, path) != 0 && ok) {
         fail(job, "%s: cannot write: %s", path, strerror(errno));

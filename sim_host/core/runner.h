@@ -10,6 +10,7 @@
  *   run_<seed>/telemetry.lcmlog LCM telemetry (telemetry.h), unless it goes
  *                               to an LCM URL or is off
  *   summary.json                with reps > 1: mean and sd of every metric
+ * and with video.path the first repetition's video there (sim_video.h).
  * Every file is written to a temporary name and renamed when complete.
  */
 #ifndef SIM_RUNNER_H
@@ -18,6 +19,7 @@
 #include <stdint.h>
 
 #include "scenario.h"
+#include "sim_video.h"
 #include "telemetry.h"
 
 typedef struct run_options {
@@ -32,6 +34,7 @@ typedef struct run_options {
     int quiet;              /**< no summary on stdout */
     int progress;           /**< progress bar on stderr (when it takes > 1 s) */
     telemetry_options_t telemetry;  /**< all zero: no telemetry */
+    video_options_t video;  /**< path NULL: no video; else the first repetition is filmed */
 } run_options_t;
 
 /** Runs everything.  Returns 0, or -1 with a message in `err`. */
