@@ -60,7 +60,7 @@
 #define RENDER_RGB_HEADING      0x1E1E28u /**< heading bar, centre to front */
 #define RENDER_RGB_LED_RED      0xFF1010u /**< ring LED and front LED, on */
 #define RENDER_RGB_LED_GREEN    0x10E610u /**< body LED, on */
-#define RENDER_RGB_TEXT         0x1E1E28u /**< overlay: time stamp, legend, ids */
+#define RENDER_RGB_TEXT         0x10101Au /**< overlay: time stamp, legend, ids */
 
 /** One robot.  The ring LEDs sit on the rim: LED0 at the front, LED i at
  *  -45*i degrees from the heading (clockwise seen from above). */
