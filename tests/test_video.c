@@ -113,10 +113,11 @@ static void test_not_kept(void **state)
 static void test_bad_sizes(void **state)
 {
     (void)state;
-    char err[VIDEO_ERR_MAX] = "";
-    assert_null(video_open("/tmp/x.mp4", W + 1, H, 20.0, err));
+    char err[VIDEO_ERR_MAX] = "", path[128];
+    in_dir(path, sizeof path, "odd.mp4");
+    assert_null(video_open(path, W + 1, H, 20.0, err));
     assert_non_null(strstr(err, "even sizes"));
-    assert_null(video_open("/tmp/x.mp4", W, H, 0.0, err));
+    assert_null(video_open(path, W, H, 0.0, err));
     assert_non_null(strstr(err, "positive rate"));
 }
 
@@ -151,13 +152,14 @@ static void test_ffmpeg_dies(void **state)
 static void test_no_ffmpeg(void **state)
 {
     (void)state;
-    char err[VIDEO_ERR_MAX] = "", empty[128];
+    char err[VIDEO_ERR_MAX] = "", empty[128], path[128];
     in_dir(empty, sizeof empty, "empty");
+    in_dir(path, sizeof path, "never.mp4");
     mkdir(empty, 0777);
     setenv("PATH", empty, 1);
     assert_int_equal(video_find_ffmpeg(err), -1);
     assert_non_null(strstr(err, "Debian package ffmpeg"));
-    assert_null(video_open("/tmp/never.mp4", W, H, 20.0, err));
+    assert_null(video_open(path, W, H, 20.0, err));
     assert_non_null(strstr(err, "cannot start ffmpeg"));
     real_ffmpeg();
     assert_int_equal(video_find_ffmpeg(err), 0);

@@ -7,12 +7,16 @@
  * instead would change the process for every other thread).  ffmpeg is
  * started with posix_spawnp and an argument vector, so no shell ever reads
  * the file name.  Its messages go to an anonymous temporary file and are
- * quoted when it fails.
+ * quoted when it fails.  It runs in its own process group with no signal
+ * blocked: a Ctrl-C at the terminal reaches the simulator only, which then
+ * ends the stream (and drops the file) itself, and a mask a worker thread
+ * may hold does not reach ffmpeg.
  */
 #include "video.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -166,17 +170,30 @@ video_t *video_open(const char *path, int w, int h, double fps, char *err)
     };
     int sv[2] = { -1, -1 };
     posix_spawn_file_actions_t fa;
-    int fa_ok = 0, rc = -1;
+    posix_spawnattr_t attr;
+    int fa_ok = 0, attr_ok = 0, rc = -1;
+    sigset_t none, defaults;
+    sigemptyset(&none);
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGINT);
+    sigaddset(&defaults, SIGTERM);
+    sigaddset(&defaults, SIGPIPE);
     v->log = tmpfile();
     if (v->log && socketpair(AF_UNIX, SOCK_STREAM, 0, sv) == 0
         && fcntl(sv[0], F_SETFD, FD_CLOEXEC) == 0 && fcntl(sv[1], F_SETFD, FD_CLOEXEC) == 0
         && posix_spawn_file_actions_init(&fa) == 0) {
         fa_ok = 1;
+        attr_ok = posix_spawnattr_init(&attr) == 0;
         /* dup2 clears close-on-exec on the child's copies only. */
         if (posix_spawn_file_actions_adddup2(&fa, sv[1], STDIN_FILENO) == 0
             && posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null", O_WRONLY, 0) == 0
-            && posix_spawn_file_actions_adddup2(&fa, fileno(v->log), STDERR_FILENO) == 0) {
-            rc = posix_spawnp(&v->pid, "ffmpeg", &fa, NULL, argv, environ);
+            && posix_spawn_file_actions_adddup2(&fa, fileno(v->log), STDERR_FILENO) == 0
+            && attr_ok && posix_spawnattr_setpgroup(&attr, 0) == 0
+            && posix_spawnattr_setsigmask(&attr, &none) == 0
+            && posix_spawnattr_setsigdefault(&attr, &defaults) == 0
+            && posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK
+                                                   | POSIX_SPAWN_SETSIGDEF) == 0) {
+            rc = posix_spawnp(&v->pid, "ffmpeg", &fa, &attr, argv, environ);
             if (rc != 0) {
                 errno = rc;
                 rc = -1;
@@ -186,6 +203,9 @@ video_t *video_open(const char *path, int w, int h, double fps, char *err)
     int e = errno;
     if (fa_ok) {
         posix_spawn_file_actions_destroy(&fa);
+    }
+    if (attr_ok) {
+        posix_spawnattr_destroy(&attr);
     }
     if (sv[1] >= 0) {
         close(sv[1]);
