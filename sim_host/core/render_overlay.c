@@ -66,7 +66,8 @@ static int flow(const render_scene_t *sc, int w, int h, float top, int draw)
         const char *label = key && key->label ? key->label : "";
         float lead = key ? swatch + 2.0f * c : 0.0f;
         if (key) {
-            snprintf(text, sizeof text, "%s %u", label, key_count(sc, key->rgb));
+            /* Laying out needs no count: `widest` has room for any. */
+            snprintf(text, sizeof text, "%s %u", label, draw ? key_count(sc, key->rgb) : 0u);
             snprintf(widest, sizeof widest, "%s %0*u", label, digits(sc->robot_count), 0u);
         } else {
             snprintf(text, sizeof text, "T = %.1f S", sc->time_s);

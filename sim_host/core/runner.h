@@ -10,7 +10,7 @@
  *   run_<seed>/telemetry.lcmlog LCM telemetry (telemetry.h), unless it goes
  *                               to an LCM URL or is off
  *   summary.json                with reps > 1: mean and sd of every metric
- * and with video.path the first repetition's video there (sim_video.h).
+ * and at video.path (not under out_dir) the first repetition's video (sim_video.h).
  * Every file is written to a temporary name and renamed when complete.
  */
 #ifndef SIM_RUNNER_H
