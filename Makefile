@@ -64,6 +64,7 @@ help:
 	@echo "make test       every test group, each with its time"
 	@echo "make deps       install what the build and the tools need (.venv, swarmtools)"
 	@echo "make bench      simulator throughput (BENCH_ARGS=)"
+	@echo "make video      film seed 000's base run to out/video/foraging_base.mp4 (VIDEO_ARGS=)"
 	@echo "make study-drtm seed 000's study (STUDY_ARGS=--quick for a smoke run)"
 	@echo "make firmware-check / firmware / flash   the e-puck gates, .hex files, flashing"
 	@echo "make monitor / spy   watch telemetry (LCM_URL=)"

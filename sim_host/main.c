@@ -18,6 +18,7 @@
 #include "version.h"
 #include "core/runner.h"
 #include "core/scenario.h"
+#include "core/sim_video.h"
 #include "core/telemetry.h"
 
 #define MAX_SETS 256
@@ -132,6 +133,7 @@ static void usage(FILE *f)
 "exit status: 0 ok, 1 a run failed, 2 bad arguments or scenario (nothing written),\n"
 "130 / 143 stopped by SIGINT / SIGTERM: finished runs are kept, --resume continues\n"
 "\n", f);
+    video_print_usage(f);
     fputs("controllers (a group's `controller:`):\n", f);
     for (size_t i = 0; registry_controller_at(i); i++) {
         const controller_def_t *c = registry_controller_at(i);
@@ -178,6 +180,7 @@ int main(int argc, char **argv)
     outdir_mode_t out_mode = OUTDIR_NEW;
     telemetry_options_t telemetry;
     telemetry_default_options(&telemetry);
+    video_options_t video = VIDEO_OPTIONS_DEFAULT;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     threads = cpus > 0 ? (uint64_t)cpus : 1;
 
@@ -244,6 +247,8 @@ int main(int argc, char **argv)
                 fprintf(stderr, "swarmsim: --realtime: '%s' is not a factor in (0, 1e6]\n", v);
                 return 2;
             }
+        } else if (video_parse_option(a, v, &video, &bad)) {
+            /* --video, --video-every, --video-fps (core/sim_video.c) */
         } else if (!strcmp(a, "--out")) {
             out_dir = v;
         } else if (!strcmp(a, "--set")) {
@@ -263,6 +268,9 @@ int main(int argc, char **argv)
     if (!path) {
         fprintf(stderr, "swarmsim: no scenario given\n");
         usage(stderr);
+        return 2;
+    }
+    if (video_check_options(&video) != 0) {   /* ffmpeg, the folder: before any run */
         return 2;
     }
 
@@ -328,6 +336,7 @@ int main(int argc, char **argv)
         .provenance = { .code_version = SWARMSIM_VERSION, .command = command, .overrides = sets,
                         .override_count = nsets, .scenario_hash = summary_text_hash(text, text_len) },
         .stop = &stop_signal,
+        .video = video,
     };
     catch_stop_signals();
     int rc = runner_run(&opt, err);

@@ -35,6 +35,7 @@ check_all() {
     need python3-venv     python3 -c 'import venv, ensurepip'
     need libglib2.0-0     glib_runtime      # liblcm.a (the lcm wheel) calls GLib
     need valgrind         command -v valgrind   # firmware CPU report (callgrind)
+    need ffmpeg           command -v ffmpeg     # swarmsim --video (and ffprobe for its tests)
 }
 glib_runtime() { { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | grep -q 'libglib-2.0.so.0'; }
 hdr_avr() { printf '#include <stdint.h>\n' | avr-gcc -mmcu=atmega128 -E -x c - >/dev/null; }

@@ -32,6 +32,15 @@ typedef enum draw_layer {
 #define DRAW_RGB_HL_BLUE      0x8CA0F0u
 #define DRAW_RGB_HL_YELLOW    0xF0DC5Au
 
+/* One entry of a legend: a robot fill and what it means.  rgb 0 is the
+ * default body, as in drawing_t.robot_rgb.  A task lists its entries in
+ * task_def_t.legend and its draw takes the fills from that same table, so
+ * the pictures' legend cannot drift from the colours robots are given. */
+typedef struct draw_key {
+    uint32_t rgb;              /**< 0xRRGGBB; 0: the default body */
+    const char *label;         /**< NULL ends a table */
+} draw_key_t;
+
 typedef struct draw_shape {
     uint8_t kind;              /**< draw_kind_t */
     uint8_t layer;             /**< draw_layer_t */

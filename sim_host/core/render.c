@@ -8,6 +8,7 @@
  * the picture holds exactly the palette colours of render.h.
  */
 #include "render.h"
+#include "render_gl.h"
 
 #include "units.h"
 
@@ -131,7 +132,8 @@ void render_destroy(render_ctx_t *ctx)
 /* World to picture                                                    */
 /* ------------------------------------------------------------------ */
 
-/** Pixels per metre for this scene, or 0 if the arena size is invalid. */
+/** Pixels per metre for this scene, or 0 if the arena size is invalid.
+ *  The arena is centred in the picture below the overlay's band. */
 static float view_scale(const render_ctx_t *ctx, const render_scene_t *sc)
 {
     if (!ctx || !sc || !isfinite(sc->arena_w) || !isfinite(sc->arena_h) ||
@@ -142,9 +144,16 @@ static float view_scale(const render_ctx_t *ctx, const render_scene_t *sc)
     float ext_h = sc->arena_h + 2.0f * wall;
     int small = ctx->w < ctx->h ? ctx->w : ctx->h;
     float margin = fmaxf(4.0f, 0.03f * (float)small);
+    float band = overlay_band_px(sc, ctx->w, ctx->h);
     float s = fminf(((float)ctx->w - 2.0f * margin) / ext_w,
-                    ((float)ctx->h - 2.0f * margin) / ext_h);
+                    ((float)ctx->h - band - 2.0f * margin) / ext_h);
     return (isfinite(s) && s > 0.0f) ? s : 0.0f;
+}
+
+float render_overlay_band_px(const render_ctx_t *ctx,
+                             const render_scene_t *scene)
+{
+    return ctx && scene ? overlay_band_px(scene, ctx->w, ctx->h) : 0.0f;
 }
 
 float render_scale_px_per_m(const render_ctx_t *ctx,
@@ -160,7 +169,7 @@ int render_world_to_pixel(const render_ctx_t *ctx, const render_scene_t *scene,
     if (s <= 0.0f || !col || !row)
         return -1;
     *col = 0.5f * (float)ctx->w + x * s;
-    *row = 0.5f * (float)ctx->h - y * s;
+    *row = 0.5f * ((float)ctx->h + overlay_band_px(scene, ctx->w, ctx->h)) - y * s;
     return 0;
 }
 
@@ -168,13 +177,7 @@ int render_world_to_pixel(const render_ctx_t *ctx, const render_scene_t *scene,
 /* Drawing primitives, pixel coordinates (GL: y up)                    */
 /* ------------------------------------------------------------------ */
 
-/** The drawing frame: world (x, y) m -> GL pixel (cx + x*s, cy + y*s). */
-typedef struct frame {
-    float s, cx, cy;
-    int w_px;          /**< picture width, pixels */
-} frame_t;
-
-static void colour(uint32_t rgb)
+void rgl_colour(uint32_t rgb)
 {
     glColor3ub((GLubyte)(rgb >> 16), (GLubyte)(rgb >> 8), (GLubyte)rgb);
 }
@@ -185,7 +188,7 @@ static int segments(float r_px)
     return n < 12 ? 12 : n > 256 ? 256 : n;
 }
 
-static void disc(float cx, float cy, float r)
+void rgl_disc(float cx, float cy, float r)
 {
     if (!(r > 0.0f))
         return;
@@ -216,7 +219,7 @@ static void box(float cx, float cy, float hx, float hy, float a)
 }
 
 /** Axis-aligned rectangle [x0, x1] x [y0, y1]. */
-static void rect(float x0, float y0, float x1, float y1)
+void rgl_rect(float x0, float y0, float x1, float y1)
 {
     glBegin(GL_TRIANGLE_FAN);
     glVertex2f(x0, y0);
@@ -266,11 +269,11 @@ static void draw_arena(const frame_t *f, const render_scene_t *sc)
                                                            : 0.0f;
     if (wall < 2.0f)
         wall = 2.0f;
-    colour(RENDER_RGB_WALL);
-    rect(f->cx - hw - wall, f->cy - hh - wall, f->cx + hw + wall,
+    rgl_colour(RENDER_RGB_WALL);
+    rgl_rect(f->cx - hw - wall, f->cy - hh - wall, f->cx + hw + wall,
          f->cy + hh + wall);
-    colour(RENDER_RGB_FLOOR);
-    rect(f->cx - hw, f->cy - hh, f->cx + hw, f->cy + hh);
+    rgl_colour(RENDER_RGB_FLOOR);
+    rgl_rect(f->cx - hw, f->cy - hh, f->cx + hw, f->cy + hh);
 }
 
 /* Labels: a 3 x 5 pixel font (digits, capitals, a little punctuation;
@@ -341,16 +344,22 @@ static uint16_t glyph_bits(char c)
 
 /* Text with its lower left corner at (x, y) pixels, `cell` pixels a font
  * pixel, a blank column between letters. */
-static void text(float x, float y, const char *s, float cell)
+void rgl_text(float x, float y, const char *s, float cell)
 {
     for (; *s != '\0'; s++, x += 4.0f * cell) {
         uint16_t bits = glyph_bits(*s);
         for (int row = 0; row < 5; row++)
             for (int col = 0; col < 3; col++)
                 if (bits & (1u << (14 - 3 * row - col)))
-                    rect(x + (float)col * cell, y + (float)(4 - row) * cell,
+                    rgl_rect(x + (float)col * cell, y + (float)(4 - row) * cell,
                          x + (float)(col + 1) * cell, y + (float)(5 - row) * cell);
     }
+}
+
+float rgl_text_width(const char *s, float cell)
+{
+    size_t n = strlen(s);
+    return n ? (4.0f * (float)n - 1.0f) * cell : 0.0f;
 }
 
 /* A segment of width w pixels (at least one) from (x0, y0) to (x1, y1). */
@@ -369,11 +378,11 @@ static void draw_shape(const frame_t *f, const draw_shape_t *d)
     float x = f->cx + d->x * f->s, y = f->cy + d->y * f->s;
     if (!finite2(d->x, d->y))
         return;
-    colour(d->rgb);
+    rgl_colour(d->rgb);
     switch (d->kind) {
     case DRAW_DISC:
         if (isfinite(d->radius) && d->radius > 0.0f)
-            disc(x, y, fmaxf(d->radius * f->s, 1.0f));
+            rgl_disc(x, y, fmaxf(d->radius * f->s, 1.0f));
         break;
     case DRAW_RING: {
         if (!isfinite(d->radius) || d->radius <= 0.0f)
@@ -387,7 +396,7 @@ static void draw_shape(const frame_t *f, const draw_shape_t *d)
     }
     case DRAW_RECT:
         if (finite2(d->w, d->h) && d->w > 0.0f && d->h > 0.0f)
-            rect(x - 0.5f * d->w * f->s, y - 0.5f * d->h * f->s, x + 0.5f * d->w * f->s,
+            rgl_rect(x - 0.5f * d->w * f->s, y - 0.5f * d->h * f->s, x + 0.5f * d->w * f->s,
                  y + 0.5f * d->h * f->s);
         break;
     case DRAW_LINE:
@@ -400,7 +409,7 @@ static void draw_shape(const frame_t *f, const draw_shape_t *d)
         memcpy(buf, d->text, DRAW_TEXT_MAX);
         buf[DRAW_TEXT_MAX] = '\0';
         /* 2 pixels a font pixel on an 800-pixel picture, never under 1. */
-        text(x, y, buf, fmaxf(1.0f, floorf((float)f->w_px / 400.0f)));
+        rgl_text(x, y, buf, fmaxf(1.0f, floorf((float)f->w_px / 400.0f)));
         break;
     }
     default:
@@ -425,10 +434,10 @@ static void draw_object(const frame_t *f, const render_object_t *o)
         if (!isfinite(o->radius) || o->radius <= 0.0f)
             return;
         float r = fmaxf(o->radius * f->s, 1.0f);
-        colour(RENDER_RGB_OUTLINE);
-        disc(x, y, r);
-        colour(fill);
-        disc(x, y, r > 3.0f ? r - 1.0f : r);
+        rgl_colour(RENDER_RGB_OUTLINE);
+        rgl_disc(x, y, r);
+        rgl_colour(fill);
+        rgl_disc(x, y, r > 3.0f ? r - 1.0f : r);
     } else if (o->shape == 1) {
         if (!finite2(o->width, o->depth) || !isfinite(o->angle_deg) ||
             o->width <= 0.0f || o->depth <= 0.0f)
@@ -436,9 +445,9 @@ static void draw_object(const frame_t *f, const render_object_t *o)
         float hx = fmaxf(0.5f * o->width * f->s, 0.5f);
         float hy = fmaxf(0.5f * o->depth * f->s, 0.5f);
         float a = o->angle_deg * PI_F / 180.0f;
-        colour(RENDER_RGB_OUTLINE);
+        rgl_colour(RENDER_RGB_OUTLINE);
         box(x, y, hx, hy, a);
-        colour(fill);
+        rgl_colour(fill);
         if (hx > 3.0f && hy > 3.0f)
             box(x, y, hx - 1.0f, hy - 1.0f, a);
         else
@@ -452,9 +461,9 @@ static void draw_light(const frame_t *f, const render_light_t *l)
         return;
     float x = f->cx + l->x * f->s, y = f->cy + l->y * f->s;
     float r = fmaxf(0.05f * f->s, 7.0f);
-    colour(RENDER_RGB_LIGHT_RIM);
+    rgl_colour(RENDER_RGB_LIGHT_RIM);
     star(x, y, r + 2.0f);
-    colour(RENDER_RGB_LIGHT);
+    rgl_colour(RENDER_RGB_LIGHT);
     star(x, y, r);
 }
 
@@ -466,37 +475,38 @@ static void draw_robot(const frame_t *f, const render_robot_t *rb, float r)
     float c = cosf(rb->theta), s = sinf(rb->theta);
     float rim = fmaxf(1.0f, 0.08f * r);
 
-    colour(RENDER_RGB_OUTLINE);
-    disc(x, y, r);
-    colour(rb->fill_rgb ? rb->fill_rgb : RENDER_RGB_ROBOT);
-    disc(x, y, r - rim);
+    rgl_colour(RENDER_RGB_OUTLINE);
+    rgl_disc(x, y, r);
+    rgl_colour(rb->fill_rgb ? rb->fill_rgb : RENDER_RGB_ROBOT);
+    rgl_disc(x, y, r - rim);
     if (rb->body_led) {
-        colour(RENDER_RGB_LED_GREEN);
-        disc(x, y, fmaxf(0.3f * r, 1.0f));
+        rgl_colour(RENDER_RGB_LED_GREEN);
+        rgl_disc(x, y, fmaxf(0.3f * r, 1.0f));
     }
     /* Heading bar: centre to the rim. */
     float len = r - 0.5f * rim, hw = fmaxf(0.6f, 0.09f * r);
-    colour(RENDER_RGB_HEADING);
+    rgl_colour(RENDER_RGB_HEADING);
     box(x + 0.5f * len * c, y + 0.5f * len * s, 0.5f * len, hw, rb->theta);
     if (rb->front_led) {
-        colour(RENDER_RGB_LED_RED);
-        disc(x + 0.55f * r * c, y + 0.55f * r * s, fmaxf(0.7f, 0.13f * r));
+        rgl_colour(RENDER_RGB_LED_RED);
+        rgl_disc(x + 0.55f * r * c, y + 0.55f * r * s, fmaxf(0.7f, 0.13f * r));
     }
     /* Ring LEDs: LED i at -45*i degrees from the heading, on the rim. */
     float lr = fmaxf(0.7f, 0.16f * r), ld = r - rim - 0.5f * lr;
-    colour(RENDER_RGB_LED_RED);
+    rgl_colour(RENDER_RGB_LED_RED);
     for (int i = 0; i < 8; i++) {
         if (!(rb->leds & (1u << i)))
             continue;
         float a = rb->theta - (float)i * (PI_F / 4.0f);
-        disc(x + ld * cosf(a), y + ld * sinf(a), lr);
+        rgl_disc(x + ld * cosf(a), y + ld * sinf(a), lr);
     }
 }
 
 static void draw_scene(const render_ctx_t *ctx, const render_scene_t *sc,
                        float s)
 {
-    frame_t f = {s, 0.5f * (float)ctx->w, 0.5f * (float)ctx->h, ctx->w};
+    float band = overlay_band_px(sc, ctx->w, ctx->h);
+    frame_t f = {s, 0.5f * (float)ctx->w, 0.5f * ((float)ctx->h - band), ctx->w, ctx->h};
 
     glViewport(0, 0, ctx->w, ctx->h);
     glDisable(GL_DEPTH_TEST);
@@ -534,7 +544,11 @@ static void draw_scene(const render_ctx_t *ctx, const render_scene_t *sc,
     float r = fmaxf(rr * s, RENDER_MIN_ROBOT_RADIUS_PX);
     for (uint32_t i = 0; i < sc->robot_count; i++)
         draw_robot(&f, &sc->robots[i], r);
+    if (sc->overlay)
+        overlay_draw_ids(&f, sc, r);
     draw_shapes(&f, sc, DRAW_OVER);
+    if (sc->overlay)
+        overlay_draw_band(&f, sc, band);
 }
 
 /* ------------------------------------------------------------------ */
@@ -687,26 +701,22 @@ static int write_png_atomic(const render_ctx_t *ctx, const char *path,
 /* Render                                                              */
 /* ------------------------------------------------------------------ */
 
-int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
-                     const char *png_path, char *err)
+/** Draws `scene` into ctx->rgba; `what` names the picture in messages. */
+static int render_draw(render_ctx_t *ctx, const render_scene_t *scene,
+                       const char *what, char *err)
 {
-    if (!ctx || !scene || !png_path || !*png_path) {
-        set_err(err, "render: %s", !ctx ? "no render context"
-                                   : !scene ? "no scene"
-                                            : "empty PNG path");
-        return -1;
-    }
     float s = view_scale(ctx, scene);
     if (s <= 0.0f) {
-        set_err(err, "render: '%s': invalid arena size %gx%g m", png_path,
+        set_err(err, "render: '%s': invalid arena size %gx%g m", what,
                 (double)scene->arena_w, (double)scene->arena_h);
         return -1;
     }
     if ((scene->robot_count && !scene->robots) ||
         (scene->object_count && !scene->objects) ||
-        (scene->light_count && !scene->lights)) {
+        (scene->light_count && !scene->lights) ||
+        (scene->legend_count && !scene->legend)) {
         set_err(err, "render: '%s': a scene count is non-zero but its array "
-                "is NULL", png_path);
+                "is NULL", what);
         return -1;
     }
 
@@ -714,7 +724,7 @@ int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
      * this call only, and release it before returning. */
     if (!OSMesaMakeCurrent(ctx->gl, ctx->rgba, GL_UNSIGNED_BYTE, ctx->w,
                            ctx->h)) {
-        set_err(err, "render: '%s': OSMesaMakeCurrent failed", png_path);
+        set_err(err, "render: '%s': OSMesaMakeCurrent failed", what);
         return -1;
     }
     for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; i++) {
@@ -725,9 +735,41 @@ int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
     GLenum gl_err = glGetError();
     OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
     if (gl_err != GL_NO_ERROR) {
-        set_err(err, "render: '%s': OpenGL error 0x%04x", png_path,
+        set_err(err, "render: '%s': OpenGL error 0x%04x", what,
                 (unsigned)gl_err);
         return -1;
     }
+    return 0;
+}
+
+int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
+                     const char *png_path, char *err)
+{
+    if (!ctx || !scene || !png_path || !*png_path) {
+        set_err(err, "render: %s", !ctx ? "no render context"
+                                   : !scene ? "no scene"
+                                            : "empty PNG path");
+        return -1;
+    }
+    if (render_draw(ctx, scene, png_path, err) != 0)
+        return -1;
     return write_png_atomic(ctx, png_path, err);
+}
+
+int render_scene_rgb(render_ctx_t *ctx, const render_scene_t *scene,
+                     uint8_t *rgb, char *err)
+{
+    if (!ctx || !scene || !rgb) {
+        set_err(err, "render: %s", !ctx ? "no render context"
+                                   : !scene ? "no scene"
+                                            : "no frame buffer");
+        return -1;
+    }
+    if (render_draw(ctx, scene, "frame", err) != 0)
+        return -1;
+    for (int y = 0; y < ctx->h; y++) {
+        png_row(ctx, y);
+        memcpy(rgb + (size_t)y * (size_t)ctx->w * 3, ctx->row, (size_t)ctx->w * 3);
+    }
+    return 0;
 }

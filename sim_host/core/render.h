@@ -60,6 +60,7 @@
 #define RENDER_RGB_HEADING      0x1E1E28u /**< heading bar, centre to front */
 #define RENDER_RGB_LED_RED      0xFF1010u /**< ring LED and front LED, on */
 #define RENDER_RGB_LED_GREEN    0x10E610u /**< body LED, on */
+#define RENDER_RGB_TEXT         0x10101Au /**< overlay: time stamp, legend, ids */
 
 /** One robot.  The ring LEDs sit on the rim: LED0 at the front, LED i at
  *  -45*i degrees from the heading (clockwise seen from above). */
@@ -107,7 +108,16 @@ typedef struct render_scene {
     uint32_t object_count;
     const render_light_t *lights;   /**< light_count entries (NULL if 0) */
     uint32_t light_count;
-    double time_s;            /**< simulated time, s (not drawn yet) */
+    double time_s;            /**< simulated time, s (drawn with `overlay`) */
+    /** Non-zero: a band above the arena with the time stamp ("T = 12.3 S")
+     *  and the legend (each key's swatch, label and how many robots have
+     *  its fill now), and each robot's id (its index in `robots`) beside
+     *  it.  The arena shrinks to make room for the band
+     *  (render_overlay_band_px); without it nothing of this is drawn. */
+    int overlay;
+    const draw_key_t *legend;       /**< legend_count keys (drawing.h; rgb 0:
+                                         the default body), NULL if 0 */
+    uint32_t legend_count;
 } render_scene_t;
 
 /** Opaque: owns the OSMesa context and the pixel buffers. */
@@ -131,6 +141,19 @@ render_ctx_t *render_create(int width_px, int height_px, char *err);
  */
 int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
                      const char *png_path, char *err);
+
+/**
+ * Draws `scene` as render_scene_png does into `rgb`: width x height x 3
+ * bytes, 8-bit RGB, the top row first (a raw video frame).  Returns 0, or
+ * -1 with a message in `err` (may be NULL).
+ */
+int render_scene_rgb(render_ctx_t *ctx, const render_scene_t *scene,
+                     uint8_t *rgb, char *err);
+
+/** Height in pixels of the overlay's band at the top of the picture for
+ *  this scene (0 without `overlay`). */
+float render_overlay_band_px(const render_ctx_t *ctx,
+                             const render_scene_t *scene);
 
 /**
  * Where the world point (x, y) m lands in the picture render_scene_png draws

@@ -187,6 +187,12 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     uint32_t every = sc->output.timeseries_every;
     int ok = 1;
     uint64_t s = 0;
+    sim_video_t *video = NULL;   /* the first repetition only (sim_video.h) */
+    if (rep == 0 && opt->video.path
+        && !(video = sim_video_open(&opt->video, sim, opt->frame_px, opt->quiet, err))) {
+        fail(job, "%s%s", "", err);
+        ok = 0;
+    }
     for (; s < opt->steps && ok && !sim_done(sim) && !stopping(job); s++) {
         if (s % every == 0) {
             metrics_sample(sim, &row);
@@ -194,6 +200,10 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         }
         if (opt->frames_every && s % opt->frames_every == 0) {
             ok = render_frame(job, sim, render, dir) == 0;
+        }
+        if (ok && video && sim_video_step(video, sim, err) != 0) {
+            fail(job, "%s%s", "", err);
+            ok = 0;
         }
         sim_step(sim);
         telemetry_step(tel, sim);
@@ -209,6 +219,11 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         if (opt->frames_every) {
             ok = render_frame(job, sim, render, dir) == 0;
         }
+    }
+    /* The video gets its name only if the run got this far intact. */
+    if (video && sim_video_close(video, sim, ok, err) != 0) {
+        fail(job, "%s%s", "", err);
+        ok = 0;
     }
     if (!ok) {
         fclose(ts);                /* unfinished: no final name for any of it */

@@ -19,6 +19,7 @@
  * A run is written in run_<seed>.partial/ and renamed run_<seed>/ when it
  * finished: a run stopped (SIGINT, SIGTERM) or failed half-way, or one a
  * failing sibling stopped, leaves nothing under a final name.
+ * and at video.path (not under out_dir) the first repetition's video (sim_video.h).
  */
 #ifndef SIM_RUNNER_H
 #define SIM_RUNNER_H
@@ -29,6 +30,7 @@
 #include "outdir.h"
 #include "scenario.h"
 #include "summary.h"
+#include "sim_video.h"
 #include "telemetry.h"
 
 typedef struct run_options {
@@ -48,6 +50,7 @@ typedef struct run_options {
     provenance_t provenance;        /**< scenario_hash is filled by runner_run */
     /** Set (to the signal number) by a signal handler to stop early; NULL: never. */
     volatile sig_atomic_t *stop;
+    video_options_t video;  /**< path NULL: no video; else the first repetition is filmed */
 } run_options_t;
 
 enum {

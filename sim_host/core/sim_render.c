@@ -1,7 +1,9 @@
 /*
  * sim_render.c - a picture of a running simulation: the arena, obstacles,
  * lights and robots from the core, the tasks' items as the camera sees
- * them, and each task's drawing (drawing.h) as data.
+ * them, each task's drawing (drawing.h) as data, and the overlay: the
+ * simulated time, the tasks' legends and the robots' ids.  Only reads the
+ * simulation (a task's draw gets its state as const).
  */
 #include "sim_render.h"
 
@@ -14,8 +16,49 @@
 
 /* Room for the shapes of every task's drawing of one step. */
 #define SHAPES_MAX 4096
+/* Room for the legend keys of every task, and the default body's. */
+#define KEYS_MAX 32
 
-int sim_render_png(const sim_t *simp, render_ctx_t *ctx, const char *png_path, char *err)
+/* A scene and the memory behind it. */
+typedef struct sim_scene {
+    render_scene_t scene;
+    render_robot_t *robots;
+    render_object_t *objects;
+    drawing_t drawing;
+    render_light_t lights[SCENARIO_MAX_LIGHTS];
+    draw_key_t keys[KEYS_MAX];
+} sim_scene_t;
+
+static void scene_free(sim_scene_t *ss)
+{
+    free(ss->robots);
+    free(ss->objects);
+    free(ss->drawing.shapes);
+    free(ss->drawing.robot_rgb);
+}
+
+/* The tasks' legends in registry order, then the default body's key if no
+ * task says what it means: "other" beside a task's keys, else "robot". */
+static uint32_t collect_legend(const struct sim *sim, draw_key_t *keys)
+{
+    uint32_t n = 0;
+    int has_default = 0;
+    for (uint32_t t = 0; t < sim->n_tasks; t++) {
+        const draw_key_t *k = sim->tasks[t].def->legend;
+        for (; k && k->label && n < KEYS_MAX - 1; k++) {
+            keys[n++] = *k;
+            has_default |= k->rgb == 0;
+        }
+    }
+    if (!has_default) {
+        keys[n] = (draw_key_t){ 0, n ? "other" : "robot" };
+        n++;
+    }
+    return n;
+}
+
+/* Fills ss from the current state of sim.  0, or -1 out of memory. */
+static int scene_build(const sim_t *simp, sim_scene_t *ss)
 {
     const struct sim *sim = simp;
     const scenario_t *sc = sim->sc;
@@ -27,39 +70,35 @@ int sim_render_png(const sim_t *simp, render_ctx_t *ctx, const char *png_path, c
         item_count[t] = run->def->items ? run->def->items(run->self, &items[t]) : 0;
         n_items += item_count[t];
     }
-    render_robot_t *robots = calloc(n ? n : 1, sizeof *robots);
-    render_object_t *objects = calloc(sc->object_count + n_items + 1, sizeof *objects);
-    drawing_t drawing = { calloc(SHAPES_MAX, sizeof(draw_shape_t)), 0, SHAPES_MAX,
-                          calloc(n ? n : 1, sizeof(uint32_t)), n };
-    render_light_t lights[SCENARIO_MAX_LIGHTS];
-    if (!robots || !objects || !drawing.shapes || !drawing.robot_rgb) {
-        free(robots);
-        free(objects);
-        free(drawing.shapes);
-        free(drawing.robot_rgb);
-        snprintf(err, RENDER_ERR_MAX, "%s: out of memory", png_path);
+    ss->robots = calloc(n ? n : 1, sizeof *ss->robots);
+    ss->objects = calloc(sc->object_count + n_items + 1, sizeof *ss->objects);
+    ss->drawing = (drawing_t){ calloc(SHAPES_MAX, sizeof(draw_shape_t)), 0, SHAPES_MAX,
+                               calloc(n ? n : 1, sizeof(uint32_t)), n };
+    if (!ss->robots || !ss->objects || !ss->drawing.shapes || !ss->drawing.robot_rgb) {
+        scene_free(ss);
         return -1;
     }
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         const sim_task_run_t *run = &sim->tasks[t];
         if (run->def->draw) {
-            run->def->draw(run->self, simp, &drawing);
+            run->def->draw(run->self, simp, &ss->drawing);
         }
     }
     for (uint32_t i = 0; i < n; i++) {
         const sim_robot_t *r = &sim->robots[i];
-        robots[i].x = r->x;
-        robots[i].y = r->y;
-        robots[i].theta = r->theta;
-        robots[i].leds = (uint8_t)(r->leds & 0xffu);
-        robots[i].body_led = (uint8_t)((r->leds >> HAL_LED_WORD_BODY_BIT) & 1u);
-        robots[i].front_led = (uint8_t)((r->leds >> HAL_LED_WORD_FRONT_BIT) & 1u);
-        robots[i].fill_rgb = drawing.robot_rgb[i];
+        render_robot_t *rb = &ss->robots[i];
+        rb->x = r->x;
+        rb->y = r->y;
+        rb->theta = r->theta;
+        rb->leds = (uint8_t)(r->leds & 0xffu);
+        rb->body_led = (uint8_t)((r->leds >> HAL_LED_WORD_BODY_BIT) & 1u);
+        rb->front_led = (uint8_t)((r->leds >> HAL_LED_WORD_FRONT_BIT) & 1u);
+        rb->fill_rgb = ss->drawing.robot_rgb[i];
     }
     for (uint32_t k = 0; k < sc->object_count; k++) {
         const object_def_t *d = &sc->objects[k];
         render_object_t o = { d->shape, d->x, d->y, d->radius, d->width, d->depth, d->angle, d->colour };
-        objects[k] = o;
+        ss->objects[k] = o;
     }
     uint32_t n_objects = sc->object_count;
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
@@ -67,25 +106,45 @@ int sim_render_png(const sim_t *simp, render_ctx_t *ctx, const char *png_path, c
             const sim_item_t *it = &items[t][k];
             if (isfinite(it->x) && it->colour != HAL_COLOUR_NONE) {
                 render_object_t o = { SHAPE_CYLINDER, it->x, it->y, it->radius, 0, 0, 0, it->colour };
-                objects[n_objects++] = o;
+                ss->objects[n_objects++] = o;
             }
         }
     }
     for (uint32_t l = 0; l < sc->light_count; l++) {
-        lights[l].x = sc->lights[l].x;
-        lights[l].y = sc->lights[l].y;
+        ss->lights[l].x = sc->lights[l].x;
+        ss->lights[l].y = sc->lights[l].y;
     }
-    render_scene_t scene = {
+    ss->scene = (render_scene_t){
         .arena_w = sc->arena.width, .arena_h = sc->arena.height, .wall = sc->arena.wall_thickness,
-        .shapes = drawing.shapes, .shape_count = drawing.count,
-        .robots = robots, .robot_count = n, .robot_radius = EPUCK_BODY_RADIUS_M,
-        .objects = objects, .object_count = n_objects, .lights = lights,
+        .shapes = ss->drawing.shapes, .shape_count = ss->drawing.count,
+        .robots = ss->robots, .robot_count = n, .robot_radius = EPUCK_BODY_RADIUS_M,
+        .objects = ss->objects, .object_count = n_objects, .lights = ss->lights,
         .light_count = sc->light_count, .time_s = sim_time_s(simp),
+        .overlay = 1, .legend = ss->keys, .legend_count = collect_legend(sim, ss->keys),
     };
-    int rc = render_scene_png(ctx, &scene, png_path, err);
-    free(robots);
-    free(objects);
-    free(drawing.shapes);
-    free(drawing.robot_rgb);
+    return 0;
+}
+
+int sim_render_png(const sim_t *sim, render_ctx_t *ctx, const char *png_path, char *err)
+{
+    sim_scene_t ss;
+    if (scene_build(sim, &ss) != 0) {
+        snprintf(err, RENDER_ERR_MAX, "%s: out of memory", png_path);
+        return -1;
+    }
+    int rc = render_scene_png(ctx, &ss.scene, png_path, err);
+    scene_free(&ss);
+    return rc;
+}
+
+int sim_render_rgb(const sim_t *sim, render_ctx_t *ctx, uint8_t *rgb, char *err)
+{
+    sim_scene_t ss;
+    if (scene_build(sim, &ss) != 0) {
+        snprintf(err, RENDER_ERR_MAX, "frame: out of memory");
+        return -1;
+    }
+    int rc = render_scene_rgb(ctx, &ss.scene, rgb, err);
+    scene_free(&ss);
     return rc;
 }

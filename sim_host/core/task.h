@@ -108,6 +108,10 @@ typedef struct task_def {
     /** Appends its picture of the current step. */
     void (*draw)(const void *self, const sim_t *sim, drawing_t *out);
 
+    /** What the robot fills of `draw` mean ({0, NULL}-terminated, or NULL):
+     *  the pictures' legend.  `draw` should take its fills from this table. */
+    const draw_key_t *legend;
+
     /** Non-zero when the experiment is over (a stop condition): the run
      *  ends and its summary gives the completion time.  NULL: never. */
     int (*done)(const void *self, const sim_t *sim);

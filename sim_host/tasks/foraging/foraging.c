@@ -21,11 +21,17 @@
 #define GRASP_TOLERANCE 0.025f
 #define CARRY_GAP 0.005f
 #define PLACE_TRIES 100000
-/* Drawing: the grey nest floor, and robots by task state. */
+/* Drawing: the grey nest floor, and robots by task state (the legend's
+ * table is the one place their colours are set). */
 #define RGB_NEST 0xB4B4B4u
-#define RGB_SEARCHING DRAW_RGB_HL_GREEN
-#define RGB_RETURNING DRAW_RGB_HL_YELLOW
-#define RGB_BEACON DRAW_RGB_HL_BLUE
+enum { KEY_WAITING, KEY_SEARCHING, KEY_RETURNING, KEY_BEACON, KEY_END };
+static const draw_key_t foraging_legend[] = {
+    [KEY_WAITING] = { 0, "waiting" },
+    [KEY_SEARCHING] = { DRAW_RGB_HL_GREEN, "searching" },
+    [KEY_RETURNING] = { DRAW_RGB_HL_YELLOW, "returning" },
+    [KEY_BEACON] = { DRAW_RGB_HL_BLUE, "beacon" },
+    [KEY_END] = { 0, NULL },
+};
 
 typedef struct foraging {
     const foraging_config_t *cfg;
@@ -578,12 +584,12 @@ static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
     drawing_add(out, &label);
     for (uint32_t i = 0; i < f->n_robots && i < out->robot_count; i++) {
         if (sim_robot_def(sim, i) == &nest_beacon_def) {
-            out->robot_rgb[i] = RGB_BEACON;
+            out->robot_rgb[i] = foraging_legend[KEY_BEACON].rgb;
         } else if (f->task[i] == 'S') {   /* task[] is 0 for robots that are not foragers */
-            out->robot_rgb[i] = RGB_SEARCHING;
+            out->robot_rgb[i] = foraging_legend[KEY_SEARCHING].rgb;
         } else if (f->task[i] == 'R') {
-            out->robot_rgb[i] = RGB_RETURNING;
-        }
+            out->robot_rgb[i] = foraging_legend[KEY_RETURNING].rgb;
+        }   /* waiting: the default body, KEY_WAITING (another task may fill it) */
     }
 }
 
@@ -620,6 +626,7 @@ const task_def_t foraging_task = {
     .final = foraging_final,
     .draw = foraging_draw,
     .lie = foraging_lie,
+    .legend = foraging_legend,
 };
 
 /* ---------------------------------------------------------------- for tests */

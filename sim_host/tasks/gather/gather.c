@@ -6,7 +6,13 @@
 #include <stdlib.h>
 
 #define RGB_GOAL 0x2878C8u
-#define RGB_INSIDE DRAW_RGB_HL_GREEN
+/* Robots by where they are (the legend's table sets their colours). */
+enum { KEY_OUTSIDE, KEY_INSIDE, KEY_END };
+static const draw_key_t gather_legend[] = {
+    [KEY_OUTSIDE] = { 0, "outside" },
+    [KEY_INSIDE] = { DRAW_RGB_HL_GREEN, "in goal" },
+    [KEY_END] = { 0, NULL },
+};
 
 typedef struct gather {
     const gather_config_t *cfg;
@@ -137,8 +143,8 @@ static void gather_draw(const void *self, const sim_t *sim, drawing_t *out)
     snprintf(label.text, sizeof label.text, "IN GOAL %u/%u", g->in_goal, g->n);
     drawing_add(out, &label);
     for (uint32_t i = 0; i < g->n && i < out->robot_count; i++) {
-        if (g->inside[i]) {
-            out->robot_rgb[i] = RGB_INSIDE;
+        if (g->inside[i]) {   /* outside: the default body, KEY_OUTSIDE */
+            out->robot_rgb[i] = gather_legend[KEY_INSIDE].rgb;
         }
     }
 }
@@ -168,5 +174,6 @@ const task_def_t gather_task = {
     .summary = gather_summary,
     .final = gather_final,
     .draw = gather_draw,
+    .legend = gather_legend,
     .done = gather_done,
 };
