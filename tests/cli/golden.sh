@@ -22,11 +22,11 @@ trap 'rm -rf "$tmp"' EXIT
 # scenario (sim_host/scenarios/)  state hash after its full duration
 pins=(
     "random_walk     8f5ca44c91abbef0"
-    "foraging_base   1da768cb65431788"
-    "foraging_nf25   b7593a44d1fd1288"
-    "foraging_ea20   a454bd7a0f40577e"
-    "foraging_nr30   2a8b66a670289954"
-    "foraging_l3     e9045f8267c722b4"
+    "foraging_base   0fb6005603f65cb1"
+    "foraging_nf25   f48bed343cf39a55"
+    "foraging_ea20   4543f780106f3342"
+    "foraging_nr30   f34d01564b8a6a40"
+    "foraging_l3     9067dc0a1d140b78"
     "phototaxis_gather f8ae7bdce4060218"
 )
 
