@@ -149,14 +149,24 @@ from swarmtools.sweep.spec import Sweep, SweepError
 REPO_ROOT = Path(__file__).resolve().parents[3]
 FORMAT = "study_drtm/1"
 SWEEP_FILE = REPO_ROOT / "studies" / "drtm.yaml"
+SPEED_SWEEP_FILE = REPO_ROOT / "studies" / "drtm_speed.yaml"
+SPEED_KEY = "foraging.robot_speed"
+SPEED_ROWS: tuple[tuple[str, str, float, int], ...] = (
+    ("V_f", "V_f", 1.0, 2), ("E_e", "E_e %", 100.0, 2), ("food_collected", "collected", 1.0, 1),
+    ("food_net", "F(T)", 1.0, 2), ("M_T", "M_T", 1.0, 0))
 POLICY_KEY = "robots.0.policy"     # the foragers are the scenarios' first group
 ALPHA = 0.05
 
-POLICIES: tuple[str, ...] = ("drtm", "artm", "frtm")
-POLICY_LABEL = {"drtm": "DRTM", "artm": "ARTM", "frtm": "FRTM"}
-POLICY_COLOUR = {"drtm": "tab:blue", "artm": "tab:red", "frtm": "tab:green"}
+THETA_KEY = "robots.0.params.drtm_theta"
+# The study's arms: a policy, and for DRTM how theta0 and the bounds enter
+# eq 6 (README, seed 000: "offset" is our reading, "clip" the other one).
+POLICIES: tuple[str, ...] = ("drtm", "drtm_clip", "artm", "frtm")
+ARM_OF = {("drtm", "offset"): "drtm", ("drtm", "clip"): "drtm_clip", ("artm", "offset"): "artm",
+          ("frtm", "offset"): "frtm"}
+POLICY_LABEL = {"drtm": "DRTM", "drtm_clip": "DRTM-clip", "artm": "ARTM", "frtm": "FRTM"}
+POLICY_COLOUR = {"drtm": "tab:blue", "drtm_clip": "tab:purple", "artm": "tab:red", "frtm": "tab:green"}
 # FRTM dotted, drawn last: it can coincide with ARTM (same start threshold).
-POLICY_STYLE = {"drtm": "-", "artm": "--", "frtm": ":"}
+POLICY_STYLE = {"drtm": "-", "drtm_clip": "-.", "artm": "--", "frtm": ":"}
 
 # name -> scenario file stem, label, where in the paper, row of Table 2 or 4
 CONDITIONS: dict[str, dict[str, str]] = {
@@ -585,19 +595,37 @@ def render_condition_table(results: dict[str, Any], cond: str) -> list[str]:
         cells += [fmt_mean_sd(_metric_values(results, cond, p, key), scale, dec) for p in pols]
         cells += [_fmt(paper.get(p, {}).get(key, math.nan), dec) for p in ("drtm", "artm")]
         lines.append("| " + " | ".join(cells) + " |")
+        if key == "V_f":   # the paper computes V_f from its Figure 5 curve: both, labelled
+            cells = ["V_f of the mean curve, mean over t of abs(F_d - mean F(t)) (tokens)"]
+            cells += [_fmt(vf_of_mean_curve(c, p), 2) for p in pols]
+            cells += ["—", "—"]
+            lines.append("| " + " | ".join(cells) + " |")
     lines.append("")
     return lines
 
 
-def compute_ttests(results: dict[str, Any], other: str) -> list[dict[str, Any]]:
-    """DRTM vs ``other`` on F_t and M_T for every condition that ran both."""
+def vf_of_mean_curve(cond_results: dict[str, Any], policy: str) -> float:
+    """V_f computed as the paper does from a figure: the time mean of
+    abs(F_d - F(t)) of the mean curve F(t) over the runs (the per-run V_f's
+    mean is larger: runs above and below F_d cancel in the mean curve)."""
+    fd = cond_results.get("desired_food")
+    ser = (cond_results["policies"][policy].get("series") or {}).get("food_nest")
+    if fd is None or not ser:
+        return math.nan
+    m = np.asarray(ser["mean"], dtype=float)
+    return float(np.mean(np.abs(fd - m))) if m.size else math.nan
+
+
+def compute_ttests(results: dict[str, Any], other: str, drtm: str = "drtm") -> list[dict[str, Any]]:
+    """``drtm`` (an arm of DRTM) vs ``other`` on F_t and M_T for every
+    condition that ran both."""
     rows = []
     for cond in results["conditions"]:
         pols = _policies_run(results, cond)
-        if "drtm" not in pols or other not in pols:
+        if drtm not in pols or other not in pols:
             continue
         for key, name, better in TESTS:
-            res = compare_policies(_metric_values(results, cond, "drtm", key),
+            res = compare_policies(_metric_values(results, cond, drtm, key),
                                    _metric_values(results, cond, other, key), better)
             res.update({"condition": cond, "metric": key, "name": name, "other": other})
             if other == "artm":
@@ -695,13 +723,18 @@ def render_markdown(results: dict[str, Any], figures: dict[str, list[str]] | Non
             "\"same verdict\" says whether our run agrees.", ""]
     out += ["### DRTM vs ARTM (paper's Tables 2 and 4)", ""]
     out += render_ttest_table(compute_ttests(results, "artm"), with_paper=True)
+    out += ["### DRTM-clip vs ARTM (DRTM with eq 6 clipped to [1, 10], the other reading)", ""]
+    out += render_ttest_table(compute_ttests(results, "artm", "drtm_clip"), with_paper=True)
     out += ["### DRTM vs FRTM (not in the paper)", ""]
     out += render_ttest_table(compute_ttests(results, "frtm"), with_paper=False)
 
+    out += render_speed_table(results)
+
     if figures:
         out += ["## Figures", "",
-                "Mean over the repetitions with a shaded ± sd band; the dashed line in the "
-                "food figures is the desired level F_d.", ""]
+                "Mean over the repetitions (a line per arm) over a light band, the mean's 95 % "
+                "confidence interval; the dashed line in the food figures is the desired level F_d.",
+                ""]
         for cond in conds:
             files = figures.get(cond, [])
             if files:
@@ -885,8 +918,9 @@ def study_sweep(args: argparse.Namespace, sim: Path) -> Sweep:
     except SweepError as e:
         raise SetupError(str(e)) from None
     conds, pols = sw.axes[0], sw.axes[1]
-    if conds.keys != [sweep_spec.SCENARIO_KEY] or pols.keys != [POLICY_KEY]:
-        raise SetupError(f"{sw.path}: expected a list of scenarios, then a grid of {POLICY_KEY}")
+    if conds.keys != [sweep_spec.SCENARIO_KEY] or pols.keys != [POLICY_KEY, THETA_KEY]:
+        raise SetupError(f"{sw.path}: expected a list of scenarios, then a list of {POLICY_KEY} "
+                         f"and {THETA_KEY}")
     scen_dir = Path(args.scenario_dir) if args.scenario_dir else None
     combos = []
     for cond in args.conditions:
@@ -899,13 +933,20 @@ def study_sweep(args: argparse.Namespace, sim: Path) -> Sweep:
             raise SetupError(f"scenario file {sweep_spec.resolve_scenario(sw.path, value)} not found")
         combos.append({sweep_spec.SCENARIO_KEY: value})
     conds.combos = combos
-    pols.combos = [c for c in pols.combos if c[POLICY_KEY] in args.policies]
-    if len(pols.combos) != len(args.policies):
-        raise SetupError(f"{sw.path}: its policies are {[c[POLICY_KEY] for c in pols.combos]}")
+    arms = {ARM_OF.get((c[POLICY_KEY], c[THETA_KEY])): c for c in pols.combos}
+    missing = [a for a in args.policies if a not in arms]
+    if missing:
+        raise SetupError(f"{sw.path}: no arm for {', '.join(missing)}")
+    pols.combos = [arms[a] for a in args.policies]
     sw.seeds = list(range(args.seed, args.seed + args.reps))
     sw.steps = args.steps
     sw.name = "study_drtm_quick" if args.quick else "study_drtm"
     return sw
+
+
+def arm_of(row: dict[str, str]) -> str:
+    """The study arm of a table row (its policy and DRTM threshold mode)."""
+    return ARM_OF.get((row[POLICY_KEY], row.get(THETA_KEY, "offset")), row[POLICY_KEY])
 
 
 def condition_of(scenario: str) -> str:
@@ -949,9 +990,71 @@ def run_study(args: argparse.Namespace, command: str) -> dict[str, Any]:
     failed = [r for r in rows if r["status"] != "ok"]
     if rc != 0 or failed or len(rows) != len(sw.seeds) * nc * npol:
         lines = [f"{len(failed)} of {len(rows)} runs failed ({table}):"]
-        lines += [f"  {r['scenario']} {r[POLICY_KEY]} seed {r['seed']}: {r['error']}" for r in failed[:5]]
+        lines += [f"  {r['scenario']} {arm_of(r)} seed {r['seed']}: {r['error']}" for r in failed[:5]]
         raise StudyError("\n".join(lines) if failed else f"sweep ended with status {rc}; see {table}")
-    return results_from_table(rows, sweep_dir, args, command, time.monotonic() - t_start)
+    results = results_from_table(rows, sweep_dir, args, command, time.monotonic() - t_start)
+    if not args.no_speed and "base" in args.conditions:
+        results["speed"] = run_speed(args, sim, out_dir / "sweep_speed")
+    results["wall_time_s"] = time.monotonic() - t_start
+    return results
+
+
+def run_speed(args: argparse.Namespace, sim: Path, sweep_dir: Path) -> dict[str, Any]:
+    """studies/drtm_speed.yaml (the base condition at 0.06, 0.07 and 0.10 m/s),
+    narrowed like the main sweep; per speed and arm, every run's metrics."""
+    try:
+        sw = sweep_spec.load(SPEED_SWEEP_FILE, sweep_plan.seed_max(sim))
+    except SweepError as e:
+        raise SetupError(str(e)) from None
+    arms = sw.axes[1]
+    arms.combos = [c for c in arms.combos if ARM_OF.get((c[POLICY_KEY], c[THETA_KEY])) in args.policies]
+    sw.seeds = list(range(args.seed, args.seed + args.reps))
+    sw.steps = args.steps
+    if args.quick:
+        sw.name += "_quick"
+    print(f"study_drtm: robot-speed sensitivity, {len(sw.axes[0].combos)} speeds x {len(arms.combos)} arms "
+          f"x {args.reps} reps as sweep {sweep_dir}", flush=True)
+    run_args = argparse.Namespace(**{**vars(args), "out": str(sweep_dir), "jobs": args.threads, "quiet": False})
+    try:
+        rc = sweep_cli.run_sweep(sw, run_args, sim)
+    except SweepError as e:
+        raise SetupError(str(e)) from None
+    if rc in (130, 143):
+        raise Interrupted(f"sweep {sweep_dir} interrupted; rerun the same command to resume")
+    rows = read_table(sweep_dir / "results.csv")
+    failed = [r for r in rows if r["status"] != "ok"]
+    if rc != 0 or failed:
+        raise StudyError(f"{len(failed)} speed runs failed ({sweep_dir / 'results.csv'})")
+    out: dict[str, Any] = {}
+    for r in rows:
+        cell = out.setdefault(r[SPEED_KEY], {}).setdefault(arm_of(r), {})
+        for key, *_ in SPEED_ROWS:
+            cell.setdefault(key, []).append(float(r[key]) if r[key] != "" else math.nan)
+    return out
+
+
+def render_speed_table(results: dict[str, Any]) -> list[str]:
+    """Sensitivity to the robot's speed: the base condition at 0.05 m/s (the
+    main table) and the other speeds, mean +- sd per arm."""
+    speed = results.get("speed")
+    if not speed or "base" not in results["conditions"]:
+        return []
+    arms = [p for p in POLICIES if p in results["conditions"]["base"]["policies"]]
+    lines = ["## Sensitivity to the robot's speed (base condition)", "",
+             "Seed 000's simulation speed is not given; 0.05 m/s is its real robots'. "
+             "`foraging.robot_speed` sets the foragers' wheel speed and the beacon's "
+             "T2 = L / (2 v) together (studies/drtm_speed.yaml).", "",
+             "| v (m/s) | arm | " + " | ".join(h for _, h, _, _ in SPEED_ROWS) + " |",
+             "|---:|---|" + "---:|" * len(SPEED_ROWS)]
+    base = {a: {k: _metric_values(results, "base", a, k) for k, *_ in SPEED_ROWS} for a in arms}
+    for v, cells in [("0.05", base)] + sorted(speed.items(), key=lambda kv: float(kv[0])):
+        for a in arms:
+            if a not in cells:
+                continue
+            vals = [fmt_mean_sd(cells[a][k], sc, d) for k, _, sc, d in SPEED_ROWS]
+            lines.append(f"| {v} | {POLICY_LABEL[a]} | " + " | ".join(vals) + " |")
+    lines.append("")
+    return lines
 
 
 def read_table(path: Path) -> list[dict[str, str]]:
@@ -976,7 +1079,7 @@ def results_from_table(rows: list[dict[str, str]], sweep_dir: Path, args: argpar
     }
     for cond in args.conditions:
         for policy in args.policies:
-            cell = [r for r in rows if condition_of(r["scenario"]) == cond and r[POLICY_KEY] == policy]
+            cell = [r for r in rows if condition_of(r["scenario"]) == cond and arm_of(r) == policy]
             cell.sort(key=lambda r: int(r["seed"]))
             dirs = [(sweep_dir / "runs" / r["run_id"] / f"run_{r['seed']}", int(r["seed"])) for r in cell]
             runs, agg = read_runs(dirs, args.steps)
@@ -1077,6 +1180,8 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--from-json", metavar="PATH", default=None,
                     help="re-render results.md and figures from a results.json; runs nothing")
     ap.add_argument("--no-figures", action="store_true", help="do not draw the PNGs")
+    ap.add_argument("--no-speed", action="store_true",
+                    help="skip the robot-speed sensitivity sweep (studies/drtm_speed.yaml)")
     sweep_cli.add_backend_options(ap)
     return ap
 

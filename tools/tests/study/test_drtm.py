@@ -283,7 +283,10 @@ class TestRendering(unittest.TestCase):
     def test_tables(self):
         md = sd.render_markdown(synthetic_results())
         self.assertNotIn("Not the paper's design", md)
-        self.assertIn("| metric | DRTM (ours) | ARTM (ours) | FRTM (ours) | DRTM (paper) | ARTM (paper) |", md)
+        self.assertIn("| metric | DRTM (ours) | DRTM-clip (ours) | ARTM (ours) | FRTM (ours) | DRTM (paper) "
+                      "| ARTM (paper) |", md)
+        self.assertIn("| V_f of the mean curve", md)
+        self.assertIn("### DRTM-clip vs ARTM", md)
         # the paper's numbers beside ours
         for text in ("| 2.55 | 4.74 |", "| 11.99 | 9.99 |", "| 173.76 | 183.46 |", "| 20.84 | 18.34 |",
                      "| 925.96 | 1148.44 |", "| 46.30 | 57.42 |", "| 1203.32 | 1612.26 |", "| 40.11 | 53.74 |"):
@@ -298,7 +301,7 @@ class TestRendering(unittest.TestCase):
         self.assertIn("### DRTM vs FRTM", md)
         self.assertIn("2 cores, Test CPU @ 1 GHz", md)
         self.assertIn("`.venv/bin/python tools/study/study_drtm.py`", md)
-        self.assertIn("runs: 300 = 2 condition(s)", md)
+        self.assertIn("runs: 400 = 2 condition(s)", md)
         self.assertIn("wall time: 123.4 s", md)
         self.assertNotIn("nan", md.lower())
 
@@ -373,7 +376,8 @@ if "--help" in a:
     sys.exit(0)
 if "--check" in a:
     sys.exit(0)
-policy = opt("--set").split("=", 1)[1]
+sets = [a[i + 1] for i in range(len(a) - 1) if a[i] == "--set"]
+policy = next(v.split("=", 1)[1] for v in sets if v.startswith("robots.0.policy="))
 if os.environ.get("FAKE_SIM_FAIL") == policy:
     sys.stderr.write("swarmsim: run 2 failed: boom\\n")
     sys.exit(1)
@@ -423,6 +427,8 @@ class TestEndToEnd(unittest.TestCase):
         self.assertIn("### l3:", md)
         self.assertNotIn("### nf25", md)
         self.assertIn("| l3 | Table 4, 5.4 | M_T |", md)
+        self.assertIn("## Sensitivity to the robot's speed (base condition)", md)
+        self.assertIn("| 0.1 | ARTM |", md)
         res = json.loads((self.dir / "out" / "results.json").read_text())
         self.assertEqual(list(res["conditions"]), ["base", "l3"])
         self.assertEqual(list(res["conditions"]["l3"]["policies"]), ["drtm", "artm"])
@@ -434,7 +440,7 @@ class TestEndToEnd(unittest.TestCase):
         # resumes (runs nothing) and renders the same results
         table = (self.dir / "out" / "sweep" / "results.csv").read_text().splitlines()
         self.assertEqual(len(table), 1 + 2 * 2 * 3)
-        self.assertIn("scenario,robots.0.policy,seed,status", table[0])
+        self.assertIn("scenario,robots.0.policy,robots.0.params.drtm_theta,seed,status", table[0])
         rc, out, err = self.main("--conditions", "foraging_base,l3", "--policies", "artm,drtm")
         self.assertEqual(rc, 0, err)
         self.assertIn("12 already done", err)
@@ -446,7 +452,7 @@ class TestEndToEnd(unittest.TestCase):
         os.environ["FAKE_SIM_FAIL"] = "artm"
         rc, out, err = self.main("--conditions", "base")
         self.assertEqual(rc, 1)
-        self.assertIn("3 of 9 runs failed", err)
+        self.assertIn("3 of 12 runs failed", err)
         self.assertIn("foraging_base.yaml artm seed 1: exit status 1: swarmsim: run 2 failed: boom", err)
         self.assertFalse((self.dir / "out" / "results.md").exists())
 
