@@ -25,7 +25,10 @@ import socket
 import sys
 from pathlib import Path
 
-from aiohttp import WSMsgType, web
+try:
+    from aiohttp import WSMsgType, web
+except ImportError as e:          # a .venv from before the live view
+    raise SystemExit(f"swarm-live: the `aiohttp` Python module is missing ({e}): run `make deps`") from None
 
 from swarmtools.live.bus import Bus
 from swarmtools.live.replay import Log, Player

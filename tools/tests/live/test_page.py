@@ -19,6 +19,8 @@ from pathlib import Path
 
 import swarmlcm
 
+from swarmtools.telemetry import common
+
 from ..telemetry.helpers import ROOT, SCENARIOS, SWARMSIM, robot_state, run_sim, schema, write_log
 from .browser import Browser
 from .serve import Server, first, free_udp_port, poses_at, wait_for
@@ -169,6 +171,18 @@ class ReplayedRun(BrowserTest):
         st = self.seek(3.0)                                   # backwards: the page starts over
         self.check_robots_at(st, 3.0)
         self.assertEqual(st["seriesPoints"], 31)              # swarm states 0..3 s at 10 Hz
+
+    def test_a_log_from_before_the_scene(self):
+        """A v2 log without SCENE and TASK_DRAWING: the robots on the arena
+        of RUN_INFO, nothing else drawn."""
+        lcm = common.lcm_module()
+        old = self.tmp / "before_scene.lcmlog"
+        write_log(old, [(ev.timestamp, ev.channel, bytes(ev.data)) for ev in lcm.EventLog(str(self.log), "r")
+                        if ev.channel not in ("SCENE", "TASK_DRAWING")])
+        self.serve("--log", old, "--paused")
+        st = self.seek(10.0)
+        self.assertEqual((st["obstacles"], st["lights"], st["shapes"]), (0, 0, 0))
+        self.check_robots_at(st, 10.0)
 
     def test_plays_pauses_and_ends_with_the_summary(self):
         self.serve("--log", self.log, "--speed", "4")
