@@ -140,6 +140,11 @@ async def send(ws, obj):
 
 async def websocket(request):
     app = request.app
+    # Only this server's own page: a web site open in the same browser must
+    # not read the telemetry or drive the replay (browsers send Origin).
+    origin = request.headers.get("Origin")
+    if origin is not None and origin.split("://", 1)[-1] != request.host:
+        raise web.HTTPForbidden(text=f"{PROG}: WebSocket from another origin ({origin}) refused\n")
     ws = web.WebSocketResponse(heartbeat=30)
     await ws.prepare(request)
     app[SOCKETS].add(ws)

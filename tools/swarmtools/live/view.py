@@ -102,12 +102,14 @@ class View:
 
     def _follow(self, kind, msg):
         """True if msg belongs to the run shown: the latest whose RUN_INFO or
-        SWARM_STATE came (a new one starts the view afresh), as in the
-        terminal monitor.  Real robots' messages carry run 0."""
+        SWARM_STATE came (a new one starts the view afresh, as in the
+        terminal monitor; so does a RUN_INFO at time 0 after the run's
+        start: the same seed run again).  Real robots' messages carry run 0."""
         run = msg.run
+        again = kind == "run_info_t" and msg.utime == 0 and self.clock
         if self.run is None:
             self.run = run
-        elif run != self.run and kind in ("run_info_t", "swarm_state_t"):
+        elif (run != self.run and kind in ("run_info_t", "swarm_state_t")) or again:
             self._new_run(run)
         return run == self.run
 

@@ -2,6 +2,8 @@
 errors, what its View keeps and sends, the WebSocket's commands, and that
 the page needs nothing from outside the package."""
 import asyncio
+import contextlib
+import io
 import json
 import math
 import re
@@ -14,8 +16,10 @@ import unittest
 from pathlib import Path
 
 import aiohttp
+import swarmlcm
 
 from swarmtools.live import server
+from swarmtools.live.bus import Bus
 from swarmtools.live.replay import Log
 from swarmtools.live.view import Series, View
 
@@ -140,6 +144,35 @@ class TheView(unittest.TestCase):
         self.assertEqual((s.cols["b"][0], s.cols["b"][-1], s.units["b"]), (None, 1, "g"))
 
 
+class LiveBus(unittest.TestCase):
+    def test_a_sender_of_another_version_is_said_once_and_the_rest_shown(self):
+        bus = Bus("memq://", "swarm-live")
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            for _ in range(3):
+                bus.lcm.publish("ROBOT_STATE", bytes.fromhex("3715081f471fd9b6") + bytes(40))
+            bus.lcm.publish("ROBOT_STATE", robot_state(5).encode())
+            while bus.lcm.handle_timeout(50) > 0:
+                pass
+        self.assertEqual(err.getvalue().count("telemetry v1, robot_state_t"), 1)
+        f = bus.view.frame({})
+        self.assertIn("comes from an older version of the toolkit (telemetry v1, robot_state_t)", f["error"])
+        self.assertIn("(3 such messages)", f["error"])
+        self.assertEqual([r["id"] for r in f["robots"]], [5])
+
+    def test_the_same_seed_again_starts_afresh(self):
+        v, info = View(), swarmlcm.run_info_t()
+        info.version, info.run = info.VERSION, 1
+        for utime in (0, 10_000_000):
+            info.utime = utime
+            v.apply(utime / 1e6, "RUN_INFO", info)
+            v.apply(utime / 1e6, "SWARM_STATE", swarm_state(utime // 100_000, [0], run=1))
+        epoch = v.epoch
+        info.utime = 0
+        v.apply(11.0, "RUN_INFO", info)
+        self.assertEqual(v.epoch, epoch + 1)
+
+
 class Commands(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -173,6 +206,22 @@ class Commands(unittest.TestCase):
         finally:
             status, err = srv.stop()
         self.assertEqual(status, 0, err)
+
+    def test_only_its_own_page_may_connect(self):
+        srv = Server("--log", self.log, "--paused")
+        try:
+            asyncio.run(self._foreign(srv.url))
+        finally:
+            status, err = srv.stop()
+        self.assertEqual(status, 0, err)
+
+    async def _foreign(self, url):
+        async with aiohttp.ClientSession() as http:
+            with self.assertRaises(aiohttp.WSServerHandshakeError) as cm:
+                await http.ws_connect(url + "ws", origin="http://example.com")
+            self.assertEqual(cm.exception.status, 403)
+            async with http.ws_connect(url + "ws", origin=url.rstrip("/")) as ws:    # the page's own
+                self.assertEqual(json.loads((await ws.receive()).data)["type"], "hello")
 
     async def _talk(self, url):
         async with aiohttp.ClientSession() as http, http.ws_connect(url + "ws") as ws:
