@@ -68,6 +68,7 @@ help:
 	@echo "make study-drtm seed 000's study (STUDY_ARGS=--quick for a smoke run)"
 	@echo "make firmware-check / firmware / flash   the e-puck gates, .hex files, flashing"
 	@echo "make monitor / spy   watch telemetry (LCM_URL=)"
+	@echo "make live       watch a swarm in the browser (LOG=file.lcmlog to replay one, LCM_URL=)"
 	@echo "make clean      remove what the build made (installs nothing)"
 
 all: $(BUILD)/swarmsim

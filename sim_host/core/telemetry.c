@@ -34,6 +34,7 @@
 #include "swarmlcm_run_summary_t.h"
 #include "swarmlcm_schema_t.h"
 #include "swarmlcm_swarm_state_t.h"
+#include "telemetry_scene.h"
 
 /** Distinct controller states counted in SWARM_STATE. */
 #define MAX_STATES 32
@@ -74,6 +75,8 @@ struct telemetry {
     int fw_channel_len[TELEMETRY_CH_COUNT];
     char dump_dir[1024];         /* "" when not dumping */
     FILE **dump;                 /* per robot, opened at its first bytes */
+
+    telemetry_scene_t *scene;    /* SCENE and TASK_DRAWING (telemetry_scene.h) */
 
     /* Controller states seen so far, for SWARM_STATE's robots by state. */
     uint16_t n_states;
@@ -184,8 +187,9 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
         t->prev_counter = calloc((size_t)n * (t->n_counters ? t->n_counters : 1), sizeof *t->prev_counter);
         t->prev_state = calloc(n, sizeof *t->prev_state);
         t->prev_escaped = calloc(n, sizeof *t->prev_escaped);
+        t->scene = telemetry_scene_create(sim);
     }
-    if (!t || !t->buf || !t->prev_counter || !t->prev_state || !t->prev_escaped) {
+    if (!t || !t->buf || !t->prev_counter || !t->prev_state || !t->prev_escaped || !t->scene) {
         snprintf(err, 256, "telemetry: out of memory");
         telemetry_close(t, 0, err);
         return -1;
@@ -532,6 +536,24 @@ static void send_info(telemetry_t *t, const struct sim *sim)
     send_schemas(t, sim);
 }
 
+/* The arena (with `force`: at the start and with RUN_INFO) and the tasks'
+ * drawing (then too, and whenever it changed). */
+static void send_scene(telemetry_t *t, const struct sim *sim, int force)
+{
+    swarmlcm_scene_t s;
+    swarmlcm_task_drawing_t d;
+    if (force) {
+        telemetry_scene_fill(t->scene, sim, &s);
+        SEND(t, swarmlcm_scene_t, TELEMETRY_CHANNEL_SCENE, &s, s.utime);
+    }
+    int due = telemetry_scene_drawing(t->scene, sim, force, &d);
+    if (due > 0) {
+        SEND(t, swarmlcm_task_drawing_t, TELEMETRY_CHANNEL_TASK_DRAWING, &d, d.utime);
+    } else if (due < 0 && !t->write_error) {
+        t->write_error = ENOMEM;
+    }
+}
+
 /* ------------------------------------------------------------ events */
 
 static void send_event(telemetry_t *t, const struct sim *sim, uint32_t i, const char *kind,
@@ -611,6 +633,7 @@ void telemetry_begin(telemetry_t *t, const sim_t *simp, uint64_t steps)
         remember(t, sim, i);
     }
     send_info(t, sim);
+    send_scene(t, sim, 1);
     if (t->swarm_every) send_swarm(t, sim);
     if (t->robot_every) send_robots(t, sim);
 }
@@ -645,8 +668,11 @@ void telemetry_step(telemetry_t *t, const sim_t *simp)
     for (uint32_t i = 0; sim->links && i < sim->n; i++) {
         send_robot_frames(t, sim, i);
     }
-    if (t->info_every && sim->step % t->info_every == 0) send_info(t, sim);
-    if (t->swarm_every && sim->step % t->swarm_every == 0) send_swarm(t, sim);
+    int info_due = t->info_every && sim->step % t->info_every == 0;
+    int swarm_due = t->swarm_every && sim->step % t->swarm_every == 0;
+    if (info_due) send_info(t, sim);
+    if (info_due || swarm_due) send_scene(t, sim, info_due);
+    if (swarm_due) send_swarm(t, sim);
     if (t->robot_every && sim->step % t->robot_every == 0) send_robots(t, sim);
     if (t->realtime > 0) pace(t, sim);
 }
@@ -658,6 +684,7 @@ void telemetry_end(telemetry_t *t, const sim_t *simp, const metric_list_t *final
     if (!t) {
         return;
     }
+    send_scene(t, sim, 0);
     if (t->swarm_every && t->swarm_sent_step != sim->step + 1) send_swarm(t, sim);
     if (t->robot_every && t->robot_sent_step != sim->step + 1) send_robots(t, sim);
     char hash[17];
@@ -723,6 +750,7 @@ int telemetry_close(telemetry_t *t, int keep, char err[256])
     free(t->prev_counter);
     free(t->prev_state);
     free(t->prev_escaped);
+    telemetry_scene_destroy(t->scene);
     free(t);
     return rc;
 }

@@ -11,6 +11,8 @@
  *   SWARM_EVENT  event_t         as they happen: counters going up, state
  *                                changes, escapes, and the tasks' own events
  *   RUN_SUMMARY  run_summary_t   once, at the end (the metrics of summary.json)
+ *   SCENE, TASK_DRAWING          the arena and the tasks' drawing, for views that
+ *                                draw the run (telemetry_scene.h)
  * to an LCM provider URL (udpm://, tcpq://, memq://, file://, ...) or, by
  * default, to an LCM log file in the run folder (LCM's log format, byte for
  * byte what lcm_eventlog writes) whose event timestamps are the SIMULATED

@@ -58,6 +58,7 @@ $(BUILD)/asan/lcm/%.o: $(LCM_C_DIR)/%.c $(LCM_C_STAMP)
 
 # Sources that include generated headers wait for them.
 $(BUILD)/obj/sim_host/core/telemetry.o $(BUILD)/asan/sim_host/core/telemetry.o: $(LCM_C_STAMP)
+$(BUILD)/obj/sim_host/core/telemetry_scene.o $(BUILD)/asan/sim_host/core/telemetry_scene.o: $(LCM_C_STAMP)
 $(BUILD)/obj/firmware/telemetry/robot_telemetry.o $(BUILD)/asan/firmware/telemetry/robot_telemetry.o: $(LCM_C_STAMP)
 $(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_telemetry*.c tests/test_robot_link.c)): $(LCM_C_STAMP)
 $(patsubst tests/%.c,$(BUILD)/tests/asan/%,$(wildcard tests/test_telemetry*.c tests/test_robot_link.c)): $(LCM_C_STAMP)

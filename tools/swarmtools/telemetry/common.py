@@ -29,9 +29,10 @@ DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 #: The telemetry version these tools read: every type's VERSION constant.
 VERSION = 2
 
-#: Channel name -> swarmlcm type name.  The simulator publishes the first
-#: six (sim_host/core/telemetry.h); the bridge republishes robots' frames
-#: on the same names and adds BRIDGE_STATUS.  Either may put a prefix before
+#: Channel name -> swarmlcm type name.  The simulator publishes all but
+#: BRIDGE_STATUS (sim_host/core/telemetry.h; SCENE and TASK_DRAWING, the
+#: picture of the run, telemetry_scene.h); the bridge republishes robots'
+#: frames on the same names and adds BRIDGE_STATUS.  Either may put a prefix before
 #: them (the bridge's --prefix; the simulator republishes its robots' own
 #: frames, robot_telemetry.enabled, on FW_ROBOT_STATE, ...).
 CHANNEL_TYPES = {
@@ -41,11 +42,15 @@ CHANNEL_TYPES = {
     "ROBOT_STATE": "robot_state_t",
     "SWARM_EVENT": "event_t",
     "RUN_SUMMARY": "run_summary_t",
+    "SCENE": "scene_t",
+    "TASK_DRAWING": "task_drawing_t",
     "BRIDGE_STATUS": "bridge_status_t",
 }
 
+#: Every type of lcm_types/, nested ones (scene_*_t, bridge_device_t) included.
 TYPE_NAMES = ("robot_state_t", "swarm_state_t", "event_t", "run_info_t", "run_summary_t",
-              "schema_t", "bridge_status_t", "bridge_device_t")
+              "schema_t", "scene_t", "scene_obstacle_t", "scene_light_t", "task_drawing_t",
+              "scene_shape_t", "scene_item_t", "bridge_status_t", "bridge_device_t")
 
 #: Packed fingerprints of the types of earlier telemetry versions -> (version, type).
 OLD_FINGERPRINTS = {

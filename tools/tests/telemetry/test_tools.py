@@ -146,7 +146,7 @@ class RoundTrip(SimulatedRuns):
             channels.add(ev.channel)
         self.assertEqual(last, 1234 * 100000)
         self.assertEqual(channels, {"RUN_INFO", "TELEMETRY_SCHEMA", "SWARM_STATE", "ROBOT_STATE", "SWARM_EVENT",
-                                    "RUN_SUMMARY"})
+                                    "RUN_SUMMARY", "SCENE", "TASK_DRAWING"})
 
     def test_schemas_name_every_value(self):
         book = log_schemas(self.log)
@@ -168,7 +168,7 @@ class RoundTrip(SimulatedRuns):
         self.assertIn("ROBOT_STATE:", r.stderr)
         self.assertEqual(sorted(p.name for p in d.iterdir()),
                          sorted(f"{ch}.csv" for ch in ("RUN_INFO", "TELEMETRY_SCHEMA", "SWARM_STATE", "ROBOT_STATE",
-                                                       "SWARM_EVENT", "RUN_SUMMARY")))
+                                                       "SWARM_EVENT", "RUN_SUMMARY", "SCENE", "TASK_DRAWING")))
         robots = read_csv(d / "ROBOT_STATE.csv")
         self.assertEqual(len(robots), 21 * (1234 // 10 + 2))   # every 10 steps and the last, 20 + beacon
         cols = list(robots[0])
@@ -532,6 +532,13 @@ class Packaging(unittest.TestCase):
                     body[0].value.value = ""
             found = words.findall(ast.unparse(tree))
             self.assertEqual(found, [], p.name)
+
+    def test_every_lcm_type_is_known(self):
+        """common.TYPE_NAMES lists lcm_types/ (so every type decodes by its
+        fingerprint) and CHANNEL_TYPES names only types of it."""
+        files = {p.stem for p in (ROOT / "lcm_types").glob("*.lcm")}
+        self.assertEqual(set(common.TYPE_NAMES), files)
+        self.assertLessEqual(set(common.CHANNEL_TYPES.values()), files)
 
     def test_console_scripts(self):
         text = (ROOT / "pyproject.toml").read_text()

@@ -1,0 +1,5 @@
+import sys
+
+from swarmtools.live.server import main
+
+sys.exit(main())

@@ -1,0 +1,268 @@
+"""Live view of a swarm in the browser: a small local web server (aiohttp)
+that follows LCM telemetry, or replays an LCM log, and pushes it to a page
+over a WebSocket.
+
+    swarm-live                                              # LCM's default udpm bus
+    swarm-live --lcm 'udpm://239.255.76.67:7667?ttl=0'
+    swarm-live --log out/run/run_1/telemetry.lcmlog --speed 10
+    (or .venv/bin/python -m swarmtools.live ...; then open the address it prints)
+
+The page draws the arena (SCENE), every robot with its id, heading, state
+(a colour per controller state) and LEDs (ROBOT_STATE), what the tasks draw
+(TASK_DRAWING), the clock (simulated time) and small charts of the swarm's
+time series (SWARM_STATE, named by TELEMETRY_SCHEMA).  A log plays at any
+speed, with pause and seek in the page.  Real robots behind swarm-bridge
+show as tiles of their states and values, with the bridge's counters, and
+on the arena only if their pose is known (robot_state_t.pose_known).
+Everything the page needs is served from this package: no CDN, no build.
+"""
+import argparse
+import asyncio
+import json
+import math
+import signal
+import socket
+import sys
+from pathlib import Path
+
+try:
+    from aiohttp import WSMsgType, web
+except ImportError as e:          # a .venv from before the live view
+    raise SystemExit(f"swarm-live: the `aiohttp` Python module is missing ({e}): run `make deps`") from None
+
+from swarmtools.live.bus import Bus
+from swarmtools.live.replay import Log, Player
+from swarmtools.telemetry import common
+
+PROG = "swarm-live"
+STATIC = Path(__file__).resolve().parent / "static"
+#: Seconds between two frames pushed to a page (20 a second at most).
+FRAME_S = 0.05
+#: Replay speeds the command line and the page accept.
+SPEED_MIN, SPEED_MAX = 0.01, 10000.0
+
+FEED = web.AppKey("feed", object)
+OPTIONS = web.AppKey("options", argparse.Namespace)
+SOCKETS = web.AppKey("sockets", set)
+
+
+def speed(text):
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not (math.isfinite(v) and SPEED_MIN <= v <= SPEED_MAX):
+        raise argparse.ArgumentTypeError(f"{text}: the speed is a factor of real time in [{SPEED_MIN:g}, {SPEED_MAX:g}]")
+    return v
+
+
+def port(text):
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a port number: {text!r}") from None
+    if not 0 <= v <= 65535:
+        raise argparse.ArgumentTypeError(f"{text}: a port is 0..65535 (0: any free one)")
+    return v
+
+
+class Session:
+    """One page: its playback (a log: its own Player) or the shared live
+    view, and what it has of it."""
+
+    def __init__(self, feed, options):
+        if isinstance(feed, Log):
+            self.player = Player(feed, speed=options.speed, playing=not options.paused, prefix=options.prefix)
+            self.view = self.player.view
+        else:
+            self.player = None
+            self.view = feed.view
+        self.feed = feed
+        self.frozen = False         # live: paused, the page keeps what it shows
+        self.sync = {}
+        self.last_status = None
+        self.shown = (0.0, None)    # the time and clock of the last frame sent
+
+    def status(self):
+        s = self.player.status() if self.player else self.feed.status()
+        if not self.player:
+            s["playing"] = not self.frozen
+        return s
+
+    def command(self, cmd):
+        """Applies one command of the page; returns an error text or None."""
+        what, value = cmd.get("cmd"), cmd.get("value")
+        if what in ("play", "pause"):
+            if self.player and what == "play":
+                self.player.play()
+            elif self.player:
+                self.player.pause()
+            else:
+                self.frozen = what == "pause"
+        elif what in ("speed", "seek"):
+            if not self.player:
+                return f"{what}: only a log can be replayed at another speed or sought (this is a live bus)"
+            if not isinstance(value, (int, float)) or not math.isfinite(value):
+                return f"{what}: needs a number, got {value!r}"
+            if what == "seek":
+                self.player.seek(float(value))
+            elif not SPEED_MIN <= value <= SPEED_MAX:
+                return f"speed: {value:g} is outside [{SPEED_MIN:g}, {SPEED_MAX:g}]"
+            else:
+                self.player.speed = float(value)
+        else:
+            return f"unknown command {what!r}"
+        return None
+
+    def frame(self, wall_s):
+        """The next frame for the page, or None when it has nothing new."""
+        if self.player:
+            self.player.advance(wall_s)
+        status = self.status()
+        if self.frozen:       # the page keeps what it has; it only learns that it is frozen
+            out = {"reset": False, "time": self.shown[0], "clock": self.shown[1]}
+        else:
+            out = self.view.frame(self.sync)
+        key = (out["time"], status["playing"], status["speed"], status["ended"])
+        if len(out) == 3 and not out["reset"] and key == self.last_status:
+            return None       # only reset, time, clock: and none moved
+        self.last_status = key
+        self.shown = (out["time"], out["clock"])
+        out.update(type="frame", **status)
+        return out
+
+
+async def send(ws, obj):
+    # allow_nan=False: a NaN that slipped past convert.num is a bug to see,
+    # not invalid JSON for the page.
+    await ws.send_str(json.dumps(obj, separators=(",", ":"), allow_nan=False))
+
+
+async def websocket(request):
+    app = request.app
+    # Only this server's own page: a web site open in the same browser must
+    # not read the telemetry or drive the replay (browsers send Origin).
+    origin = request.headers.get("Origin")
+    if origin is not None and origin.split("://", 1)[-1] != request.host:
+        raise web.HTTPForbidden(text=f"{PROG}: WebSocket from another origin ({origin}) refused\n")
+    ws = web.WebSocketResponse(heartbeat=30)
+    await ws.prepare(request)
+    app[SOCKETS].add(ws)
+    session = Session(app[FEED], app[OPTIONS])
+    feed = app[FEED]
+    await send(ws, {"type": "hello", "mode": "log" if session.player else "live",
+                    "source": feed.path if session.player else feed.url, **session.status()})
+
+    async def push():
+        loop = asyncio.get_running_loop()
+        last = loop.time()
+        while not ws.closed:
+            await asyncio.sleep(FRAME_S)
+            now = loop.time()
+            frame = session.frame(now - last)
+            last = now
+            if frame is not None and not ws.closed:
+                await send(ws, frame)
+
+    pusher = asyncio.create_task(push())
+    try:
+        async for msg in ws:
+            if msg.type != WSMsgType.TEXT:
+                continue
+            try:
+                cmd = json.loads(msg.data)
+                error = session.command(cmd) if isinstance(cmd, dict) else "a command is a JSON object"
+            except json.JSONDecodeError:
+                error = "a command is a JSON object"
+            if error:
+                await send(ws, {"type": "error", "text": error})
+    finally:
+        pusher.cancel()
+        app[SOCKETS].discard(ws)
+    return ws
+
+
+async def index(request):
+    return web.FileResponse(STATIC / "index.html")
+
+
+async def no_cache(request, response):
+    # The page and its scripts change with the toolkit: never a stale copy.
+    response.headers["Cache-Control"] = "no-cache"
+
+
+async def close_sockets(app):
+    for ws in list(app[SOCKETS]):
+        await ws.close(code=1001, message=b"server stopped")
+
+
+def make_app(feed, options):
+    app = web.Application()
+    app[FEED] = feed
+    app[OPTIONS] = options
+    app[SOCKETS] = set()
+    app.router.add_get("/", index)
+    app.router.add_get("/ws", websocket)
+    app.router.add_static("/static/", STATIC)
+    app.on_response_prepare.append(no_cache)
+    app.on_shutdown.append(close_sockets)
+    return app
+
+
+def listen(host, number):
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    try:
+        return socket.create_server((host, number), family=family)
+    except OSError as e:
+        raise SystemExit(f"{PROG}: cannot listen on {host}:{number}: {e.strerror or e}") from None
+
+
+async def serve(feed, sock, options):
+    loop = asyncio.get_running_loop()
+    runner = web.AppRunner(make_app(feed, options), handle_signals=False, access_log=None)
+    await runner.setup()
+    await web.SockSite(runner, sock).start()
+    if isinstance(feed, Bus):
+        feed.attach(loop)
+    stop = asyncio.Event()
+    for sig in (signal.SIGINT, signal.SIGTERM):     # before the address is out: a signal then stops it cleanly
+        loop.add_signal_handler(sig, stop.set)
+    host, number = sock.getsockname()[:2]
+    shown = f"[{host}]" if ":" in host else host
+    what = f"{options.log} at {options.speed:g}x" if options.log else options.lcm
+    print(f"{PROG}: http://{shown}:{number}/  ({what}; Ctrl-C stops)", flush=True)
+    await stop.wait()
+    if isinstance(feed, Bus):
+        feed.detach(loop)
+    await runner.cleanup()
+    print(f"{PROG}: stopped", file=sys.stderr, flush=True)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog=__doc__.split("\n\n", 1)[1])
+    src = ap.add_mutually_exclusive_group()
+    src.add_argument("--lcm", default=common.DEFAULT_URL, help="LCM URL to follow (default %(default)s)")
+    src.add_argument("--log", help="replay an LCM log file instead (pause, seek and speed in the page)")
+    ap.add_argument("--speed", type=speed, default=1.0,
+                    help="with --log: replay speed, a factor of the recorded time (default 1)")
+    ap.add_argument("--paused", action="store_true", help="with --log: start paused at the beginning")
+    ap.add_argument("--host", default="127.0.0.1", help="address to serve on (default %(default)s: this machine only)")
+    ap.add_argument("--port", type=port, default=8080, help="port (default %(default)s; 0: any free one, printed)")
+    ap.add_argument("--prefix", default="",
+                    help="show the channels with this prefix (FW_: the robots' own telemetry in a simulation)")
+    options = ap.parse_args(argv)
+    if not (STATIC / "index.html").is_file():
+        raise SystemExit(f"{PROG}: the page is missing from the package ({STATIC}): reinstall it (make deps)")
+    feed = Log(options.log, PROG) if options.log else Bus(options.lcm, PROG, options.prefix)
+    sock = listen(options.host, options.port)
+    try:
+        asyncio.run(serve(feed, sock, options))
+    except KeyboardInterrupt:     # a second Ctrl-C while it was stopping
+        pass
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

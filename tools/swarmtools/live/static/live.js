@@ -1,0 +1,191 @@
+// live.js - the page's state and its WebSocket to swarm-live: frames from
+// the server (view.py's View.frame: the parts that changed) update `model`,
+// which is drawn at once; the controls send play, pause, speed and seek.
+// What the page shows is published as window.liveState (for tests and
+// scripts), and window.liveView.toCanvas(x, y) maps metres to canvas pixels.
+"use strict";
+
+(() => {
+  // A colour per controller state, in the order states are first seen (kept
+  // across seeks, so a state keeps its colour).
+  const PALETTE = ["#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#b07aa1", "#edc948",
+                   "#76b7b2", "#ff9da7", "#9c755f", "#bab0ac", "#2f4b7c", "#a05195"];
+  const colours = new Map();
+  const colourOf = (state) => {
+    if (!colours.has(state)) colours.set(state, PALETTE[colours.size % PALETTE.length]);
+    return colours.get(state);
+  };
+  const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 5, 10, 20, 50, 100, 1000];
+  const PARTS = ["info", "schemas", "scene", "drawing", "swarm", "summary", "bridge", "events", "error"];
+  const CHART_EVERY_MS = 250;   // charts are redrawn at most this often (the arena every frame)
+
+  const $ = (id) => document.getElementById(id);
+  const canvas = $("arena"), playButton = $("play"), speedSelect = $("speed"), seek = $("seek");
+  const model = {
+    mode: null, source: "", time: 0, clock: null, end: null, playing: false, speed: 1, ended: false,
+    robots: new Map(), series: { t: [], cols: {}, units: {} },
+  };
+  let ws = null, connected = false, frames = 0, seeking = false, chartsAt = 0, chartTimer = null, chartKeys = [];
+  let drawn = { layout: null, drawn: [], radius: 0 };
+
+  function clear() {
+    for (const p of PARTS) model[p] = null;
+    model.robots.clear();
+    model.series = { t: [], cols: {}, units: {} };
+  }
+  clear();
+
+  function send(cmd) {
+    if (ws && ws.readyState === WebSocket.OPEN) ws.send(JSON.stringify(cmd));
+  }
+
+  function addSeries(s, whole) {
+    if (whole) {
+      model.series = { t: s.t.slice(), cols: {}, units: Object.assign({}, s.units) };
+      for (const [k, v] of Object.entries(s.cols)) model.series.cols[k] = v.slice();
+      return;
+    }
+    const n = model.series.t.length;
+    for (const [name, v] of Object.entries(s.cols)) {
+      if (!(name in model.series.cols)) model.series.cols[name] = new Array(n).fill(null);
+      model.series.cols[name].push(...v);
+    }
+    model.series.t.push(...s.t);
+    Object.assign(model.series.units, s.units);
+  }
+
+  function showError(text, sticky) {
+    const box = $("error");
+    box.textContent = text;
+    box.hidden = !text;
+    if (text && !sticky) setTimeout(() => { if (box.textContent === text) box.hidden = true; }, 5000);
+  }
+
+  function controls() {
+    const live = model.mode === "live";
+    playButton.disabled = !connected;
+    playButton.textContent = live ? (model.playing ? "freeze" : "follow")
+      : model.playing ? "pause" : model.ended ? "replay" : "play";
+    $("speed-label").hidden = live;
+    seek.hidden = live;
+    if (!live && model.end !== null) {
+      seek.max = String(model.end);
+      if (!seeking) seek.value = String(model.time);
+      if (!SPEEDS.includes(model.speed) && ![...speedSelect.options].some((o) => Number(o.value) === model.speed)) {
+        speedSelect.append(new Option(`${model.speed}x`, String(model.speed)));
+      }
+      speedSelect.value = String(model.speed);
+    }
+  }
+
+  function render(chartsNow) {
+    const robots = [...model.robots.values()].sort((a, b) => a.id - b.id);
+    drawn = Arena.draw(canvas, model, robots, colourOf);
+    const placed = new Set(drawn.drawn.map((d) => d.id));
+    const unplaced = robots.filter((r) => !placed.has(r.id));
+    const nopos = $("nopos");
+    canvas.hidden = !drawn.layout;
+    nopos.hidden = !unplaced.length;
+    nopos.textContent = drawn.layout
+      ? `no positions for ${unplaced.length} of ${robots.length} robots (no pose known): shown as tiles`
+      : "no positions: these robots publish no pose (pose_known 0, no tracker), so they are shown as tiles of their states";
+    Panels.clock(model);
+    Panels.run(model, robots);
+    Panels.legend(model, robots, colourOf);
+    Panels.tiles(model, unplaced, colourOf);
+    Panels.summary(model);
+    Panels.bridge(model);
+    Panels.events(model);
+    if (model.error) showError(model.error, true);
+    const wait = CHART_EVERY_MS - (performance.now() - chartsAt);
+    if (chartsNow || wait <= 0) {
+      charts();
+    } else if (!chartTimer) {
+      chartTimer = setTimeout(charts, wait);   // the latest points are drawn even if no frame follows
+    }
+    controls();
+    publish(robots, unplaced);
+  }
+
+  function charts() {
+    clearTimeout(chartTimer);
+    chartTimer = null;
+    chartKeys = Charts.render($("charts"), model.series, colourOf);
+    chartsAt = performance.now();
+    if (window.liveState) window.liveState.charts = chartKeys.slice();
+  }
+
+  function publish(robots, unplaced) {
+    const d = model.drawing, sc = model.scene;
+    window.liveState = {
+      connected, mode: model.mode, source: model.source, frames,
+      time: model.time, clock: model.clock, end: model.end,
+      playing: model.playing, speed: model.speed, ended: model.ended,
+      scenario: model.info ? model.info.scenario : null, run: model.info ? model.info.run : null,
+      step: model.swarm ? model.swarm.step : null,
+      robots: robots.map((r) => ({ id: r.id, x: r.x, y: r.y, theta: r.theta, pose: r.pose, state: r.state,
+                                   controller: r.controller, leds: r.leds })),
+      placed: drawn.drawn, radiusPx: drawn.radius, tiles: unplaced.length, noPositions: !$("nopos").hidden,
+      obstacles: sc ? sc.obstacles.length : 0, lights: sc ? sc.lights.length : 0,
+      shapes: d ? d.shapes.length : 0, items: d ? d.items.length : 0,
+      seriesPoints: model.series.t.length, charts: chartKeys.slice(),
+      stateColours: Object.fromEntries(colours),
+      summary: model.summary ? model.summary.state_hash : null,
+      bridgeDevices: model.bridge ? model.bridge.devices.length : 0,
+      error: model.error,
+    };
+  }
+
+  function onMessage(msg) {
+    if (msg.type === "hello") {
+      model.mode = msg.mode;
+      model.source = msg.source;
+      model.end = msg.end;
+      model.speed = msg.speed;
+      model.playing = msg.playing;
+      $("source").textContent = msg.source;
+      document.title = `swarm-live: ${msg.source}`;
+    } else if (msg.type === "frame") {
+      if (msg.reset) clear();
+      for (const p of PARTS) if (p in msg) model[p] = msg[p];
+      if (msg.robots) for (const r of msg.robots) model.robots.set(r.id, r);
+      if (msg.series) addSeries(msg.series, msg.series_reset);
+      Object.assign(model, { time: msg.time, clock: msg.clock, playing: msg.playing, speed: msg.speed,
+                             ended: msg.ended, end: msg.end });
+      frames++;
+      render(!!msg.series_reset);
+    } else if (msg.type === "error") {
+      showError(msg.text, false);
+    }
+  }
+
+  function connect() {
+    const status = $("status");
+    ws = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/ws`);
+    ws.onopen = () => {
+      connected = true;
+      status.textContent = "connected";
+      status.classList.remove("bad");
+    };
+    ws.onmessage = (ev) => onMessage(JSON.parse(ev.data));
+    ws.onclose = () => {
+      connected = false;
+      status.textContent = "disconnected: swarm-live stopped? (reload to reconnect)";
+      status.classList.add("bad");
+      controls();
+      publish([...model.robots.values()], []);
+    };
+  }
+
+  for (const s of SPEEDS) speedSelect.append(new Option(`${s}x`, String(s)));
+  playButton.addEventListener("click", () => send({ cmd: model.playing ? "pause" : "play" }));
+  speedSelect.addEventListener("change", () => send({ cmd: "speed", value: Number(speedSelect.value) }));
+  seek.addEventListener("input", () => { seeking = true; });
+  seek.addEventListener("change", () => {
+    seeking = false;
+    send({ cmd: "seek", value: Number(seek.value) });
+  });
+  window.liveView = { toCanvas: (x, y) => (drawn.layout ? drawn.layout.toCanvas(x, y) : null) };
+  publish([], []);
+  connect();
+})();

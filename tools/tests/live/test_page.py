@@ -1,0 +1,285 @@
+"""The live view in a real headless browser (make live-tests): Debian's
+chromium through chromium-driver, driven by Selenium (browser.py).
+
+A short run of the walkthrough's scenario is replayed by swarm-live; the
+page must show its 12 robots where the log has them (the page's own state
+and the canvas's pixels), the obstacle, the lamp and the task's goal ring,
+move its clock while playing, stand still when paused, seek both ways, and
+end with the run's summary.  Real robots (a hand-built log of robot states
+without a pose, and the bridge's counters) show as tiles with 'no
+positions'.  A simulation published live over UDP multicast reaches the
+page.  If the browser cannot start, the tests fail with the reason.
+"""
+import json
+import subprocess
+import tempfile
+import time
+import unittest
+from pathlib import Path
+
+import swarmlcm
+
+from swarmtools.telemetry import common
+
+from ..telemetry.helpers import ROOT, SCENARIOS, SWARMSIM, robot_state, run_sim, schema, write_log
+from .browser import Browser
+from .serve import Server, first, free_udp_port, poses_at, wait_for
+
+GATHER = SCENARIOS / "phototaxis_gather.yaml"
+STEPS = 300                    # 30 s: the log's end
+POSITION_TOL = 1e-5            # m: the page shows the log's float32 poses, through JSON
+
+# The share of a robot's body (pixels between 0.35 and 0.75 of its radius
+# from its centre, where no LED or heading bar is) that must have its
+# state's colour, and each robot's dominant colour there.
+BODY_JS = """
+const [robots, r] = arguments;
+const ctx = document.getElementById('arena').getContext('2d');
+const hex = (d) => '#' + [d[0], d[1], d[2]].map((v) => v.toString(16).padStart(2, '0')).join('');
+return robots.map(([x, y, want]) => {
+  let n = 0, hit = 0;
+  for (let px = Math.floor(x - r); px <= x + r; px++) for (let py = Math.floor(y - r); py <= y + r; py++) {
+    const d = Math.hypot(px + 0.5 - x, py + 0.5 - y);
+    if (d < 0.35 * r || d > 0.75 * r) continue;
+    n++;
+    if (hex(ctx.getImageData(px, py, 1, 1).data) === want) hit++;
+  }
+  return hit / Math.max(n, 1);
+});
+"""
+PIXEL_JS = """
+const ctx = document.getElementById('arena').getContext('2d');
+return arguments[0].map(([x, y]) => Array.from(ctx.getImageData(Math.floor(x), Math.floor(y), 1, 1).data.slice(0, 3))
+  .map((v) => v.toString(16).padStart(2, '0')).join(''));
+"""
+
+
+def rgb(n):
+    return f"{n & 0xFFFFFF:06x}"
+
+
+class BrowserTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        if not SWARMSIM.exists():
+            raise AssertionError(f"{SWARMSIM} not built (make live-tests builds it)")
+        cls._tmp = tempfile.TemporaryDirectory(prefix="live_test.")
+        cls.tmp = Path(cls._tmp.name)
+        cls.browser = Browser()
+        cls.driver = cls.browser.driver
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.browser.quit()
+        cls._tmp.cleanup()
+
+    def setUp(self):
+        self.servers = []
+
+    def tearDown(self):
+        for s in self.servers:
+            status, err = s.stop()
+            self.assertEqual(status, 0, err)
+            self.assertNotIn("Traceback", err)
+
+    def serve(self, *args):
+        s = Server(*args)
+        self.servers.append(s)
+        self.driver.get(s.url)
+        wait_for(lambda: self.state()["connected"] and self.state()["frames"] > 0, "the page's first frame")
+        return s
+
+    def state(self):
+        return self.driver.execute_script("return window.liveState")
+
+    def js(self, script, *args):
+        return self.driver.execute_script(script, *args)
+
+    def click(self, element_id):
+        self.driver.find_element("id", element_id).click()
+
+    def seek(self, t):
+        # A range input's value set and its change event: what letting go of the slider does.
+        self.js("const s = document.getElementById('seek'); s.value = arguments[0];"
+                "s.dispatchEvent(new Event('change'));", str(t))
+        return wait_for(lambda: (st := self.state())["time"] == t and st, f"the page at t = {t} s")
+
+
+class ReplayedRun(BrowserTest):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        run_sim(cls.tmp / "gather", GATHER, "--steps", STEPS)
+        cls.run_dir = cls.tmp / "gather" / "run_1"
+        cls.log = cls.run_dir / "telemetry.lcmlog"
+
+    def check_robots_at(self, st, t):
+        """The page's robots are the log's at time t: states, and places both
+        in the page's state and on the canvas."""
+        want = poses_at(self.log, t)
+        self.assertEqual(len(want), 12)
+        got = {r["id"]: r for r in st["robots"]}
+        self.assertEqual(set(got), set(want))
+        for rid, m in want.items():
+            r = got[rid]
+            self.assertTrue(r["pose"])
+            self.assertAlmostEqual(r["x"], m.x, delta=POSITION_TOL, msg=rid)
+            self.assertAlmostEqual(r["y"], m.y, delta=POSITION_TOL, msg=rid)
+            self.assertAlmostEqual(r["theta"], m.theta, delta=POSITION_TOL, msg=rid)
+            self.assertEqual(r["state"], m.state)
+        self.assertEqual(len(st["placed"]), 12)
+        self.assertEqual(st["tiles"], 0)
+        self.assertFalse(st["noPositions"])
+        # On the canvas: where the log's pose maps, the robot's body has its state's colour.
+        where = [self.js("return window.liveView.toCanvas(arguments[0], arguments[1])", m.x, m.y) for m in want.values()]
+        placed = {p["id"]: (p["x"], p["y"]) for p in st["placed"]}
+        for rid, (x, y) in zip(want, where, strict=True):
+            self.assertAlmostEqual(placed[rid][0], x, delta=0.01)
+            self.assertAlmostEqual(placed[rid][1], y, delta=0.01)
+        colours = [st["stateColours"][m.state] for m in want.values()]
+        shares = self.js(BODY_JS, [[x, y, c] for (x, y), c in zip(where, colours, strict=True)], st["radiusPx"])
+        for rid, share in zip(want, shares, strict=True):
+            self.assertGreater(share, 0.5, f"robot {rid}: {share:.0%} of its body in its state's colour")
+
+    def test_robots_at_the_logs_places_and_seek(self):
+        self.serve("--log", self.log, "--paused")
+        st = self.state()
+        self.assertEqual((st["mode"], st["scenario"], st["run"], st["playing"], st["time"]),
+                         ("log", "phototaxis_gather", 1, False, 0))
+        self.assertEqual(st["end"], STEPS / 10)
+        self.assertEqual((st["obstacles"], st["lights"], st["shapes"], st["items"]), (1, 1, 2, 0))
+        self.check_robots_at(st, 0.0)
+        time.sleep(0.3)
+        self.assertEqual(self.state()["time"], 0)           # paused: nothing moves
+
+        st = self.seek(10.0)
+        self.assertEqual((st["clock"], st["step"]), (10.0, 100))
+        self.check_robots_at(st, 10.0)
+        self.assertIn("t = 10.0 s", self.driver.find_element("id", "clock").text)
+        # The arena, the obstacle, the lamp and the task's ring where the log puts them.
+        scene, drawing = first(self.log, "scene_t"), first(self.log, "task_drawing_t")
+        w, wall = scene.arena_width, scene.wall_thickness
+        o, lamp, ring = scene.obstacles[0], scene.lights[0], drawing.shapes[0]
+        self.assertEqual(ring.kind, 1)
+        at = [self.js("return window.liveView.toCanvas(arguments[0], arguments[1])", x, y)
+              for x, y in ((w / 2 - 0.02, 0), (w / 2 + wall / 2, 0), (o.x, o.y), (lamp.x, lamp.y))]
+        self.assertEqual(self.js(PIXEL_JS, at), ["eeebe0", "3c3c46", rgb(o.rgb), "ffc814"])
+        x, y = self.js("return window.liveView.toCanvas(arguments[0], arguments[1])", ring.x + ring.radius, ring.y)
+        near = self.js(PIXEL_JS, [[x + dx, y] for dx in (-2, -1, 0, 1, 2)])
+        self.assertIn(rgb(ring.rgb), near)
+
+        st = self.seek(3.0)                                   # backwards: the page starts over
+        self.check_robots_at(st, 3.0)
+        self.assertEqual(st["seriesPoints"], 31)              # swarm states 0..3 s at 10 Hz
+
+    def test_a_log_from_before_the_scene(self):
+        """A v2 log without SCENE and TASK_DRAWING: the robots on the arena
+        of RUN_INFO, nothing else drawn."""
+        lcm = common.lcm_module()
+        old = self.tmp / "before_scene.lcmlog"
+        write_log(old, [(ev.timestamp, ev.channel, bytes(ev.data)) for ev in lcm.EventLog(str(self.log), "r")
+                        if ev.channel not in ("SCENE", "TASK_DRAWING")])
+        self.serve("--log", old, "--paused")
+        st = self.seek(10.0)
+        self.assertEqual((st["obstacles"], st["lights"], st["shapes"]), (0, 0, 0))
+        self.check_robots_at(st, 10.0)
+
+    def test_plays_pauses_and_ends_with_the_summary(self):
+        self.serve("--log", self.log, "--speed", "4")
+        t0, w0 = self.state()["time"], time.monotonic()
+        time.sleep(1.0)
+        st = self.state()
+        rate = (st["time"] - t0) / (time.monotonic() - w0)
+        self.assertTrue(st["playing"])
+        self.assertGreater(rate, 2.0)                         # 4x, give or take the browser's pace
+        self.assertLess(rate, 6.0)
+        self.assertGreater(st["step"], 0)
+        self.click("play")                                    # it says pause while playing
+        st = wait_for(lambda: (s := self.state()) and not s["playing"] and s, "the pause")
+        time.sleep(0.4)
+        self.assertEqual(self.state()["time"], st["time"])
+        self.driver.find_element("css selector", "#speed option[value='20']").click()
+        self.click("play")
+        st = wait_for(lambda: (s := self.state())["ended"] and s, "the end of the log", timeout=10)
+        summary = json.loads((self.run_dir / "summary.json").read_text())
+        self.assertEqual((st["summary"], st["time"], st["playing"], st["speed"]),
+                         (summary["state_hash"], STEPS / 10, False, 20))
+        self.assertIn(summary["state_hash"], self.driver.find_element("id", "summary").text)
+        self.assertEqual(st["seriesPoints"], STEPS + 1)
+        self.assertIn("swarm.in_goal", st["charts"])          # the swarm schema's values, and the states
+        self.assertIn("state.", st["charts"])
+        self.check_robots_at(st, STEPS / 10)
+
+
+class RealRobots(BrowserTest):
+    """What the bridge publishes: robot states without a pose, their
+    controller's schema in pieces, the bridge's counters; stamped with the
+    wall clock as lcm-logger records them."""
+
+    def test_tiles_and_no_positions(self):
+        t0 = 1_780_000_000_000_000
+        events = [(t0 + k, "TELEMETRY_SCHEMA", schema("sorter", [name], units=[unit], first=k, total=2))
+                  for k, (name, unit) in enumerate((("load", "g"), ("hits", "")))]
+        for k in range(20):           # 10 s, robots 3, 7 and 12 at 2 Hz each, in turn
+            for rid in (3, 7, 12):
+                state = "sort" if (k + rid) % 3 else "rest"
+                events.append((t0 + k * 500_000 + rid * 1000, "ROBOT_STATE",
+                               robot_state(rid, state, controller="sorter", values=[rid + k, k], utime=k * 500_000)))
+            if k % 2 == 0:
+                status = swarmlcm.bridge_status_t()
+                status.utime = t0 + k * 500_000
+                status.devices = []
+                for rid in (3, 7):
+                    d = swarmlcm.bridge_device_t()
+                    d.device, d.robot_id, d.connected, d.frames = f"/dev/rfcomm{rid}", rid, True, k
+                    status.devices.append(d)
+                status.n_devices = len(status.devices)
+                events.append((t0 + k * 500_000 + 20_000, "BRIDGE_STATUS", status))
+        log = write_log(self.tmp / "robots.lcmlog", events)
+        self.serve("--log", log, "--speed", "5")
+        st = wait_for(lambda: (s := self.state())["tiles"] == 3 and s["seriesPoints"] >= 3 and s, "three tiles")
+        self.assertTrue(st["noPositions"])
+        self.assertEqual(st["placed"], [])
+        self.assertIsNone(st["clock"])                        # no simulated time: the log's
+        nopos = self.driver.find_element("id", "nopos")
+        self.assertTrue(nopos.is_displayed())
+        self.assertIn("no positions", nopos.text)
+        self.assertFalse(self.driver.find_element("id", "arena").is_displayed())
+        tiles = self.driver.find_element("id", "tiles").text
+        for rid in (3, 7, 12):
+            self.assertIn(f"robot {rid} sorter", tiles)
+        self.assertIn("load", tiles)                          # the values, named by the pieces of the schema
+        self.assertEqual(st["bridgeDevices"], 2)
+        self.assertIn("/dev/rfcomm7", self.driver.find_element("id", "bridge").text)
+        self.assertTrue({"state.", "sorter.load", "sorter.hits"} <= set(st["charts"]), st["charts"])
+        later = wait_for(lambda: (s := self.state())["time"] > st["time"] + 1 and s, "the clock moving")
+        self.assertIn("since the log's first message", self.driver.find_element("id", "clock").text)
+        self.assertGreater(later["seriesPoints"], st["seriesPoints"])
+
+
+class LiveBus(BrowserTest):
+    def test_a_simulation_over_udp(self):
+        steps = 60
+        run_sim(self.tmp / "reference", GATHER, "--steps", steps)      # the same run, to a log
+        url = f"udpm://239.255.76.67:{free_udp_port()}?ttl=0"
+        self.serve("--lcm", url)
+        st = self.state()
+        self.assertEqual((st["mode"], st["robots"]), ("live", []))
+        self.assertFalse(self.driver.find_element("id", "seek").is_displayed())
+        args = [SWARMSIM, GATHER, "--steps", steps, "--lcm", url, "--realtime", 5, "--out", self.tmp / "live", "--quiet"]
+        sim = subprocess.run(list(map(str, args)), cwd=ROOT, capture_output=True, text=True, timeout=60)
+        self.assertEqual(sim.returncode, 0, sim.stderr)
+        st = wait_for(lambda: (s := self.state())["summary"] and s, "the run's summary")
+        ref = json.loads((self.tmp / "reference" / "run_1" / "summary.json").read_text())
+        self.assertEqual((st["summary"], st["clock"], len(st["placed"])), (ref["state_hash"], steps / 10, 12))
+        final = poses_at(self.tmp / "reference" / "run_1" / "telemetry.lcmlog", steps / 10)
+        for r in st["robots"]:
+            self.assertAlmostEqual(r["x"], final[r["id"]].x, delta=POSITION_TOL)
+            self.assertAlmostEqual(r["y"], final[r["id"]].y, delta=POSITION_TOL)
+        self.click("play")                                    # live: freezes the view
+        wait_for(lambda: not self.state()["playing"], "the view frozen")
+        self.assertEqual(self.driver.find_element("id", "play").text, "follow")
+
+
+if __name__ == "__main__":
+    unittest.main()
