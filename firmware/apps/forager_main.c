@@ -5,9 +5,13 @@
  * Task allocation policy: the selector switch picks it at power-on,
  *   1 = DRTM, 2 = ARTM, 3 = FRTM, any other position = the build's default,
  * which is APP_FORAGER_POLICY (make firmware FORAGER_POLICY=drtm|artm|frtm;
- * DRTM when not given).  Swarm constants of eq 4 and T2 come from the build
- * too: APP_N_ROBOTS (N_r, 20) and APP_ARENA_L_MM (L, 4000 mm); everything
- * else is forager_default_params (seed 000's values).
+ * DRTM when not given).  The experiment's constants come from the build
+ * too: APP_N_ROBOTS (N_r, 20), APP_ARENA_L_MM (L, 4000 mm; a rectangle's
+ * side of equal area), APP_F_D_TOKENS (F_d, 20), APP_NEST_RADIUS_MM (750)
+ * and APP_DRTM_THETA (TA_THETA_OFFSET; the real-robot experiment's theta = 0
+ * at the start is TA_THETA_RAW); everything else is forager_default_params
+ * (seed 000's values).  README, seed 000, gives the make line of each
+ * experiment.
  *
  * Telemetry: firmware/telemetry/robot_telemetry.c, pumped every step: the
  * controller's observables (forager_def.c) as a swarmlcm.robot_state_t once
@@ -37,6 +41,15 @@
 #endif
 #ifndef APP_N_ROBOTS
 #define APP_N_ROBOTS 20u
+#endif
+#ifndef APP_F_D_TOKENS
+#define APP_F_D_TOKENS 20
+#endif
+#ifndef APP_NEST_RADIUS_MM
+#define APP_NEST_RADIUS_MM 750u
+#endif
+#ifndef APP_DRTM_THETA
+#define APP_DRTM_THETA TA_THETA_OFFSET
 #endif
 #ifndef APP_ARENA_L_MM
 #define APP_ARENA_L_MM 4000u
@@ -85,6 +98,9 @@ static void app_setup(void)
     params.policy = choose_policy(hal_epuck_selector(&app_hal));
     params.n_robots = (uint16_t)APP_N_ROBOTS;
     params.arena_l_mm = (uint16_t)APP_ARENA_L_MM;
+    params.f_d_tokens = (float)APP_F_D_TOKENS;
+    params.nest_radius_mm = (uint16_t)APP_NEST_RADIUS_MM;
+    params.drtm_theta = (uint8_t)APP_DRTM_THETA;
     hal_epuck_begin_step(&app_hal);   /* light readings for the seed */
     forager_init(&app_forager, &params, hal_epuck_seed(&app_hal));
     robot_telemetry_init(&app_telemetry);

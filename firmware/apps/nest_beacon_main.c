@@ -6,7 +6,9 @@
  *
  * Build constants: APP_N_ROBOTS (N_r, 20) and APP_ARENA_L_MM (L, 4000 mm),
  * from which T2 = L / (2 v) with seed 000's v = 0.05 m/s, in 100 ms steps:
- * L / 10 steps (400 for 4 m).  The rest is nest_beacon_default_params.
+ * L / 10 steps (400 for 4 m); the ledger's APP_F0_TOKENS (F(0), 5),
+ * APP_C_RATE_MILLI (consumption, 1/1000 token per minute, 2000),
+ * APP_MOVE_COST (1) and APP_E_A (10).  The rest is nest_beacon_default_params.
  *
  * Telemetry as in forager_main.c: the beacon's observables
  * (nest_beacon_def.c: its ledger's F(t), N_W, M_T2, the reports) through
@@ -26,6 +28,18 @@
 #endif
 #ifndef APP_ARENA_L_MM
 #define APP_ARENA_L_MM 4000u
+#endif
+#ifndef APP_F0_TOKENS
+#define APP_F0_TOKENS 5
+#endif
+#ifndef APP_C_RATE_MILLI
+#define APP_C_RATE_MILLI 2000u
+#endif
+#ifndef APP_MOVE_COST
+#define APP_MOVE_COST 1u
+#endif
+#ifndef APP_E_A
+#define APP_E_A 10u
 #endif
 
 static struct hal app_hal;
@@ -60,6 +74,10 @@ static void app_setup(void)
     nest_beacon_default_params(&params);
     params.n_robots = (uint16_t)APP_N_ROBOTS;
     params.t2_steps = (uint16_t)(APP_ARENA_L_MM / 10u);
+    params.f0_tokens = (int16_t)APP_F0_TOKENS;
+    params.c_rate_milli_tokens_per_min = (uint16_t)APP_C_RATE_MILLI;
+    params.move_cost = (uint16_t)APP_MOVE_COST;
+    params.e_a = (uint16_t)APP_E_A;
     nest_beacon_init(&app_beacon, &params, 0u);
     robot_telemetry_init(&app_telemetry);
 }

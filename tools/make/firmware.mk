@@ -24,7 +24,11 @@
 #                                          libIrcom (images.list)
 #                         FIRMWARE_IMAGES (every image of firmware/apps/images.list),
 #                         FORAGER_POLICY (drtm|artm|frtm), FIRMWARE_N_ROBOTS
-#                         (20), FIRMWARE_ARENA_MM (4000).
+#                         (20), FIRMWARE_ARENA_MM (4000), FIRMWARE_F_D (20),
+#                         FIRMWARE_NEST_RADIUS_MM (750), FIRMWARE_DRTM_THETA
+#                         (offset|clip|raw), FIRMWARE_F0 (5),
+#                         FIRMWARE_CONSUMPTION_MILLI (2000), FIRMWARE_MOVE_COST
+#                         (1), FIRMWARE_E_A (10).
 #   make flash HEX=build/firmware/xc16/forager.hex DEVICE=/dev/rfcomm0 ROBOT_ID=7
 #
 # Images, their IR backend (hal/epuck/ircom_*.c) and whether they send
@@ -134,6 +138,15 @@ FIRMWARE_IMAGES ?= $(foreach s,$(FW_IMAGE_SPECS),$(firstword $(subst :, ,$(s))))
 FORAGER_POLICY ?= drtm
 FIRMWARE_N_ROBOTS ?= 20
 FIRMWARE_ARENA_MM ?= 4000
+# The experiment's other constants (seed 000's simulation values by default;
+# README, seed 000, has its real-robot experiments' make lines).
+FIRMWARE_F_D ?= 20
+FIRMWARE_NEST_RADIUS_MM ?= 750
+FIRMWARE_DRTM_THETA ?= offset
+FIRMWARE_F0 ?= 5
+FIRMWARE_CONSUMPTION_MILLI ?= 2000
+FIRMWARE_MOVE_COST ?= 1
+FIRMWARE_E_A ?= 10
 
 # The library's own folder, whether EPUCK_LIB_DIR names it or its repository.
 EPL := $(if $(wildcard $(EPUCK_LIB_DIR)/library/motor_led),$(EPUCK_LIB_DIR)/library,$(EPUCK_LIB_DIR))
@@ -150,7 +163,11 @@ XC16_LDFLAGS := $(XC16_ARCH) -Wl,--heap=128,--stack=500,--gc-sections,--report-m
 
 FW_POLICY_DEF := TA_$(shell echo '$(FORAGER_POLICY)' | tr a-z A-Z)
 FW_APP_DEFS := -DAPP_N_ROBOTS=$(FIRMWARE_N_ROBOTS)u -DAPP_ARENA_L_MM=$(FIRMWARE_ARENA_MM)u \
-  -DAPP_FORAGER_POLICY=$(FW_POLICY_DEF)
+  -DAPP_FORAGER_POLICY=$(FW_POLICY_DEF) -DAPP_F_D_TOKENS=$(FIRMWARE_F_D) \
+  -DAPP_NEST_RADIUS_MM=$(FIRMWARE_NEST_RADIUS_MM)u \
+  -DAPP_DRTM_THETA=TA_THETA_$(shell echo '$(FIRMWARE_DRTM_THETA)' | tr a-z A-Z) \
+  -DAPP_F0_TOKENS=$(FIRMWARE_F0) -DAPP_C_RATE_MILLI=$(FIRMWARE_CONSUMPTION_MILLI)u \
+  -DAPP_MOVE_COST=$(FIRMWARE_MOVE_COST)u -DAPP_E_A=$(FIRMWARE_E_A)u
 
 FW_OURS_SRC := $(filter-out $(FW_ROBOT_TELEMETRY_SRC),$(FW_SRC)) \
   hal/epuck/hal_epuck.c hal/epuck/xc16/robot_id.c
