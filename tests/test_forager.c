@@ -225,6 +225,29 @@ static void test_search_to_return_on_wide_blob(void **state)
     assert_int_equal(forager_paper_state(F.state), 'R');
 }
 
+/* A token the gripper took in passing (no approach before it) stays wide
+ * and centred while the robot drives on: after 20 steps (2 s) it counts as
+ * held; a blob that leaves the centre even once starts the count again. */
+static void test_held_without_approach_after_two_seconds(void **state)
+{
+    (void)state;
+    to_search();
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 60, HELD_MRAD);
+    for (int k = 0; k < 19; k++) {
+        step();
+        assert_int_equal(F.state, FORAGER_SEARCH);
+    }
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 600, HELD_MRAD);   /* off centre once */
+    step();
+    fake_hal_show_blob(&H, HAL_COLOUR_RED, 60, HELD_MRAD);
+    for (int k = 0; k < 19; k++) {
+        step();
+        assert_int_equal(F.state, FORAGER_SEARCH);
+    }
+    step();
+    assert_int_equal(F.state, FORAGER_RETURN);
+}
+
 static void test_search_steers_toward_blob(void **state)
 {
     (void)state;
@@ -712,6 +735,7 @@ int main(void)
         cmocka_unit_test(test_stays_when_stimulus_not_positive),
         cmocka_unit_test(test_stays_without_beacon_info),
         cmocka_unit_test(test_search_to_return_on_wide_blob),
+        cmocka_unit_test(test_held_without_approach_after_two_seconds),
         cmocka_unit_test(test_search_steers_toward_blob),
         cmocka_unit_test(test_search_obstacle_vs_token_echo),
         cmocka_unit_test(test_search_keeps_oae_count),

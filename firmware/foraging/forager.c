@@ -10,6 +10,9 @@
 #define CENTRED_MRAD 150
 /* Steps after steering at a near, centred token in which a grasp counts. */
 #define APPROACH_STEPS 10u
+/* Steps a wide red blob must stay centred to count as held without an
+ * approach before it (2 s): a token the gripper took in passing. */
+#define HOLD_STEPS 20u
 /* No beacon frame this step. */
 #define NO_RANGE 0xFFFFu
 
@@ -371,9 +374,11 @@ static void search_step(forager_t *self, hal_t *hal)
         return;
     }
     seen = widest_red(hal, &blob);
-    /* Held: wide and centred for grasp_confirm steps in a row, right after
-     * approaching it (a token carried past by another robot is neither). */
-    if (seen != 0u && blob.width_mrad >= p->grasp_width_mrad && self->approach != 0u
+    /* Held: wide and centred for grasp_confirm steps in a row right after
+     * approaching it, or for HOLD_STEPS in a row without (a token taken in
+     * passing stays put in the gripper while the robot drives and turns; a
+     * token carried past by another robot does not). */
+    if (seen != 0u && blob.width_mrad >= p->grasp_width_mrad
         && blob.bearing_mrad > -CENTRED_MRAD && blob.bearing_mrad < CENTRED_MRAD) {
         if (self->grasp_steps < 255u) {
             self->grasp_steps++;
@@ -384,7 +389,7 @@ static void search_step(forager_t *self, hal_t *hal)
     if (self->approach != 0u) {
         self->approach--;
     }
-    if (self->grasp_steps >= p->grasp_confirm) {
+    if (self->grasp_steps >= (self->approach != 0u ? p->grasp_confirm : HOLD_STEPS)) {
         self->carrying = 1u;
         enter_return(self);   /* acts from the next step */
     } else if (seen != 0u) {

@@ -24,7 +24,8 @@
  *                  token) is seen: steer toward it, proportional to its
  *                  bearing.  A red blob at least grasp_width_mrad wide and
  *                  centred for grasp_confirm steps in a row, right after an
- *                  approach to it, is a token held by the passive gripper
+ *                  approach to it (or for 20 steps without one: a token
+ *                  taken in passing), is a token held by the passive gripper
  *                  in front of the lens: RETURN.  (A token another robot
  *                  carries past is wide for a moment, not centred and held.)
  *   RETURN [S_R]  A(t) = 0: random walk; A(t) = 1 when the nest light is

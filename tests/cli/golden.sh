@@ -22,11 +22,11 @@ trap 'rm -rf "$tmp"' EXIT
 # scenario (sim_host/scenarios/)  state hash after its full duration
 pins=(
     "random_walk     8f5ca44c91abbef0"
-    "foraging_base   0fb6005603f65cb1"
-    "foraging_nf25   f48bed343cf39a55"
-    "foraging_ea20   4543f780106f3342"
-    "foraging_nr30   f34d01564b8a6a40"
-    "foraging_l3     9067dc0a1d140b78"
+    "foraging_base   f0013a270f80ebb5"
+    "foraging_nf25   b1770d655c5fc6c1"
+    "foraging_ea20   efce9ec7f67f7eb8"
+    "foraging_nr30   8719b692d3a3c27e"
+    "foraging_l3     060408053c83f507"
     "phototaxis_gather f8ae7bdce4060218"
 )
 
