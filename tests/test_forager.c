@@ -474,15 +474,25 @@ static void test_reports_alternate(void **state)
     }
 }
 
-static void test_no_reports_outside_nest(void **state)
+/* Out of the nest a robot sends only its OAE total, every 5 steps (for a
+ * beacon in range to count OAEs as they happen); never its deposit total,
+ * by which the beacon counts robots waiting. */
+static void test_oae_reports_out_of_the_nest(void **state)
 {
-    uint32_t sent;
+    uint32_t sent, k;
+    nest_link_frame_t f;
     (void)state;
     to_search();
     sent = H.out_count;
-    step();
-    step();
-    assert_int_equal(H.out_count, sent);
+    for (k = 0; k < 10u; k++) {
+        uint32_t before = H.out_count;
+        step();
+        if (H.out_count != before) {
+            assert_int_equal(nest_link_decode(H.last_sent, &f), NL_OAES);
+            assert_int_equal(f.robot_id, 7);
+        }
+    }
+    assert_int_equal(H.out_count, sent + 2u);
 }
 
 /* ARTM with n = 9 and S tiny next to theta: P ~ 0, the robot stays and
@@ -746,7 +756,7 @@ int main(void)
         cmocka_unit_test(test_return_phototaxis),
         cmocka_unit_test(test_inbox_drained_while_searching),
         cmocka_unit_test(test_reports_alternate),
-        cmocka_unit_test(test_no_reports_outside_nest),
+        cmocka_unit_test(test_oae_reports_out_of_the_nest),
         cmocka_unit_test(test_artm_theta_follows_stimulus),
         cmocka_unit_test(test_frtm_theta_fixed),
         cmocka_unit_test(test_n_per_robot_in_range),

@@ -106,10 +106,12 @@ static void test_movement_cost(void **state)
     /* Nobody heard: 20 robots foraging (20 units) + nest (5). */
     step();
     assert_int_equal(B.ledger_units, 7500 - 25);
-    /* Three robots report from the nest: 17 foraging. */
+    /* Three robots report their deposits from the nest: 17 foraging.  An
+     * OAE report (robot 4, out foraging) is no sign of waiting. */
     report(NL_DEPOSITS, 1u, 0u);
     report(NL_DEPOSITS, 2u, 0u);
-    report(NL_OAES, 3u, 0u);
+    report(NL_DEPOSITS, 3u, 0u);
+    report(NL_OAES, 4u, 0u);
     step();
     assert_int_equal(B.n_waiting, 3);
     assert_int_equal(B.ledger_units, 7500 - 25 - 22);
@@ -326,19 +328,19 @@ static void test_waiting_robots(void **state)
     assert_int_equal(B.n_waiting, 0);
     /* Three ids report in one step (id 65 is id 1's slot: 6-bit ids). */
     report(NL_DEPOSITS, 1u, 0u);
-    report(NL_OAES, 2u, 0u);
-    report(NL_OAES, 3u, 0u);
-    report(NL_OAES, 65u, 0u);
+    report(NL_DEPOSITS, 2u, 0u);
+    report(NL_DEPOSITS, 3u, 0u);
+    report(NL_DEPOSITS, 65u, 0u);
     step();
     assert_int_equal(B.n_waiting, 3);
     /* Only id 2 keeps reporting: 1 and 3 are dropped after the timeout
      * (heard in 5 steps: the report's and the next 4). */
     for (k = 1; k < 5u; k++) {
-        report(NL_OAES, 2u, 0u);
+        report(NL_DEPOSITS, 2u, 0u);
         step();
         assert_int_equal(B.n_waiting, 3);
     }
-    report(NL_OAES, 2u, 0u);
+    report(NL_DEPOSITS, 2u, 0u);
     step();
     assert_int_equal(B.n_waiting, 1);
     steps(4u);
@@ -380,7 +382,8 @@ static void test_broadcast_matches_ledger(void **state)
     nest_beacon_default_params(&p);
     start(&p, 0);
     for (k = 0; k < 30u; k++) {
-        report(NL_OAES, (uint16_t)(k % 4u), k);   /* ids 0..3: N_W = 4, OAEs */
+        report(NL_DEPOSITS, (uint16_t)(k % 4u), 0u);   /* ids 0..3 waiting: N_W = 4 */
+        report(NL_OAES, (uint16_t)(k % 4u), k);        /* and their OAEs */
         step();
         /* One frame per step, kinds 0, 1, 2 in turn. */
         assert_int_equal(H.out_count, k + 1u);

@@ -13,6 +13,8 @@
 /* Steps a wide red blob must stay centred to count as held without an
  * approach before it (2 s): a token the gripper took in passing. */
 #define HOLD_STEPS 20u
+/* Steps between OAE reports out of the nest. */
+#define OUT_REPORT_STEPS 5u
 /* No beacon frame this step. */
 #define NO_RANGE 0xFFFFu
 
@@ -106,6 +108,7 @@ void forager_reset(forager_t *self)
     self->out_frames = 0u;
     self->approach = 0u;
     self->grasp_steps = 0u;
+    self->out_timer = 0u;
 }
 
 /* ------------------------------------------------------------ sensing */
@@ -314,6 +317,21 @@ static void decide(forager_t *self, hal_t *hal, uint8_t update)
     }
 }
 
+/* Out of the nest: the OAE total every step, for a beacon in range to
+ * count OAEs when they happen rather than when the trip ends.  Deposit
+ * totals go only from the nest: the beacon counts a robot as waiting by
+ * them (nest_link.h). */
+static void send_oae_report(forager_t *self, hal_t *hal)
+{
+    /* Every OUT_REPORT_STEPS steps, staggered by id: a nest crowded with
+     * robots coming and going must leave room in the beacon's 20-message
+     * queue for the waiting robots' reports, by which it counts N_W. */
+    if ((uint16_t)(self->out_timer + hal_robot_id(hal)) % OUT_REPORT_STEPS == 0u) {
+        (void)hal_ircom_send(hal, nest_link_encode_oaes(hal_robot_id(hal), self->walk.oae_count));
+    }
+    self->out_timer++;
+}
+
 static void send_report(forager_t *self, hal_t *hal)
 {
     uint16_t id = hal_robot_id(hal);
@@ -464,6 +482,9 @@ static void deposit_step(forager_t *self, hal_t *hal)
 void forager_step(forager_t *self, hal_t *hal)
 {
     read_inbox(self, hal);
+    if (self->state != FORAGER_WAIT) {
+        send_oae_report(self, hal);   /* this step's total goes out next step */
+    }
 
     switch (self->state) {
     case FORAGER_WAIT:

@@ -152,6 +152,7 @@ typedef struct forager {
     uint8_t out_frames;          /**< beacon frames in a row heard from outside the nest */
     uint8_t approach;            /**< steps left in which a grasp may follow an approach */
     uint8_t grasp_steps;         /**< steps in a row with a wide, centred red blob */
+    uint16_t out_timer;          /**< steps out of the nest, for the OAE reports' cadence */
 } forager_t;
 
 /* The controller contract (controller.h):

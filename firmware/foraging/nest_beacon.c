@@ -193,10 +193,9 @@ static void read_reports(nest_beacon_t *self, hal_t *hal)
             ledger_add(self, (int32_t)n * (int32_t)self->params.token_energy);
             self->age_steps[f.robot_id] = 0u;
             break;
-        case NL_OAES:
+        case NL_OAES:   /* from robots in any state: not a sign of waiting */
             n = credit((uint8_t)f.value, &self->last_oaes[f.robot_id], &self->oae_budget[f.robot_id], 1u);
             add_oaes(self, n);
-            self->age_steps[f.robot_id] = 0u;
             break;
         default:
             break;   /* other beacons' frames and garbage */

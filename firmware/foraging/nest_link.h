@@ -22,6 +22,12 @@
  *           kind 2  M_A in 1/256 OAE per robot, 0 .. 15.996 (saturated);
  *           kind 3  unused: decodes as invalid.
  *
+ * A waiting robot alternates its deposit and OAE totals, one a step; a
+ * robot out of the nest sends its OAE total every step, so that a beacon in
+ * range counts OAEs about when they happen.  Deposit totals go only from
+ * the nest: the beacon counts as waiting (N_W) the ids whose deposit totals
+ * it heard within its timeout.
+ *
  * Reports carry running totals rather than increments so that a lost
  * message costs nothing: the beacon adds the mod-256 difference from the
  * last total it heard from that id (correct while fewer than 256 events go

@@ -9,7 +9,11 @@
  * The receiver estimates the sender's bearing (the receiving sensor's
  * bearing when `quantise_bearing`, as libIrcom does, else the true bearing
  * plus Gaussian noise) and range (true range with relative Gaussian noise).
- * A full queue drops the new message, as libIrcom does.
+ * A full queue drops the new message, as libIrcom does.  Senders are taken
+ * in turn from an offset that rotates every step: a receiver hearing more
+ * senders than its queue holds loses different ones each step, as on a
+ * shared channel, not always the same (the highest ids, which a robot
+ * listening to 30 others then never heard).
  */
 #include <math.h>
 
@@ -91,7 +95,9 @@ void ircom_deliver(struct sim *sim)
 {
     float reach = sim->sc->ircom.range;
     uint32_t near[IRCOM_MAX_NEAR];
-    for (uint32_t i = 0; i < sim->n; i++) {
+    uint32_t first = sim->n ? (uint32_t)(sim->step % sim->n) : 0;
+    for (uint32_t turn = 0; turn < sim->n; turn++) {
+        uint32_t i = first + turn < sim->n ? first + turn : first + turn - sim->n;
         sim_robot_t *s = &sim->robots[i];
         if (s->ircom_tx < 0) {
             continue;

@@ -22,11 +22,11 @@ trap 'rm -rf "$tmp"' EXIT
 # scenario (sim_host/scenarios/)  state hash after its full duration
 pins=(
     "random_walk     8f5ca44c91abbef0"
-    "foraging_base   f0013a270f80ebb5"
-    "foraging_nf25   b1770d655c5fc6c1"
-    "foraging_ea20   efce9ec7f67f7eb8"
-    "foraging_nr30   8719b692d3a3c27e"
-    "foraging_l3     060408053c83f507"
+    "foraging_base   afba34bce3e94b74"
+    "foraging_nf25   a5da1751b5353653"
+    "foraging_ea20   0344ea505ee2cdcb"
+    "foraging_nr30   8db51c70bca70bee"
+    "foraging_l3     595457565a8287f1"
     "phototaxis_gather f8ae7bdce4060218"
 )
 
