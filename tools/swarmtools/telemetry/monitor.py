@@ -424,10 +424,10 @@ def main(argv=None):
     args = ap.parse_args(argv)
     try:
         with stop.Signals() as signals:
-            lc, url = open_bus(args)
+            lc, _ = open_bus(args)
             model = Model(run=args.run, events=args.events, prefix=args.prefix)
             bus.subscribe(lc, ".*", model.add)
-            source = args.log or url
+            source = args.log or args.lcm      # as the user gave it (the bus adds its buffer size)
             try:
                 if args.plain or not sys.stdout.isatty():
                     run_plain(lc, model, source, args, signals)
