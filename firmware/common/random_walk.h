@@ -1,9 +1,11 @@
 /*
  * random_walk.h - random walk with IR obstacle avoidance.
  *
- * The searching motion of seed 000's attractor selection model (eq 1 with
- * A(t) = 0: the noise term drives the robot) and the obstacle avoidance all
- * three seeds share.  The walk is a run-and-tumble: drive straight; each
+ * A controller of its own, and the motion of the controllers that embed it
+ * when nothing attracts them, with the obstacle avoidance all three seeds
+ * share: seed 000's forager searches with it (its attractor selection model,
+ * eq 1 with A(t) = 0), with its own speed and a tumble every 20 s instead of
+ * this default 5 s.  The walk is a run-and-tumble: drive straight; each
  * step, with probability `turn_chance`, turn in place by an angle drawn
  * uniformly from (-180, 180] degrees.  When a front IR sensor exceeds
  * `avoid_enter` the robot turns in place away from the more excited side

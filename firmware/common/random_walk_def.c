@@ -18,7 +18,8 @@ CONTROLLER_ADAPTERS(random_walk)
 
 const controller_def_t random_walk_def = {
     .name = RANDOM_WALK_NAME,
-    .doc = "random walk with IR obstacle avoidance (seed 000's ASM, A(t) = 0)",
+    .doc = "run-and-tumble random walk with IR obstacle avoidance (a tumble every 5 s by default; "
+           "seed 000's forager searches with it every 20 s)",
     CONTROLLER_FUNCS(random_walk),
     .params = random_walk_params,
     .observables = random_walk_observables,

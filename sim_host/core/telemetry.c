@@ -57,6 +57,7 @@ struct telemetry {
     double robot_hz, swarm_hz;
     uint64_t robot_sent_step, swarm_sent_step;       /* last step sent, +1 (0: none) */
     double realtime;
+    double summary_pause_s;      /* before RUN_SUMMARY on a bus (see telemetry_end) */
     struct timespec wall0;
 
     uint8_t *buf;                /* encoding buffer */
@@ -220,6 +221,11 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
     t->info_every = every_steps(1.0 / INFO_PERIOD_S, sim->sc->control_period_ms);
     t->realtime = opt->realtime;
     if (opt->url) {
+        /* Live listeners lose what comes while their queue is full (an LCM
+         * subscription holds 30 unhandled messages by default): the summary,
+         * sent right after the last burst of states, waits until they have
+         * taken that burst.  memq:// has no listener running meanwhile. */
+        t->summary_pause_s = strncmp(opt->url, "memq://", 7) ? 0.05 + 1e-4 * (double)n : 0.0;
         t->lcm = lcm_create(opt->url);
         if (!t->lcm) {
             snprintf(err, 256, "telemetry: cannot open LCM URL '%s' (see lcm_create's message above)", opt->url);
@@ -378,13 +384,25 @@ static void robot_message(const telemetry_t *t, const struct sim *sim, uint32_t 
     }
 }
 
+static void nap(double s)
+{
+    struct timespec d = { (time_t)s, (long)((s - floor(s)) * 1e9) };
+    nanosleep(&d, NULL);
+}
+
 static void send_robots(telemetry_t *t, const struct sim *sim)
 {
     swarmlcm_robot_state_t m;
     float values[MAX_VALUES];
+    /* Watched live (--realtime on a bus), every robot's state would leave in
+     * the same instant, more at once than a listener's queue holds (30 by
+     * default in LCM): they are spread over at most half of the step's wall
+     * time, 1 ms apart at most.  The log file is written as before. */
+    double gap = (t->lcm && t->realtime > 0) ? sim->sc->control_period_ms / 1000.0 / t->realtime / (2.0 * sim->n) : 0;
     for (uint32_t i = 0; i < sim->n; i++) {
         robot_message(t, sim, i, &m, values);
         SEND(t, swarmlcm_robot_state_t, TELEMETRY_CHANNEL_ROBOT_STATE, &m, m.utime);
+        if (gap > 0) nap(gap < 1e-3 ? gap : 1e-3);
     }
     t->robot_sent_step = sim->step + 1;
 }
@@ -646,8 +664,7 @@ static void pace(telemetry_t *t, const struct sim *sim)
     double wall = (double)(now.tv_sec - t->wall0.tv_sec) + 1e-9 * (double)(now.tv_nsec - t->wall0.tv_nsec);
     double ahead = sim_s / t->realtime - wall;
     if (ahead > 0.001) {
-        struct timespec nap = { (time_t)ahead, (long)((ahead - floor(ahead)) * 1e9) };
-        nanosleep(&nap, NULL);
+        nap(ahead);
     }
 }
 
@@ -708,6 +725,7 @@ void telemetry_end(telemetry_t *t, const sim_t *simp, const metric_list_t *final
     m.n_metrics = (int16_t)final->count;
     m.metric_names = names;
     m.metric_values = values;
+    if (t->summary_pause_s > 0) nap(t->summary_pause_s);
     SEND(t, swarmlcm_run_summary_t, TELEMETRY_CHANNEL_RUN_SUMMARY, &m, m.utime);
 }
 

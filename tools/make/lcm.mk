@@ -82,11 +82,19 @@ LCM_TYPE_OUTPUTS := $(LCM_C_STAMP) $(LCM_PY_STAMP) $(if $(and $(JAVAC),$(JAR)),$
 lcm-types: $(LCM_TYPE_OUTPUTS)
 all: $(LCM_TYPE_OUTPUTS)
 
+# lcm-spy is a Swing window: without a display Java stops with a stack
+# trace after building the jar, so the display is checked first (listed
+# first, it is made first).  Only an unset DISPLAY is refused: whether a
+# set one answers is Java's to find out (X servers differ in where they listen).
+.PHONY: spy-display
+spy-display:
+	@if [ -z "$$DISPLAY" ]; then echo "make spy: lcm-spy opens a window and needs a display, but DISPLAY is not set: run it on a desktop, through ssh -X, or under a virtual display (xvfb-run make spy ...); make monitor shows the bus in a terminal" >&2; exit 1; fi
+
 ifneq ($(and $(JAVAC),$(JAR)),)
-spy: $(LCM_TYPES_JAR)
+spy: spy-display $(LCM_TYPES_JAR)
 	CLASSPATH=$(abspath $(LCM_TYPES_JAR)) $(LCM_SPY) $(if $(LCM_URL),--lcm-url='$(LCM_URL)')
 else
-spy:
+spy: spy-display
 	@echo "make spy: lcm-spy needs a JDK (javac and jar) to build $(LCM_TYPES_JAR); install one (e.g. openjdk-17-jdk-headless)"; exit 1
 endif
 

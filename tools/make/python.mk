@@ -3,7 +3,7 @@
 # generated LCM types (package swarmlcm) by `make deps`; its tests and lint.
 #
 #   make python-tests   every tools/tests/ test (unittest), part of make test
-#   make lint           ruff over the package and its tests, part of make test
+#   make lint           ruff over every Python file (package, tests, bench), part of make test
 
 SWARMTOOLS_STAMP := $(VENV)/.swarmtools-installed
 $(SWARMTOOLS_STAMP): pyproject.toml $(LCM_PY_STAMP) | $(BUILD)/config.mk
@@ -17,6 +17,6 @@ python-tests: deps $(LCM_TYPE_OUTPUTS) $(TELEMETRY_FRAME_SO) $(BUILD)/swarmsim
 	@SWARMSIM=$(BUILD)/swarmsim TELEMETRY_FRAME_SO=$(TELEMETRY_FRAME_SO) $(PYTHON) tools/tests/run.py
 
 lint: deps
-	@$(VENV)/bin/ruff check pyproject.toml tools/swarmtools tools/tests tests/firmware && echo "lint: ruff found nothing"
+	@$(VENV)/bin/ruff check pyproject.toml tools/swarmtools tools/tests tools/bench tests/firmware && echo "lint: ruff found nothing"
 
 EXTRA_TESTS += lint python-tests

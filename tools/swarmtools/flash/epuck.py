@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""epuck_flash.py - uploads an XC16 .hex to an e-puck1 through its
+"""epuck-flash (swarmtools.flash.epuck) - uploads an XC16 .hex to an e-puck1 through its
 bootloader (the dsPIC "Tiny Bootloader" at the top of program memory) over a
 serial device: the robot's Bluetooth serial port (/dev/rfcommN) or a
 serial cable.
 
-    tools/flash/epuck_flash.py firmware.hex /dev/rfcomm0 --robot-id 7
+    .venv/bin/epuck-flash firmware.hex /dev/rfcomm0 --robot-id 7     (or make flash HEX=... DEVICE=... ROBOT_ID=7)
 
 Start it, then press the robot's reset button: the host repeats 0xC1 every
 100 ms (--handshake-tries times, 50 = 5 s) and the bootloader, which listens
@@ -363,7 +363,7 @@ def send_rows(port, rows, timeout, retries, progress=None):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(
-        prog='epuck_flash.py',
+        prog='epuck-flash',
         description='Upload an XC16 .hex to an e-puck1 through its serial bootloader.')
     ap.add_argument('hex', metavar='HEX', help='Intel HEX file built by `make firmware`')
     ap.add_argument('device', metavar='DEVICE', help='serial device, e.g. /dev/rfcomm0')

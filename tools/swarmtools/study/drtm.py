@@ -1156,7 +1156,7 @@ def load_results(path: Path) -> dict[str, Any]:
 
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
-        prog="study_drtm.py",
+        prog="swarm-study-drtm",
         description="Reproduce seed 000's DRTM simulation study (sections 3.1 and 4) with "
                     "build/swarmsim: 5 conditions x {DRTM, ARTM, FRTM} x N repetitions; "
                     "writes results.md, results.json and figures.",

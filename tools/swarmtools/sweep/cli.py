@@ -254,7 +254,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("merge", help="write the table of a sweep folder")
     p.add_argument("dir")
     p.add_argument("--quiet", action="store_true")
-    p = sub.add_parser("plot", help="a metric's mean and 95% CI against a varied key")
+    p = sub.add_parser("plot", help="a metric's mean and 95%% CI against a varied key")
     p.add_argument("dir")
     p.add_argument("--x", required=True, help="a varied key (the x axis)")
     p.add_argument("--y", required=True, help="a metric")

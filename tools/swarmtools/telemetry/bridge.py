@@ -17,7 +17,9 @@ channel ids are counted and skipped (a robot whose firmware sends an
 older telemetry version, e.g. v1, is named once on stderr: flash it
 again); a device that disappears (read error,
 hang-up, removed node) is closed and opened again every --reopen seconds
-until it comes back.  Counts per device go to BRIDGE_STATUS
+until it comes back.  A device that cannot be opened at start (a mistyped
+path, a port not bound yet) ends the bridge at once with status 1, unless
+--wait asks it to wait for the device.  Counts per device go to BRIDGE_STATUS
 (swarmlcm.bridge_status_t) every --status-every seconds and to stderr every
 --report-every seconds and at exit.
 
@@ -28,16 +30,20 @@ import argparse
 import errno
 import os
 import select
-import signal
 import sys
 import termios
 import time
 import tty
 
-from swarmtools.telemetry import common
+from swarmtools.telemetry import common, stop
 from swarmtools.telemetry.frames import CHANNEL_IDS, FrameDecoder
 
+PROG = "swarm-bridge"
 READ_CHUNK = 4096
+EPILOG = """exit status: 0 stopped after --duration; 1 a device cannot be opened at start
+(without --wait) or the LCM URL is refused; 2 bad arguments; 130 / 143
+stopped by Ctrl-C / SIGTERM.  The last line on stderr says why it stopped,
+then what each device counted."""
 
 
 class Device:
@@ -238,31 +244,59 @@ class Bridge:
         return "; ".join(parts)
 
 
+def bad_argument(text):
+    """One line on stderr and status 2, as argparse's own errors."""
+    print(f"{PROG}: {text}", file=sys.stderr)
+    raise SystemExit(2)
+
+
 def parse_ids(items):
     ids = {}
     for item in items or []:
         dev, sep, value = item.rpartition("=")
         if not sep or not dev:
-            raise SystemExit(f"swarm-bridge: --id {item!r}: expected DEVICE=ID")
+            bad_argument(f"--id {item!r}: expected DEVICE=ID")
         try:
             ids[dev] = int(value, 0)
         except ValueError:
-            raise SystemExit(f"swarm-bridge: --id {item!r}: {value!r} is not a robot id") from None
+            bad_argument(f"--id {item!r}: {value!r} is not a robot id")
         if not 0 <= ids[dev] <= 0xFFFF:
-            raise SystemExit(f"swarm-bridge: --id {item!r}: robot ids are 0..65535")
+            bad_argument(f"--id {item!r}: robot ids are 0..65535")
     return ids
 
 
+def open_at_start(devices, wait):
+    """Opens every device once.  Without `wait`, a device that cannot be
+    opened (a mistyped path, an rfcomm port not bound) ends the bridge at
+    once: returns the one line that says so.  With `wait` it is tried
+    again every --reopen seconds, as a device lost later always is."""
+    failed = [dev for dev in devices if not dev.open()]
+    if not failed:
+        return None
+    what = ", ".join(f"{dev.path} ({dev.last_error})" for dev in failed)
+    if wait:
+        print(f"{PROG}: waiting for {what}", file=sys.stderr, flush=True)
+        return None
+    for dev in devices:
+        dev.close()
+    return (f"{PROG}: cannot open {what}; bind the robot's port first (sudo rfcomm bind ...), "
+            f"or pass --wait to wait for it")
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="swarm-bridge", description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog=EPILOG)
     ap.add_argument("devices", nargs="+", help="serial devices (/dev/rfcomm0, /dev/ttyUSB0, a pty, ...)")
     ap.add_argument("--lcm", default=common.DEFAULT_URL, help="LCM URL to publish on (default %(default)s)")
     ap.add_argument("--baud", type=int, default=115200, help="serial speed (default %(default)s)")
     ap.add_argument("--id", action="append", metavar="DEVICE=ID",
                     help="robot id for a device's messages (default: the id in its frames)")
     ap.add_argument("--prefix", default="", help="prefix for the republished channel names")
-    ap.add_argument("--reopen", type=float, default=1.0, help="seconds between tries to reopen a lost device")
+    ap.add_argument("--wait", action="store_true",
+                    help="wait for devices that cannot be opened at start (default: exit at once, status 1)")
+    ap.add_argument("--reopen", type=float, default=1.0,
+                    help="seconds between tries to open a lost device (or, with --wait, a missing one)")
     ap.add_argument("--status-every", type=float, default=1.0, help="seconds between BRIDGE_STATUS messages")
     ap.add_argument("--report-every", type=float, default=10.0, help="seconds between reports on stderr (0: at exit only)")
     ap.add_argument("--duration", type=float, default=0.0, help="stop after this many seconds (0: run until interrupted)")
@@ -272,51 +306,65 @@ def main(argv=None):
     ids = parse_ids(args.id)
     for dev in ids:
         if dev not in args.devices:
-            raise SystemExit(f"swarm-bridge: --id names {dev!r}, which is not one of the devices")
+            bad_argument(f"--id names {dev!r}, which is not one of the devices")
+    try:
+        with stop.Signals() as signals:
+            return serve(args, ids, signals)
+    except KeyboardInterrupt:        # before the handlers were set
+        return stop.interrupted(PROG)
+
+
+def serve(args, ids, signals):
+    devices = [Device(p, args.baud, ids.get(p)) for p in args.devices]
+    refused = open_at_start(devices, args.wait)
+    if refused:
+        raise SystemExit(refused)
     lcm = common.lcm_module()
     try:
-        bus = lcm.LCM(args.lcm)
+        lc = lcm.LCM(args.lcm)
     except Exception as e:
-        raise SystemExit(f"swarm-bridge: cannot open LCM URL {args.lcm!r}: {e}") from None
-    devices = [Device(p, args.baud, ids.get(p)) for p in args.devices]
-    bridge = Bridge(devices, bus.publish, prefix=args.prefix, reopen_s=args.reopen)
+        for dev in devices:
+            dev.close()
+        raise SystemExit(f"{PROG}: cannot open LCM URL {args.lcm!r}: {e}") from None
+    bridge = Bridge(devices, lc.publish, prefix=args.prefix, reopen_s=args.reopen)
     status_channel = args.prefix + "BRIDGE_STATUS"
-
-    stop = []
     warned = {}                  # device -> the incompatibility told on stderr
-    signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
-    signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     t0 = time.monotonic()
     next_status = t0
     next_report = t0 + args.report_every if args.report_every > 0 else float("inf")
-    while not stop:
+    why, status = "", 0
+    while True:
         now = time.monotonic()
+        if signals:
+            why, status = f"stopped by {signals.name}", 128 + signals.signum
+            break
         if args.duration and now - t0 >= args.duration:
+            why = f"stopped after --duration {args.duration:g} s"
             break
         bridge.poll(0.1)
         for dev in devices:
             if dev.incompatible and dev.incompatible != warned.get(dev.path) and not args.quiet:
                 warned[dev.path] = dev.incompatible
-                print(f"swarm-bridge: {dev.incompatible}", file=sys.stderr, flush=True)
+                print(f"{PROG}: {dev.incompatible}", file=sys.stderr, flush=True)
         now = time.monotonic()
         if args.status_every > 0 and now >= next_status:
             next_status = now + args.status_every
             try:
-                bus.publish(status_channel, bridge.status_message(int(time.time() * 1e6)).encode())
+                lc.publish(status_channel, bridge.status_message(int(time.time() * 1e6)).encode())
             except Exception:
                 bridge.publish_errors += 1
         if now >= next_report:
             next_report = now + args.report_every
             if not args.quiet:
-                print(f"swarm-bridge: {bridge.report()}", file=sys.stderr, flush=True)
+                print(f"{PROG}: {bridge.report()}", file=sys.stderr, flush=True)
+    # The last line names why the bridge stopped, then what it counted
+    # (each device as it was: reported before it is closed).
+    print(f"{PROG}: {why}" + ("" if args.quiet else f"; {bridge.report()}")
+          + (f"; {bridge.publish_errors} messages could not be published" if bridge.publish_errors else ""),
+          file=sys.stderr, flush=True)
     for dev in devices:
         dev.close()
-    if not args.quiet:
-        print(f"swarm-bridge: {bridge.report()}", file=sys.stderr, flush=True)
-        if bridge.publish_errors:
-            print(f"swarm-bridge: {bridge.publish_errors} messages could not be published", file=sys.stderr)
-    return 0
-
+    return status
 
 if __name__ == "__main__":
     sys.exit(main())

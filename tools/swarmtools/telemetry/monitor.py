@@ -18,6 +18,10 @@ own telemetry in a simulation with robot_telemetry.enabled).
 
 Keys: q quits; up/down, PgUp/PgDn scroll the robot tables.  --plain prints
 the dashboard as text every --interval seconds instead (no terminal needed).
+Listening live, the monitor asks for a 4 MiB socket buffer and a long LCM
+queue (swarmtools.telemetry.bus) so that it keeps up with the simulator's
+bursts.  Exit status: 0 (q, the end of a log, --exit-idle), 1 an error,
+130 / 143 Ctrl-C / SIGTERM (the terminal restored, one line on stderr).
 """
 import argparse
 import collections
@@ -27,8 +31,9 @@ import shutil
 import sys
 import time
 
-from swarmtools.telemetry import common
+from swarmtools.telemetry import bus, common, stop
 
+PROG = "swarm-monitor"
 fmt = common.fmt_number
 
 
@@ -287,7 +292,7 @@ def check_log(lcm, name, path):
     try:
         log = lcm.EventLog(path, "r")
     except (OSError, ValueError) as e:
-        raise SystemExit(f"swarm-monitor: {name}: cannot read: {e}") from None
+        raise SystemExit(f"{PROG}: {name}: cannot read: {e}") from None
     try:
         first = log.read_next_event()
     except (OSError, ValueError):
@@ -296,43 +301,45 @@ def check_log(lcm, name, path):
         log.close()
     if first is None:
         what = "empty (no events)" if os.path.getsize(path) == 0 else "not an LCM log (no events in it)"
-        raise SystemExit(f"swarm-monitor: {name}: {what}")
+        raise SystemExit(f"{PROG}: {name}: {what}")
 
 
 def open_bus(args):
+    if not args.log:
+        return bus.open_listener(args.lcm, PROG)
     lcm = common.lcm_module()
-    if args.log:
-        path = os.path.abspath(args.log)
-        if not os.path.isfile(path):
-            raise SystemExit(f"swarm-monitor: {args.log}: no such file")
-        check_log(lcm, args.log, path)
-        url = f"file://{path}?speed={args.speed:g}"
-    else:
-        url = args.lcm
+    path = os.path.abspath(args.log)
+    if not os.path.isfile(path):
+        raise SystemExit(f"{PROG}: {args.log}: no such file")
+    check_log(lcm, args.log, path)
+    url = f"file://{path}?speed={args.speed:g}"
     try:
         return lcm.LCM(url), url
     except Exception as e:
-        raise SystemExit(f"swarm-monitor: cannot open LCM URL {url!r}: {e}") from None
+        raise SystemExit(f"{PROG}: cannot open LCM URL {url!r}: {e}") from None
 
 
-def handle(bus, timeout_ms, args):
+def handle(lc, timeout_ms, args, signals):
     """Handles a message if one comes within the timeout: 1, else 0; None
-    at the end of a log file (the log provider then reports an error)."""
+    when reading should end: at the end of a log file, or after a signal.
+    LCM reports both as an error of handle_timeout (its log provider at
+    the end; its wait interrupted by the signal), and the signal handler
+    has run by the time `signals` is asked."""
     try:
-        return bus.handle_timeout(timeout_ms)
-    except OSError:
-        if args.log:
+        return lc.handle_timeout(timeout_ms)
+    except OSError as e:
+        if signals or args.log:
             return None
-        raise
+        raise SystemExit(f"{PROG}: {args.lcm}: listening failed ({e})") from None
 
 
-def run_plain(bus, model, source, args):
+def run_plain(lc, model, source, args, signals):
     width = shutil.get_terminal_size().columns if sys.stdout.isatty() else None
     last_msg = time.monotonic()
     next_print = time.monotonic() + args.interval
     printed = False
-    while True:
-        got = handle(bus, 50, args)
+    while not signals:
+        got = handle(lc, 50, args, signals)
         if got is None:
             break
         now = time.monotonic()
@@ -345,11 +352,13 @@ def run_plain(bus, model, source, args):
             printed = True
         if args.exit_idle and now - last_msg >= args.exit_idle:
             break
+    if signals:
+        return                       # stopped: the caller says so, nothing more is printed
     if args.exit_idle or not printed:
         print("\n".join(model.render(source, width)), flush=True)
 
 
-def run_curses(bus, model, source, args):
+def run_curses(lc, model, source, args, signals):
     import curses
 
     ended = []
@@ -360,12 +369,12 @@ def run_curses(bus, model, source, args):
         scroll = 0
         next_draw = 0.0
         last_msg = time.monotonic()
-        while True:
+        while not signals:          # Ctrl-C: return, and curses.wrapper restores the terminal
             if ended:
                 got = 0
                 time.sleep(0.05)
             else:
-                got = handle(bus, 30, args)
+                got = handle(lc, 30, args, signals)
                 if got is None:
                     ended.append(time.monotonic())   # end of the log: keep showing it
             if got:
@@ -396,7 +405,7 @@ def run_curses(bus, model, source, args):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="swarm-monitor", description=__doc__.split("\n\n")[0],
+    ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog=__doc__.split("\n\n", 1)[1])
     src = ap.add_mutually_exclusive_group()
@@ -413,23 +422,26 @@ def main(argv=None):
     ap.add_argument("--prefix", default="",
                     help="show the channels with this prefix (FW_: the robots' own telemetry in a simulation)")
     args = ap.parse_args(argv)
-    bus, url = open_bus(args)
-    model = Model(run=args.run, events=args.events, prefix=args.prefix)
-    bus.subscribe(".*", model.add)
-    source = args.log or url
     try:
-        if args.plain or not sys.stdout.isatty():
-            run_plain(bus, model, source, args)
-        else:
-            run_curses(bus, model, source, args)
-    except common.IncompatibleMessage as e:
-        raise SystemExit(f"swarm-monitor: {e.explain(source, log=bool(args.log))}") from None
-    except KeyboardInterrupt:
-        pass
-    except BrokenPipeError:
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        with stop.Signals() as signals:
+            lc, _ = open_bus(args)
+            model = Model(run=args.run, events=args.events, prefix=args.prefix)
+            bus.subscribe(lc, ".*", model.add)
+            source = args.log or args.lcm      # as the user gave it (the bus adds its buffer size)
+            try:
+                if args.plain or not sys.stdout.isatty():
+                    run_plain(lc, model, source, args, signals)
+                else:
+                    run_curses(lc, model, source, args, signals)
+            except common.IncompatibleMessage as e:
+                raise SystemExit(f"{PROG}: {e.explain(source, log=bool(args.log))}") from None
+    except BrokenPipeError:          # `swarm-monitor --plain | head`
+        return stop.stdout_closed()
+    except KeyboardInterrupt:        # before the handlers were set, or after
+        return stop.interrupted(PROG)
+    if signals:
+        return signals.exit_status(PROG)
     return 0
-
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -12,8 +12,15 @@ writes
   events.png               cumulative events of each kind (SWARM_EVENT; log scale)
   controller_<name>.png    per controller: the mean over its robots of each of
                            its values over time, with their range (ROBOT_STATE)
+  bridge.png               the serial bridge's counters per device over time:
+                           frames, bytes, each kind of error, reconnects, link
+                           up or down (BRIDGE_STATUS)
 named by the schemas on TELEMETRY_SCHEMA: any log with them (a
-simulation's, or lcm-logger's of real robots behind the bridge).  --prefix
+simulation's, or lcm-logger's of real robots behind the bridge).  A log
+without the simulation's RUN_INFO and SWARM_STATE is of real robots, whose
+clocks start at their own power-on: their states and events, and the
+bridge's status, are then drawn on the log's clock (when the logger got
+them).  --prefix
 plots channels published with a prefix instead (the bridge's --prefix; FW_
 for the robots' own telemetry in a simulation with robot_telemetry.enabled).
 """
@@ -48,26 +55,43 @@ class Run:
     swarm: list = field(default_factory=list)           # swarm_state_t
     events: list = field(default_factory=list)          # event_t
     robots: dict = field(default_factory=dict)          # controller -> [robot_state_t]
+    bridge: list = field(default_factory=list)          # (s since the log began, bridge_status_t)
     schemas: common.Schemas = field(default_factory=common.Schemas)
     run: int = None
+    time_label: str = "time (s)"
+
+
+#: The x axis of the robots' figures when they are put on the log's clock.
+LOG_CLOCK = "time since the log began (s, the logger's clock)"
 
 
 def read_log(path, run=None, prefix=""):
     """The messages of one run on the channels with `prefix` of a log (the
-    run --run chose; the only one there is, else an error)."""
+    run --run chose; the only one there is, else an error).
+
+    Without the simulation's RUN_INFO and SWARM_STATE the robots are real:
+    each stamps its messages with its own clock, from its own power-on, so
+    their states and events are put on the log's clock instead (when the
+    logger received them, from the log's first message), as the bridge's
+    status is."""
     r = Run()
     runs = []
+    first = None
+    received = {}                # id(message) -> us since the log began
     for ev, msg in common.read_log(path, PROG):
         ours = common.split_channel(ev.channel)
         if msg is None or ours is None or ours[0] != prefix:
             continue
+        if first is None:
+            first = ev.timestamp
         kind = type(msg).__name__
         if kind == "schema_t":
             r.schemas.add(msg)
             continue
+        if kind == "bridge_status_t":
+            r.bridge.append(((ev.timestamp - first) / 1e6, msg))     # the bridge's, not a run's
+            continue
         mrun = getattr(msg, "run", None)
-        if mrun is None:
-            continue                 # the bridge's status
         if run is not None and mrun != run:
             continue
         if mrun not in runs:
@@ -76,8 +100,10 @@ def read_log(path, run=None, prefix=""):
             r.swarm.append(msg)
         elif kind == "event_t":
             r.events.append(msg)
+            received[id(msg)] = ev.timestamp - first
         elif kind == "robot_state_t":
             r.robots.setdefault(msg.controller, []).append(msg)
+            received[id(msg)] = ev.timestamp - first
         elif kind == "run_info_t" and r.info is None:
             r.info = msg
         elif kind == "run_summary_t":
@@ -85,6 +111,10 @@ def read_log(path, run=None, prefix=""):
     if len(runs) > 1:
         raise SystemExit(f"{PROG}: {path} holds several runs ({', '.join(map(str, runs))}): choose one with --run")
     r.run = runs[0] if runs else run
+    if r.info is None and not r.swarm and received:
+        for m in r.events + [m for ms in r.robots.values() for m in ms]:
+            m.utime = received[id(m)]
+        r.time_label = LOG_CLOCK
     return r
 
 
@@ -122,11 +152,12 @@ def plot(path, out_dir, run=None, dpi=110, prefix=""):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     r = read_log(path, run, prefix)
-    if not r.swarm and not r.events and not r.robots:
-        raise SystemExit(f"{PROG}: {path}: no {prefix}SWARM_STATE, {prefix}SWARM_EVENT or {prefix}ROBOT_STATE "
-                         f"messages" + (f" of run {run}" if run is not None else ""))
+    if not r.swarm and not r.events and not r.robots and not r.bridge:
+        raise SystemExit(f"{PROG}: {path}: no {prefix}SWARM_STATE, {prefix}SWARM_EVENT, {prefix}ROBOT_STATE or "
+                         f"{prefix}BRIDGE_STATUS messages" + (f" of run {run}" if run is not None else ""))
     os.makedirs(out_dir, exist_ok=True)
     written = []
 
@@ -137,7 +168,7 @@ def plot(path, out_dir, run=None, dpi=110, prefix=""):
         plt.close(fig)
         written.append(Figure(p, what, list(series)))
 
-    def grids(name, what, panels, draw):
+    def grids(name, what, panels, draw, time_label=None):
         """Figures of up to PANELS_PER_FIGURE panels, three a row; panels
         are (name, label, data), draw(ax, data)."""
         for f0 in range(0, len(panels), PANELS_PER_FIGURE):
@@ -153,7 +184,7 @@ def plot(path, out_dir, run=None, dpi=110, prefix=""):
             for ax in axes.flat[len(part):]:
                 ax.set_visible(False)
             for ax in axes[-1]:
-                ax.set_xlabel("time (s)")
+                ax.set_xlabel(r.time_label if time_label is None else time_label)
             fig.suptitle(title(r.info, what))
             suffix = "" if f0 == 0 else f"_{f0 // PANELS_PER_FIGURE + 1}"
             save(fig, f"{name}{suffix}.png", what, [n for n, _, _ in part])
@@ -171,13 +202,13 @@ def plot(path, out_dir, run=None, dpi=110, prefix=""):
         t = [b for b, _ in bins]
         names = []
         for _, ms in bins:
-            names += [m.state for m in ms if m.state not in names]
+            names += [n for n in dict.fromkeys(m.state for m in ms) if n not in names]   # robots in one state: once
         counts = [collections.Counter(m.state for m in ms) for _, ms in bins]
         total = max((len(ms) for _, ms in bins), default=1)
     if t and names:
         fig, ax = plt.subplots(figsize=(8, 4))
         ax.stackplot(t, *[[c.get(n, 0) for c in counts] for n in names], labels=names, alpha=0.85)
-        ax.set_xlabel("time (s)")
+        ax.set_xlabel(r.time_label)
         ax.set_ylabel("robots")
         ax.set_title(title(r.info, "Robots by state"))
         ax.set_ylim(0, max(1, total))
@@ -209,7 +240,7 @@ def plot(path, out_dir, run=None, dpi=110, prefix=""):
         for kind, ts in times.items():
             ax.step([0.0] + ts + [end], [0] + list(range(1, len(ts) + 1)) + [len(ts)], where="post",
                     label=f"{kind} ({len(ts)})")
-        ax.set_xlabel("time (s)")
+        ax.set_xlabel(r.time_label)
         ax.set_ylabel("events so far")
         ax.set_yscale("symlog", linthresh=10)
         ax.grid(alpha=0.3)
@@ -244,8 +275,51 @@ def plot(path, out_dir, run=None, dpi=110, prefix=""):
         count = len({m.robot_id for m in robots})
         grids(f"controller_{filename(ctrl)}", f"{ctrl or '(no controller)'}: mean of {count} robots (band: range)",
               panels, draw)
+
+    # The bridge's counters: a panel per counter, a line per device.
+    if r.bridge:
+        panels = bridge_panels(r.bridge)
+
+        def draw_devices(ax, lines):
+            for name, (t, ys) in lines.items():
+                ax.step(t, ys, where="post", linewidth=1, label=name)
+            ax.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
+            ax.set_ylim(bottom=0, top=max(1, max(max(ys) for _, ys in lines.values()) * 1.05))
+            spec = ax.get_subplotspec()
+            if spec.is_first_row() and spec.is_first_col():     # one legend: the devices are the same everywhere
+                ax.legend(loc="upper left", fontsize="x-small")
+
+        grids("bridge", "Serial bridge", panels, draw_devices, LOG_CLOCK)
     return written
 
+
+#: bridge_device_t's counters, as the panels of bridge.png call them.
+BRIDGE_COUNTERS = (("frames", "frames republished"), ("bytes", "bytes read"), ("crc_errors", "CRC errors"),
+                   ("framing_errors", "framing errors"), ("oversize", "garbage runs"),
+                   ("bad_payload", "bad payloads"), ("unknown_channel", "unknown channels"),
+                   ("lost", "frames lost (sequence gaps)"), ("reconnects", "reconnects"),
+                   ("connected", "link up (1) or down (0)"))
+
+
+def bridge_panels(statuses):
+    """(name, label, {device label: (t, values)}) for each counter of the
+    devices in (t, bridge_status_t) pairs.  A device is labelled with the
+    robot id it last had."""
+    statuses = sorted(statuses, key=lambda p: p[0])
+    names = {}
+    for _, m in statuses:
+        for d in m.devices:
+            names[d.device] = d.device + (f" (robot {d.robot_id})" if d.robot_id >= 0 else "")
+    panels = []
+    for key, lab in BRIDGE_COUNTERS:
+        series = {}
+        for t, m in statuses:
+            for d in m.devices:
+                ts, ys = series.setdefault(d.device, ([], []))
+                ts.append(t)
+                ys.append(int(getattr(d, key)))
+        panels.append((key, lab, {names[dev]: data for dev, data in series.items()}))
+    return panels
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="swarm-plot", description=__doc__.split("\n\n")[0],

@@ -239,7 +239,8 @@ class PseudoTerminals(TempDir):
             proc.send_signal(signal.SIGINT)
             _, err = proc.communicate(timeout=10)
             robot.close()
-        self.assertEqual(proc.returncode, 0, err)
+        self.assertEqual(proc.returncode, 130, err)
+        self.assertTrue(err.splitlines()[-1].startswith("swarm-bridge: stopped by SIGINT; "), err)
         self.assertIn("12 frames, 1 CRC errors", err)
         self.assertIn("1 bad payloads", err)
         self.assertEqual(err.count("comes from an older version of the toolkit (telemetry v1, robot_state_t)"), 2,
@@ -260,8 +261,70 @@ class PseudoTerminals(TempDir):
     def test_command_line_rejects_bad_arguments(self):
         r = subprocess.run([PYTHON, "-m", "swarmtools.telemetry.bridge", "/dev/null", "--id", "nope"],
                            capture_output=True, text=True)
-        self.assertNotEqual(r.returncode, 0)
-        self.assertIn("DEVICE=ID", r.stderr)
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(r.stderr, "swarm-bridge: --id 'nope': expected DEVICE=ID\n")
+
+
+class StartAndStop(TempDir):
+    """A device path that does not exist is refused at once unless --wait;
+    the last line names why the bridge stopped."""
+
+    def bridge(self, *args):
+        return subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", *map(str, args), "--lcm", "memq://",
+                                 "--report-every", "0"], stderr=subprocess.PIPE, text=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+
+    def test_a_missing_device_is_refused_at_once(self):
+        missing = self.tmp / "rfcomm9"
+        t0 = time.monotonic()
+        p = self.bridge("/dev/null", missing)
+        try:
+            _, err = p.communicate(timeout=10)   # before: ran on, reopening the missing port every second
+        finally:
+            p.kill()
+        self.assertLess(time.monotonic() - t0, 5.0)
+        self.assertEqual(p.returncode, 1, err)
+        self.assertEqual(err, f"swarm-bridge: cannot open {missing} (No such file or directory); bind the robot's "
+                              f"port first (sudo rfcomm bind ...), or pass --wait to wait for it\n")
+
+    def test_wait_for_a_missing_device(self):
+        link = self.tmp / "rfcomm4"
+        log = self.tmp / "bridge.lcmlog"
+        p = subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", link, "--wait", "--reopen", "0.1",
+                              "--lcm", f"file://{log}?mode=w", "--report-every", "0"], stderr=subprocess.PIPE,
+                             text=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+        robot = None
+        try:
+            time.sleep(0.8)
+            self.assertIsNone(p.poll(), "the bridge did not wait")
+            robot = PtyRobot(str(link))
+            time.sleep(0.5)
+            robot.send(encode_frame(1, 5, 0, robot_state(robot_id=5).encode()))
+            time.sleep(0.5)
+        finally:
+            p.send_signal(signal.SIGINT)
+            _, err = p.communicate(timeout=10)
+            if robot:
+                robot.close()
+        self.assertEqual(p.returncode, 130, err)
+        lines = err.splitlines()
+        self.assertEqual(lines[0], f"swarm-bridge: waiting for {link} (No such file or directory)")
+        self.assertTrue(lines[-1].startswith(f"swarm-bridge: stopped by SIGINT; {link} robot 5: up, 1 frames"), err)
+        self.assertEqual([ch for ch, _ in read_log(log) if ch == "ROBOT_STATE"], ["ROBOT_STATE"])
+
+    def test_sigterm_and_duration_are_named(self):
+        robot = PtyRobot(str(self.tmp / "rfcomm2"))          # a robot that says nothing
+        try:
+            p = self.bridge(robot.link, "--duration", "30", "--quiet")
+            time.sleep(0.8)
+            p.send_signal(signal.SIGTERM)
+            _, err = p.communicate(timeout=10)
+            self.assertEqual((p.returncode, err), (143, "swarm-bridge: stopped by SIGTERM\n"))
+            p = self.bridge(robot.link, "--duration", "0.5", "--quiet")
+            _, err = p.communicate(timeout=10)
+            self.assertEqual((p.returncode, err), (0, "swarm-bridge: stopped after --duration 0.5 s\n"))
+        finally:
+            robot.close()
 
 
 if __name__ == "__main__":
