@@ -155,34 +155,30 @@ def lcm_module():
 
 def read_log(path, prog):
     """Yields (log event, message) for each event of an LCM log file;
-    message is None for another program's messages.  Stops the tool with a
-    clear message (SystemExit) when the file is missing or no LCM log, and
-    at the first message of another toolkit version."""
-    lcm = lcm_module()
+    message is None for another program's messages.  Events are read by the
+    checked reader (logfile.py), never by the lcm package's C reader, so a
+    corrupt length is an error naming its byte offset, not a crash.  Stops
+    the tool with a clear message (SystemExit) when the file is missing, no
+    LCM log or corrupt, and at the first message of another toolkit version."""
+    from . import logfile
     path = str(path)
     if not os.path.isfile(path):
         raise SystemExit(f"{prog}: {path}: no such file")
-    try:
-        log = lcm.EventLog(path, "r")
-    except (OSError, ValueError) as e:
-        raise SystemExit(f"{prog}: {path}: {e}") from None
     events = 0
     try:
-        while True:
-            try:
-                ev = log.read_next_event()
-            except (OSError, ValueError) as e:
-                raise SystemExit(f"{prog}: {path}: cannot read: {e}") from None
-            if ev is None:
-                break
+        for ev in logfile.events(path):
             events += 1
             try:
                 msg = decode(ev.data, ev.channel)
             except IncompatibleMessage as e:
                 raise SystemExit(f"{prog}: {e.explain(path)}") from None
             yield ev, msg
-    finally:
-        log.close()
+    except logfile.LogError as e:
+        if events == 0:
+            raise SystemExit(f"{prog}: {path}: not an LCM log ({e})") from None
+        raise SystemExit(f"{prog}: {e}") from None
+    except OSError as e:
+        raise SystemExit(f"{prog}: {path}: cannot read: {e.strerror}") from None
     if events == 0 and os.path.getsize(path) > 0:
         raise SystemExit(f"{prog}: {path}: not an LCM log (no events in it)")
 

@@ -215,6 +215,26 @@ def _selected(log_path, patterns, run):
         yield ev, msg
 
 
+def file_names(channels):
+    """A file name in the output folder for each channel.  Channel names come
+    from the log, untrusted: a name is kept only where it is plain (letters,
+    digits, '_', '-', '.', not starting with '.'); anything else (a '/', a
+    '..', bytes that were not UTF-8) becomes '_' plus a short hash of the
+    name, so that no file lands outside the folder and two channels never
+    share one."""
+    import hashlib
+    import re
+    out, used = {}, set()
+    for ch in channels:
+        base = ch if re.fullmatch(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,99}", ch) else None
+        if base is None or base.lower() in used:
+            safe = re.sub(r"[^A-Za-z0-9_-]", "_", ch)[:60].strip("_") or "channel"
+            base = f"{safe}_{hashlib.sha256(ch.encode('utf-8', 'surrogateescape')).hexdigest()[:8]}"
+        used.add(base.lower())
+        out[ch] = base + ".csv"
+    return out
+
+
 def export(log_path, channels=None, out="-", fields_wanted=None, every=None, log_time=False, run=None):
     """Writes the CSV(s); returns {channel: rows}."""
     patterns = [re.compile(f"^(?:{c})$") for c in channels] if channels else None
@@ -247,7 +267,8 @@ def export(log_path, channels=None, out="-", fields_wanted=None, every=None, log
             headers[ch] = cols.order
     if to_dir:
         os.makedirs(out, exist_ok=True)
-    writers = {ch: ChannelWriter(os.path.join(out, f"{ch}.csv") if to_dir else out, headers[ch], every)
+    names = file_names(columns) if to_dir else {}
+    writers = {ch: ChannelWriter(os.path.join(out, names[ch]) if to_dir else out, headers[ch], every)
                for ch in columns}
     try:
         for ev, msg in _selected(log_path, patterns, run):

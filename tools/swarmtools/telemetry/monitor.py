@@ -287,19 +287,18 @@ class Model:
 
 
 def check_log(lcm, name, path):
-    """Refuses a file that is not an LCM log before LCM's log provider
-    meets it (which would only say it could not start)."""
+    """Reads the whole log with the checked reader (logfile.py) before LCM's
+    file provider, whose C reader trusts every length field, replays it: a
+    corrupt log is refused with the byte offset, never handed over."""
+    from . import logfile
+    del lcm
     try:
-        log = lcm.EventLog(path, "r")
-    except (OSError, ValueError) as e:
-        raise SystemExit(f"{PROG}: {name}: cannot read: {e}") from None
-    try:
-        first = log.read_next_event()
-    except (OSError, ValueError):
-        first = None
-    finally:
-        log.close()
-    if first is None:
+        n = logfile.check(path)
+    except logfile.LogError as e:
+        raise SystemExit(f"{PROG}: {e}") from None
+    except OSError as e:
+        raise SystemExit(f"{PROG}: {name}: cannot read: {e.strerror}") from None
+    if n == 0:
         what = "empty (no events)" if os.path.getsize(path) == 0 else "not an LCM log (no events in it)"
         raise SystemExit(f"{PROG}: {name}: {what}")
 

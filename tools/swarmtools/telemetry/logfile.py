@@ -1,0 +1,86 @@
+"""A checked reader of LCM log files: every event is validated against the
+file before it is trusted.
+
+A log is untrusted input. The lcm package's C reader allocates whatever an
+event's length field says and reads into it: a length of 0x7FFFFFFF made the
+tools die with SIGSEGV inside it. The log format is small and documented
+(LCM's "Log File Format"), so it is read here:
+
+    uint32  sync word 0xEDA1DA01
+    int64   event number
+    int64   timestamp, microseconds
+    int32   channel length
+    int32   data length
+    bytes   channel (not NUL-terminated)
+    bytes   data
+
+all big-endian. An event whose sync word, lengths or size do not fit the
+file is an error naming the byte offset where it starts (LogError). Channel
+names are bytes: a name that is not UTF-8 is rendered with backslash escapes
+(``chan\\xff``), never a decoding traceback.
+"""
+
+from __future__ import annotations
+
+import os
+import struct
+from collections.abc import Iterator
+from typing import NamedTuple
+
+SYNC = 0xEDA1DA01
+HEADER = struct.Struct(">Iqqii")
+#: Longer channel names than this are taken for corruption (LCM's own
+#: limit is far lower).
+MAX_CHANNEL = 1024
+
+
+class LogError(Exception):
+    """A file that is not (or no longer) a well-formed LCM log."""
+
+
+class Event(NamedTuple):
+    eventnum: int
+    timestamp: int
+    channel: str
+    data: bytes
+    offset: int
+
+
+def channel_name(raw: bytes) -> str:
+    """A channel's bytes as text: UTF-8, or escapes for the bytes that are not."""
+    return raw.decode("utf-8", errors="backslashreplace")
+
+
+def events(path: str | os.PathLike) -> Iterator[Event]:
+    """Every event of the log at `path`, in order; LogError at the first
+    event the file cannot hold."""
+    path = os.fspath(path)
+    size = os.path.getsize(path)
+    with open(path, "rb") as f:
+        offset = 0
+        while offset < size:
+            head = f.read(HEADER.size)
+            if len(head) < HEADER.size:
+                raise LogError(f"{path}: truncated event at byte {offset}: {len(head)} of the "
+                               f"{HEADER.size} header bytes")
+            sync, num, stamp, clen, dlen = HEADER.unpack(head)
+            if sync != SYNC:
+                raise LogError(f"{path}: corrupt event at byte {offset}: sync word 0x{sync:08X}, "
+                               f"expected 0x{SYNC:08X}")
+            left = size - offset - HEADER.size
+            if not 0 <= clen <= MAX_CHANNEL:
+                raise LogError(f"{path}: corrupt event at byte {offset}: channel length {clen}")
+            if dlen < 0 or clen + dlen > left:
+                raise LogError(f"{path}: corrupt event at byte {offset}: channel and data lengths "
+                               f"{clen} + {dlen}, but only {left} bytes are left in the file")
+            channel = f.read(clen)
+            data = f.read(dlen)
+            if len(channel) != clen or len(data) != dlen:
+                raise LogError(f"{path}: truncated event at byte {offset}")
+            yield Event(num, stamp, channel_name(channel), data, offset)
+            offset += HEADER.size + clen + dlen
+
+
+def check(path: str | os.PathLike) -> int:
+    """Reads the whole log once; returns its event count (LogError if bad)."""
+    return sum(1 for _ in events(path))
