@@ -292,10 +292,12 @@ def check_log(lcm, name, path):
     corrupt log is refused with the byte offset, never handed over."""
     from . import logfile
     del lcm
+    n = 0
     try:
-        n = logfile.check(path)
+        for _ in logfile.events(path):
+            n += 1
     except logfile.LogError as e:
-        raise SystemExit(f"{PROG}: {e}") from None
+        raise SystemExit(f"{PROG}: {name}: not an LCM log ({e})" if n == 0 else f"{PROG}: {e}") from None
     except OSError as e:
         raise SystemExit(f"{PROG}: {name}: cannot read: {e.strerror}") from None
     if n == 0:
