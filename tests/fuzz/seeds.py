@@ -51,7 +51,7 @@ def states(stream):
     for f in frames:
         if f.channel == ROBOT_STATE:
             m = common.decode(f.payload)
-            out.append(dict(zip(names, m.values)))
+            out.append(dict(zip(names, m.values, strict=True)))
     return out, frames
 
 

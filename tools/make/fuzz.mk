@@ -11,6 +11,8 @@
 #                     executions and coverage per target; FUZZ_TARGETS to
 #                     choose, -j2 to run two at once.  What it finds stays in
 #                     build/fuzz/run/<target>/ (new inputs, crash-* files).
+#                     Then the Python property tests (tools/tests/fuzz/) with
+#                     FUZZ_PY_EXAMPLES (10,000) random examples a property.
 #
 # A defect that is known and being fixed elsewhere is listed in
 # tests/fuzz/known_defects.supp (UBSan suppressions, so that fuzzing goes on
@@ -19,6 +21,7 @@
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_SECONDS ?= 300
 FUZZ_TEST_SECONDS ?= 3
+FUZZ_PY_EXAMPLES ?= 10000
 # epuck_ir.c is built once per IR backend of hal/epuck, as test_hal_epuck is.
 FUZZ_ALL := $(filter-out epuck_ir,$(patsubst tests/fuzz/%.c,%,$(sort $(wildcard tests/fuzz/*.c)))) \
   epuck_ir_randb epuck_ir_libircom
@@ -73,16 +76,22 @@ $(FUZZ_DIR)/bin/epuck_ir_libircom: tests/fuzz/epuck_ir.c | $(BUILD)/config.mk
 
 FUZZ_RUN = FUZZ_DIR=$(FUZZ_DIR) bash tests/fuzz/run.sh
 
-.PHONY: fuzz fuzz-tests fuzz-build $(addprefix fuzz-run-,$(FUZZ_ALL))
+.PHONY: fuzz fuzz-tests fuzz-build fuzz-python $(addprefix fuzz-run-,$(FUZZ_ALL))
 fuzz-build: $(FUZZ_BINS)
 
 fuzz-tests: fuzz-build
 	@set -e; for t in $(FUZZ_ALL); do $(FUZZ_RUN) $$t $(FUZZ_TEST_SECONDS); done
 	@$(FUZZ_RUN) --known $(FUZZ_ALL)
 
-fuzz: $(addprefix fuzz-run-,$(FUZZ_TARGETS))
+fuzz: $(addprefix fuzz-run-,$(FUZZ_TARGETS)) fuzz-python
 $(addprefix fuzz-run-,$(FUZZ_ALL)): fuzz-run-%: $(FUZZ_DIR)/bin/%
 	@$(FUZZ_RUN) $* $(FUZZ_SECONDS)
+
+# The property tests run in make test too (python-tests, 300 derandomized
+# examples a property); here at random and at length.
+fuzz-python: deps $(BUILD)/telemetry/libtelemetry_frame.so   # TELEMETRY_FRAME_SO, lcm.mk
+	@SWARM_HYPOTHESIS=long SWARM_HYPOTHESIS_EXAMPLES=$(FUZZ_PY_EXAMPLES) TELEMETRY_FRAME_SO=$(TELEMETRY_FRAME_SO) \
+	  $(PYTHON) -m unittest tools.tests.fuzz.test_hex tools.tests.fuzz.test_frames
 
 EXTRA_TESTS += fuzz-tests
 
