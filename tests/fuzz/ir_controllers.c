@@ -20,8 +20,10 @@
  * (2), T2 and the wait timeout of the beacon (2 + 1), then segments:
  * steps (1 byte: 1..128, then 16..2048 in steps of 16), messages per step (1 byte, % 17), world (1 byte),
  * and per message value (2), range (2, to 0xFFFE), bearing (2, to
- * +-3141 mrad), sensor (1, to 0..7): the value is anything a sender may
- * put on the air, the rest what a HAL reports (hal.h, hal/epuck).
+ * +-3141 mrad), sensor (1, to 0..7), stride (1: added to the value's low
+ * byte after each step, as a report's running total grows): the value is
+ * anything a sender may put on the air, the rest what a HAL reports
+ * (hal.h, hal/epuck).
  */
 #include "fuzz.h"
 
@@ -170,6 +172,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         uint8_t n = (uint8_t)(fuzz_u8(&in) % (MAX_MSGS + 1u));
         uint8_t world = fuzz_u8(&in);
         hal_ircom_msg_t msgs[MAX_MSGS];
+        uint8_t stride[MAX_MSGS];
         uint8_t k;
         for (k = 0; k < n; k++) {
             /* The value is the sender's, anything; the rest is the
@@ -178,6 +181,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             msgs[k].range_mm = (uint16_t)(fuzz_u16(&in) % 0xFFFFu);
             msgs[k].bearing_mrad = (int16_t)(fuzz_u16(&in) % 6283u - 3141);
             msgs[k].sensor = (uint8_t)(fuzz_u8(&in) % HAL_IR_COUNT);
+            stride[k] = fuzz_u8(&in);
         }
         script_world(world, msgs[0].bearing_mrad * (n > 0));
         for (; repeat > 0 && steps < MAX_STEPS; repeat--, steps++) {
@@ -193,6 +197,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (k = 0; k < n; k++) {
                 deliver(&HF, &msgs[k], &seen);
                 deliver(&HB, &msgs[k], NULL);
+                /* The low byte (a report's total) moves on by the stride
+                 * every step: a robot reporting, honestly or not. */
+                msgs[k].value = (uint16_t)((msgs[k].value & 0xFF00u) | ((msgs[k].value + stride[k]) & 0xFFu));
             }
             forager_step(&F, &HF);
             nest_beacon_step(&B, &HB);
