@@ -84,6 +84,22 @@ static void script_world(uint8_t world, int16_t bearing)
     }
 }
 
+/* The fuzzer sees code coverage, not values: an input that drives the
+ * beacon's ledger twice as far as any before looks like nothing new, and
+ * streams that push a sum toward its limit are never kept.  Each power of
+ * two the ledger's size (or M_T2) reaches from 2^16 up is made an edge of
+ * its own, so that they are. */
+static volatile uint32_t magnitude_sink;
+#define LEVEL(v, b)                           \
+    if ((v) >= (UINT32_C(1) << (b))) {        \
+        magnitude_sink = (b);                 \
+    }
+static void magnitude_feedback(uint32_t v)
+{
+    LEVEL(v, 16) LEVEL(v, 17) LEVEL(v, 18) LEVEL(v, 19) LEVEL(v, 20) LEVEL(v, 21) LEVEL(v, 22) LEVEL(v, 23)
+    LEVEL(v, 24) LEVEL(v, 25) LEVEL(v, 26) LEVEL(v, 27) LEVEL(v, 28) LEVEL(v, 29) LEVEL(v, 30) LEVEL(v, 31)
+}
+
 static void check_beacon(uint32_t sent_before, uint8_t kind)
 {
     nest_link_frame_t f;
@@ -110,6 +126,8 @@ static void check_beacon(uint32_t sent_before, uint8_t kind)
         sum += B.bins[i];
     }
     FUZZ_CHECK(B.m_t2 == sum);
+    magnitude_feedback(B.ledger_units < 0 ? 0u - (uint32_t)B.ledger_units : (uint32_t)B.ledger_units);
+    magnitude_feedback(B.m_t2);
 }
 
 static void check_forager(const beacon_seen_t *seen, uint32_t sent_before, uint32_t deposits_before)
