@@ -201,7 +201,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             msgs[k].sensor = (uint8_t)(fuzz_u8(&in) % HAL_IR_COUNT);
             stride[k] = fuzz_u8(&in);
         }
-        script_world(world, msgs[0].bearing_mrad * (n > 0));
+        script_world(world, n > 0 ? msgs[0].bearing_mrad : 0);
         for (; repeat > 0 && steps < MAX_STEPS; repeat--, steps++) {
             uint32_t f_sent = HF.out_count, b_sent = HB.out_count, deposits = F.deposits;
             if (closed && steps > 0) {

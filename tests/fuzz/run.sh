@@ -34,7 +34,9 @@ fuzz_one() {
     if [ $rc -ne 0 ]; then
         local crash
         crash=$(ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* "$work"/oom-* 2>/dev/null | head -1)
-        grep -E 'ERROR|runtime error|property failed|SUMMARY|^ +#[0-9]' "$work/log" | head -40
+        # What the harness or a sanitizer said, without libFuzzer's own stack.
+        grep -B4 -A1 -E 'ERROR|runtime error|property failed' "$work/log" | grep -vE '^ +#[0-9]|^#[0-9]+ ' | head -30
+        grep -E '^ +#[0-9]+ .* in (LLVMFuzzerTestOneInput|[a-z_]+ /)' "$work/log" | head -12
         echo "fuzz $t: FAILED (status $rc); log $work/log"
         [ -n "$crash" ] && echo "fuzz $t: input $crash; reproduce with: $bin $crash"
         return 1
