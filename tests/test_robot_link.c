@@ -153,12 +153,50 @@ static void test_corruption_costs_one_frame(void **state)
     assert_int_equal(robot_link_write(&l, frame, n), 0);
 }
 
+/* A body longer than the format allows (found by tests/fuzz/telemetry_frame.c):
+ * 242 payload bytes with a good CRC, stuffed and delimited as a sender that
+ * ignores the limit would write them.  It is a bad frame, and the frames
+ * held before it stay as they were (the old decoder copied 242 bytes into
+ * a 240-byte payload, over the next frame or the frame count). */
+static void test_a_body_longer_than_the_format_is_bad(void **state)
+{
+    (void)state;
+    uint8_t body[TELEMETRY_MAX_BODY + 2], wire[TELEMETRY_MAX_BODY + 8], small[TELEMETRY_FRAME_MAX];
+    uint8_t payload[3] = { 1, 2, 3 };
+    size_t blen = sizeof body;
+    robot_link_t l;
+    memset(body, 0x41, sizeof body);
+    body[0] = TELEMETRY_VERSION;
+    body[1] = TELEMETRY_CH_ROBOT_STATE;
+    uint16_t crc = telemetry_crc16(0xFFFFu, body, (uint16_t)(blen - 2));
+    body[blen - 2] = (uint8_t)(crc >> 8);
+    body[blen - 1] = (uint8_t)crc;
+    wire[0] = 0;
+    uint16_t n = telemetry_cobs_encode(body, (uint16_t)blen, wire + 1, sizeof wire - 2);
+    assert_int_equal(n, blen + 1);
+    wire[n + 1] = 0;
+
+    robot_link_init(&l);
+    robot_link_begin_step(&l, UINT32_MAX);
+    uint16_t m = telemetry_frame_encode(small, sizeof small, TELEMETRY_CH_EVENT, 5, 6, payload, 3);
+    for (int k = 0; k < (int)ROBOT_LINK_FRAMES - 1; k++) robot_link_write(&l, small, m);
+    robot_link_write(&l, wire, (uint16_t)(n + 2));
+    assert_int_equal(l.bad, 1);
+    assert_int_equal(l.good, ROBOT_LINK_FRAMES - 1);
+    assert_int_equal(l.n_frames, ROBOT_LINK_FRAMES - 1);
+    for (int k = 0; k < (int)ROBOT_LINK_FRAMES - 1; k++) {
+        assert_int_equal(l.frames[k].len, 3);
+        assert_int_equal(l.frames[k].robot_id, 5);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_frames_carry_the_controllers_values),
         cmocka_unit_test(test_same_run_and_a_slow_uart),
         cmocka_unit_test(test_corruption_costs_one_frame),
+        cmocka_unit_test(test_a_body_longer_than_the_format_is_bad),
     };
     return cmocka_run_group_tests_name("robot_link", tests, NULL, NULL);
 }

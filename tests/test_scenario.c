@@ -880,6 +880,33 @@ static void test_group_names(void **state)
                       3, "robots[1].name: 'a' already names robots[0]");
 }
 
+/* The effective scenario (what a run keeps beside its outputs) loads to
+ * the same scenario even when a plain value cannot be written plain: a
+ * name over lines with a blank one between holds a line break, and
+ * libyaml then quotes it, which needs a tag ("!") to stay plain, and the
+ * loader refuses tags (found by tests/fuzz/scenario.c). */
+static void test_effective_scenario_of_a_multiline_value(void **state)
+{
+    fixture_t *fx = *state;
+    char err[SCENARIO_ERROR_MAX], out[600];
+    scenario_t *again = malloc(sizeof *again);
+    assert_non_null(again);
+    snprintf(fx->path, sizeof fx->path, "%s/multiline.yaml", tmpdir);
+    write_file(fx->path, "name: my long\n\n  scenario\n" RW);
+    assert_int_equal(scenario_load(fx->path, NULL, 0, fx->sc, err), 0);
+    assert_string_equal(fx->sc->name, "my long\nscenario");
+    snprintf(out, sizeof out, "%s/effective.yaml", tmpdir);
+    FILE *f = fopen(out, "wb");
+    assert_non_null(f);
+    assert_int_equal(scenario_write_effective(fx->path, NULL, 0, f, err), 0);
+    assert_int_equal(fclose(f), 0);
+    if (scenario_load(out, NULL, 0, again, err) != 0) fail_msg("%s", err);
+    assert_string_equal(again->name, fx->sc->name);
+    assert_int_equal(unlink(out), 0);
+    assert_int_equal(unlink(fx->path), 0);
+    free(again);
+}
+
 static void test_placements(void **state)
 {
     static const bad_case_t cases[] = {
@@ -996,6 +1023,7 @@ int main(void)
         T(test_group_params),
         T(test_group_policy),
         T(test_group_names),
+        T(test_effective_scenario_of_a_multiline_value),
         T(test_placements),
         T(test_controller_needs),
         T(test_task_sections),

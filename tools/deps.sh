@@ -36,22 +36,43 @@ check_all() {
     need libglib2.0-0     glib_runtime      # liblcm.a (the lcm wheel) calls GLib
     need valgrind         command -v valgrind   # firmware CPU report (callgrind)
     need ffmpeg           command -v ffmpeg     # swarmsim --video (and ffprobe for its tests)
+    # The fuzz harnesses (tests/fuzz/, tools/make/fuzz.mk): clang, its
+    # sanitizer and libFuzzer runtime (a separate package named after
+    # clang's major version, so it is looked for once clang is there), and
+    # llvm-symbolizer for readable crash stacks.
+    need clang            command -v clang
+    need llvm             command -v llvm-symbolizer
+    if command -v clang >/dev/null 2>&1; then
+        need "$(clang_rt_package)" libfuzzer_links
+    fi
+}
+clang_major() { clang -dumpversion | cut -d. -f1; }
+# Debian 12 splits the runtime out as libclang-rt-N-dev; older releases keep
+# it in libclang-common-N-dev.
+clang_rt_package() {
+    local v; v=$(clang_major)
+    if apt-cache show "libclang-rt-$v-dev" >/dev/null 2>&1; then echo "libclang-rt-$v-dev"
+    else echo "libclang-common-$v-dev"; fi
+}
+libfuzzer_links() {
+    printf '#include <stddef.h>\n#include <stdint.h>\nint LLVMFuzzerTestOneInput(const uint8_t *d, size_t n) { (void)d; (void)n; return 0; }\n' \
+        | clang -fsanitize=fuzzer,address,undefined -x c - -o /dev/null
 }
 glib_runtime() { { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | grep -q 'libglib-2.0.so.0'; }
 hdr_avr() { printf '#include <stdint.h>\n' | avr-gcc -mmcu=atmega128 -E -x c - >/dev/null; }
 hdr_arm() { printf '#include <string.h>\n' | arm-none-eabi-gcc -mcpu=cortex-m4 -E -x c - >/dev/null; }
 
+# Two rounds: clang's runtime package is known only once clang is installed.
 check_all
-if [ ${#missing[@]} -gt 0 ]; then
-    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-        say "installing Debian packages: ${missing[*]}"
-        export DEBIAN_FRONTEND=noninteractive
-        if ! apt-get install -y --no-install-recommends "${missing[@]}" >&2; then
-            apt-get update >&2 && apt-get install -y --no-install-recommends "${missing[@]}" >&2 || true
-        fi
-        check_all
+for _ in 1 2; do
+    [ ${#missing[@]} -gt 0 ] && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null || break
+    say "installing Debian packages: ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    if ! apt-get install -y --no-install-recommends "${missing[@]}" >&2; then
+        apt-get update >&2 && apt-get install -y --no-install-recommends "${missing[@]}" >&2 || true
     fi
-fi
+    check_all
+done
 if [ ${#missing[@]} -gt 0 ]; then
     say "missing Debian packages: ${missing[*]}"
     say "install them with:  sudo apt-get install ${missing[*]}"
@@ -107,4 +128,5 @@ YAML_LIBS := $(pkg-config --libs yaml-0.1)
 PNG_CFLAGS := $(pkg-config --cflags libpng)
 PNG_LIBS := $(pkg-config --libs libpng)
 GL_LIBS := -lOSMesa
+FUZZ_CC := clang
 MK

@@ -40,10 +40,12 @@ static int cobs_decode(const uint8_t *in, uint16_t len, uint8_t *out, uint16_t c
     return n;
 }
 
-/* One run of bytes between two zeros: a frame if it checks out. */
+/* One run of bytes between two zeros: a frame if it checks out.  The body
+ * is decoded into exactly TELEMETRY_MAX_BODY bytes: a longer one breaks
+ * the format, whatever its CRC, and its payload would not fit a frame's. */
 static void end_frame(robot_link_t *l)
 {
-    uint8_t body[TELEMETRY_MAX_BODY + 2];
+    uint8_t body[TELEMETRY_MAX_BODY];
     int n = l->overflow ? -1 : cobs_decode(l->acc, l->acc_len, body, sizeof body);
     uint16_t crc;
     if (l->acc_len == 0 && !l->overflow) {

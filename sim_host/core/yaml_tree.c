@@ -708,9 +708,12 @@ static int emit_node(yaml_emitter_t *e, const ynode_t *n)
     switch (n->kind) {
     case YNODE_SCALAR:
         /* A quoted scalar stays quoted (a string); a plain one stays plain
-         * where YAML allows, so numbers and booleans read back as such. */
+         * where YAML allows, so numbers and booleans read back as such.
+         * Where it does not (a line break in it), libyaml quotes it, and
+         * quoted_implicit lets it do so without the tag "!" that we cannot
+         * read back: such text is a string to the schema anyway. */
         yaml_scalar_event_initialize(&ev, NULL, NULL, (yaml_char_t *)n->text, (int)strlen(n->text),
-                                     !n->quoted, n->quoted,
+                                     !n->quoted, 1,
                                      n->quoted ? YAML_DOUBLE_QUOTED_SCALAR_STYLE : YAML_ANY_SCALAR_STYLE);
         return emit(e, &ev);
     case YNODE_MAPPING:

@@ -1,13 +1,14 @@
-"""Runs the host tools' tests (tools/tests/telemetry, study, sil and sweep;
-the flasher's run in `make firmware-check`) with unittest discovery and
-ends with one line 'python tools: N passed, N failed, N skipped'."""
+"""Runs the host tools' tests (tools/tests/telemetry, study, sil, sweep and
+fuzz, the parsers' property tests; the flasher's run in `make
+firmware-check`) with unittest discovery and ends with one line
+'python tools: N passed, N failed, N skipped'."""
 import sys
 import unittest
 from pathlib import Path
 
 here = Path(__file__).resolve().parent
 suite = unittest.TestSuite()
-for group in ("telemetry", "study", "sil", "sweep"):
+for group in ("telemetry", "study", "sil", "sweep", "fuzz"):
     suite.addTests(unittest.defaultTestLoader.discover(str(here / group), top_level_dir=str(here.parent)))
 result = unittest.TextTestRunner(verbosity=2).run(suite)
 failed = len(result.failures) + len(result.errors) + len(result.unexpectedSuccesses)
