@@ -482,9 +482,6 @@ static void deposit_step(forager_t *self, hal_t *hal)
 void forager_step(forager_t *self, hal_t *hal)
 {
     read_inbox(self, hal);
-    if (self->state != FORAGER_WAIT) {
-        send_oae_report(self, hal);   /* this step's total goes out next step */
-    }
 
     switch (self->state) {
     case FORAGER_WAIT:
@@ -502,6 +499,9 @@ void forager_step(forager_t *self, hal_t *hal)
     default:
         enter_wait(self, hal);
         break;
+    }
+    if (self->state != FORAGER_WAIT) {
+        send_oae_report(self, hal);   /* after this step's motion: its latest total */
     }
 }
 

@@ -178,13 +178,11 @@ def ir_controllers_seeds(streams):
     trip += segment(5, 1 | 2 | 4, [msg(food[1], 300)])
     trip += segment(20, 0, [msg(f, 300) for f in food])
     put("ir_controllers", "trip_frtm", trip)
-    # Issue 12's defect, known and being fixed (tests/fuzz/known_defects.supp):
-    # robot 0 alternately reporting deposit totals 255 and 254 (frames 0x40FF,
-    # 0x40FE), 8 a step, for 2048 steps overflows the beacon's ledger.
+    # Issue 12's defect, fixed: robot 0 alternately reporting deposit totals
+    # 255 and 254 (frames 0x40FF, 0x40FE), 8 a step, for 2048 steps used to
+    # overflow the beacon's ledger; kept as a regression input.
     hostile = bytearray(struct.pack(">BH", 0, 7)) + segment(2048, 0, [msg(0x40FF - k % 2, 300) for k in range(8)])
-    known = ROOT / "tests/fuzz/known/ir_controllers"
-    known.mkdir(parents=True, exist_ok=True)
-    (known / "ledger_overflow").write_bytes(hostile)
+    put("ir_controllers", "regress_ledger_overflow", hostile)
 
 
 def epuck_ir_seeds(streams):
