@@ -1,5 +1,6 @@
 """Property tests (hypothesis) of the host tools' parsers of untrusted input:
-the flasher's .hex parser and the telemetry frame decoder.
+the flasher's .hex parser, the telemetry frame decoder, the LCM log reader
+and the CSV export's file names.
 
 Two profiles: "ci" (the default: 300 examples a property, derandomized, so
 that `make test` is repeatable) and "long" (SWARM_HYPOTHESIS=long, random,
