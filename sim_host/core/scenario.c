@@ -616,10 +616,13 @@ static int name_groups(const loader_t *ld, const ynode_t *root, scenario_t *sc)
                                    "'%s' already names robots[%u]; give each group its own name",
                                    grp->name, h);
             }
-            /* Straight into the field: a scenario is a function of its
-             * file to the last byte (a whole stack buffer copied here
-             * brought its stale bytes after the name). */
-            snprintf(grp->name, sizeof grp->name, "%.20s_%u", grp->controller, g);
+            /* A zero-filled buffer, copied whole: a scenario is a function
+             * of its file to the last byte (stale stack bytes after the
+             * name made two loads differ). */
+            char name[sizeof grp->name];
+            memset(name, 0, sizeof name);
+            snprintf(name, sizeof name, "%.20s_%u", grp->controller, g);
+            memcpy(grp->name, name, sizeof name);
         }
     }
     return 0;
