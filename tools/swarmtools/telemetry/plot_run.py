@@ -79,11 +79,11 @@ def read_log(path, run=None, prefix=""):
     first = None
     received = {}                # id(message) -> us since the log began
     for ev, msg in common.read_log(path, PROG):
+        if first is None:
+            first = ev.timestamp     # the log began (whatever its first message)
         ours = common.split_channel(ev.channel)
         if msg is None or ours is None or ours[0] != prefix:
             continue
-        if first is None:
-            first = ev.timestamp
         kind = type(msg).__name__
         if kind == "schema_t":
             r.schemas.add(msg)
