@@ -22,11 +22,11 @@ trap 'rm -rf "$tmp"' EXIT
 # scenario (sim_host/scenarios/)  state hash after its full duration
 pins=(
     "random_walk     8f5ca44c91abbef0"
-    "foraging_base   afba34bce3e94b74"
-    "foraging_nf25   a5da1751b5353653"
-    "foraging_ea20   0344ea505ee2cdcb"
-    "foraging_nr30   8db51c70bca70bee"
-    "foraging_l3     595457565a8287f1"
+    "foraging_base   f730d9d89a232939"
+    "foraging_nf25   0a1003d45db40de5"
+    "foraging_ea20   18ba0915329cd2a2"
+    "foraging_nr30   b2f928fb9267ff77"
+    "foraging_l3     c9fcbc8a1ca1d477"
     "phototaxis_gather f8ae7bdce4060218"
 )
 
