@@ -545,6 +545,12 @@ static int name_groups(const loader_t *ld, const ynode_t *root, scenario_t *sc)
     for (uint32_t g = 0; g < sc->group_count; g++) {
         robot_group_t *grp = &sc->groups[g];
         int given = grp->name[0] != '\0';
+        /* Zeroed: the whole buffer is copied into the scenario, which is a
+         * function of its file to the last byte (stale stack bytes after
+         * the name made two loads of one file differ).  A buffer at all,
+         * rather than snprintf into grp->name: gcc cannot tell name and
+         * controller apart (-Wrestrict). */
+        char own[sizeof grp->name] = "";
         if (!given) {
             /* Both fields hold at most 31 characters. */
             memcpy(grp->name, grp->controller, sizeof grp->name);
@@ -562,10 +568,8 @@ static int name_groups(const loader_t *ld, const ynode_t *root, scenario_t *sc)
                                    "'%s' already names robots[%u]; give each group its own name",
                                    grp->name, h);
             }
-            /* Straight into the field: a scenario is a function of its
-             * file to the last byte (a whole stack buffer copied here
-             * brought its stale bytes after the name). */
-            snprintf(grp->name, sizeof grp->name, "%.20s_%u", grp->controller, g);
+            snprintf(own, sizeof own, "%.20s_%u", grp->controller, g);
+            memcpy(grp->name, own, sizeof own);
         }
     }
     return 0;
