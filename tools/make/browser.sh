@@ -36,19 +36,10 @@ cmd_check() {
     return 0
 }
 
+# shellcheck source=debian_packages.sh
+source "$(dirname "$0")/debian_packages.sh"
 cmd_install() {
-    cmd_check 2>/dev/null && return 0
-    if [[ $(id -u) != 0 ]] || ! command -v apt-get >/dev/null; then
-        cmd_check || true
-        say "cannot install them here (not root, or no apt-get): the live view's tests need them"
-        return 1
-    fi
-    local pkgs=(chromium chromium-driver)
-    say "installing Debian packages: ${pkgs[*]}"
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get install -y --no-install-recommends "${pkgs[@]}" >&2 ||
-        { apt-get update >&2 && apt-get install -y --no-install-recommends "${pkgs[@]}" >&2; } || true
-    cmd_check
+    install_debian_packages "the live view's tests" cmd_check chromium chromium-driver
 }
 
 [[ $# == 1 ]] || usage

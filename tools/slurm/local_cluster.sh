@@ -51,19 +51,10 @@ cmd_check() {
     return 0
 }
 
+# shellcheck source=../make/debian_packages.sh
+source "$(dirname "$0")/../make/debian_packages.sh"
 cmd_install() {
-    cmd_check 2>/dev/null && return 0
-    if [[ $(id -u) != 0 ]] || ! command -v apt-get >/dev/null; then
-        cmd_check || true
-        say "cannot install them here (not root, or no apt-get): the SLURM tests need them"
-        return 1
-    fi
-    local pkgs=(slurmctld slurmd slurm-client munge)
-    say "installing Debian packages: ${pkgs[*]}"
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get install -y --no-install-recommends "${pkgs[@]}" >&2 ||
-        { apt-get update >&2 && apt-get install -y --no-install-recommends "${pkgs[@]}" >&2; } || true
-    cmd_check
+    install_debian_packages "the SLURM tests" cmd_check slurmctld slurmd slurm-client munge
 }
 
 # ---------------------------------------------------------------- paths
