@@ -28,8 +28,7 @@ fuzz_one() {
     # -timeout: one input stuck for 20 s is a hang, and a defect;
     # -rss_limit_mb: the sanitizers' own memory included.
     UBSAN_OPTIONS=suppressions=$SUPP "$bin" -max_total_time="$secs" -timeout=20 -rss_limit_mb=2560 \
-        -print_final_stats=1 -artifact_prefix="$work/" "$work/new" "tests/fuzz/corpus/$t" \
-        > "$work/log" 2>&1
+        -artifact_prefix="$work/" "$work/new" "tests/fuzz/corpus/$t" > "$work/log" 2>&1
     local rc=$?
     if [ $rc -ne 0 ]; then
         local crash

@@ -64,15 +64,18 @@ $(FUZZ_DIR)/bin/%: tests/fuzz/%.c $(FUZZ_DIR)/libswarm.a
 
 # hal/epuck over the e-puck library's stubs (tests/firmware/stubs/), C99 as
 # on the robot, with one IR backend each.
-FUZZ_EPUCK = $(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer -Ihal/epuck -Itests/firmware/stubs \
-  -MMD -MP -MF $@.d -o $@ tests/fuzz/epuck_ir.c hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c \
-  hal/units.c tests/firmware/stubs/epuck_lib_stubs.c
-$(FUZZ_DIR)/bin/epuck_ir_randb: tests/fuzz/epuck_ir.c | $(BUILD)/config.mk
+FUZZ_EPUCK_SRC := tests/fuzz/epuck_ir.c hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c hal/units.c \
+  tests/firmware/stubs/epuck_lib_stubs.c
+FUZZ_EPUCK_RANDB := hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
+FUZZ_EPUCK_IRCOM := hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c
+FUZZ_EPUCK_H := tests/fuzz/fuzz.h $(wildcard hal/*.h hal/epuck/*.h tests/firmware/stubs/*.h)
+FUZZ_EPUCK = $(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer -Ihal/epuck -Itests/firmware/stubs -o $@
+$(FUZZ_DIR)/bin/epuck_ir_randb: $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_RANDB) $(FUZZ_EPUCK_H) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(FUZZ_EPUCK) hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c -lm
-$(FUZZ_DIR)/bin/epuck_ir_libircom: tests/fuzz/epuck_ir.c | $(BUILD)/config.mk
+	$(FUZZ_EPUCK) $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_RANDB) -lm
+$(FUZZ_DIR)/bin/epuck_ir_libircom: $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_IRCOM) $(FUZZ_EPUCK_H) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(FUZZ_EPUCK) -DFUZZ_LIBIRCOM hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c -lm
+	$(FUZZ_EPUCK) -DFUZZ_LIBIRCOM $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_IRCOM) -lm
 
 FUZZ_RUN = FUZZ_DIR=$(FUZZ_DIR) bash tests/fuzz/run.sh
 
