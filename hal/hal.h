@@ -125,16 +125,26 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
 
 /** Number of microphones (e-puck1: 3). */
 #define HAL_MIC_COUNT 3u
-/** Sound bands a controller can emit and listen to (band 0 is unused). */
+/** Sound bands a controller can emit and listen to (band 0 is silence).
+ *  Each band is one tone; its frequency is the platform's (hal/sound_bands.h
+ *  on the e-puck, below the codec's Nyquist limit). */
 #define HAL_SOUND_BANDS 4u
 
-/** Sound level heard by microphone `mic` (0..2) in frequency band `band`
- *  (1..HAL_SOUND_BANDS-1), in raw amplitude counts 0..32767, into *level:
- *  HAL_OK, HAL_ERR_RANGE, or HAL_ERR_UNAVAILABLE (not modelled yet). */
-hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level);
+/** How loud band `band` (1..HAL_SOUND_BANDS-1) was at microphone `mic`
+ *  (0..2) over the last control period, in level counts >= 0, into *level.
+ *  Scale: in the simulator 1 count = 0.001 of the sound model's unit (seed
+ *  002's eq 1: a source gives A0 = 299.18 units at 0 m); on the e-puck the
+ *  tone detector's amplitude (see hal/epuck).  Only changes of a level are
+ *  meant to be compared, never levels across platforms.
+ *  Returns HAL_OK; HAL_ERR_BUSY when this robot's own speaker played during
+ *  that period (its tone drowns the microphones: a controller that listens
+ *  keeps its speaker silent for a period first), with *level 0;
+ *  HAL_ERR_RANGE for a microphone or band that does not exist;
+ *  HAL_ERR_UNAVAILABLE on a platform or image without sound. */
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level);
 
-/** Emits a tone in `band` (0 = silence) until changed: HAL_OK,
- *  HAL_ERR_RANGE, or HAL_ERR_UNAVAILABLE (not modelled yet). */
+/** Plays the tone of `band` (0 = silence) from the next control period on,
+ *  until changed: HAL_OK, HAL_ERR_RANGE, or HAL_ERR_UNAVAILABLE. */
 hal_status_t hal_speaker_set(hal_t *hal, uint8_t band);
 
 /* ------------------------------------------------------------------ */

@@ -34,7 +34,7 @@ struct hal {
     uint16_t ambient[HAL_IR_COUNT];
     hal_blob_t blobs[HAL_MAX_BLOBS];
     uint8_t n_blobs;
-    int16_t mic[HAL_MIC_COUNT][HAL_SOUND_BANDS];
+    uint32_t mic[HAL_MIC_COUNT][HAL_SOUND_BANDS];  /**< level counts */
 
     /* Recorded actuators. */
     int16_t left, right;          /**< last wheel speeds set */
@@ -42,7 +42,8 @@ struct hal {
     int16_t steps_left, steps_right;
     uint8_t leds;                 /**< bit i = ring LED i */
     uint8_t body_led, front_led;
-    uint8_t speaker_band;
+    uint8_t speaker_band;         /**< what the controller set */
+    uint8_t speaker_played;       /**< what played during the last period (fake_hal_end_step) */
     uint32_t telemetry_bytes;
 
     /* IR communication. */
@@ -73,6 +74,7 @@ static inline void fake_hal_end_step(hal_t *hal)
 {
     hal->time_ms += hal->period_ms;
     hal->sent_this_step = 0u;
+    hal->speaker_played = hal->speaker_band;
 }
 
 /** Queues a received message; returns 0 when the inbox is full. */
@@ -137,11 +139,15 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
-hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level)
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 {
     if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
         *level = 0;
         return HAL_ERR_RANGE;
+    }
+    if (hal->speaker_played != 0u) {
+        *level = 0;
+        return HAL_ERR_BUSY;     /* its own tone drowned the microphones */
     }
     *level = hal->mic[mic][band];
     return HAL_OK;

@@ -601,7 +601,7 @@ static void test_hal_status(void **state)
     sc->camera.height_px = 20;
     sim_t *sim = make(sc, 4);
     hal_t *hal = sim_robot_hal(sim, 0);
-    int16_t level = 5;
+    uint32_t level = 5;
     uint16_t w = 0, h = 0;
     assert_int_equal(hal_mic_level(hal, 0, 1, &level), HAL_ERR_UNAVAILABLE);
     assert_int_equal(level, 0);

@@ -366,7 +366,7 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
 }
 
 /* The microphones and the speaker come with the RepAtt work (seed 002). */
-hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level)
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 {
     (void)hal;
     *level = 0;

@@ -67,7 +67,7 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
 }
 
 hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *w, uint16_t *h) { (void)hal; *w = 40u; *h = 20u; return HAL_OK; }
-hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, int16_t *level)
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 { (void)hal; (void)mic; (void)band; *level = 0; return HAL_ERR_UNAVAILABLE; }
 hal_status_t hal_speaker_set(hal_t *hal, uint8_t band) { (void)hal; (void)band; return HAL_ERR_UNAVAILABLE; }
 hal_status_t hal_pose(hal_t *hal, hal_pose_t *out) { (void)hal; (void)out; return HAL_ERR_UNAVAILABLE; }

@@ -130,7 +130,7 @@ static void test_sensors_sampled_once_per_step(void)
     hal_epuck_begin_step(&robot);
     CHECK(hal_ir_proximity(&robot, 3) == 999u);
     {
-        int16_t level = 77;
+        uint32_t level = 77;
         hal_pose_t pose;
         uint16_t w = 0u, h = 0u;
         CHECK(hal_mic_level(&robot, 0, 1, &level) == HAL_ERR_UNAVAILABLE && level == 0);
