@@ -66,6 +66,7 @@ help:
 	@echo "make bench      simulator throughput (BENCH_ARGS=)"
 	@echo "make video      film seed 000's base run to out/video/foraging_base.mp4 (VIDEO_ARGS=)"
 	@echo "make study-drtm seed 000's study (STUDY_ARGS=--quick for a smoke run)"
+	@echo "make study-faults seed 000 under faults; make study-repatt seed 002's study (STUDY_ARGS=--quick)"
 	@echo "make firmware-check / firmware / flash   the e-puck gates, .hex files, flashing"
 	@echo "make monitor / spy   watch telemetry (LCM_URL=)"
 	@echo "make live       watch a swarm in the browser (LOG=file.lcmlog to replay one, LCM_URL=)"

@@ -12,3 +12,10 @@ study-drtm: deps $(BUILD)/swarmsim
 .PHONY: study-faults
 study-faults: deps $(BUILD)/swarmsim
 	$(PYTHON) -m swarmtools.study.faults --sim $(BUILD)/swarmsim $(STUDY_ARGS)
+
+# Seed 002's study (swarmtools.study.repatt): Figures 3, 2c and 4 of the paper
+# at e-puck scale (studies/repatt_*.yaml), through the sweep engine.
+# STUDY_ARGS=--quick: 3 seeds a cell; --figures fig3 for one figure.
+.PHONY: study-repatt
+study-repatt: deps $(BUILD)/swarmsim
+	$(PYTHON) -m swarmtools.study.repatt --sim $(BUILD)/swarmsim $(STUDY_ARGS)
