@@ -376,6 +376,9 @@ static void test_scenario_section(void **state)
     assert_int_equal(scenario_load("data/scenarios/sound_small.yaml", typo, 1, sc, err), -1);
     assert_non_null(strstr(err, "volume"));
 
+    assert_int_equal(scenario_load("data/scenarios/sound_bad_rule.yaml", NULL, 0, sc, err), -1);
+    assert_non_null(strstr(err, "sound_bad_rule.yaml:6: sound.silent_robots: expected one of ambient|none"));
+
     scenario_defaults(sc);
     assert_int_equal(sc->sound.enabled, 0);
     free(sc);
