@@ -4,7 +4,7 @@
  * both silent_robots rules, eq 4's noise statistics, self-masking, the
  * speaker's one-period delay, the cutoff's error, the scenario section, and
  * the same levels whatever the thread count or the robots' step order.
- * (About 1 s.)
+ * (About 0.03 s; 0.2 s under ASan.)
  */
 #include <math.h>
 #include <pthread.h>
