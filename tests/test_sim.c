@@ -591,8 +591,9 @@ static void test_tracker_pose(void **state)
     free(sc);
 }
 
-/* One status convention: sound is not modelled yet (unavailable), a
- * channel out of range says so, and the camera tells its frame size. */
+/* One status convention: sound is unavailable unless the scenario enables
+ * it, then OK, and busy the period after the robot's own tone; a channel
+ * out of range says so either way; the camera tells its frame size. */
 static void test_hal_status(void **state)
 {
     (void)state;
@@ -614,6 +615,25 @@ static void test_hal_status(void **state)
     assert_int_equal(hal_ir_bearing_mrad(hal, 0), -297);
     assert_int_equal(hal_ir_bearing_mrad(hal, 4), 2618);
     assert_int_equal(hal_ir_bearing_mrad(hal, 8), 0);
+    sim_destroy(sim);
+
+    sc->sound.enabled = 1;
+    sim = make(sc, 4);
+    hal = sim_robot_hal(sim, 0);
+    assert_int_equal(hal_mic_level(hal, 2, 3, &level), HAL_OK);
+    assert_int_equal(level, 0);   /* alone: no other robot to hear */
+    assert_int_equal(hal_mic_level(hal, 3, 1, &level), HAL_ERR_RANGE);
+    assert_int_equal(hal_mic_level(hal, 0, HAL_SOUND_BANDS, &level), HAL_ERR_RANGE);
+    assert_int_equal(hal_speaker_set(hal, HAL_SOUND_BANDS), HAL_ERR_RANGE);
+    assert_int_equal(hal_speaker_set(hal, 1), HAL_OK);
+    assert_int_equal(hal_mic_level(hal, 0, 1, &level), HAL_OK);   /* plays from the next period */
+    sim_step(sim);
+    level = 5;
+    assert_int_equal(hal_mic_level(hal, 0, 1, &level), HAL_ERR_BUSY);
+    assert_int_equal(level, 0);
+    assert_int_equal(hal_speaker_set(hal, 0), HAL_OK);
+    sim_step(sim);
+    assert_int_equal(hal_mic_level(hal, 0, 1, &level), HAL_OK);
     sim_destroy(sim);
     free(sc);
 }

@@ -111,6 +111,15 @@ typedef struct fault_def {
                                      radio_bursts: mean time between bursts, s */
 } fault_def_t;
 
+/** What a robot silent in a band adds to that band's sum (sound.silent_robots). */
+typedef enum sound_silent {
+    SOUND_SILENT_AMBIENT = 0,    /**< its ambient term ae (eq 2 over every other robot) */
+    SOUND_SILENT_NONE = 1        /**< nothing: only emitters are in the sum */
+} sound_silent_t;
+
+/** The names of sound_silent_t (NULL-terminated). */
+extern const char *const scenario_sound_silent_names[];
+
 /** A controller's params block (aligned for any member type). */
 typedef union scenario_params {
     uint8_t bytes[SCENARIO_CONTROLLER_PARAMS_MAX];
@@ -207,6 +216,19 @@ typedef struct scenario {
         float noise_deg;           /**< Gaussian sd of the heading, deg */
         float dropout;             /**< probability a step has no pose */
     } tracker;
+
+    /** Sound (seed 002's eqs 1-4; sound.h).  Disabled: hal_mic_level and
+     *  hal_speaker_set answer HAL_ERR_UNAVAILABLE and nothing is drawn. */
+    struct {
+        uint8_t enabled;
+        double a0;                 /**< eq 1's level at the source (0 m), units */
+        double alpha;              /**< eq 1's attenuation, 1/m (at the scenario's scale) */
+        double ae;                 /**< eq 1's ambient term, units, once per source */
+        double noise;              /**< eq 4's relative sd per pair (0.06: N100, 0: N0) */
+        int silent_robots;         /**< sound_silent_t: SOUND_SILENT_AMBIENT or _NONE */
+        uint8_t self_masking;      /**< a robot whose speaker played hears nothing (HAL_ERR_BUSY) */
+        double cutoff;             /**< m; > 0: sources farther away give only ae (0: exact) */
+    } sound;
 
     struct {
         uint32_t timeseries_every; /**< control steps between CSV rows */

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "sim_internal.h"
+#include "sound.h"
 #include "units.h"
 
 static void build_obstacles(struct sim *sim)
@@ -87,6 +88,7 @@ static int build_robots(struct sim *sim, char err[256])
             sim_rand_seed(&r->ircom_rand, sim->seed, i, RAND_IRCOM);
             sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
             sim_rand_seed(&r->tracker_rand, sim->seed, i, RAND_TRACKER);
+            sim_rand_seed(&r->sound_rand, sim->seed, i, RAND_SOUND);
             if (r->ctrl) {
                 def->init(r->ctrl, params.bytes, sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
             }
@@ -338,6 +340,8 @@ void sim_step(sim_t *sim)
     for (uint32_t i = 0; sim->links && i < sim->n; i++) {
         robot_link_begin_step(&sim->links[i], sim->link_budget);
     }
+    /* Serially, before any controller reads it (sound.h). */
+    sound_update(sim);
     for (uint32_t k = 0; k < sim->n; k++) {
         uint32_t i = sim->step_order[k];
         sim_robot_t *r = &sim->robots[i];
@@ -364,6 +368,7 @@ void sim_step(sim_t *sim)
             sim->tasks[t].def->after_physics(sim->tasks[t].self, sim);
         }
     }
+    sound_end_step(sim);
     sim->step++;
     for (uint32_t t = 0; t < sim->n_tasks && !sim->done; t++) {
         if (sim->tasks[t].def->done) {
@@ -475,8 +480,10 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     sim->py[i] = r->y;
     b2Body_SetTransform(r->body, (b2Vec2){ r->x, r->y }, b2MakeRot(r->theta));
     grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
-    /* Sensors must see the new pose even within this step. */
+    /* Sensors must see the new pose even within this step (the sound
+     * field too, when it is read before the step's controllers run). */
     r->ir_stamp = r->ambient_stamp = r->camera_stamp = r->pose_stamp = 0;
+    sim->sound_stamp = 0;
 }
 
 int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg)

@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "sim_internal.h"
+#include "sound.h"
 #include "units.h"
 
 static sim_robot_t *robot(hal_t *hal) { return &hal->sim->robots[hal->index]; }
@@ -68,22 +69,39 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
-/* Sound is modelled with the RepAtt work (seed 002); until then the
- * contract answers "unavailable". */
+/* Sound (sound.h): the field is computed serially before the controllers
+ * step; here only read.  Read between steps (tests), it is computed then:
+ * the field the next step's controllers will see. */
 hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 {
-    (void)hal;
     *level = 0;
     if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
         return HAL_ERR_RANGE;
     }
-    return HAL_ERR_UNAVAILABLE;
+    if (!hal->sim->sc->sound.enabled) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    sound_update(hal->sim);
+    sim_robot_t *r = robot(hal);
+    if (hal->sim->sc->sound.self_masking && r->speaker_played != 0u) {
+        return HAL_ERR_BUSY;
+    }
+    /* The three microphones hear the same (sound.h). */
+    *level = r->sound_level[band];
+    return HAL_OK;
 }
 
+/* Plays from the next period on: the step's end makes it what played. */
 hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
 {
-    (void)hal;
-    return band >= HAL_SOUND_BANDS ? HAL_ERR_RANGE : HAL_ERR_UNAVAILABLE;
+    if (band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
+    if (!hal->sim->sc->sound.enabled) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    robot(hal)->speaker_set = band;
+    return HAL_OK;
 }
 
 uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->sim->sc->ircom.payload_bits; }

@@ -53,6 +53,14 @@ typedef struct sim_robot {
     sim_rand_t ircom_rand;         /**< loss and estimate noise at this receiver */
     sim_rand_t wheel_rand;         /**< actuation noise */
     sim_rand_t tracker_rand;       /**< the overhead tracker's noise and dropout */
+    sim_rand_t sound_rand;         /**< eq 4's noise of every pair this robot hears */
+
+    /* Sound (sound.h): what the controller set this step plays during the
+     * next period; at the step's end it becomes what played. */
+    uint8_t speaker_set;           /**< band set this step (0: silence) */
+    uint8_t speaker_played;        /**< band that played during the last period */
+    uint32_t sound_level[HAL_SOUND_BANDS]; /**< counts per band over the last period ([0] unused) */
+    double sound_acc[HAL_SOUND_BANDS];     /**< sound_update's sums, units (working memory) */
     uint32_t group;                /**< index into the scenario's groups */
     const controller_def_t *def;   /**< what runs on this robot */
     void *ctrl;                    /**< controller state, or NULL when it has none */
@@ -167,6 +175,7 @@ struct sim {
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;
 
+    uint64_t sound_stamp;          /**< the sound field is this step's when == step + 1 */
     vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
 };
@@ -195,6 +204,7 @@ float sensors_ir_curve(float d, float range);
 void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
 void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
 uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
+
 
 /* ircom.c */
 void ircom_deliver(struct sim *sim);

@@ -1,0 +1,62 @@
+/*
+ * sound.h - the sound field: what every robot's microphones hear of the
+ * others' speakers, per band, over one control period.  Seed 002's model
+ * (section III.A): a robot j emitting in band k is a source that robot i
+ * hears as eq 1, A_ij = a0 e^(-alpha d_ij) + ae (d_ij centre to centre, m);
+ * robot i's level in band k is eq 2's sum over every other robot j, each
+ * pair's term with its own multiplicative noise, eq 4:
+ * B_ij = A_ij (1 - N(0, noise^2)).
+ *
+ * Decisions (docs/notes/i14_sound.md says why):
+ *  - silent_robots: ambient (default): a robot silent in band k still adds
+ *    its ambient term ae to band k (eq 2 over all j != i, the ambient term
+ *    once per robot); none: only the band's emitters are in the sum.
+ *  - The three microphones hear the same level (the ~7 cm across the body
+ *    are ignored: e^(-alpha 0.07) differs from 1 by < 6 % at alpha 0.726/m,
+ *    and the paper's robots carry one omnidirectional microphone).
+ *  - self_masking: a robot whose speaker played during the period hears
+ *    nothing (hal_mic_level answers HAL_ERR_BUSY); off, every robot hears
+ *    the others while it emits (the paper's idealised full duplex).  A
+ *    robot never hears itself (eq 2's j != i).
+ *  - cutoff > 0: an emitter farther away than cutoff adds only its ambient
+ *    term; the error is at most a0 e^(-alpha cutoff) per such emitter
+ *    (before noise).  0: every pair exact.
+ *  - Levels are counts: round(1000 x the sum), clamped to [0, UINT32_MAX].
+ *  - Noise comes from the listener's own stream (RAND_SOUND), one draw per
+ *    term in the sum, sources in id order then bands 1..3: the field is a
+ *    function of (seed, poses, speakers), whatever the thread count or the
+ *    order in which robots step.
+ * When: sim_step computes the field serially, once per step, after the
+ * tasks' before_control and before the controllers step, from the poses at
+ * that moment and the speakers as they played during the last period (what
+ * each robot set in the step before).  Read between steps (tests), the
+ * field is the one the next step's controllers will see.
+ */
+#ifndef SIM_SOUND_H
+#define SIM_SOUND_H
+
+#include <stdint.h>
+
+#include "scenario.h"
+
+struct sim;
+
+/** Eq 1 without noise: what robot j at distance d_m (m) adds to one band of
+ *  robot i's sum, in units: a0 e^(-alpha d) + ae when j emits in that band
+ *  (only ae beyond a cutoff > 0), ae when it is silent in it and
+ *  silent_robots is ambient, else 0. */
+double sound_term(const scenario_t *sc, double d_m, int emits);
+
+/** Level counts of a sum of units: round(1000 x units), 0 for a sum <= 0
+ *  (or NaN), UINT32_MAX above it. */
+uint32_t sound_counts(double units);
+
+/** Every robot's levels for the period just ended, unless already computed
+ *  for this step; nothing when the scenario's sound is disabled. */
+void sound_update(struct sim *sim);
+
+/** At the end of a step: what each robot set this step is what played
+ *  during the period that follows. */
+void sound_end_step(struct sim *sim);
+
+#endif
