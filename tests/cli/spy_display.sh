@@ -6,7 +6,7 @@ set -u
 cd "$(dirname "$0")/../.."
 pass=0 fail=0
 check() { if [ "$2" = "$3" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: got '$2', want '$3'"; fi; }
-out=$(env -u DISPLAY make --no-print-directory -s spy LCM_URL=memq:// 2>&1)
+out=$(env -u DISPLAY -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -s spy LCM_URL=memq:// 2>&1)
 rc=$?
 check "exit status" "$([ "$rc" -ne 0 ] && echo non-zero || echo 0)" non-zero
 want="make spy: lcm-spy opens a window and needs a display, but DISPLAY is not set"
