@@ -82,7 +82,7 @@ FW_HOST_CFLAGS := -std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-pro
   -Wmissing-prototypes -g -O1 -Ihal -Ifirmware -Ihal/epuck -Itests/firmware/stubs \
   -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c hal/units.c \
-  tests/firmware/stubs/epuck_lib_stubs.c
+  hal/tone_detect.c hal/tone_tables.c tests/firmware/stubs/epuck_lib_stubs.c
 FW_HAL_DEPS := tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) $(wildcard hal/epuck/*.h) \
   $(wildcard hal/*.h) tests/firmware/stubs/epuck_stubs.h
 

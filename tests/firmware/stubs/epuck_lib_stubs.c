@@ -3,8 +3,10 @@
 #include <string.h>
 
 #include "epuck_lib.h"
+#include "epuck_lib_sound.h"
 #include "epuck_stubs.h"
 #include "hal_epuck.h"
+#include "tone_tables.h"
 
 epuck_stub_state_t epuck_stub;
 
@@ -100,6 +102,28 @@ void e_send_uart1_char(const char *buff, int length)
 }
 
 int e_uart1_sending(void) { return epuck_stub.uart_busy; }
+
+void e_init_sound(void) { epuck_stub.sound_inits++; }
+
+/* The images link tone_speaker_table as the library's e_sound_sample: the
+ * first word played is the one after the offset (see epuck_lib_sound.h). */
+void e_play_sound(int sound_offset, int sound_length)
+{
+    const int16_t *table = &tone_speaker_table[0][0];
+    epuck_stub.plays++;
+    epuck_stub.play_offset = sound_offset;
+    epuck_stub.play_len = sound_length;
+    epuck_stub.play_in_table = 0;
+    if (sound_offset >= 0 && sound_length >= 4
+        && (unsigned long)sound_offset + (unsigned long)sound_length
+               < (unsigned long)SOUND_BAND_COUNT * TONE_SPK_STRIDE) {
+        int i;
+        epuck_stub.play_in_table = 1;
+        for (i = 0; i < 4; i++) {
+            epuck_stub.play_words[i] = table[sound_offset + 1 + i];
+        }
+    }
+}
 
 int getselector(void) { return epuck_stub.selector; }
 
