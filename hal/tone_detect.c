@@ -19,14 +19,20 @@
 #include "tone_detect.h"
 
 #define Q14 16384
-#define Q15 32768
 
-/* c * s / 2^14 without a 64-bit product: s = hi 2^14 + lo, 0 <= lo < 2^14. */
+/* Right shifts of negative values: arithmetic (floor) in GCC, XC16 and
+ * every compiler the project uses (C99 leaves it to the implementation;
+ * it is not undefined).  A shift, not a division: it is the detector's
+ * inner loop, and a signed division by 2^k costs a correction for
+ * negative values on every compiler. */
+
+/* c * s / 2^14 (floored) without a 64-bit product: s = hi 2^14 + lo,
+ * 0 <= lo < 2^14; |hi| < 2^13 and c * lo < 2^29. */
 static int32_t mul_q14(int16_t c, int32_t s)
 {
     int32_t lo = (int32_t)((uint32_t)s & (uint32_t)(Q14 - 1));
-    int32_t hi = (s - lo) / Q14;   /* exact */
-    return (int32_t)c * hi + ((int32_t)c * lo) / Q14;
+    int32_t hi = s >> 14;
+    return (int32_t)c * hi + (((int32_t)c * lo) >> 14);
 }
 
 uint16_t tone_detect_isqrt(uint32_t v)
@@ -95,7 +101,7 @@ void tone_detect_block(const int16_t *samples, const tone_band_coeffs_t *bands, 
     }
     for (i = 0; i < TONE_DETECT_N; i++) {
         /* windowed, x 4 (Q2): keeps two bits below the A/D's count */
-        int32_t x = ((int32_t)samples[i] - mean) * tone_window_q15[i] / (Q15 / 4);
+        int32_t x = (((int32_t)samples[i] - mean) * tone_window_q15[i]) >> 13;
         for (b = 0; b < n_bands; b++) {
             int32_t s = x + mul_q14(bands[b].coeff_q14, s1[b]) - s2[b];
             s2[b] = s1[b];
