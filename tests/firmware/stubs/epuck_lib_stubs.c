@@ -6,7 +6,6 @@
 #include "epuck_lib_sound.h"
 #include "epuck_stubs.h"
 #include "hal_epuck.h"
-#include "tone_tables.h"
 
 epuck_stub_state_t epuck_stub;
 
@@ -105,24 +104,15 @@ int e_uart1_sending(void) { return epuck_stub.uart_busy; }
 
 void e_init_sound(void) { epuck_stub.sound_inits++; }
 
-/* The images link tone_speaker_table as the library's e_sound_sample: the
- * first word played is the one after the offset (see epuck_lib_sound.h). */
+/* Records the call only: the stub does not read the table (the images
+ * link tone_speaker_table as the library's e_sound_sample, and only the
+ * library's assembly reads it; on the AVR of the link gates const data
+ * would take RAM).  test_hal_epuck.c checks what these words are. */
 void e_play_sound(int sound_offset, int sound_length)
 {
-    const int16_t *table = &tone_speaker_table[0][0];
     epuck_stub.plays++;
     epuck_stub.play_offset = sound_offset;
     epuck_stub.play_len = sound_length;
-    epuck_stub.play_in_table = 0;
-    if (sound_offset >= 0 && sound_length >= 4
-        && (unsigned long)sound_offset + (unsigned long)sound_length
-               < (unsigned long)SOUND_BAND_COUNT * TONE_SPK_STRIDE) {
-        int i;
-        epuck_stub.play_in_table = 1;
-        for (i = 0; i < 4; i++) {
-            epuck_stub.play_words[i] = table[sound_offset + 1 + i];
-        }
-    }
 }
 
 int getselector(void) { return epuck_stub.selector; }
