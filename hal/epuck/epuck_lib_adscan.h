@@ -23,4 +23,16 @@ void e_calibrate_ir(void);
 int e_get_calibrated_prox(unsigned int sensor_number);
 int e_get_ambient_light(unsigned int sensor_number);
 
+/* a_d/advance_ad_scan/e_ad_conv.c: the microphones' ring buffers, which
+ * the A/D interrupt fills at 16384 Hz (ALL_ADC; e_ad_conv.h MIC_SAMP_FREQ),
+ * one 12-bit sample per microphone every 61 us, and the index of the slot
+ * it writes next (the oldest sample).  e_ad_conv.h documents that the
+ * module's files share them as extern globals; the module's own reader
+ * (e_get_micro_last_values) re-reads the index for every sample, so a copy
+ * during which the interrupt fires slips by a sample: hal/epuck copies with
+ * one snapshot of the index instead (ircom_randb.c). */
+#define EPL_MIC_SAMP_NB 100
+extern int e_mic_scan[3][EPL_MIC_SAMP_NB];
+extern unsigned int e_last_mic_scan_id;
+
 #endif

@@ -12,6 +12,8 @@
 #include <stddef.h>
 
 #include "epuck_lib.h"
+#include "epuck_lib_sound.h"
+#include "tone_detect.h"
 
 /* Tenths of a millisecond per millisecond: the agenda's unit. */
 #define AGENDA_TICKS_PER_MS 10u
@@ -34,6 +36,7 @@ void hal_epuck_default_config(hal_epuck_config_t *cfg)
     cfg->blob = blob_detect_default_params();
     cfg->randb_range = 0u;
     cfg->randb_range_mm_per_unit = 10u;
+    cfg->sound = 0u;
 }
 
 /* The window is the sensor's full width (the whole field of view) and
@@ -126,6 +129,9 @@ void hal_epuck_start(hal_t *hal, void (*tick)(void))
     e_init_motors();
     hal_epuck_ir_start(hal);
     camera_start(hal);
+    if (hal->cfg.sound != 0u) {
+        e_init_sound();
+    }
     hal->ticks_seen = hal->ticks;
     (void)e_activate_agenda(tick, (int)(hal->cfg.period_ms * AGENDA_TICKS_PER_MS));
     e_start_agendas_processing();
@@ -167,6 +173,26 @@ void hal_epuck_begin_step(hal_t *hal)
     hal->steps_left = (int16_t)e_get_steps_left();
     hal->steps_right = (int16_t)e_get_steps_right();
     hal->blobs_step_valid = 0u;
+    hal->mic_valid = 0u;
+}
+
+uint16_t hal_epuck_tone_samples(uint16_t period_ms)
+{
+    uint32_t n = ((uint32_t)period_ms * SOUND_SPK_RATE_HZ + 999u) / 1000u;
+    n = (n + 3u) & ~(uint32_t)3u;
+    return n > TONE_SPK_LEN ? (uint16_t)(TONE_SPK_LEN & ~3u) : (uint16_t)n;
+}
+
+/* The tone set in this step plays during the next period: started here,
+ * for one period of samples. */
+static void speaker_end_step(hal_t *hal)
+{
+    hal->spk_sounding = hal->spk_band;
+    if (hal->spk_band != 0u) {
+        e_play_sound((int)((hal->spk_band - 1u) * TONE_SPK_STRIDE),
+                     (int)hal_epuck_tone_samples(hal->cfg.period_ms));
+        hal->spk_plays = (uint16_t)(hal->spk_plays + 1u);
+    }
 }
 
 void hal_epuck_end_step(hal_t *hal)
@@ -198,6 +224,9 @@ void hal_epuck_end_step(hal_t *hal)
             e_set_front_led((hal->leds >> HAL_LED_WORD_FRONT_BIT) & 1u);
         }
         hal->leds_applied = hal->leds;
+    }
+    if (hal->cfg.sound != 0u) {
+        speaker_end_step(hal);
     }
     if (hal->out_pending != 0u) {
         hal_epuck_ir_transmit(hal);
@@ -365,21 +394,49 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
-/* The microphones and the speaker come with the RepAtt work (seed 002). */
+/* Lazy: a microphone's block is copied and analysed at its first read in
+ * a step (hal_epuck.h: the window). */
 hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 {
-    (void)hal;
+    uint8_t bit;
     *level = 0;
     if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
         return HAL_ERR_RANGE;
     }
-    return HAL_ERR_UNAVAILABLE;
+    if (hal->cfg.sound == 0u) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    if (hal->spk_sounding != 0u) {
+        return HAL_ERR_BUSY;   /* our own tone drowned the microphones */
+    }
+    bit = (uint8_t)(1u << mic);
+    if ((hal->mic_valid & bit) == 0u) {
+        int16_t block[TONE_DETECT_N];
+        hal->mic_valid = (uint8_t)(hal->mic_valid | bit);
+        if (hal_epuck_mic_block(hal, mic, block) != 0u) {
+            tone_detect_block(block, tone_band_coeffs, (uint8_t)SOUND_BAND_COUNT, hal->mic_level[mic]);
+            hal->mic_ok = (uint8_t)(hal->mic_ok | bit);
+        } else {
+            hal->mic_ok = (uint8_t)(hal->mic_ok & ~bit);
+        }
+    }
+    if ((hal->mic_ok & bit) == 0u) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    *level = hal->mic_level[mic][band - 1u];
+    return HAL_OK;
 }
 
 hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
 {
-    (void)hal;
-    return band >= HAL_SOUND_BANDS ? HAL_ERR_RANGE : HAL_ERR_UNAVAILABLE;
+    if (band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
+    if (hal->cfg.sound == 0u) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    hal->spk_band = band;
+    return HAL_OK;
 }
 
 /* A bare e-puck knows nothing of where it is. */

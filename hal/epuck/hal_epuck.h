@@ -47,8 +47,24 @@
  * telemetry sender from the idle loop (hal_epuck_poll's caller) to keep
  * the link busy.
  *
- * Microphone band levels and the speaker are HAL_ERR_UNAVAILABLE, as in the
- * simulator, until the RepAtt work defines the bands.
+ * Sound (cfg.sound = 1; 0 by default: both calls HAL_ERR_UNAVAILABLE).  The
+ * library's A/D interrupt keeps the last 100 samples of each microphone
+ * (16384 Hz: 6.1 ms).  The first hal_mic_level call of a step for a
+ * microphone copies its newest TONE_DETECT_N = 96 samples (5.86 ms) and
+ * runs the tone detector (hal/tone_detect.h) over them for all bands; the
+ * step's other reads of that microphone return the same levels.  So the
+ * window a robot gets is the 5.86 ms before its first read in a step, not
+ * the whole control period: with no timer to tell when the ring has been
+ * refilled, blocks are not accumulated.  hal_speaker_set(b) plays band b's
+ * tone (hal/tone_tables.h) from end_step on, for one control period (at
+ * most TONE_SPK_LEN = 100 ms); end_step restarts it every period while the
+ * band is set, so a period that is a multiple of 25 ms plays seamlessly.
+ * A step that follows a period in which the speaker played reads
+ * HAL_ERR_BUSY.  (The tone of period t ends ~one period after end_step t;
+ * a step that takes longer than period - 6 ms from its tick to end_step
+ * would let its tail into the next window.)  Microphone levels need the
+ * advance A/D module (turret images); on libIrcom images they are
+ * HAL_ERR_UNAVAILABLE.
  *
  * The sources of hal/epuck have no mutable static storage (hygiene.sh
  * checks it): all state is in this struct.
@@ -60,6 +76,7 @@
 
 #include "blob_detect.h"
 #include "hal.h"
+#include "sound_bands.h"
 #include "units.h"
 
 /** Received IR messages kept between two steps (libIrcom's queue is 20). */
@@ -97,6 +114,8 @@ typedef struct hal_epuck_config {
     uint8_t randb_range;           /**< turret emission range, 0 = full (0) */
     uint16_t randb_range_mm_per_unit; /**< mm per unit of the turret's range
                                         (10: cm) [?] */
+    uint8_t sound;                 /**< 1: speaker (codec started) and
+                                        microphone levels (0) */
 } hal_epuck_config_t;
 
 /** The robot.  Fields are private to hal/epuck; an image only defines one
@@ -145,6 +164,15 @@ struct hal {
     uint8_t out_pending;         /**< a message is queued for end_step */
     uint16_t sent;               /**< messages sent (wraps) */
 
+    /* Sound (cfg.sound). */
+    uint8_t spk_band;            /**< band set this step: plays from end_step */
+    uint8_t spk_sounding;        /**< band playing in the current period
+                                      (what the last end_step started) */
+    uint8_t mic_valid;           /**< bit m: mic m's levels computed this step */
+    uint8_t mic_ok;              /**< bit m: ... and the A/D gave samples */
+    uint16_t spk_plays;          /**< tones started (wraps) */
+    uint32_t mic_level[HAL_MIC_COUNT][SOUND_BAND_COUNT];   /**< level counts */
+
     /* Telemetry: the buffer the UART driver reads while it sends. */
     uint8_t tx[HAL_EPUCK_TX_BYTES];
 };
@@ -159,7 +187,7 @@ typedef enum hal_epuck_cam_state {
 } hal_epuck_cam_state_t;
 
 /** 100 ms, camera on with the 40 x 20 window, blob defaults, id from flash,
- *  full turret range, turret range in cm. */
+ *  full turret range, turret range in cm, no sound. */
 void hal_epuck_default_config(hal_epuck_config_t *cfg);
 
 /** Sets up the struct (no hardware access).  `frames` holds two frames of
@@ -209,6 +237,11 @@ uint16_t hal_epuck_overruns(const hal_t *hal);
  *  memory); the portable link gates use a stub. */
 uint16_t hal_epuck_flash_robot_id(void);
 
+/** Speaker samples (7200 Hz) a tone plays per control period of
+ *  `period_ms`: rounded up to a multiple of 4 (the library's playback
+ *  counts down by 4), at most TONE_SPK_LEN.  25 ms: 180. */
+uint16_t hal_epuck_tone_samples(uint16_t period_ms);
+
 /* ---- IR backend: defined by ircom_randb.c or ircom_libircom.c ---- */
 
 /** Starts the A/D scan, calibrates the IR sensors, starts IR communication. */
@@ -219,6 +252,11 @@ void hal_epuck_ir_sample(hal_t *hal);
 void hal_epuck_ir_poll(hal_t *hal);
 /** Sends hal->out_value. */
 void hal_epuck_ir_transmit(hal_t *hal);
+
+/** Copies the newest TONE_DETECT_N samples of microphone `mic` (0..2,
+ *  oldest first, raw 12-bit A/D counts) into `out`: 1, or 0 when the
+ *  image's A/D module does not sample the microphones (libIrcom). */
+uint8_t hal_epuck_mic_block(hal_t *hal, uint8_t mic, int16_t *out);
 
 /** Appends a received message to the inbox; when full, the message is
  *  dropped and counted (in_dropped).  Returns 1 if kept. */

@@ -2,7 +2,7 @@
  * ircom_randb.c - IR backend of the images with the e-RandB
  * range-and-bearing turret (16-bit messages, ~1 m): the forager and the
  * nest beacon.  Proximity and light come from the e-puck library's advance
- * A/D scan, which also samples the microphones.
+ * A/D scan, which also samples the microphones (hal_epuck_mic_block).
  *
  * The turret's driver busy-waits inside every call (I2C transfers plus nop
  * loops: ~2 ms per reception check, ~4 ms per send), so reception is polled
@@ -20,6 +20,45 @@
 
 #include "epuck_lib_adscan.h"
 #include "epuck_lib_randb.h"
+#include "sound_bands.h"
+
+/* Slots of the ring the A/D interrupt may overwrite while we copy: the
+ * oldest SOUND_MIC_RING - TONE_DETECT_N are left out. */
+#define MIC_MARGIN (SOUND_MIC_RING - TONE_DETECT_N)
+
+uint8_t hal_epuck_mic_block(hal_t *hal, uint8_t mic, int16_t *out)
+{
+    uint8_t attempt;
+    (void)hal;
+    if (mic >= HAL_MIC_COUNT) {
+        return 0u;
+    }
+    /* One snapshot of the write index: e_mic_scan[mic][first] is the oldest
+     * sample and the next the interrupt overwrites (one every 61 us; the
+     * copy of 96 words takes a few us).  If more than MIC_MARGIN samples
+     * arrived during the copy (an interrupt held it up), the copy may mix
+     * old and new samples: copy again, up to 3 times, then use the last. */
+    for (attempt = 0; attempt < 3u; attempt++) {
+        unsigned int first = e_last_mic_scan_id;
+        unsigned int j = first + MIC_MARGIN;
+        unsigned int moved;
+        uint16_t i;
+        if (j >= SOUND_MIC_RING) {
+            j -= SOUND_MIC_RING;
+        }
+        for (i = 0; i < TONE_DETECT_N; i++) {
+            out[i] = (int16_t)e_mic_scan[mic][j];
+            if (++j >= SOUND_MIC_RING) {
+                j = 0u;
+            }
+        }
+        moved = (e_last_mic_scan_id + SOUND_MIC_RING - first) % SOUND_MIC_RING;
+        if (moved <= MIC_MARGIN) {
+            break;
+        }
+    }
+    return 1u;
+}
 
 void hal_epuck_ir_start(hal_t *hal)
 {

@@ -19,7 +19,11 @@
  *   random_walk  an obstacle in front every 37 steps for 5 steps;
  *   blob_detect  one 40 x 20 RGB565 frame with a red token and a green
  *                and a blue patch: what hal_camera_blobs adds on the robot
- *                in a step that asks for blobs.
+ *                in a step that asks for blobs;
+ *   tone_detect  3 microphones x 3 bands: hal_mic_level's work in a step
+ *                that reads every microphone (the copy of each one's 96
+ *                newest samples out of its 100-sample ring, then
+ *                tone_detect_block), on blocks with two tones and noise.
  *
  * usage: cpu_harness STEPS
  */
@@ -35,6 +39,7 @@
 #include "foraging/nest_beacon.h"
 #include "foraging/nest_link.h"
 #include "common/random_walk.h"
+#include "tone_detect.h"
 
 #define INBOX 64u
 
@@ -282,6 +287,41 @@ static void run_blob_detect(uint32_t frames)
     printf("blob_detect: %u frames of %ux%u, %u blobs in the last\n", (unsigned)frames, FW, FH, n);
 }
 
+static void run_tone_detect(uint32_t steps)
+{
+    static int16_t ring[HAL_MIC_COUNT][SOUND_MIC_RING];
+    int16_t block[TONE_DETECT_N];
+    uint32_t levels[HAL_MIC_COUNT][SOUND_BAND_COUNT];
+    uint32_t t, x = 1u;
+    uint16_t i, m;
+
+    for (t = 0; t < steps; t++) {
+        /* the A/D's ring: a square-ish tone at ~1960 Hz (period ~8.4
+         * samples) and a slower one, plus noise */
+        for (m = 0; m < HAL_MIC_COUNT; m++) {
+            for (i = 0; i < SOUND_MIC_RING; i++) {
+                x = x * 1103515245u + 12345u;
+                ring[m][i] = (int16_t)(2048 + ((i * 10u / 42u) % 2u ? 300 : -300)
+                                       + ((i / 7u) % 2u ? 100 : -100) + (int16_t)((x >> 16) % 64u) - 32);
+            }
+        }
+        CALLGRIND_ZERO_STATS;
+        for (m = 0; m < HAL_MIC_COUNT; m++) {
+            uint16_t j = (uint16_t)((t + SOUND_MIC_RING - TONE_DETECT_N) % SOUND_MIC_RING);
+            for (i = 0; i < TONE_DETECT_N; i++) {
+                block[i] = ring[m][j];
+                if (++j >= SOUND_MIC_RING) {
+                    j = 0u;
+                }
+            }
+            tone_detect_block(block, tone_band_coeffs, (uint8_t)SOUND_BAND_COUNT, levels[m]);
+        }
+        CALLGRIND_DUMP_STATS_AT("tone_detect");
+    }
+    printf("tone_detect: %u steps of 3 mics x 3 bands, last band-2 level of mic 0: %lu\n",
+           (unsigned)steps, (unsigned long)levels[0][1]);
+}
+
 int main(int argc, char **argv)
 {
     uint32_t steps = argc > 1 ? (uint32_t)strtoul(argv[1], NULL, 10) : 1000u;
@@ -289,5 +329,6 @@ int main(int argc, char **argv)
     run_nest_beacon(steps);
     run_random_walk(steps);
     run_blob_detect(steps / 10u + 1u);
+    run_tone_detect(steps / 10u + 1u);
     return 0;
 }

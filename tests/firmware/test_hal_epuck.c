@@ -11,6 +11,10 @@
 #include "blob_detect.h"
 #include "epuck_stubs.h"
 #include "hal_epuck.h"
+#include "tone_tables.h"
+#ifndef TEST_LIBIRCOM
+#include "epuck_lib_adscan.h"
+#endif
 
 static int passed, failed;
 
@@ -133,6 +137,7 @@ static void test_sensors_sampled_once_per_step(void)
         uint32_t level = 77;
         hal_pose_t pose;
         uint16_t w = 0u, h = 0u;
+        /* an image without sound (cfg.sound 0, the default) */
         CHECK(hal_mic_level(&robot, 0, 1, &level) == HAL_ERR_UNAVAILABLE && level == 0);
         CHECK(hal_mic_level(&robot, 3, 1, &level) == HAL_ERR_RANGE);
         CHECK(hal_speaker_set(&robot, 1) == HAL_ERR_UNAVAILABLE);
@@ -297,6 +302,183 @@ static void test_camera_double_buffer(void)
     }
 }
 
+static void start_sound(uint16_t period_ms)
+{
+    hal_epuck_config_t cfg;
+    epuck_stub_reset();
+    hal_epuck_default_config(&cfg);
+    CHECK(cfg.sound == 0u);              /* off unless an image asks */
+    cfg.robot_id = 3u;
+    cfg.camera = 0u;
+    cfg.sound = 1u;
+    cfg.period_ms = period_ms;
+    CHECK(hal_epuck_init(&robot, &cfg, NULL, 0u) == 0);
+    hal_epuck_start(&robot, tick);
+    CHECK(epuck_stub.sound_inits == 1);
+}
+
+static void begin(void)
+{
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot) == 1u);
+    hal_epuck_begin_step(&robot);
+}
+
+/* 1 if e_play_sound's last call plays whole within the table linked as
+ * e_sound_sample, into words[] its first 4 words (the library plays the
+ * words after the offset: epuck_lib_sound.h). */
+static int played(int16_t *words)
+{
+    const int16_t *table = &tone_speaker_table[0][0];
+    long end = (long)epuck_stub.play_offset + epuck_stub.play_len;
+    int i;
+    if (epuck_stub.play_offset < 0 || epuck_stub.play_len < 4 || epuck_stub.play_len % 4 != 0
+        || end >= (long)(SOUND_BAND_COUNT * TONE_SPK_STRIDE)) {
+        return 0;
+    }
+    for (i = 0; i < 4; i++) {
+        words[i] = table[epuck_stub.play_offset + 1 + i];
+    }
+    return 1;
+}
+
+static void test_speaker(void)
+{
+    uint8_t b;
+    int16_t w[4];
+    CHECK(hal_epuck_tone_samples(25u) == 180u);
+    CHECK(hal_epuck_tone_samples(100u) == 720u);
+    CHECK(hal_epuck_tone_samples(1000u) == 720u);
+    CHECK(hal_epuck_tone_samples(30u) == 216u);
+    CHECK(hal_epuck_tone_samples(1u) == 8u);     /* 7.2 -> 8 */
+    for (b = 1u; b < HAL_SOUND_BANDS; b++) {
+        uint16_t n = hal_epuck_tone_samples((uint16_t)(25u * b));
+        CHECK(n % 4u == 0u);
+    }
+    start_sound(25u);
+    begin();
+    CHECK(hal_speaker_set(&robot, 4u) == HAL_ERR_RANGE);
+    CHECK(hal_speaker_set(&robot, 2u) == HAL_OK);
+    CHECK(epuck_stub.plays == 0);              /* from the next period on */
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.plays == 1);
+    CHECK(epuck_stub.play_offset == (int)TONE_SPK_STRIDE);
+    CHECK(epuck_stub.play_len == 180);
+    CHECK(played(w) == 1);
+    CHECK(w[0] == tone_speaker_table[1][1] && w[0] == 0);   /* phase 0 */
+    CHECK(w[1] == tone_speaker_table[1][2] && w[1] > 0);
+    CHECK(w[3] == tone_speaker_table[1][4]);
+    /* still set: restarted every period */
+    begin();
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.plays == 2 && epuck_stub.play_offset == (int)TONE_SPK_STRIDE);
+    begin();
+    CHECK(hal_speaker_set(&robot, 1u) == HAL_OK);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.plays == 3 && epuck_stub.play_offset == 0);
+    begin();
+    CHECK(hal_speaker_set(&robot, 3u) == HAL_OK);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.play_offset == 2 * (int)TONE_SPK_STRIDE && played(w) == 1);
+    begin();
+    CHECK(hal_speaker_set(&robot, 0u) == HAL_OK);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.plays == 4);              /* silence: nothing started */
+    /* a 100 ms period plays the whole table of the band */
+    start_sound(100u);
+    begin();
+    CHECK(hal_speaker_set(&robot, 3u) == HAL_OK);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.play_len == (int)TONE_SPK_LEN && played(w) == 1);
+}
+
+#ifndef TEST_LIBIRCOM
+/* The ring of `mic` holds a tone (peak `amp` counts at band `band`'s
+ * frequency; band 0: silence) around the A/D's middle, its oldest sample
+ * at the write index: sample k in slot (e_last_mic_scan_id + k) % 100.
+ * The sine comes from the detector's own constants (no libm here). */
+static void fill_mic(uint8_t mic, uint8_t band, double amp)
+{
+    double c = band ? tone_band_coeffs[band - 1u].coeff_q14 / 16384.0 : 0.0;
+    double x0 = 0.0, x1 = band ? amp * tone_band_coeffs[band - 1u].sin_q14 / 16384.0 : 0.0;
+    unsigned k;
+    for (k = 0; k < EPL_MIC_SAMP_NB; k++) {
+        double v = x0, r;
+        x0 = x1;
+        x1 = c * x1 - v;
+        r = 2048.0 + v;
+        e_mic_scan[mic][(e_last_mic_scan_id + k) % EPL_MIC_SAMP_NB] = (int)(r + 0.5);
+    }
+}
+
+static int near(uint32_t level, double expect, double tol)
+{
+    return level > expect - tol && level < expect + tol;
+}
+
+static void test_microphones(void)
+{
+    uint32_t lv = 0u;
+    start_sound(25u);
+    e_last_mic_scan_id = 37u;                  /* the ring wraps in the block */
+    fill_mic(0u, 2u, 300.0);
+    fill_mic(1u, 0u, 0.0);
+    fill_mic(2u, 1u, 1000.0);
+    begin();
+    CHECK(hal_mic_level(&robot, 0u, 2u, &lv) == HAL_OK && near(lv, 300000.0, 9000.0));
+    CHECK(hal_mic_level(&robot, 0u, 1u, &lv) == HAL_OK && lv < 3000u);
+    CHECK(hal_mic_level(&robot, 0u, 3u, &lv) == HAL_OK && lv < 3000u);
+    CHECK(hal_mic_level(&robot, 1u, 1u, &lv) == HAL_OK && lv == 0u);
+    CHECK(hal_mic_level(&robot, 2u, 1u, &lv) == HAL_OK && near(lv, 1000000.0, 30000.0));
+    CHECK(hal_mic_level(&robot, 2u, 2u, &lv) == HAL_OK && lv < 10000u);
+    CHECK(hal_mic_level(&robot, 3u, 1u, &lv) == HAL_ERR_RANGE && lv == 0u);
+    CHECK(hal_mic_level(&robot, 0u, 0u, &lv) == HAL_ERR_RANGE);
+    CHECK(hal_mic_level(&robot, 0u, 4u, &lv) == HAL_ERR_RANGE);
+    /* the interrupt refills the ring during the step: not seen before the
+     * next step (one block per microphone and step) */
+    fill_mic(0u, 0u, 0.0);
+    fill_mic(1u, 3u, 500.0);
+    CHECK(hal_mic_level(&robot, 0u, 2u, &lv) == HAL_OK && near(lv, 300000.0, 9000.0));
+    CHECK(hal_mic_level(&robot, 1u, 3u, &lv) == HAL_OK && lv == 0u);
+    hal_epuck_end_step(&robot);
+    begin();
+    CHECK(hal_mic_level(&robot, 0u, 2u, &lv) == HAL_OK && lv == 0u);
+    CHECK(hal_mic_level(&robot, 1u, 3u, &lv) == HAL_OK && near(lv, 500000.0, 15000.0));
+    /* the 4 oldest samples of the ring are outside the window: a click
+     * there is not heard */
+    fill_mic(1u, 0u, 0.0);
+    e_mic_scan[1][(e_last_mic_scan_id + 2u) % EPL_MIC_SAMP_NB] = 4095;
+    /* this step emits: the next period's reads are drowned */
+    CHECK(hal_speaker_set(&robot, 1u) == HAL_OK);
+    hal_epuck_end_step(&robot);
+    begin();
+    lv = 5u;
+    CHECK(hal_mic_level(&robot, 1u, 2u, &lv) == HAL_ERR_BUSY && lv == 0u);
+    CHECK(hal_mic_level(&robot, 2u, 1u, &lv) == HAL_ERR_BUSY && lv == 0u);
+    CHECK(hal_speaker_set(&robot, 0u) == HAL_OK);   /* silent: heard again after */
+    hal_epuck_end_step(&robot);
+    begin();
+    CHECK(hal_mic_level(&robot, 1u, 2u, &lv) == HAL_OK && lv == 0u);
+    CHECK(hal_mic_level(&robot, 2u, 1u, &lv) == HAL_OK && near(lv, 1000000.0, 30000.0));
+    hal_epuck_end_step(&robot);
+}
+#else
+static void test_microphones(void)
+{
+    uint32_t lv = 9u;
+    start_sound(25u);
+    begin();
+    /* libIrcom's A/D module: no microphone levels, the speaker plays */
+    CHECK(hal_mic_level(&robot, 0u, 1u, &lv) == HAL_ERR_UNAVAILABLE && lv == 0u);
+    CHECK(hal_mic_level(&robot, 0u, 5u, &lv) == HAL_ERR_RANGE);
+    CHECK(hal_speaker_set(&robot, 1u) == HAL_OK);
+    hal_epuck_end_step(&robot);
+    CHECK(epuck_stub.plays == 1);
+    begin();
+    CHECK(hal_mic_level(&robot, 0u, 1u, &lv) == HAL_ERR_BUSY);
+}
+#endif
+
 static void test_bearings(void)
 {
     CHECK(hal_epuck_rad_to_mrad(0.5f) == 500);
@@ -401,6 +583,8 @@ int main(void)
     test_telemetry_never_blocks();
     test_camera_double_buffer();
     test_bearings();
+    test_speaker();
+    test_microphones();
 #ifndef TEST_LIBIRCOM
     test_ircom_randb();
     printf("hal/epuck (turret backend): %d passed, %d failed\n", passed, failed);

@@ -65,6 +65,7 @@ $(FUZZ_DIR)/bin/%: tests/fuzz/%.c $(FUZZ_DIR)/libswarm.a
 # hal/epuck over the e-puck library's stubs (tests/firmware/stubs/), C99 as
 # on the robot, with one IR backend each.
 FUZZ_EPUCK_SRC := tests/fuzz/epuck_ir.c hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c hal/units.c \
+  hal/tone_detect.c hal/tone_tables.c \
   tests/firmware/stubs/epuck_lib_stubs.c
 FUZZ_EPUCK_RANDB := hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
 FUZZ_EPUCK_IRCOM := hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c

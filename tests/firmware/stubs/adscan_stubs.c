@@ -2,6 +2,11 @@
 #include "epuck_lib_adscan.h"
 #include "epuck_stubs.h"
 
+/* The library's microphone ring buffers (e_ad_conv.c): tests write samples
+ * and the write index directly. */
+int e_mic_scan[3][EPL_MIC_SAMP_NB];
+unsigned int e_last_mic_scan_id;
+
 void e_init_ad_scan(unsigned char only_micro)
 {
     (void)only_micro;

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "epuck_lib.h"
+#include "epuck_lib_sound.h"
 #include "epuck_stubs.h"
 #include "hal_epuck.h"
 
@@ -100,6 +101,19 @@ void e_send_uart1_char(const char *buff, int length)
 }
 
 int e_uart1_sending(void) { return epuck_stub.uart_busy; }
+
+void e_init_sound(void) { epuck_stub.sound_inits++; }
+
+/* Records the call only: the stub does not read the table (the images
+ * link tone_speaker_table as the library's e_sound_sample, and only the
+ * library's assembly reads it; on the AVR of the link gates const data
+ * would take RAM).  test_hal_epuck.c checks what these words are. */
+void e_play_sound(int sound_offset, int sound_length)
+{
+    epuck_stub.plays++;
+    epuck_stub.play_offset = sound_offset;
+    epuck_stub.play_len = sound_length;
+}
 
 int getselector(void) { return epuck_stub.selector; }
 

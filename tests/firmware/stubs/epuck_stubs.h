@@ -61,6 +61,11 @@ typedef struct epuck_stub_state {
     int ircom_sending;
     long ircom_sent[STUB_QUEUE];
     int ircom_sends;
+    /* codec: e_init_sound, e_play_sound (offset and length in words of
+     * the table linked as e_sound_sample) */
+    int sound_inits;
+    int plays;
+    int play_offset, play_len;
     /* program memory word 0x17F36 */
     unsigned flash_id;
 } epuck_stub_state_t;
