@@ -183,7 +183,7 @@ void repatt_attach_queue(repatt_t *self, uint32_t *storage, uint16_t queue_max);
 void repatt_apply_policy(repatt_params_t *params, uint8_t policy);
 
 #define REPATT_NAME "repatt"
-extern const observable_t repatt_observables[];
+extern const observable_t repatt_observables[];   /* repatt_observables.c */
 extern const controller_def_t repatt_def;
 
 #endif
