@@ -41,17 +41,19 @@ static int16_t quarter_sin(int32_t w)
     return (int16_t)(sin_table[i] + ((int32_t)(sin_table[i + 1] - sin_table[i]) * frac) / 256);
 }
 
-int16_t odo_sin_q14(int32_t mrad)
+/* A 16-bit binary angle of `mrad`: 65536 to the turn. */
+static int32_t binary_angle(int32_t mrad)
 {
-    /* A 16-bit binary angle: 65536 to the turn. */
     int32_t m = mrad % UNITS_TWO_PI_MRAD;
-    int32_t bam;
-    int32_t w;
     if (m < 0) {
         m += UNITS_TWO_PI_MRAD;
     }
-    bam = (m * 65536L) / UNITS_TWO_PI_MRAD;   /* < 6283 x 65536 < 2^31 */
-    w = bam & 0x3FFF;
+    return (m * 65536L) / UNITS_TWO_PI_MRAD;   /* < 6283 x 65536 < 2^31 */
+}
+
+static int16_t sin_binary(int32_t bam)
+{
+    int32_t w = bam & 0x3FFF;
     switch ((bam >> 14) & 3) {
     case 0: return quarter_sin(w);
     case 1: return quarter_sin(16384 - w);
@@ -60,9 +62,14 @@ int16_t odo_sin_q14(int32_t mrad)
     }
 }
 
+int16_t odo_sin_q14(int32_t mrad)
+{
+    return sin_binary(binary_angle(mrad));
+}
+
 int16_t odo_cos_q14(int32_t mrad)
 {
-    return odo_sin_q14(odo_wrap_mrad(mrad) + UNITS_HALF_PI_MRAD);
+    return sin_binary(binary_angle(mrad) + 16384L);   /* a quarter turn on */
 }
 
 int16_t odo_atan2_mrad(int32_t y, int32_t x)
