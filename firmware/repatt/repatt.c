@@ -1,0 +1,533 @@
+#include "repatt.h"
+
+#include <stddef.h>
+
+#include "units.h"
+
+/* Periods after the pick-up wait in which the target's disappearance still
+ * counts as our pick-up (the task removes it at the end of the wait; a few
+ * periods of slack for when it sees the wait end). */
+#define PICK_GRACE_PERIODS 8u
+/* A blob within this of the target's bearing, and at least half its width,
+ * is the target we wait at, mrad. */
+#define PICK_SAME_MRAD 300
+/* 12 uniform 12-bit numbers: mean 12 x 4095 / 2, sd 4096 / sqrt(12) x
+ * sqrt(12) = 4096 (Irwin-Hall). */
+#define GAUSS_TERMS 12
+#define GAUSS_MEAN 24570L
+#define GAUSS_SD 4096L
+/* IR sensors: the front pair, and each side's two. */
+#define IR_FRONT_RIGHT 0u
+#define IR_RIGHT_50 1u
+#define IR_RIGHT_90 2u
+#define IR_LEFT_90 5u
+#define IR_LEFT_50 6u
+#define IR_FRONT_LEFT 7u
+
+void repatt_apply_policy(repatt_params_t *params, uint8_t policy)
+{
+    switch (policy) {
+    case REPATT_POLICY_REPATT:
+        /* Section IV.B-D's best, A4m100d-R1m10d (Figure 3's caption says
+         * a_d = 10; the text, Figures 2 and 4 say 100). */
+        params->gains.a_m = 4u;
+        params->gains.a_d = 100u;
+        params->gains.r_m = 1u;
+        params->gains.r_d = 10u;
+        break;
+    case REPATT_POLICY_RANDOM_WALK:
+        params->gains.a_m = 1u;
+        params->gains.a_d = 1u;
+        params->gains.r_m = 1u;
+        params->gains.r_d = 1u;
+        break;
+    default:
+        break;
+    }
+}
+
+void repatt_default_params(repatt_params_t *params)
+{
+    params->p_b = 0.0025f;
+    repatt_apply_policy(params, REPATT_POLICY_REPATT);
+    params->queue_size = 40u;
+    params->listening = (uint8_t)REPATT_SLOTTED;
+    params->capacity = 5u;
+    params->speed_steps_s = 776;        /* 0.10 m/s / 0.12881 mm */
+    params->turn_speed_steps_s = 776;
+    params->steer_gain = 1000;
+    params->tumble_mean_mrad = 3142u;
+    params->tumble_sd_mrad = 1571u;
+    params->avoid_enter = 300u;         /* about 25 mm from a sensor */
+    params->side_turn_mrad = 785u;
+    params->oa_run_max_mm = 165u;       /* 1 m x 0.16529 */
+    params->pick_time_ms = 5000u;
+    params->reach_width_mrad = 1200u;
+    params->give_up_ms = 10000u;
+    params->home_radius_mm = 100u;
+}
+
+void repatt_attach_queue(repatt_t *self, uint32_t *storage, uint16_t queue_max)
+{
+    self->queue = storage;
+    self->queue_max = (storage != NULL) ? queue_max : 0u;
+}
+
+void repatt_init(repatt_t *self, const repatt_params_t *params, uint32_t seed)
+{
+    self->params = *params;
+    self->seed = seed;
+    repatt_reset(self);
+}
+
+static void clear_filters(repatt_t *self)
+{
+    uint16_t y = self->params.queue_size;
+    uint8_t b;
+    if (y > self->queue_max) {
+        y = self->queue_max;
+    }
+    for (b = 0; b < REPATT_BANDS; b++) {
+        chemo_filter_init(&self->filter[b], y);
+    }
+    self->level_r = 0u;
+    self->level_a = 0u;
+    self->d_r = 0;
+    self->d_a = 0;
+}
+
+void repatt_reset(repatt_t *self)
+{
+    const repatt_params_t *p = &self->params;
+    rng_seed(&self->rng, self->seed);
+    self->state = REPATT_SEARCH;
+    self->cap = p->capacity;
+    self->found = 0u;
+    clear_filters(self);
+    self->p_b_q32 = chemo_probability_q32(p->p_b);
+    self->p_t_q32 = self->p_b_q32;
+    self->band = 0u;
+    self->speaker = 255u;
+    odometry_reset(&self->odo);
+    self->turn_sign = 1;
+    self->target2 = 0;
+    self->done2 = 0;
+    self->timer = 0u;
+    self->ignore = 0u;
+    self->pick_bearing_mrad = 0;
+    self->pick_width_mrad = 0u;
+    self->oae_count = 0u;
+    self->pickups = 0u;
+    self->unloads = 0u;
+    self->readings = 0u;
+}
+
+/* ------------------------------------------------------------ sensing */
+
+/* Red blobs in view; the widest into *widest (if any). */
+static uint8_t red_blobs(hal_t *hal, hal_blob_t *widest)
+{
+    hal_blob_t blobs[HAL_MAX_BLOBS];
+    uint8_t n = hal_camera_blobs(hal, blobs, (uint8_t)HAL_MAX_BLOBS);
+    uint8_t found = 0u;
+    uint8_t i;
+    for (i = 0; i < n && i < HAL_MAX_BLOBS; i++) {
+        if (blobs[i].colour == HAL_COLOUR_RED) {
+            if (found == 0u || blobs[i].width_mrad > widest->width_mrad) {
+                *widest = blobs[i];
+            }
+            found++;
+        }
+    }
+    return found;
+}
+
+/* The target we wait at: a red blob near its bearing, at least half as wide. */
+static uint8_t target_still_there(const repatt_t *self, hal_t *hal)
+{
+    hal_blob_t blobs[HAL_MAX_BLOBS];
+    uint8_t n = hal_camera_blobs(hal, blobs, (uint8_t)HAL_MAX_BLOBS);
+    uint8_t i;
+    for (i = 0; i < n && i < HAL_MAX_BLOBS; i++) {
+        int32_t db = (int32_t)blobs[i].bearing_mrad - self->pick_bearing_mrad;
+        if (blobs[i].colour == HAL_COLOUR_RED && db < PICK_SAME_MRAD && db > -PICK_SAME_MRAD
+            && blobs[i].width_mrad >= self->pick_width_mrad / 2u) {
+            return 1u;
+        }
+    }
+    return 0u;
+}
+
+/* One reading per band from the microphones that answer HAL_OK (their
+ * mean); none when none does (own tone, no sound). */
+static void listen(repatt_t *self, hal_t *hal)
+{
+    uint8_t b, m;
+    for (b = 0; b < REPATT_BANDS; b++) {
+        uint64_t sum = 0u;
+        uint8_t n = 0u;
+        for (m = 0; m < HAL_MIC_COUNT; m++) {
+            uint32_t level = 0u;
+            if (hal_mic_level(hal, m, (uint8_t)(b + 1u), &level) == HAL_OK) {
+                sum += level;
+                n++;
+            }
+        }
+        if (n != 0u) {
+            uint32_t *ring = (self->queue != NULL && self->queue_max != 0u)
+                             ? self->queue + (uint16_t)(b * 2u * self->queue_max) : NULL;
+            chemo_filter_push(&self->filter[b], ring, (uint32_t)(sum / n));
+            if (b == 0u) {
+                self->readings++;
+            }
+        }
+    }
+    self->level_r = chemo_filter_level(&self->filter[0]);
+    self->level_a = chemo_filter_level(&self->filter[1]);
+    self->d_r = chemo_filter_sign(&self->filter[0]);
+    self->d_a = chemo_filter_sign(&self->filter[1]);
+}
+
+/* 1 front, 2 on the right, 3 on the left, 0 none. */
+static uint8_t obstacle(const repatt_t *self, hal_t *hal)
+{
+    uint16_t e = self->params.avoid_enter;
+    uint16_t fr = hal_ir_proximity(hal, IR_FRONT_RIGHT);
+    uint16_t fl = hal_ir_proximity(hal, IR_FRONT_LEFT);
+    uint16_t r1 = hal_ir_proximity(hal, IR_RIGHT_50), r2 = hal_ir_proximity(hal, IR_RIGHT_90);
+    uint16_t l1 = hal_ir_proximity(hal, IR_LEFT_50), l2 = hal_ir_proximity(hal, IR_LEFT_90);
+    uint16_t right = (r1 > r2) ? r1 : r2;
+    uint16_t left = (l1 > l2) ? l1 : l2;
+    if (fr > e || fl > e) {
+        return 1u;
+    }
+    if (right > e || left > e) {
+        return (right >= left) ? 2u : 3u;
+    }
+    return 0u;
+}
+
+/* ------------------------------------------------------------ motion */
+
+static int16_t clamp_speed(int32_t v)
+{
+    if (v > HAL_WHEEL_SPEED_MAX) {
+        return HAL_WHEEL_SPEED_MAX;
+    }
+    if (v < -HAL_WHEEL_SPEED_MAX) {
+        return (int16_t)-HAL_WHEEL_SPEED_MAX;
+    }
+    return (int16_t)v;
+}
+
+/* Periods of `ms` at this period, rounded up (at least 1). */
+static uint16_t periods(hal_t *hal, uint16_t ms)
+{
+    uint16_t period = hal_control_period_ms(hal);
+    uint32_t n;
+    if (period == 0u) {
+        period = 1u;
+    }
+    n = ((uint32_t)ms + period - 1u) / period;
+    return (uint16_t)(n == 0u ? 1u : n);
+}
+
+/* A wheel speed that makes at most `remaining` steps in one period. */
+static int16_t capped_speed(hal_t *hal, int16_t speed, int32_t remaining)
+{
+    uint16_t period = hal_control_period_ms(hal);
+    int32_t cap;
+    if (period == 0u || remaining <= 0) {
+        return 0;
+    }
+    if (remaining > 100000L) {
+        return speed;
+    }
+    cap = (remaining * 1000L + period - 1) / period;
+    return (int16_t)((cap < speed) ? cap : speed);
+}
+
+/* A turn in place by `mrad` (CCW positive), counted on the step counters. */
+static void start_turn(repatt_t *self, uint8_t state, int32_t mrad)
+{
+    mrad = odo_wrap_mrad(mrad);
+    self->state = state;
+    self->turn_sign = (mrad >= 0) ? (int8_t)1 : (int8_t)-1;
+    self->target2 = 2 * units_turn_mrad_to_steps(mrad >= 0 ? mrad : -mrad);
+    self->done2 = 0;
+}
+
+static void start_run(repatt_t *self, int32_t mm)
+{
+    self->state = REPATT_AVOID_RUN;
+    self->target2 = 2 * units_mm_to_steps(mm);
+    self->done2 = 0;
+}
+
+/* Turning: 1 while some of the turn is left (wheels set), 0 when done. */
+static uint8_t turn_step(repatt_t *self, hal_t *hal)
+{
+    int16_t w = capped_speed(hal, self->params.turn_speed_steps_s, (self->target2 - self->done2 + 1) / 2);
+    if (self->done2 >= self->target2 || w <= 0) {
+        return 0u;
+    }
+    if (self->turn_sign > 0) {
+        hal_set_wheel_speeds(hal, (int16_t)-w, w);
+    } else {
+        hal_set_wheel_speeds(hal, w, (int16_t)-w);
+    }
+    return 1u;
+}
+
+static void forward(repatt_t *self, hal_t *hal)
+{
+    hal_set_wheel_speeds(hal, self->params.speed_steps_s, self->params.speed_steps_s);
+}
+
+/* Toward `bearing_mrad`: in place when it is behind, else forward with a
+ * proportional difference. */
+static void steer(const repatt_t *self, hal_t *hal, int16_t bearing_mrad)
+{
+    int16_t w = self->params.turn_speed_steps_s;
+    int32_t d, v;
+    if (bearing_mrad > UNITS_HALF_PI_MRAD) {
+        hal_set_wheel_speeds(hal, (int16_t)-w, w);
+        return;
+    }
+    if (bearing_mrad < -UNITS_HALF_PI_MRAD) {
+        hal_set_wheel_speeds(hal, w, (int16_t)-w);
+        return;
+    }
+    d = (int32_t)self->params.steer_gain * (int32_t)bearing_mrad / 1000;
+    v = (int32_t)self->params.speed_steps_s;
+    hal_set_wheel_speeds(hal, clamp_speed(v - d), clamp_speed(v + d));
+}
+
+/* A tumble angle from N(mu, sigma^2), mrad. */
+static int32_t tumble_angle(repatt_t *self)
+{
+    int32_t s = 0;
+    uint8_t i;
+    for (i = 0; i < GAUSS_TERMS; i++) {
+        s += (int32_t)(rng_next(&self->rng) >> 20);   /* 0..4095 */
+    }
+    return (int32_t)self->params.tumble_mean_mrad
+           + ((s - GAUSS_MEAN) * (int32_t)self->params.tumble_sd_mrad) / GAUSS_SD;
+}
+
+/* Lines 3-4: the turn of an obstacle avoidance. */
+static void start_avoidance(repatt_t *self, uint8_t where)
+{
+    int32_t a;
+    self->oae_count++;
+    if (where == 1u) {
+        /* Front: greater than 90 deg, up to 180, either way. */
+        a = rng_range(&self->rng, UNITS_HALF_PI_MRAD + 1, UNITS_PI_MRAD);
+        if ((rng_next(&self->rng) & 1u) != 0u) {
+            a = -a;
+        }
+    } else {
+        /* 45 deg to the left (CCW) for an obstacle on the right. */
+        a = (where == 2u) ? (int32_t)self->params.side_turn_mrad : -(int32_t)self->params.side_turn_mrad;
+    }
+    start_turn(self, REPATT_AVOID, a);
+}
+
+/* ------------------------------------------------------------ states */
+
+static void enter_home(repatt_t *self)
+{
+    self->state = REPATT_HOME;
+    clear_filters(self);   /* deaf until unloaded; fresh queues after */
+}
+
+static void home_step(repatt_t *self, hal_t *hal)
+{
+    if (odometry_within_mm(&self->odo, self->params.home_radius_mm) != 0u) {
+        self->cap = self->params.capacity;   /* unloaded */
+        self->unloads++;
+        self->state = REPATT_SEARCH;
+        return;
+    }
+    steer(self, hal, odometry_home_bearing_mrad(&self->odo));
+}
+
+/* PICK: 1 while the robot stays; 0 when it goes on (the other states
+ * decide its motion this period). */
+static uint8_t pick_step(repatt_t *self, hal_t *hal)
+{
+    uint16_t wait = periods(hal, self->params.pick_time_ms);
+    uint8_t there = target_still_there(self, hal);
+    if (there == 0u) {
+        if (self->timer >= wait) {
+            if (self->cap > 0u) {
+                self->cap--;   /* the task took it after our wait: carried */
+            }
+            self->pickups++;
+        }
+        /* Gone during the wait: another robot took it. */
+        self->state = REPATT_SEARCH;
+        return 0u;
+    }
+    if (self->timer >= (uint16_t)(wait + PICK_GRACE_PERIODS)) {
+        self->ignore = periods(hal, self->params.give_up_ms);   /* out of reach: give up */
+        self->state = REPATT_SEARCH;
+        return 0u;
+    }
+    hal_set_wheel_speeds(hal, 0, 0);
+    self->timer++;
+    return 1u;
+}
+
+static void start_pick(repatt_t *self, hal_t *hal, const hal_blob_t *blob)
+{
+    self->state = REPATT_PICK;
+    self->pick_bearing_mrad = blob->bearing_mrad;
+    self->pick_width_mrad = blob->width_mrad;
+    hal_set_wheel_speeds(hal, 0, 0);
+    self->timer = 1u;   /* this period is the first stopped */
+}
+
+/* Lines 8-27 for a robot with room for targets. */
+static void forage_step(repatt_t *self, hal_t *hal, const hal_blob_t *widest)
+{
+    /* Lines 8-21: the gains from this period's changes, from 1 each time. */
+    self->p_t_q32 = chemo_tumble_q32(self->p_b_q32, &self->params.gains, self->d_r, self->d_a);
+
+    if (self->state == REPATT_PICK) {
+        if (pick_step(self, hal) != 0u) {
+            return;
+        }
+        if (self->cap == 0u) {   /* that was the last one it had room for */
+            enter_home(self);
+            home_step(self, hal);
+            if (self->state == REPATT_HOME) {
+                return;
+            }
+        }
+    }
+    if (self->found > 0u && self->ignore == 0u) {
+        if (widest->width_mrad >= self->params.reach_width_mrad) {
+            start_pick(self, hal, widest);
+        } else {
+            self->state = REPATT_ACQUIRE;
+            steer(self, hal, widest->bearing_mrad);
+        }
+        return;
+    }
+    if (self->state == REPATT_TUMBLE && turn_step(self, hal) != 0u) {
+        return;
+    }
+    self->state = REPATT_SEARCH;
+    /* rng_next() < P_t: probability P_t / 2^32. */
+    if (self->p_t_q32 != 0u && rng_next(&self->rng) < self->p_t_q32) {
+        start_turn(self, REPATT_TUMBLE, tumble_angle(self));
+        if (turn_step(self, hal) != 0u) {
+            return;
+        }
+        self->state = REPATT_SEARCH;   /* a turn of 0 steps */
+    }
+    forward(self, hal);
+}
+
+/* Lines 9-12 for this period, and what the speaker plays next. */
+static void set_speaker(repatt_t *self, hal_t *hal)
+{
+    uint8_t out;
+    if (self->cap == 0u || self->state == REPATT_HOME) {
+        self->band = 0u;   /* homing, avoidances on the way included */
+    } else if (self->state != REPATT_AVOID && self->state != REPATT_AVOID_RUN) {
+        /* Avoiding keeps the band of the state it interrupted. */
+        if (self->found == 0u) {
+            self->band = REPATT_BAND_REPULSION;
+        } else if (self->found > self->cap) {
+            self->band = REPATT_BAND_ATTRACTION;
+        } else {
+            self->band = 0u;
+        }
+    }
+    out = self->band;
+    if (out != 0u && self->params.listening == REPATT_SLOTTED && (rng_next(&self->rng) & 0x80000000UL) == 0u) {
+        out = 0u;   /* a silent period: one to listen in */
+    }
+    if (out != self->speaker) {
+        (void)hal_speaker_set(hal, out);
+        self->speaker = out;
+    }
+}
+
+void repatt_step(repatt_t *self, hal_t *hal)
+{
+    int16_t l, r, dl, dr;
+    hal_blob_t widest;
+    uint8_t where;
+
+    hal_wheel_steps(hal, &l, &r);
+    odometry_update(&self->odo, l, r, &dl, &dr);
+    /* What the last command did to the current turn or run. */
+    if (self->state == REPATT_TUMBLE || self->state == REPATT_AVOID) {
+        self->done2 += (int32_t)self->turn_sign * ((int32_t)dr - (int32_t)dl);
+    } else if (self->state == REPATT_AVOID_RUN) {
+        self->done2 += (int32_t)dl + (int32_t)dr;
+    }
+    if (self->ignore > 0u) {
+        self->ignore--;
+    }
+
+    widest.colour = HAL_COLOUR_NONE;
+    widest.bearing_mrad = 0;
+    widest.width_mrad = 0u;
+    widest.pixels = 0u;
+    self->found = red_blobs(hal, &widest);
+    if (self->cap != 0u) {
+        listen(self, hal);   /* homing robots ignore the signals */
+    }
+
+    /* Lines 3-4: obstacle avoidance, its turn then its run. */
+    where = (self->state == REPATT_PICK || self->state == REPATT_AVOID) ? 0u : obstacle(self, hal);
+    if (where != 0u) {
+        start_avoidance(self, where);
+    }
+    if (self->state == REPATT_AVOID) {
+        if (turn_step(self, hal) != 0u) {
+            set_speaker(self, hal);
+            return;
+        }
+        start_run(self, rng_range(&self->rng, 0, (int32_t)self->params.oa_run_max_mm));
+    }
+    if (self->state == REPATT_AVOID_RUN) {
+        int16_t v = capped_speed(hal, self->params.speed_steps_s, (self->target2 - self->done2 + 1) / 2);
+        if (v > 0) {
+            hal_set_wheel_speeds(hal, v, v);
+            set_speaker(self, hal);
+            return;
+        }
+        self->state = REPATT_SEARCH;   /* run done: the other states decide */
+    }
+
+    /* Lines 5-6, then 8-27. */
+    if (self->cap == 0u) {
+        self->state = REPATT_HOME;   /* (the queues were emptied when cap reached 0) */
+        home_step(self, hal);
+        if (self->state == REPATT_HOME) {
+            set_speaker(self, hal);
+            return;
+        }
+    }
+    forage_step(self, hal, &widest);
+    set_speaker(self, hal);
+}
+
+const char *repatt_state_name(const repatt_t *self)
+{
+    switch (self->state) {
+    case REPATT_SEARCH: return "search";
+    case REPATT_TUMBLE: return "tumble";
+    case REPATT_ACQUIRE: return "acquire";
+    case REPATT_PICK: return "pick";
+    case REPATT_HOME: return "home";
+    case REPATT_AVOID: return "avoid";
+    case REPATT_AVOID_RUN: return "avoid_run";
+    default: return "?";
+    }
+}
