@@ -156,20 +156,22 @@ void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
 
 typedef sim_interval_t interval_t;
 
-/* Angular interval (robot frame, rad) and nearest distance of a disc. */
 /* What the camera sees from: the lens, its heading (angle and unit vector)
- * and its range. */
-typedef struct view { vec2_t cam; float heading; vec2_t dir; float range; } view_t;
+ * and its range; all_round: the panoramic stand-in (fov > 179 deg), which
+ * sees behind the robot too. */
+typedef struct view { vec2_t cam; float heading; vec2_t dir; float range; int all_round; } view_t;
 
-/* Angular interval of a disc seen from the lens, or 0 when it cannot
- * matter: the lens inside it, wholly behind the lens (the field of view is
- * narrower than 180 deg), or farther than the range (then it can neither be
- * seen nor hide anything that can). */
+/* Angular interval (robot frame, rad) and nearest distance of a disc, or 0
+ * when it cannot matter: the lens inside it, wholly behind the lens (a
+ * pinhole camera's field of view is narrower than 180 deg), or farther than
+ * the range (then it can neither be seen nor hide anything that can).  The
+ * interval's ends may pass +-pi for the all-round camera (lo < hi always,
+ * its width below pi). */
 static int disc_interval(const view_t *vw, vec2_t c, float rad, interval_t *out)
 {
     vec2_t v = v2_sub(c, vw->cam);
     float d = v2_len(v);
-    if (d <= rad || v2_dot(v, vw->dir) < -rad || d - rad > vw->range) {
+    if (d <= rad || (!vw->all_round && v2_dot(v, vw->dir) < -rad) || d - rad > vw->range) {
         return 0;
     }
     float heading = vw->heading;
@@ -241,6 +243,63 @@ static int blob_order(const void *a, const void *b)
     return (x->bearing_mrad > y->bearing_mrad) - (x->bearing_mrad < y->bearing_mrad);
 }
 
+/* Keeps the CAM_MAX_BLOBS largest blobs: a new one replaces the smallest
+ * kept when it ranks before it (in a cluster of targets more than
+ * CAM_MAX_BLOBS can be in view, and the nearest must not be lost to index
+ * order).  Below CAM_MAX_BLOBS blobs it only appends. */
+static void keep_blob(hal_blob_t *blobs, uint32_t *nb, const hal_blob_t *b)
+{
+    if (*nb < CAM_MAX_BLOBS) {
+        blobs[(*nb)++] = *b;
+        return;
+    }
+    uint32_t worst = 0;
+    for (uint32_t k = 1; k < *nb; k++) {
+        if (blob_order(&blobs[k], &blobs[worst]) > 0) worst = k;
+    }
+    if (blob_order(b, &blobs[worst]) < 0) blobs[worst] = *b;
+}
+
+/* The all-round camera: what is left of the disc interval `it` (centred
+ * on bearing `mid`, half-width `w`) after the blind sector and every nearer
+ * occluder, in a frame centred on `mid` so that nothing wraps: each
+ * occluder's interval is moved to the same frame and subtracted at its
+ * bearing and +-2 pi (an interval narrower than pi that crosses the back of
+ * the robot).  Returns the pieces' count. */
+static int all_round_pieces(const interval_t *occ, uint32_t nocc, uint32_t t, float half,
+                            interval_t pieces[CAM_MAX_PIECES])
+{
+    const float two_pi = 2.0f * (float)UNITS_PI;
+    interval_t it = occ[t];
+    float mid = 0.5f * (it.lo + it.hi), w = 0.5f * (it.hi - it.lo);
+    pieces[0] = (interval_t){ -w, w, it.near };
+    int np = 1;
+    if (half < (float)UNITS_PI) {   /* the blind sector behind, centred on pi */
+        float b = geom_wrap((float)UNITS_PI - mid), bw = (float)UNITS_PI - half;
+        for (int s = -1; s <= 1 && np > 0; s++) {
+            np = subtract(pieces, np, b + s * two_pi - bw, b + s * two_pi + bw);
+        }
+    }
+    for (uint32_t q = 0; q < nocc && np > 0; q++) {
+        if (q == t || occ[q].near >= it.near) {
+            continue;
+        }
+        float qw = 0.5f * (occ[q].hi - occ[q].lo);
+        float d = geom_wrap(0.5f * (occ[q].lo + occ[q].hi) - mid);
+        for (int s = -1; s <= 1 && np > 0; s++) {
+            float c = d + s * two_pi;
+            if (c + qw > -w && c - qw < w) {
+                np = subtract(pieces, np, c - qw, c + qw);
+            }
+        }
+    }
+    for (int k = 0; k < np; k++) {   /* back to the robot frame */
+        pieces[k].lo += mid;
+        pieces[k].hi += mid;
+    }
+    return np;
+}
+
 uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
 {
     const scenario_t *sc = sim->sc;
@@ -251,7 +310,16 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     float vfov = 2.0f * half * sc->camera.height_px / sc->camera.width_px;
     vec2_t dir = v2(cosf(heading), sinf(heading));
     vec2_t cam = v2(r->x + EPUCK_BODY_RADIUS_M * dir.x, r->y + EPUCK_BODY_RADIUS_M * dir.y);
-    view_t vw = { cam, heading, dir, range };
+    /* The all-round stand-in (fov > 179 deg): a panoramic (cylindrical)
+     * image of `fov` degrees centred ahead, its lens on the robot's axis
+     * (as the e-puck's omnidirectional turret sits on top of the body),
+     * pixels square in angle: col rad per column and per row. */
+    int all_round = sc->camera.fov > SCENARIO_CAMERA_PINHOLE_MAX_DEG;
+    if (all_round) {
+        cam = v2(r->x, r->y);
+        vfov = col * sc->camera.height_px;
+    }
+    view_t vw = { cam, heading, dir, range, all_round };
 
     uint32_t *obst = sim->cam_scratch.obstacles, *rob = sim->cam_scratch.robots;
     uint32_t *occ_obj = sim->cam_scratch.occluder_object;
@@ -296,7 +364,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
 
     hal_blob_t blobs[CAM_MAX_BLOBS];
     uint32_t nb = 0;
-    for (uint32_t t = first_obstacle; t < nocc && nb < CAM_MAX_BLOBS; t++) {
+    for (uint32_t t = first_obstacle; t < nocc; t++) {
         uint32_t what = occ_obj[t];
         const sim_item_t *item = (what & CAM_ITEM)
             ? &items[(what & ~CAM_ITEM) >> CAM_ITEM_TASK_SHIFT][what & CAM_ITEM_INDEX] : NULL;
@@ -309,7 +377,10 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         }
         interval_t pieces[CAM_MAX_PIECES] = { { fmaxf(it.lo, -half), fminf(it.hi, half), it.near } };
         int np = (pieces[0].hi > pieces[0].lo) ? 1 : 0;
-        for (uint32_t q = 0; q < nocc && np > 0; q++) {
+        if (all_round) {
+            np = all_round_pieces(occ, nocc, t, half, pieces);
+        }
+        for (uint32_t q = 0; !all_round && q < nocc && np > 0; q++) {
             if (q != t && occ[q].near < it.near) {
                 np = subtract(pieces, np, occ[q].lo, occ[q].hi);
             }
@@ -330,12 +401,15 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         float dist = it.near > 0.001f ? it.near : 0.001f;
         float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
         float rows = fminf(vang, vfov) / (vfov / sc->camera.height_px);
-        hal_blob_t *b = &blobs[nb++];
+        hal_blob_t blob, *b = &blob;
+        float bearing = 0.5f * (pieces[best].lo + pieces[best].hi);
         b->colour = (uint8_t)colour;
-        b->bearing_mrad = (int16_t)lroundf(1000.0f * 0.5f * (pieces[best].lo + pieces[best].hi));
+        /* All round: in (-pi, pi], +-pi straight behind. */
+        b->bearing_mrad = (int16_t)lroundf(1000.0f * (all_round ? geom_wrap(bearing) : bearing));
         b->width_mrad = (uint16_t)lroundf(1000.0f * width);
         float px = floorf(cols) * fmaxf(1.0f, floorf(rows));
         b->pixels = (uint16_t)fminf(px, 65535.0f);
+        keep_blob(blobs, &nb, b);
     }
     qsort(blobs, nb, sizeof blobs[0], blob_order);
     uint8_t count = (uint8_t)(nb < HAL_MAX_BLOBS ? nb : HAL_MAX_BLOBS);
