@@ -300,6 +300,102 @@ static int all_round_pieces(const interval_t *occ, uint32_t nocc, uint32_t t, fl
     return np;
 }
 
+/* What one camera needs to turn an interval into a blob. */
+typedef struct camera_frame {
+    const scenario_t *sc;
+    const sim_item_t *const *items;   /**< per task */
+    const interval_t *occ;
+    const uint32_t *occ_obj;
+    uint32_t nocc;
+    float half, col, vfov, range;
+    int all_round;
+} camera_frame_t;
+
+static void what_of(const struct sim *sim, const camera_frame_t *fr, uint32_t t, int *colour, float *height)
+{
+    uint32_t what = fr->occ_obj[t];
+    const sim_item_t *item = (what & CAM_ITEM)
+        ? &fr->items[(what & ~CAM_ITEM) >> CAM_ITEM_TASK_SHIFT][what & CAM_ITEM_INDEX] : NULL;
+    const obstacle_t *o = item ? NULL : &sim->obstacles[what];
+    *colour = item ? item->colour : o->colour;
+    *height = item ? item->height : o->height;
+}
+
+/* Rows: the object spans the floor to its top, seen from the lens. */
+static float rows_of(const camera_frame_t *fr, float near, float height)
+{
+    float dist = near > 0.001f ? near : 0.001f;
+    float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
+    return fminf(vang, fr->vfov) / (fr->vfov / fr->sc->camera.height_px);
+}
+
+/* The blob of interval t (an obstacle or an item), or 0 when it shows
+ * none: colourless, out of range, hidden, or narrower than a column. */
+static int blob_of(const struct sim *sim, const camera_frame_t *fr, uint32_t t, hal_blob_t *b)
+{
+    int colour;
+    float height, half = fr->half;
+    interval_t it = fr->occ[t];
+    what_of(sim, fr, t, &colour, &height);
+    if (colour == HAL_COLOUR_NONE || it.near > fr->range) {
+        return 0;
+    }
+    interval_t pieces[CAM_MAX_PIECES] = { { fmaxf(it.lo, -half), fminf(it.hi, half), it.near } };
+    int np = (pieces[0].hi > pieces[0].lo) ? 1 : 0;
+    if (fr->all_round) {
+        np = all_round_pieces(fr->occ, fr->nocc, t, half, pieces);
+    }
+    for (uint32_t q = 0; !fr->all_round && q < fr->nocc && np > 0; q++) {
+        if (q != t && fr->occ[q].near < it.near) {
+            np = subtract(pieces, np, fr->occ[q].lo, fr->occ[q].hi);
+        }
+    }
+    int best = -1;
+    for (int k = 0; k < np; k++) {
+        if (best < 0 || pieces[k].hi - pieces[k].lo > pieces[best].hi - pieces[best].lo) best = k;
+    }
+    if (best < 0) {
+        return 0;
+    }
+    float width = pieces[best].hi - pieces[best].lo;
+    float cols = width / fr->col;
+    if (cols < 1.0f) {
+        return 0;   /* narrower than a pixel column */
+    }
+    float rows = rows_of(fr, it.near, height);
+    float bearing = 0.5f * (pieces[best].lo + pieces[best].hi);
+    b->colour = (uint8_t)colour;
+    /* All round: in (-pi, pi], +-pi straight behind. */
+    b->bearing_mrad = (int16_t)lroundf(1000.0f * (fr->all_round ? geom_wrap(bearing) : bearing));
+    b->width_mrad = (uint16_t)lroundf(1000.0f * width);
+    float px = floorf(cols) * fmaxf(1.0f, floorf(rows));
+    b->pixels = (uint16_t)fminf(px, 65535.0f);
+    return 1;
+}
+
+/* The most pixels interval t could show (all of it in view, nothing in
+ * front), a little generous for rounding; 0 when it can show none. */
+static float pixel_bound(const struct sim *sim, const camera_frame_t *fr, uint32_t t)
+{
+    int colour;
+    float height;
+    interval_t it = fr->occ[t];
+    what_of(sim, fr, t, &colour, &height);
+    if (colour == HAL_COLOUR_NONE || it.near > fr->range) {
+        return 0.0f;
+    }
+    float cols = floorf((it.hi - it.lo) / fr->col * 1.001f + 0.001f);
+    return cols < 1.0f ? 0.0f : fminf(cols * fmaxf(1.0f, floorf(rows_of(fr, it.near, height))), 65535.0f);
+}
+
+/* Candidates by their bound, most first, then by index. */
+static int by_bound(const void *a, const void *b)
+{
+    const sim_cam_candidate_t *x = a, *y = b;
+    if (x->bound != y->bound) return x->bound < y->bound ? 1 : -1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
 uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
 {
     const scenario_t *sc = sim->sc;
@@ -362,54 +458,44 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         }
     }
 
+    camera_frame_t fr = { sc, items, occ, occ_obj, nocc, half, col, vfov, range, all_round };
     hal_blob_t blobs[CAM_MAX_BLOBS];
     uint32_t nb = 0;
-    for (uint32_t t = first_obstacle; t < nocc; t++) {
-        uint32_t what = occ_obj[t];
-        const sim_item_t *item = (what & CAM_ITEM)
-            ? &items[(what & ~CAM_ITEM) >> CAM_ITEM_TASK_SHIFT][what & CAM_ITEM_INDEX] : NULL;
-        const obstacle_t *o = item ? NULL : &sim->obstacles[what];
-        int colour = item ? item->colour : o->colour;
-        float height = item ? item->height : o->height;
-        interval_t it = occ[t];
-        if (colour == HAL_COLOUR_NONE || it.near > range) {
-            continue;
-        }
-        interval_t pieces[CAM_MAX_PIECES] = { { fmaxf(it.lo, -half), fminf(it.hi, half), it.near } };
-        int np = (pieces[0].hi > pieces[0].lo) ? 1 : 0;
-        if (all_round) {
-            np = all_round_pieces(occ, nocc, t, half, pieces);
-        }
-        for (uint32_t q = 0; !all_round && q < nocc && np > 0; q++) {
-            if (q != t && occ[q].near < it.near) {
-                np = subtract(pieces, np, occ[q].lo, occ[q].hi);
+    if (!all_round) {
+        for (uint32_t t = first_obstacle; t < nocc; t++) {
+            hal_blob_t b;
+            if (blob_of(sim, &fr, t, &b)) {
+                keep_blob(blobs, &nb, &b);
             }
         }
-        int best = -1;
-        for (int k = 0; k < np; k++) {
-            if (best < 0 || pieces[k].hi - pieces[k].lo > pieces[best].hi - pieces[best].lo) best = k;
+    } else {
+        /* In a cluster of targets a hundred items can be in view, and each
+         * is cut by every nearer one: candidates in order of the most pixels
+         * they could show (their whole interval), stopping once HAL_MAX_BLOBS
+         * blobs are larger than anything left can be (the robot gets only
+         * those).  The result is the one the full scan gives. */
+        sim_cam_candidate_t *cand = sim->cam_scratch.candidates;
+        uint32_t m = 0;
+        for (uint32_t t = first_obstacle; t < nocc; t++) {
+            float bd = pixel_bound(sim, &fr, t);
+            if (bd > 0.0f) {
+                cand[m++] = (sim_cam_candidate_t){ bd, t };
+            }
         }
-        if (best < 0) {
-            continue;
+        qsort(cand, m, sizeof cand[0], by_bound);
+        for (uint32_t k = 0; k < m; k++) {
+            uint32_t above = 0;
+            for (uint32_t j = 0; j < nb; j++) {
+                above += (float)blobs[j].pixels > cand[k].bound;
+            }
+            if (above >= HAL_MAX_BLOBS) {
+                break;
+            }
+            hal_blob_t b;
+            if (blob_of(sim, &fr, cand[k].index, &b)) {
+                keep_blob(blobs, &nb, &b);
+            }
         }
-        float width = pieces[best].hi - pieces[best].lo;
-        float cols = width / col;
-        if (cols < 1.0f) {
-            continue;   /* narrower than a pixel column */
-        }
-        /* Rows: the object spans the floor to its top, seen from the lens. */
-        float dist = it.near > 0.001f ? it.near : 0.001f;
-        float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
-        float rows = fminf(vang, vfov) / (vfov / sc->camera.height_px);
-        hal_blob_t blob, *b = &blob;
-        float bearing = 0.5f * (pieces[best].lo + pieces[best].hi);
-        b->colour = (uint8_t)colour;
-        /* All round: in (-pi, pi], +-pi straight behind. */
-        b->bearing_mrad = (int16_t)lroundf(1000.0f * (all_round ? geom_wrap(bearing) : bearing));
-        b->width_mrad = (uint16_t)lroundf(1000.0f * width);
-        float px = floorf(cols) * fmaxf(1.0f, floorf(rows));
-        b->pixels = (uint16_t)fminf(px, 65535.0f);
-        keep_blob(blobs, &nb, b);
     }
     qsort(blobs, nb, sizeof blobs[0], blob_order);
     uint8_t count = (uint8_t)(nb < HAL_MAX_BLOBS ? nb : HAL_MAX_BLOBS);
