@@ -244,7 +244,7 @@ static int blob_order(const void *a, const void *b)
 }
 
 /* Keeps the CAM_MAX_BLOBS largest blobs: a new one replaces the smallest
- * kept when it ranks before it (in a cluster of targets more than
+ * kept when it ranks before it (in a crowd of a task's items more than
  * CAM_MAX_BLOBS can be in view, and the nearest must not be lost to index
  * order).  Below CAM_MAX_BLOBS blobs it only appends. */
 static void keep_blob(hal_blob_t *blobs, uint32_t *nb, const hal_blob_t *b)
@@ -469,7 +469,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
             }
         }
     } else {
-        /* In a cluster of targets a hundred items can be in view, and each
+        /* In a crowd of a task's items a hundred can be in view, and each
          * is cut by every nearer one: candidates in order of the most pixels
          * they could show (their whole interval), stopping once HAL_MAX_BLOBS
          * blobs are larger than anything left can be (the robot gets only
