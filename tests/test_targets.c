@@ -8,7 +8,8 @@
  * takes it), the stop at 90 %, and the all-round camera stand-in (a target
  * behind is seen at bearing ~pi, left and right signs, occlusion across the
  * back, a blind sector for fov < 360, the nearest of a crowd first).
- * Idle robots: the test drives them through their hal_t.  (About 1 s.)
+ * Idle robots: the test drives them through their hal_t.  (0.02 s; 0.1 s
+ * under ASan/UBSan.)
  */
 #include <math.h>
 #include <setjmp.h>
