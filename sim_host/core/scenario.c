@@ -192,8 +192,9 @@ static const param_desc_t ambient_params[] = {
 };
 
 static const param_desc_t camera_params[] = {
-    { .key = "fov", PARAM_FIELD(SC, camera.fov, float), .min = 1, .max = 179,
-      .doc = "horizontal field of view, deg" },
+    { .key = "fov", PARAM_FIELD(SC, camera.fov, float), .min = 1, .max = 360,
+      .doc = "horizontal field of view, deg (up to 179 the e-puck's pinhole camera; wider: an "
+             "all-round panoramic stand-in, lens on the robot's axis)" },
     { .key = "range", PARAM_FIELD(SC, camera.range, float), .min = 0.01, .max = 100,
       .doc = "objects farther away are not seen, m" },
     { .key = "width_px", PARAM_FIELD(SC, camera.width_px, uint16_t), .min = 1, .max = 640,

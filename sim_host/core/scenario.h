@@ -31,6 +31,10 @@
  *  repetition's seed + r lie in it.  2^53 - 1 is exact as a double (the YAML
  *  loader compares through one), as a JSON number and as a signed 64-bit
  *  integer, so summaries and sweep tables carry seeds without rounding. */
+/** The widest pinhole camera, deg: a wider `camera.fov` (up to 360) is the
+ *  all-round stand-in, a panoramic (cylindrical) image centred ahead with
+ *  its lens on the robot's axis (sensors.c). */
+#define SCENARIO_CAMERA_PINHOLE_MAX_DEG 179.0f
 #define SCENARIO_SEED_MAX UINT64_C(9007199254740991)
 
 struct task_def;
@@ -191,7 +195,9 @@ typedef struct scenario {
     } ambient;
 
     struct {
-        float fov;                 /**< horizontal field of view, deg */
+        float fov;                 /**< horizontal field of view, deg; above
+                                        SCENARIO_CAMERA_PINHOLE_MAX_DEG an all-round
+                                        (panoramic) stand-in, up to 360 */
         float range;               /**< objects farther away are not seen, m */
         uint16_t width_px, height_px; /**< the robot's frame, pixels (blob sizes refer to it) */
     } camera;

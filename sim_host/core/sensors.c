@@ -156,20 +156,22 @@ void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
 
 typedef sim_interval_t interval_t;
 
-/* Angular interval (robot frame, rad) and nearest distance of a disc. */
 /* What the camera sees from: the lens, its heading (angle and unit vector)
- * and its range. */
-typedef struct view { vec2_t cam; float heading; vec2_t dir; float range; } view_t;
+ * and its range; all_round: the panoramic stand-in (fov > 179 deg), which
+ * sees behind the robot too. */
+typedef struct view { vec2_t cam; float heading; vec2_t dir; float range; int all_round; } view_t;
 
-/* Angular interval of a disc seen from the lens, or 0 when it cannot
- * matter: the lens inside it, wholly behind the lens (the field of view is
- * narrower than 180 deg), or farther than the range (then it can neither be
- * seen nor hide anything that can). */
+/* Angular interval (robot frame, rad) and nearest distance of a disc, or 0
+ * when it cannot matter: the lens inside it, wholly behind the lens (a
+ * pinhole camera's field of view is narrower than 180 deg), or farther than
+ * the range (then it can neither be seen nor hide anything that can).  The
+ * interval's ends may pass +-pi for the all-round camera (lo < hi always,
+ * its width below pi). */
 static int disc_interval(const view_t *vw, vec2_t c, float rad, interval_t *out)
 {
     vec2_t v = v2_sub(c, vw->cam);
     float d = v2_len(v);
-    if (d <= rad || v2_dot(v, vw->dir) < -rad || d - rad > vw->range) {
+    if (d <= rad || (!vw->all_round && v2_dot(v, vw->dir) < -rad) || d - rad > vw->range) {
         return 0;
     }
     float heading = vw->heading;
@@ -241,6 +243,159 @@ static int blob_order(const void *a, const void *b)
     return (x->bearing_mrad > y->bearing_mrad) - (x->bearing_mrad < y->bearing_mrad);
 }
 
+/* Keeps the CAM_MAX_BLOBS largest blobs: a new one replaces the smallest
+ * kept when it ranks before it (in a crowd of a task's items more than
+ * CAM_MAX_BLOBS can be in view, and the nearest must not be lost to index
+ * order).  Below CAM_MAX_BLOBS blobs it only appends. */
+static void keep_blob(hal_blob_t *blobs, uint32_t *nb, const hal_blob_t *b)
+{
+    if (*nb < CAM_MAX_BLOBS) {
+        blobs[(*nb)++] = *b;
+        return;
+    }
+    uint32_t worst = 0;
+    for (uint32_t k = 1; k < *nb; k++) {
+        if (blob_order(&blobs[k], &blobs[worst]) > 0) worst = k;
+    }
+    if (blob_order(b, &blobs[worst]) < 0) blobs[worst] = *b;
+}
+
+/* The all-round camera: what is left of the disc interval `it` (centred
+ * on bearing `mid`, half-width `w`) after the blind sector and every nearer
+ * occluder, in a frame centred on `mid` so that nothing wraps: each
+ * occluder's interval is moved to the same frame and subtracted at its
+ * bearing and +-2 pi (an interval narrower than pi that crosses the back of
+ * the robot).  Returns the pieces' count. */
+static int all_round_pieces(const interval_t *occ, uint32_t nocc, uint32_t t, float half,
+                            interval_t pieces[CAM_MAX_PIECES])
+{
+    const float two_pi = 2.0f * (float)UNITS_PI;
+    interval_t it = occ[t];
+    float mid = 0.5f * (it.lo + it.hi), w = 0.5f * (it.hi - it.lo);
+    pieces[0] = (interval_t){ -w, w, it.near };
+    int np = 1;
+    if (half < (float)UNITS_PI) {   /* the blind sector behind, centred on pi */
+        float b = geom_wrap((float)UNITS_PI - mid), bw = (float)UNITS_PI - half;
+        for (int s = -1; s <= 1 && np > 0; s++) {
+            np = subtract(pieces, np, b + s * two_pi - bw, b + s * two_pi + bw);
+        }
+    }
+    for (uint32_t q = 0; q < nocc && np > 0; q++) {
+        if (q == t || occ[q].near >= it.near) {
+            continue;
+        }
+        float qw = 0.5f * (occ[q].hi - occ[q].lo);
+        float d = geom_wrap(0.5f * (occ[q].lo + occ[q].hi) - mid);
+        for (int s = -1; s <= 1 && np > 0; s++) {
+            float c = d + s * two_pi;
+            if (c + qw > -w && c - qw < w) {
+                np = subtract(pieces, np, c - qw, c + qw);
+            }
+        }
+    }
+    for (int k = 0; k < np; k++) {   /* back to the robot frame */
+        pieces[k].lo += mid;
+        pieces[k].hi += mid;
+    }
+    return np;
+}
+
+/* What one camera needs to turn an interval into a blob. */
+typedef struct camera_frame {
+    const scenario_t *sc;
+    const sim_item_t *const *items;   /**< per task */
+    const interval_t *occ;
+    const uint32_t *occ_obj;
+    uint32_t nocc;
+    float half, col, vfov, range;
+    int all_round;
+} camera_frame_t;
+
+static void what_of(const struct sim *sim, const camera_frame_t *fr, uint32_t t, int *colour, float *height)
+{
+    uint32_t what = fr->occ_obj[t];
+    const sim_item_t *item = (what & CAM_ITEM)
+        ? &fr->items[(what & ~CAM_ITEM) >> CAM_ITEM_TASK_SHIFT][what & CAM_ITEM_INDEX] : NULL;
+    const obstacle_t *o = item ? NULL : &sim->obstacles[what];
+    *colour = item ? item->colour : o->colour;
+    *height = item ? item->height : o->height;
+}
+
+/* Rows: the object spans the floor to its top, seen from the lens. */
+static float rows_of(const camera_frame_t *fr, float near, float height)
+{
+    float dist = near > 0.001f ? near : 0.001f;
+    float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
+    return fminf(vang, fr->vfov) / (fr->vfov / fr->sc->camera.height_px);
+}
+
+/* The blob of interval t (an obstacle or an item), or 0 when it shows
+ * none: colourless, out of range, hidden, or narrower than a column. */
+static int blob_of(const struct sim *sim, const camera_frame_t *fr, uint32_t t, hal_blob_t *b)
+{
+    int colour;
+    float height, half = fr->half;
+    interval_t it = fr->occ[t];
+    what_of(sim, fr, t, &colour, &height);
+    if (colour == HAL_COLOUR_NONE || it.near > fr->range) {
+        return 0;
+    }
+    interval_t pieces[CAM_MAX_PIECES] = { { fmaxf(it.lo, -half), fminf(it.hi, half), it.near } };
+    int np = (pieces[0].hi > pieces[0].lo) ? 1 : 0;
+    if (fr->all_round) {
+        np = all_round_pieces(fr->occ, fr->nocc, t, half, pieces);
+    }
+    for (uint32_t q = 0; !fr->all_round && q < fr->nocc && np > 0; q++) {
+        if (q != t && fr->occ[q].near < it.near) {
+            np = subtract(pieces, np, fr->occ[q].lo, fr->occ[q].hi);
+        }
+    }
+    int best = -1;
+    for (int k = 0; k < np; k++) {
+        if (best < 0 || pieces[k].hi - pieces[k].lo > pieces[best].hi - pieces[best].lo) best = k;
+    }
+    if (best < 0) {
+        return 0;
+    }
+    float width = pieces[best].hi - pieces[best].lo;
+    float cols = width / fr->col;
+    if (cols < 1.0f) {
+        return 0;   /* narrower than a pixel column */
+    }
+    float rows = rows_of(fr, it.near, height);
+    float bearing = 0.5f * (pieces[best].lo + pieces[best].hi);
+    b->colour = (uint8_t)colour;
+    /* All round: in (-pi, pi], +-pi straight behind. */
+    b->bearing_mrad = (int16_t)lroundf(1000.0f * (fr->all_round ? geom_wrap(bearing) : bearing));
+    b->width_mrad = (uint16_t)lroundf(1000.0f * width);
+    float px = floorf(cols) * fmaxf(1.0f, floorf(rows));
+    b->pixels = (uint16_t)fminf(px, 65535.0f);
+    return 1;
+}
+
+/* The most pixels interval t could show (all of it in view, nothing in
+ * front), a little generous for rounding; 0 when it can show none. */
+static float pixel_bound(const struct sim *sim, const camera_frame_t *fr, uint32_t t)
+{
+    int colour;
+    float height;
+    interval_t it = fr->occ[t];
+    what_of(sim, fr, t, &colour, &height);
+    if (colour == HAL_COLOUR_NONE || it.near > fr->range) {
+        return 0.0f;
+    }
+    float cols = floorf((it.hi - it.lo) / fr->col * 1.001f + 0.001f);
+    return cols < 1.0f ? 0.0f : fminf(cols * fmaxf(1.0f, floorf(rows_of(fr, it.near, height))), 65535.0f);
+}
+
+/* Candidates by their bound, most first, then by index. */
+static int by_bound(const void *a, const void *b)
+{
+    const sim_cam_candidate_t *x = a, *y = b;
+    if (x->bound != y->bound) return x->bound < y->bound ? 1 : -1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
 uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
 {
     const scenario_t *sc = sim->sc;
@@ -251,7 +406,16 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     float vfov = 2.0f * half * sc->camera.height_px / sc->camera.width_px;
     vec2_t dir = v2(cosf(heading), sinf(heading));
     vec2_t cam = v2(r->x + EPUCK_BODY_RADIUS_M * dir.x, r->y + EPUCK_BODY_RADIUS_M * dir.y);
-    view_t vw = { cam, heading, dir, range };
+    /* The all-round stand-in (fov > 179 deg): a panoramic (cylindrical)
+     * image of `fov` degrees centred ahead, its lens on the robot's axis
+     * (as the e-puck's omnidirectional turret sits on top of the body),
+     * pixels square in angle: col rad per column and per row. */
+    int all_round = sc->camera.fov > SCENARIO_CAMERA_PINHOLE_MAX_DEG;
+    if (all_round) {
+        cam = v2(r->x, r->y);
+        vfov = col * sc->camera.height_px;
+    }
+    view_t vw = { cam, heading, dir, range, all_round };
 
     uint32_t *obst = sim->cam_scratch.obstacles, *rob = sim->cam_scratch.robots;
     uint32_t *occ_obj = sim->cam_scratch.occluder_object;
@@ -294,48 +458,44 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         }
     }
 
+    camera_frame_t fr = { sc, items, occ, occ_obj, nocc, half, col, vfov, range, all_round };
     hal_blob_t blobs[CAM_MAX_BLOBS];
     uint32_t nb = 0;
-    for (uint32_t t = first_obstacle; t < nocc && nb < CAM_MAX_BLOBS; t++) {
-        uint32_t what = occ_obj[t];
-        const sim_item_t *item = (what & CAM_ITEM)
-            ? &items[(what & ~CAM_ITEM) >> CAM_ITEM_TASK_SHIFT][what & CAM_ITEM_INDEX] : NULL;
-        const obstacle_t *o = item ? NULL : &sim->obstacles[what];
-        int colour = item ? item->colour : o->colour;
-        float height = item ? item->height : o->height;
-        interval_t it = occ[t];
-        if (colour == HAL_COLOUR_NONE || it.near > range) {
-            continue;
-        }
-        interval_t pieces[CAM_MAX_PIECES] = { { fmaxf(it.lo, -half), fminf(it.hi, half), it.near } };
-        int np = (pieces[0].hi > pieces[0].lo) ? 1 : 0;
-        for (uint32_t q = 0; q < nocc && np > 0; q++) {
-            if (q != t && occ[q].near < it.near) {
-                np = subtract(pieces, np, occ[q].lo, occ[q].hi);
+    if (!all_round) {
+        for (uint32_t t = first_obstacle; t < nocc; t++) {
+            hal_blob_t b;
+            if (blob_of(sim, &fr, t, &b)) {
+                keep_blob(blobs, &nb, &b);
             }
         }
-        int best = -1;
-        for (int k = 0; k < np; k++) {
-            if (best < 0 || pieces[k].hi - pieces[k].lo > pieces[best].hi - pieces[best].lo) best = k;
+    } else {
+        /* In a crowd of a task's items a hundred can be in view, and each
+         * is cut by every nearer one: candidates in order of the most pixels
+         * they could show (their whole interval), stopping once HAL_MAX_BLOBS
+         * blobs are larger than anything left can be (the robot gets only
+         * those).  The result is the one the full scan gives. */
+        sim_cam_candidate_t *cand = sim->cam_scratch.candidates;
+        uint32_t m = 0;
+        for (uint32_t t = first_obstacle; t < nocc; t++) {
+            float bd = pixel_bound(sim, &fr, t);
+            if (bd > 0.0f) {
+                cand[m++] = (sim_cam_candidate_t){ bd, t };
+            }
         }
-        if (best < 0) {
-            continue;
+        qsort(cand, m, sizeof cand[0], by_bound);
+        for (uint32_t k = 0; k < m; k++) {
+            uint32_t above = 0;
+            for (uint32_t j = 0; j < nb; j++) {
+                above += (float)blobs[j].pixels > cand[k].bound;
+            }
+            if (above >= HAL_MAX_BLOBS) {
+                break;
+            }
+            hal_blob_t b;
+            if (blob_of(sim, &fr, cand[k].index, &b)) {
+                keep_blob(blobs, &nb, &b);
+            }
         }
-        float width = pieces[best].hi - pieces[best].lo;
-        float cols = width / col;
-        if (cols < 1.0f) {
-            continue;   /* narrower than a pixel column */
-        }
-        /* Rows: the object spans the floor to its top, seen from the lens. */
-        float dist = it.near > 0.001f ? it.near : 0.001f;
-        float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
-        float rows = fminf(vang, vfov) / (vfov / sc->camera.height_px);
-        hal_blob_t *b = &blobs[nb++];
-        b->colour = (uint8_t)colour;
-        b->bearing_mrad = (int16_t)lroundf(1000.0f * 0.5f * (pieces[best].lo + pieces[best].hi));
-        b->width_mrad = (uint16_t)lroundf(1000.0f * width);
-        float px = floorf(cols) * fmaxf(1.0f, floorf(rows));
-        b->pixels = (uint16_t)fminf(px, 65535.0f);
     }
     qsort(blobs, nb, sizeof blobs[0], blob_order);
     uint8_t count = (uint8_t)(nb < HAL_MAX_BLOBS ? nb : HAL_MAX_BLOBS);

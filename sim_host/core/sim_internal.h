@@ -98,6 +98,10 @@ typedef struct obstacle {
 /** An angular interval seen from the camera, rad, and its nearest distance, m. */
 typedef struct sim_interval { float lo, hi, near; } sim_interval_t;
 
+/** An interval the all-round camera may turn into a blob, and the most
+ *  pixels it could show. */
+typedef struct sim_cam_candidate { float bound; uint32_t index; } sim_cam_candidate_t;
+
 /** Most robots or obstacles the camera considers within its range. */
 #define SIM_CAMERA_MAX_NEAR 1024u
 
@@ -150,6 +154,7 @@ struct sim {
         uint32_t robots[SIM_CAMERA_MAX_NEAR];
         uint32_t occluder_object[2 * SIM_CAMERA_MAX_NEAR];
         sim_interval_t intervals[2 * SIM_CAMERA_MAX_NEAR];
+        sim_cam_candidate_t candidates[2 * SIM_CAMERA_MAX_NEAR];   /**< the all-round camera's */
     } cam_scratch;
 
     uint32_t n_tasks;
