@@ -47,11 +47,11 @@ from swarmtools.sweep.store import atomic_write
 REPO_ROOT = Path(__file__).resolve().parents[3]
 STUDIES = REPO_ROOT / "studies"
 FIGURES = {"worlds": "repatt_worlds.yaml", "scale": "repatt_scale.yaml"}
-TIME = "time_to_stop_s"
+TIME = "time_capped_s"  # the time to 90 %, or the run's length when it did not finish
 FINISHED = "finished"
 # The override keys the sweep files vary (one place: the files and this script agree).
 POLICY = "robots.0.policy"
-QUEUE = "robots.0.params.queue"
+QUEUE = "robots.0.params.queue_size"
 NOISE = "sound.noise"
 COUNT = "robots.0.count"
 DISTS = ("one", "two", "four", "half", "uniform")
