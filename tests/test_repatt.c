@@ -359,6 +359,23 @@ static void test_pickup_counts_when_blob_goes_after_wait(void **state)
     assert_int_equal(H.left, 776);
 }
 
+/* In a cluster: when the target is taken, the next one behind it shows in
+ * the same direction but narrower (farther): that is a pick-up, not the
+ * same target still there. */
+static void test_pickup_counts_with_a_target_behind(void **state)
+{
+    (void)state;
+    start(REPATT_POLICY_REPATT, REPATT_DUPLEX);
+    show_red(1u, 50, 1300u);
+    steps(200u);
+    assert_int_equal(R.state, REPATT_PICK);
+    show_red(1u, 60, 800u);     /* the next target, about twice as far */
+    step();
+    assert_int_equal(R.cap, 4u);
+    assert_int_equal(R.pickups, 1u);
+    assert_int_equal(R.ignore, 0u);
+}
+
 /* Gone during the wait: another robot's; still there after it: given up
  * (not counted), and targets ignored for give_up_ms. */
 static void test_pickup_not_counted_otherwise(void **state)
@@ -737,6 +754,7 @@ int main(void)
         cmocka_unit_test(test_search_then_acquire),
         cmocka_unit_test(test_attraction_when_found_exceeds_cap),
         cmocka_unit_test(test_pickup_counts_when_blob_goes_after_wait),
+        cmocka_unit_test(test_pickup_counts_with_a_target_behind),
         cmocka_unit_test(test_pickup_not_counted_otherwise),
         cmocka_unit_test(test_homing_by_odometry),
         cmocka_unit_test(test_obstacle_avoidance),

@@ -37,6 +37,20 @@ for seed in 1 2 3; do
         check "foraging run_$seed/$f differs between 1 and 2 threads" "same '$tmp/f1/run_$seed/$f' '$tmp/f2/run_$seed/$f'"
     done
 done
+# RepAtt with sound on (seed 002): eq 4's noise drawn per listener, in both
+# listening schedules (the paper's duplex; slotted with self-masking).
+for mode in duplex slotted; do
+    rargs=(sim_host/scenarios/repatt_quick.yaml --steps 4000 --reps 3 --quiet --set robots.0.params.listening=$mode)
+    [ $mode = slotted ] && rargs+=(--set sound.self_masking=true)
+    "$sim" "${rargs[@]}" --threads 1 --out "$tmp/r1$mode"
+    "$sim" "${rargs[@]}" --threads 2 --out "$tmp/r2$mode"
+    for seed in 1 2 3; do
+        for f in summary.json timeseries.csv; do
+            check "repatt ($mode) run_$seed/$f differs between 1 and 2 threads" "same '$tmp/r1$mode/run_$seed/$f' '$tmp/r2$mode/run_$seed/$f'"
+        done
+    done
+    check "repatt ($mode): seeds 1 and 2 gave the same run" "! same '$tmp/r1$mode/run_1/timeseries.csv' '$tmp/r1$mode/run_2/timeseries.csv'"
+done
 check "state hash missing" "grep -q state_hash '$tmp/t1/run_1/summary.json'"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
