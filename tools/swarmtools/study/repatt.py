@@ -328,8 +328,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                 continue
             rc_all = rc_all or rc
             rows = read_rows(sweep_dir / "results.csv")
+            builds = sorted({r.get("code_version", "") for r in rows})
             md.append(f"{name}: {len(rows)} runs, {len(sw.seeds)} seeds a cell, {time.monotonic() - t1:.0f} s "
-                      f"(sweep `{sweep_dir}`).")
+                      f"(sweep `{sweep_dir}`), made by {len({r.get('sim_sha256') for r in rows})} simulator "
+                      f"build(s): {', '.join(builds)}.")
             md.append("")
             if name == "worlds":
                 res = normalised(rows, ("RW", "N0-Q1", "N100-Q40"))

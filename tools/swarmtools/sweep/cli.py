@@ -103,12 +103,33 @@ def cmd_run(a: argparse.Namespace) -> int:
     return run_sweep(sw, a, sim)
 
 
+def warn_other_simulator(store: Store, runs: list[Run], sim: Path) -> None:
+    """Says when finished runs were made by another swarmsim binary: a resumed
+    sweep then mixes two versions (a rebuild after any commit changes the
+    binary, so this warns rather than refuses; the table's sim_sha256 and
+    code_version columns tell the rows apart)."""
+    if not sim.is_file():
+        return
+    current = planmod.file_sha256(sim)
+    other = {}
+    for r in runs:
+        rec = store.record(r.run_id)
+        if rec and rec.get("status") == "ok" and rec.get("sim_sha256") not in (None, "", current):
+            other[rec.get("code_version", "?")] = other.get(rec.get("code_version", "?"), 0) + 1
+    if other:
+        which = ", ".join(f"{n} by {v}" for v, n in sorted(other.items()))
+        print(f"swarm-sweep: warning: {sum(other.values())} finished runs in {store.root} were made by "
+              f"another swarmsim ({which}); they are kept, not rerun. If the simulation changed, "
+              "start again in a new --out.", file=sys.stderr)
+
+
 def run_sweep(sw: Sweep, a: argparse.Namespace, sim: Path) -> int:
     """The body of `run`, also called by the studies with a sweep they built."""
     out = Path(a.out) if a.out else REPO_ROOT / "out" / "sweeps" / sw.name
     jobs = a.jobs or cpus()
     store, plan, runs = prepare(sw, out, sim, a.backend, jobs)
     todo, ok, dead = store.pending(runs, sw.max_attempts)
+    warn_other_simulator(store, runs, sim)
     if not a.quiet:
         print(f"swarm-sweep: {sw.name}: {len(runs)} runs, {ok} already done, {dead} failed "
               f"for good, {len(todo)} to run ({a.backend}) in {out}", file=sys.stderr)

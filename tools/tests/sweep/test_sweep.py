@@ -214,6 +214,16 @@ class LocalBackend(TempDir):
         self.assertIn("7 already done", r3.stderr)
         self.assertIn("1 to run", r3.stderr)
         self.assertEqual(read_table(out), [{k: v for k, v in x.items() if k not in VOLATILE} for x in rows])
+        self.assertNotIn("another swarmsim", r3.stderr)
+        # records made by another simulator binary: kept, and the resume says so
+        for f in list((out / "records").iterdir())[:2]:
+            rec = json.loads(f.read_text())
+            rec["sim_sha256"], rec["code_version"] = "0" * 64, "v-old"
+            f.write_text(json.dumps(rec))
+        r4 = self.run_sweep(p, out)
+        self.assertEqual(r4.returncode, 0, r4.stderr)
+        self.assertIn("warning: 2 finished runs", r4.stderr)
+        self.assertIn("2 by v-old", r4.stderr)
 
     def test_failed_run_keeps_its_stderr_and_is_retried_a_bounded_number_of_times(self) -> None:
         sim = fake_sim(self.dir, '[ "$check" = 0 ] && [ "$seed" = 2 ] && { echo "boom: out of tokens" >&2; exit 3; }')

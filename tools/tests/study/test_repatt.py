@@ -1,0 +1,60 @@
+"""swarmtools.study.repatt's arithmetic on hand-made tables: the arms and
+worlds read from a row, RW normalisation with its bootstrap interval, E_r
+(eqs 7-8), unfinished runs counted, and the tables rendered."""
+import math
+import unittest
+
+import numpy as np
+
+from swarmtools.study import repatt as R
+
+
+def row(scenario: str, policy: str, queue: int, noise: float, t: float, finished: int = 1,
+        count: int = 36) -> dict[str, str]:
+    return {"scenario": f"../sim_host/scenarios/repatt_{scenario}.yaml", R.POLICY: policy,
+            R.QUEUE: str(queue), R.NOISE: str(noise), R.TIME: str(t), R.FINISHED: str(finished),
+            R.COUNT: str(count), "status": "ok"}
+
+
+class Arithmetic(unittest.TestCase):
+    def test_arm_and_world(self) -> None:
+        self.assertEqual(R.arm(row("one50", "random_walk", 1, 0, 1)), "RW")
+        self.assertEqual(R.arm(row("one50", "repatt", 1, 0, 1)), "N0-Q1")
+        self.assertEqual(R.arm(row("one50", "repatt", 40, 0.06, 1)), "N100-Q40")
+        self.assertEqual(R.world(row("uniform100", "repatt", 1, 0, 1)), ("uniform", 100))
+        self.assertEqual(R.world(row("half50", "repatt", 1, 0, 1)), ("half", 50))
+
+    def test_ratio_and_interval(self) -> None:
+        m, lo, hi = R.boot_ratio(np.array([50.0, 50.0]), np.array([100.0, 100.0]))
+        self.assertEqual((m, lo, hi), (0.5, 0.5, 0.5))
+        rng = np.random.default_rng(1)
+        a, b = rng.normal(40, 5, 30), rng.normal(100, 10, 30)
+        m, lo, hi = R.boot_ratio(a, b)
+        self.assertAlmostEqual(m, a.mean() / b.mean())
+        self.assertTrue(lo < m < hi and hi - lo < 0.1)
+        self.assertTrue(all(math.isnan(x) for x in R.boot_ratio(np.array([]), b)))
+
+    def test_normalised_by_rw_with_unfinished_runs(self) -> None:
+        rows = [row("one50", "random_walk", 1, 0, t) for t in (100, 100, 100)]
+        rows += [row("one50", "repatt", 1, 0, t) for t in (20, 30, 40)]
+        rows += [row("one50", "repatt", 40, 0.06, 60, finished=f) for f in (1, 0, 1)]
+        res = R.normalised(rows, ("RW", "N0-Q1", "N100-Q40"))
+        self.assertAlmostEqual(res["One50m/N0-Q1"]["normalised"], 0.3)
+        self.assertAlmostEqual(res["One50m/RW"]["normalised"], 1.0)
+        self.assertEqual(res["One50m/N100-Q40"]["unfinished"], 1)
+        md = "\n".join(R.render_fig3(res))
+        self.assertIn("| One50m | 100 +- 0 | 30 +- 10 | 60 +- 0 | 0.30 [", md)
+        self.assertIn("0.23", md)       # the paper's One50m beside ours
+        self.assertIn("| 0, 0, 1 |", md)
+
+    def test_relative_efficiency(self) -> None:
+        # one robot 900 s, ten robots 100 s: E_r = 900 / (10 x 100) = 0.9
+        rows = [row("one100", "repatt", 1, 0, 900, count=1), row("one100", "repatt", 1, 0, 100, count=10)]
+        res = R.efficiency(rows)
+        self.assertAlmostEqual(res["One100m/N0-Q1/1"]["E_r"], 1.0)
+        self.assertAlmostEqual(res["One100m/N0-Q1/10"]["E_r"], 0.9)
+        self.assertIn("| One100m | N0-Q1 | 10 | 100 | 0.90 [0.90, 0.90] | 0 |", "\n".join(R.render_scale(res)))
+
+
+if __name__ == "__main__":
+    unittest.main()
