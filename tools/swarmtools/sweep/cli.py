@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import datetime as _dt
 import json
+import shutil
 import subprocess
 import sys
 from collections.abc import Sequence
@@ -103,6 +104,22 @@ def cmd_run(a: argparse.Namespace) -> int:
     return run_sweep(sw, a, sim)
 
 
+def freeze_simulator(store: Store, sim: Path) -> Path:
+    """The sweep's own copy of the simulator, DIR/bin/swarmsim-<sha256 prefix>,
+    which every run of this invocation uses: rebuilding build/swarmsim while
+    a sweep runs (a `make` after a commit) then changes nothing under it, and
+    every record's sim_sha256 names the binary that made it."""
+    sha = planmod.file_sha256(sim)
+    frozen = store.root / "bin" / f"swarmsim-{sha[:16]}"
+    if not frozen.is_file() or planmod.file_sha256(frozen) != sha:
+        frozen.parent.mkdir(parents=True, exist_ok=True)
+        tmp = frozen.with_name(frozen.name + ".tmp")
+        shutil.copy2(sim, tmp)
+        tmp.chmod(0o755)
+        tmp.replace(frozen)
+    return frozen
+
+
 def warn_other_simulator(store: Store, runs: list[Run], sim: Path) -> None:
     """Says when finished runs were made by another swarmsim binary: a resumed
     sweep then mixes two versions (a rebuild after any commit changes the
@@ -128,6 +145,7 @@ def run_sweep(sw: Sweep, a: argparse.Namespace, sim: Path) -> int:
     out = Path(a.out) if a.out else REPO_ROOT / "out" / "sweeps" / sw.name
     jobs = a.jobs or cpus()
     store, plan, runs = prepare(sw, out, sim, a.backend, jobs)
+    sim = freeze_simulator(store, sim)
     todo, ok, dead = store.pending(runs, sw.max_attempts)
     warn_other_simulator(store, runs, sim)
     if not a.quiet:

@@ -107,8 +107,17 @@ class Executor:
         self.store.clear_run(run)
         timeout = float(self.plan.get("run_timeout") or 0) or None
         t0 = time.monotonic()
-        p = subprocess.Popen(self.command(run), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                             text=True, errors="replace", start_new_session=True)
+        try:
+            p = subprocess.Popen(self.command(run), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                 text=True, errors="replace", start_new_session=True)
+        except OSError as e:                 # the simulator cannot be started: a failed run, not a crash
+            self.store.write_record({
+                "run_id": run.run_id, "seed": run.seed, "attempts": attempts, "exit_status": None,
+                "wall_s": 0.0, "host": self.host, "sim_sha256": self.sim_sha256,
+                "code_version": self.plan.get("code_version", ""), "backend": self.plan.get("backend", ""),
+                "command": self.command(run), "status": "failed",
+                "error": f"cannot start the simulator {self.sim}: {e.strerror or e}"})
+            return "failed"
         with self._lock:
             self._procs.add(p)
         timed_out = False

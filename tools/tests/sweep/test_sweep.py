@@ -193,6 +193,11 @@ class LocalBackend(TempDir):
         for k, v in doc["metrics"].items():
             self.assertEqual(float(row[k]), float(v), k)
         self.assertEqual(row["sim_sha256"], planmod.file_sha256(SWARMSIM))
+        # every run used the sweep's own copy of the simulator (a rebuild meanwhile changes nothing)
+        frozen = out / "bin" / f"swarmsim-{row['sim_sha256'][:16]}"
+        self.assertTrue(frozen.is_file())
+        rec = json.loads((out / "records" / f"{row['run_id']}.json").read_text())
+        self.assertEqual(rec["command"][0], str(frozen))
         self.assertEqual(row["status"], "ok")
         self.assertTrue((out / "runs" / row["run_id"] / "run_2" / "timeseries.csv").is_file())
         # pandas reads the Parquet copy in one line, with the same values
