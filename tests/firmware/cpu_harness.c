@@ -20,6 +20,11 @@
  *   blob_detect  one 40 x 20 RGB565 frame with a red token and a green
  *                and a blue patch: what hal_camera_blobs adds on the robot
  *                in a step that asks for blobs;
+ *   repatt       seed 002's controller at its 25 ms period, the paper's
+ *                duplex listening with Q40: band levels that rise and fall
+ *                (every gain branch), a red target that appears every 300
+ *                steps and widens until it is picked up, an obstacle in
+ *                front every 37 steps for 5 steps;
  *   tone_detect  3 microphones x 3 bands: hal_mic_level's work in a step
  *                that reads every microphone (the copy of each one's 96
  *                newest samples out of its 100-sample ring, then
@@ -39,6 +44,7 @@
 #include "foraging/nest_beacon.h"
 #include "foraging/nest_link.h"
 #include "common/random_walk.h"
+#include "repatt/repatt.h"
 #include "tone_detect.h"
 
 #define INBOX 64u
@@ -54,11 +60,14 @@ struct hal {
     hal_ircom_msg_t inbox[INBOX];
     uint32_t in_head, in_count;
     uint8_t sent;
+    uint8_t sound;         /**< 1: the microphones answer (repatt) */
+    uint32_t mic_level[HAL_SOUND_BANDS];
+    uint16_t period_ms;
 };
 
 uint16_t hal_robot_id(hal_t *hal) { return hal->id; }
 uint32_t hal_time_ms(hal_t *hal) { return hal->time_ms; }
-uint16_t hal_control_period_ms(hal_t *hal) { (void)hal; return 100u; }
+uint16_t hal_control_period_ms(hal_t *hal) { return hal->period_ms; }
 uint16_t hal_ir_proximity(hal_t *hal, uint8_t i) { return i < HAL_IR_COUNT ? hal->prox[i] : 0u; }
 uint16_t hal_ir_ambient(hal_t *hal, uint8_t i) { return i < HAL_IR_COUNT ? hal->ambient[i] : 4095u; }
 
@@ -73,8 +82,19 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
 
 hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *w, uint16_t *h) { (void)hal; *w = 40u; *h = 20u; return HAL_OK; }
 hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
-{ (void)hal; (void)mic; (void)band; *level = 0; return HAL_ERR_UNAVAILABLE; }
-hal_status_t hal_speaker_set(hal_t *hal, uint8_t band) { (void)hal; (void)band; return HAL_ERR_UNAVAILABLE; }
+{
+    *level = 0;
+    if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
+    if (!hal->sound) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    *level = hal->mic_level[band];
+    return HAL_OK;
+}
+hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
+{ return !hal->sound ? HAL_ERR_UNAVAILABLE : band >= HAL_SOUND_BANDS ? HAL_ERR_RANGE : HAL_OK; }
 hal_status_t hal_pose(hal_t *hal, hal_pose_t *out) { (void)hal; (void)out; return HAL_ERR_UNAVAILABLE; }
 uint8_t hal_ircom_payload_bits(hal_t *hal) { (void)hal; return 16u; }
 
@@ -125,6 +145,7 @@ static void world_reset(hal_t *hal, uint16_t id)
     uint8_t i;
     memset(hal, 0, sizeof *hal);
     hal->id = id;
+    hal->period_ms = 100u;
     for (i = 0; i < HAL_IR_COUNT; i++) {
         hal->ambient[i] = 4000u;
     }
@@ -139,7 +160,7 @@ static void obstacles(hal_t *hal, uint32_t t)
 
 static void end_step(hal_t *hal)
 {
-    hal->time_ms += 100u;
+    hal->time_ms += hal->period_ms;
     hal->sent = 0u;
 }
 
@@ -251,6 +272,49 @@ static void run_random_walk(uint32_t steps)
     printf("random_walk: %u steps, %u OAEs\n", (unsigned)steps, (unsigned)w.oae_count);
 }
 
+static void run_repatt(uint32_t steps)
+{
+    static repatt_host_t r;   /* with its Q120 storage, as in the simulator */
+    hal_t hal;
+    repatt_params_t p;
+    uint32_t t, phase, waited = 0u;
+
+    world_reset(&hal, 2u);
+    hal.period_ms = 25u;
+    hal.sound = 1u;
+    repatt_default_params(&p);
+    p.listening = (uint8_t)REPATT_DUPLEX;
+    p.queue_size = 40u;
+    p.reach_width_mrad = 400u;   /* the scenarios' reach */
+    repatt_attach_queue(&r.ctrl, r.queue, (uint16_t)REPATT_QUEUE_MAX);
+    repatt_init(&r.ctrl, &p, 4242u);
+    for (t = 0; t < steps; t++) {
+        obstacles(&hal, t);
+        /* levels on slow opposite ramps: the filtered changes take both signs */
+        hal.mic_level[1] = 300000u + (t % 400u) * 50u;
+        hal.mic_level[2] = 320000u - (t % 260u) * 40u;
+        phase = t % 300u;
+        if (r.ctrl.state == REPATT_PICK) {
+            if (++waited > 200u) {
+                hal.n_blobs = 0u;   /* the task took it after the 5 s wait */
+            }
+        } else {
+            waited = 0u;
+            hal.n_blobs = (uint8_t)(phase >= 100u);
+            hal.blob.colour = HAL_COLOUR_RED;
+            hal.blob.bearing_mrad = 90;
+            hal.blob.width_mrad = (uint16_t)(80u + 2u * phase);
+            hal.blob.pixels = 12u;
+        }
+        CALLGRIND_ZERO_STATS;
+        repatt_step(&r.ctrl, &hal);
+        CALLGRIND_DUMP_STATS_AT("repatt");
+        end_step(&hal);
+    }
+    printf("repatt: %u steps, %lu readings, %lu pick-ups, %lu OAEs\n", (unsigned)steps,
+           (unsigned long)r.ctrl.readings, (unsigned long)r.ctrl.pickups, (unsigned long)r.ctrl.oae_count);
+}
+
 #define FW 40u
 #define FH 20u
 
@@ -328,6 +392,7 @@ int main(int argc, char **argv)
     run_forager(steps);
     run_nest_beacon(steps);
     run_random_walk(steps);
+    run_repatt(steps);
     run_blob_detect(steps / 10u + 1u);
     run_tone_detect(steps / 10u + 1u);
     return 0;

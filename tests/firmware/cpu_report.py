@@ -23,8 +23,12 @@ Camera: on the robot a step that asks for blobs also runs blob_detect on
 the 40 x 20 frame; the "forager + camera" row adds its maximum.
 Sound: a step that reads the microphones (hal_mic_level, hal/tone_detect.c)
 copies and analyses 96 samples per microphone: the "tone_detect" row is 3
-microphones x 3 bands, and is also stated as a share of the RepAtt image's
-25 ms control period (the table's last column is of the 100 ms period).
+microphones x 3 bands.  The RepAtt image (25 ms period) runs its controller,
+the camera's blob_detect and the detector in one step: the "repatt + camera
++ sound" row adds the three maxima, and must stay under the period minus
+the microphones' 6 ms window (19 ms), or the tail of the robot's own tone
+reaches its next reading.  The last column is each row's share of its
+image's period (100 ms; 25 ms for the RepAtt rows).
 Its inner loop is 16 x 16 -> 32-bit products (one dsPIC instruction each)
 and 32-bit additions, which the factor k covers.
 
@@ -83,7 +87,8 @@ def main():
         return cycles, ms
 
     rows = []
-    order = ['forager', 'nest_beacon', 'random_walk', 'blob_detect', 'tone_detect']
+    order = ['forager', 'nest_beacon', 'random_walk', 'repatt', 'blob_detect', 'tone_detect']
+    period = {'repatt': SOUND_PERIOD_MS, 'tone_detect': SOUND_PERIOD_MS}
     for name in order:
         c = costs.get(name)
         if not c:
@@ -92,19 +97,24 @@ def main():
         mean = sum(c) / len(c)
         fl = FLOAT_CYCLES if name == 'forager' else 0
         cyc, ms = est(max(c), fl)
-        rows.append((name, len(c), mean, max(c), cyc, ms))
+        rows.append((name, len(c), mean, max(c), cyc, ms, period.get(name, PERIOD_MS)))
     f = costs['forager']
     b = costs['blob_detect']
     cyc, ms = est(max(f) + max(b), FLOAT_CYCLES)
     rows.append(('forager + camera (robot step)', len(f), sum(f) / len(f) + sum(b) / len(b),
-                 max(f) + max(b), cyc, ms))
+                 max(f) + max(b), cyc, ms, PERIOD_MS))
+    r, t = costs['repatt'], costs['tone_detect']
+    r_cyc, r_ms = est(max(r) + max(b) + max(t))
+    rows.append(('repatt + camera + sound (robot step)', len(r),
+                 sum(r) / len(r) + sum(b) / len(b) + sum(t) / len(t), max(r) + max(b) + max(t),
+                 r_cyc, r_ms, SOUND_PERIOD_MS))
 
     lines = ['| step | steps measured | x86-64 instructions, mean | x86-64 max | dsPIC cycles '
-             '(estimate, max) | ms at 14.7456 MIPS | share of the 100 ms period |',
+             '(estimate, max) | ms at 14.7456 MIPS | share of its period |',
              '|---|---|---|---|---|---|---|']
-    for name, n, mean, mx, cyc, ms in rows:
+    for name, n, mean, mx, cyc, ms, per in rows:
         lines.append(f'| {name} | {n} | {mean:,.0f} | {mx:,} | {cyc:,.0f} | {ms:.2f} | '
-                     f'{ms / PERIOD_MS * 100:.1f} % |')
+                     f'{ms / per * 100:.1f} % of {per:.0f} ms |')
     lines += ['',
               f'Measured with valgrind --tool=callgrind (gcc -O2, x86-64), one dump per step. '
               f'dsPIC estimate = {K} x x86 instructions (16-bit ALU) + {FLOAT_CYCLES:,} cycles of '
@@ -116,6 +126,8 @@ def main():
                   f'{t_cyc:,.0f} dsPIC cycles (estimate) = {t_ms:.2f} ms, '
                   f'{t_ms / SOUND_PERIOD_MS * 100:.1f} % of the RepAtt image\'s '
                   f'{SOUND_PERIOD_MS:.0f} ms control period.')
+    sound_line += (f' The RepAtt robot step (controller + camera + sound) takes at most {r_ms:.2f} ms '
+                   f'of {SOUND_PERIOD_MS:.0f} ms (limit {SOUND_PERIOD_MS - 6:.0f} ms).')
     lines += ['', sound_line]
     table = '\n'.join(lines) + '\n'
     print()
@@ -124,11 +136,13 @@ def main():
     with open(args.out, 'w') as fo:
         fo.write('# Controller CPU per step\n\n' + table)
     print(f'written to {args.out}')
-    worst = max(ms for *_, ms in rows)
-    ok = worst < PERIOD_MS / 2 and t_ms < SOUND_PERIOD_MS / 4
-    print(f'cpu report: worst step {worst:.2f} ms of {PERIOD_MS:.0f} ms: '
-          + ('fits well inside the period' if ok else 'TOO SLOW (more than half the period, '
-                                                     'or the detector above a quarter of 25 ms)'))
+    worst = max(ms for *_, ms, per in rows if per == PERIOD_MS)
+    ok = worst < PERIOD_MS / 2 and t_ms < SOUND_PERIOD_MS / 4 and r_ms < SOUND_PERIOD_MS - 6
+    print(f'cpu report: worst step {worst:.2f} ms of {PERIOD_MS:.0f} ms; RepAtt {r_ms:.2f} ms of '
+          f'{SOUND_PERIOD_MS:.0f} ms: '
+          + ('fits inside the periods' if ok else 'TOO SLOW (more than half a 100 ms period, the '
+                                                  'detector above a quarter of 25 ms, or RepAtt\'s '
+                                                  'step above 19 ms)'))
     return 0 if ok else 1
 
 
