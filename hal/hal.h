@@ -115,6 +115,12 @@ typedef struct hal_blob {
  *  computes it on request). */
 uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max);
 
+/** The widest blob of `colour` (hal_colour_t) in view into *widest (the
+ *  nearest of same-sized things), and how many blobs of that colour are in
+ *  view (0: *widest untouched).  Platform-neutral (hal/hal_common.c), built
+ *  on hal_camera_blobs. */
+uint8_t hal_camera_widest(hal_t *hal, uint8_t colour, hal_blob_t *widest);
+
 /** Size of the frame the blobs come from, pixels (the e-puck image: 40 x
  *  20): HAL_OK, or HAL_ERR_UNAVAILABLE without a camera. */
 hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px);

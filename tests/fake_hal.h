@@ -4,7 +4,7 @@
  * Defines `struct hal` (sensor values the test sets, wheel speeds and LEDs
  * the controller sets, an IR inbox queue and an outbox log) and a
  * non-static definition of every hal_* function of hal/hal.h except
- * hal_ir_bearing_mrad (hal/hal_common.c).  Include it from exactly one .c
+ * hal_ir_bearing_mrad and hal_camera_widest (hal/hal_common.c).  Include it from exactly one .c
  * per test binary; then the simulator's HAL is not linked in, so such a
  * test must not call any sim_* function.
  *

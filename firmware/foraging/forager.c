@@ -160,22 +160,6 @@ static void read_inbox(forager_t *self, hal_t *hal)
     }
 }
 
-/* The widest red blob in view into `out`; 0 if none. */
-static uint8_t widest_red(hal_t *hal, hal_blob_t *out)
-{
-    hal_blob_t blobs[HAL_MAX_BLOBS];
-    uint8_t n = hal_camera_blobs(hal, blobs, (uint8_t)HAL_MAX_BLOBS);
-    uint8_t found = 0u;
-    uint8_t i;
-    for (i = 0; i < n && i < HAL_MAX_BLOBS; i++) {
-        if (blobs[i].colour == HAL_COLOUR_RED && (found == 0u || blobs[i].width_mrad > out->width_mrad)) {
-            *out = blobs[i];
-            found = 1u;
-        }
-    }
-    return found;
-}
-
 /* ------------------------------------------------------------ motion */
 
 static int16_t clamp_speed(int32_t v)
@@ -391,7 +375,7 @@ static void search_step(forager_t *self, hal_t *hal)
     if (self->leaving != 0u && leave_step(self, hal) != 0u) {
         return;
     }
-    seen = widest_red(hal, &blob);
+    seen = hal_camera_widest(hal, (uint8_t)HAL_COLOUR_RED, &blob);
     /* Held: wide and centred for grasp_confirm steps in a row right after
      * approaching it, or for HOLD_STEPS in a row without (a token taken in
      * passing stays put in the gripper while the robot drives and turns; a
@@ -434,7 +418,7 @@ static void return_step(forager_t *self, hal_t *hal)
 {
     hal_blob_t blob;
     const forager_params_t *p = &self->params;
-    uint8_t seen = widest_red(hal, &blob);
+    uint8_t seen = hal_camera_widest(hal, (uint8_t)HAL_COLOUR_RED, &blob);
 
     self->carrying = (uint8_t)(seen != 0u && blob.width_mrad >= p->grasp_width_mrad);
     if (self->carrying == 0u) {
@@ -461,7 +445,7 @@ static void deposit_step(forager_t *self, hal_t *hal)
     hal_blob_t blob;
     const forager_params_t *p = &self->params;
     int16_t v = p->speed_steps_s;
-    uint8_t seen = widest_red(hal, &blob);
+    uint8_t seen = hal_camera_widest(hal, (uint8_t)HAL_COLOUR_RED, &blob);
 
     self->carrying = (uint8_t)(seen != 0u && blob.width_mrad >= p->grasp_width_mrad);
     if (self->timer >= p->deposit_steps) {

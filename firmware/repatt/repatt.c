@@ -128,24 +128,6 @@ void repatt_reset(repatt_t *self)
 
 /* ------------------------------------------------------------ sensing */
 
-/* Red blobs in view; the widest into *widest (if any). */
-static uint8_t red_blobs(hal_t *hal, hal_blob_t *widest)
-{
-    hal_blob_t blobs[HAL_MAX_BLOBS];
-    uint8_t n = hal_camera_blobs(hal, blobs, (uint8_t)HAL_MAX_BLOBS);
-    uint8_t found = 0u;
-    uint8_t i;
-    for (i = 0; i < n && i < HAL_MAX_BLOBS; i++) {
-        if (blobs[i].colour == HAL_COLOUR_RED) {
-            if (found == 0u || blobs[i].width_mrad > widest->width_mrad) {
-                *widest = blobs[i];
-            }
-            found++;
-        }
-    }
-    return found;
-}
-
 /* The target we wait at: a red blob near its bearing, nearly as wide. */
 static uint8_t target_still_there(const repatt_t *self, hal_t *hal)
 {
@@ -482,7 +464,7 @@ void repatt_step(repatt_t *self, hal_t *hal)
     widest.bearing_mrad = 0;
     widest.width_mrad = 0u;
     widest.pixels = 0u;
-    self->found = red_blobs(hal, &widest);
+    self->found = hal_camera_widest(hal, (uint8_t)HAL_COLOUR_RED, &widest);
     if (self->cap != 0u) {
         listen(self, hal);   /* homing robots ignore the signals */
     }
