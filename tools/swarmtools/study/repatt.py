@@ -277,6 +277,18 @@ def load_sweep(name: str, sim: Path, reps: int | None, quick: bool) -> sweep_spe
     return sw
 
 
+def run_entry(row: dict[str, str]) -> dict[str, Any]:
+    """One run for results.json: its world, arm, swarm, seed and outcome."""
+    def num(k: str) -> float | None:
+        v = row.get(k, "")
+        return float(v) if v not in ("", None) else None
+    dist, size = world(row)
+    return {"world": f"{WORLD_NAMES[dist]}{size}m", "arm": arm(row), "robots": int(num(COUNT) or 36),
+            "seed": int(row["seed"]), "status": row["status"], "run_id": row["run_id"],
+            "time_to_stop_s": num("time_to_stop_s"), "time_capped_s": num(TIME),
+            "finished": num(FINISHED), "picked": num("picked"), "state_hash": row.get("state_hash", "")}
+
+
 def read_rows(path: Path) -> list[dict[str, str]]:
     with path.open(newline="") as f:
         return list(csv.DictReader(f))
@@ -353,6 +365,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 plot_scale(res, out / "fig4_efficiency.png")
                 md.append("![Figure 4](fig4_efficiency.png)\n")
             results[name] = res
+            results[f"{name}_runs"] = [run_entry(r) for r in rows]
         md.append(f"Wall time: {time.monotonic() - t0:.0f} s.")
         atomic_write(out / "results.md", "\n".join(md) + "\n")
         atomic_write(out / "results.json", json.dumps(json_safe(results), indent=1) + "\n")

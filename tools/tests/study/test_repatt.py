@@ -47,6 +47,12 @@ class Arithmetic(unittest.TestCase):
         self.assertIn("0.23", md)       # the paper's One50m beside ours
         self.assertIn("| 0, 0, 1 |", md)
 
+    def test_run_entry(self) -> None:
+        r = row("two100", "repatt", 40, 0.06, 812.5, finished=1) | {"seed": "7", "run_id": "ab", "picked": "180"}
+        e = R.run_entry(r)
+        self.assertEqual((e["world"], e["arm"], e["robots"], e["seed"]), ("Two100m", "N100-Q40", 36, 7))
+        self.assertEqual((e["time_capped_s"], e["finished"], e["picked"]), (812.5, 1.0, 180.0))
+
     def test_relative_efficiency(self) -> None:
         # one robot 900 s, ten robots 100 s: E_r = 900 / (10 x 100) = 0.9
         rows = [row("one100", "repatt", 1, 0, 900, count=1), row("one100", "repatt", 1, 0, 100, count=10)]
