@@ -10,6 +10,9 @@ run through the sweep engine, at e-puck scale (README, "Seed 002").
   the targets for RW, N0-Q1 and N100-Q40, normalised by RW's mean in each
   world, beside the paper's improvements over RW; Figure 2c: the queue
   sizes under N100, normalised the same way.
+- slotted (studies/repatt_slotted.yaml): N100-Q40 as a real e-puck can run
+  it (a robot's own tone masks its microphones; slotted listening), in the
+  10 worlds, normalised by the worlds sweep's RW: a column beside Figure 3.
 - scale (studies/repatt_scale.yaml): Figure 4, relative efficiency E_r
   (eqs 7-8, tp = 180) for 1..100 robots in One100m and Uniform100m.
 
@@ -46,7 +49,7 @@ from swarmtools.sweep.store import atomic_write
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 STUDIES = REPO_ROOT / "studies"
-FIGURES = {"worlds": "repatt_worlds.yaml", "scale": "repatt_scale.yaml"}
+FIGURES = {"worlds": "repatt_worlds.yaml", "slotted": "repatt_slotted.yaml", "scale": "repatt_scale.yaml"}
 TIME = "time_capped_s"  # the time to 90 %, or the run's length when it did not finish
 FINISHED = "finished"
 # The override keys the sweep files vary (one place: the files and this script agree).
@@ -54,6 +57,8 @@ POLICY = "robots.0.policy"
 QUEUE = "robots.0.params.queue_size"
 NOISE = "sound.noise"
 COUNT = "robots.0.count"
+LISTEN = "robots.0.params.listening"
+SLOTTED = "N100-Q40 slotted"  # the arm a real e-puck can run: own tone masks its microphones
 DISTS = ("one", "two", "four", "half", "uniform")
 WORLD_NAMES = {d: d.capitalize() for d in DISTS}
 TP = 180  # targets picked up: the paper's tp (90 % of 200)
@@ -72,7 +77,8 @@ def arm(row: dict[str, str]) -> str:
         return "RW"
     noise = float(row.get(NOISE) or 0.0)
     level = round(noise / 0.06 * 100)
-    return f"N{level}-Q{int(float(row.get(QUEUE) or 1))}"
+    name = f"N{level}-Q{int(float(row.get(QUEUE) or 1))}"
+    return f"{name} slotted" if row.get(LISTEN) == "slotted" else name
 
 
 def world(row: dict[str, str]) -> tuple[str, int]:
@@ -138,12 +144,12 @@ def render_fig3(res: dict[str, Any]) -> list[str]:
              "with its 95 % bootstrap interval. Paper: its text's improvements over RW read as "
              f"N0-Q1 (1 - improvement); N100-Q40: {PAPER_N100Q40}.", "",
              "| world | RW time (s) | N0-Q1 time (s) | N100-Q40 time (s) | N0-Q1 / RW [95 % CI] | paper N0-Q1 / RW "
-             "| N100-Q40 / RW [95 % CI] | unfinished (RW, N0-Q1, N100-Q40) |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|"]
+             f"| N100-Q40 / RW [95 % CI] | {SLOTTED} / RW [95 % CI] | unfinished (RW, N0-Q1, N100-Q40) |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for size in (50, 100):
         for d in DISTS:
             w = f"{WORLD_NAMES[d]}{size}m"
-            c = {a: res.get(f"{w}/{a}") for a in ("RW", "N0-Q1", "N100-Q40")}
+            c = {a: res.get(f"{w}/{a}") for a in ("RW", "N0-Q1", "N100-Q40", SLOTTED)}
             if not any(c.values()):
                 continue
 
@@ -158,7 +164,7 @@ def render_fig3(res: dict[str, Any]) -> list[str]:
             paper = PAPER_N0Q1.get((d, size))
             unf = ", ".join(str(c[a]["unfinished"]) if c[a] else "-" for a in ("RW", "N0-Q1", "N100-Q40"))
             lines.append(f"| {w} | {t('RW')} | {t('N0-Q1')} | {t('N100-Q40')} | {n('N0-Q1')} | "
-                         f"{fmt(paper) if paper is not None else '(not given)'} | {n('N100-Q40')} | {unf} |")
+                         f"{fmt(paper) if paper is not None else '(not given)'} | {n('N100-Q40')} | {n(SLOTTED)} | {unf} |")
     return lines + [""]
 
 
@@ -306,8 +312,9 @@ def json_safe(o: Any) -> Any:
 
 def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.repatt", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--figures", default="worlds,scale",
-                    help="which sweeps to run: worlds (Figures 3 and 2c), scale (Figure 4); comma-separated")
+    ap.add_argument("--figures", default="worlds,slotted,scale",
+                    help="which sweeps to run: worlds (Figures 3 and 2c), slotted (the e-puck's listening "
+                         "schedule, beside Figure 3), scale (Figure 4); comma-separated")
     ap.add_argument("--quick", action="store_true", help="3 seeds per cell instead of the files' 30")
     ap.add_argument("--reps", type=int, default=None, help="seeds per cell (default the files' 30)")
     ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_repatt"))
@@ -328,6 +335,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         sim, out = Path(a.sim), Path(a.out)
         rc_all, results, md = 0, {}, ["# Seed 002 (RepAtt) at e-puck scale", "",
                                        f"Command: `{command}`.", ""]
+        tables: dict[str, list[dict[str, str]]] = {}
         for name in figs:
             sw = load_sweep(name, sim, a.reps, a.quick)
             sweep_dir = out / name
@@ -339,33 +347,35 @@ def main(argv: Sequence[str] | None = None) -> int:
             if a.backend == "slurm" and a.no_wait:
                 continue
             rc_all = rc_all or rc
-            rows = read_rows(sweep_dir / "results.csv")
+            rows = tables[name] = read_rows(sweep_dir / "results.csv")
             builds = sorted({r.get("code_version", "") for r in rows})
             md.append(f"{name}: {len(rows)} runs, {len(sw.seeds)} seeds a cell, {time.monotonic() - t1:.0f} s "
                       f"(sweep `{sweep_dir}`), made by {len({r.get('sim_sha256') for r in rows})} simulator "
                       f"build(s): {', '.join(builds)}.")
-            md.append("")
-            if name == "worlds":
-                res = normalised(rows, ("RW", "N0-Q1", "N100-Q40"))
-                md += render_fig3(res)
-                plot_bars(res, ("N0-Q1", "N100-Q40"), out / "fig3_normalised.png",
-                          "time to 90 % of the targets, normalised by random walk")
-                md.append("![Figure 3](fig3_normalised.png)\n")
-                queues = sorted({int(float(r[QUEUE])) for r in rows
-                                 if r.get(POLICY) != "random_walk" and float(r.get(NOISE) or 0) > 0})
-                qres = normalised(rows, [f"N100-Q{q}" for q in queues])
-                md += render_queue(qres, queues)
-                plot_bars(qres, [f"N100-Q{q}" for q in queues], out / "fig2c_queue.png",
-                          "queue size under N100, normalised by random walk")
-                md.append("![Figure 2c](fig2c_queue.png)\n")
-                res = {"fig3": res, "fig2c": qres}
-            else:
-                res = efficiency(rows)
-                md += render_scale(res)
-                plot_scale(res, out / "fig4_efficiency.png")
-                md.append("![Figure 4](fig4_efficiency.png)\n")
-            results[name] = res
             results[f"{name}_runs"] = [run_entry(r) for r in rows]
+        md.append("")
+        if "worlds" in tables:
+            # the slotted arm (its own sweep) is normalised by the worlds sweep's RW
+            rows = tables["worlds"] + tables.get("slotted", [])
+            res = normalised(rows, ("RW", "N0-Q1", "N100-Q40", SLOTTED))
+            md += render_fig3(res)
+            plot_bars(res, ("N0-Q1", "N100-Q40"), out / "fig3_normalised.png",
+                      "time to 90 % of the targets, normalised by random walk")
+            md.append("![Figure 3](fig3_normalised.png)\n")
+            queues = sorted({int(float(r[QUEUE])) for r in rows if r.get(POLICY) != "random_walk"
+                             and float(r.get(NOISE) or 0) > 0 and r.get(LISTEN) != "slotted"})
+            qres = normalised(rows, [f"N100-Q{q}" for q in queues])
+            md += render_queue(qres, queues)
+            plot_bars(qres, [f"N100-Q{q}" for q in queues], out / "fig2c_queue.png",
+                      "queue size under N100, normalised by random walk")
+            md.append("![Figure 2c](fig2c_queue.png)\n")
+            results["fig3"], results["fig2c"] = res, qres
+        if "scale" in tables:
+            res = efficiency(tables["scale"])
+            md += render_scale(res)
+            plot_scale(res, out / "fig4_efficiency.png")
+            md.append("![Figure 4](fig4_efficiency.png)\n")
+            results["fig4"] = res
         md.append(f"Wall time: {time.monotonic() - t0:.0f} s.")
         atomic_write(out / "results.md", "\n".join(md) + "\n")
         atomic_write(out / "results.json", json.dumps(json_safe(results), indent=1) + "\n")

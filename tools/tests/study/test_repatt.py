@@ -21,6 +21,7 @@ class Arithmetic(unittest.TestCase):
         self.assertEqual(R.arm(row("one50", "random_walk", 1, 0, 1)), "RW")
         self.assertEqual(R.arm(row("one50", "repatt", 1, 0, 1)), "N0-Q1")
         self.assertEqual(R.arm(row("one50", "repatt", 40, 0.06, 1)), "N100-Q40")
+        self.assertEqual(R.arm(row("one50", "repatt", 40, 0.06, 1) | {R.LISTEN: "slotted"}), "N100-Q40 slotted")
         self.assertEqual(R.world(row("uniform100", "repatt", 1, 0, 1)), ("uniform", 100))
         self.assertEqual(R.world(row("half50", "repatt", 1, 0, 1)), ("half", 50))
 
@@ -44,6 +45,7 @@ class Arithmetic(unittest.TestCase):
         self.assertEqual(res["One50m/N100-Q40"]["unfinished"], 1)
         md = "\n".join(R.render_fig3(res))
         self.assertIn("| One50m | 100 +- 0 | 30 +- 10 | 60 +- 0 | 0.30 [", md)
+        self.assertIn("| - | 0, 0, 1 |", md)    # no slotted arm in this table
         self.assertIn("0.23", md)       # the paper's One50m beside ours
         self.assertIn("| 0, 0, 1 |", md)
 
