@@ -15,7 +15,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $1"; }
 
 # Documents: *.md paths in the README (not the outputs it describes).
-for doc in $(grep -oE '[A-Za-z0-9_./-]+\.md\b' README.md | grep -vE '^(results|footprint|footprint_readme|cpu)\.md$|^build/' | sort -u); do
+for doc in $(grep -oE '[A-Za-z0-9_./-]+\.md\b' README.md | grep -vE '^(results|footprint|footprint_readme|cpu)\.md$|^(build|out)/' | sort -u); do
     if [ -f "$doc" ]; then ok; else bad "README.md names $doc, which is not in the repository"; fi
 done
 
