@@ -175,11 +175,13 @@ void faults_transmit(struct sim *sim)
         sim_robot_t *r = &sim->robots[fr->robot];
         if (!fr->active || faults_stopped(sim, fr->robot)) continue;   /* a stopped robot is silent */
         if (fr->kind == FAULT_BABBLE) {
-            r->ircom_tx = (int32_t)((uint16_t)sim_rand_u64(&r->fault_rand) & mask);
+            r->ircom_tx[0] = (uint16_t)((uint16_t)sim_rand_u64(&r->fault_rand) & mask);
+            r->ircom_tx_n = 1;
         } else if (fr->kind == FAULT_LIAR) {
             for (uint32_t t = 0; t < sim->n_tasks; t++) {
                 if (sim->tasks[t].def->lie) {
-                    r->ircom_tx = (int32_t)(sim->tasks[t].def->lie(sim->tasks[t].self, sim, fr->robot) & mask);
+                    r->ircom_tx[0] = (uint16_t)(sim->tasks[t].def->lie(sim->tasks[t].self, sim, fr->robot) & mask);
+                    r->ircom_tx_n = 1;
                     break;
                 }
             }

@@ -219,6 +219,14 @@ static const param_desc_t ircom_params[] = {
       .doc = "robots also block line of sight" },
     { .key = "payload_bits", PARAM_FIELD(SC, ircom.payload_bits, uint8_t), .min = 8, .max = 16,
       .doc = "data bits per message: 8 libIrcom, 16 range-and-bearing turret" },
+    { .key = "bearing_noise_vec", PARAM_FIELD(SC, ircom.bearing_noise_vec, float), .min = 0, .max = 10,
+      .doc = "sd of a random vector (uniform azimuth, Gaussian length) added to the sender's offset, m (seed 003)" },
+    { .key = "tx_per_period", PARAM_FIELD(SC, ircom.tx_per_period, uint8_t), .min = 1, .max = SIM_IRCOM_TX_MAX,
+      .doc = "messages a robot may send per control period (the turret's rate)" },
+    { .key = "slots", PARAM_FIELD(SC, ircom.slots, uint16_t), .min = 0, .max = 1000,
+      .doc = "frame times per control period for collisions (0: no collisions)" },
+    { .key = "queue", PARAM_FIELD(SC, ircom.queue, uint8_t), .min = 1, .max = SIM_IRCOM_QUEUE_MAX,
+      .doc = "messages a receiver's inbox holds (libIrcom: 20)" },
     PARAM_END
 };
 
@@ -433,6 +441,10 @@ void scenario_defaults(scenario_t *out)
     out->ircom.quantise_bearing = 1;
     out->ircom.blocked_by_robots = 0;
     out->ircom.payload_bits = 8;
+    out->ircom.bearing_noise_vec = 0.0f;
+    out->ircom.tx_per_period = 1;
+    out->ircom.slots = 0;
+    out->ircom.queue = 20;
     out->wheels.speed_noise_rel = 0.0f;
     out->tracker.enabled = 0;
     out->sound.enabled = 0;
@@ -870,6 +882,12 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
         return schema_fail(ld, d != NULL ? d : root, "duration",
                            "%g s is shorter than one control period (%g s)", sc->duration,
                            sc->control_period_ms / 1000.0);
+    }
+    if (sc->ircom.slots > 0 && sc->ircom.tx_per_period > sc->ircom.slots) {
+        const ynode_t *d = schema_find(root, "ircom.tx_per_period");
+        return schema_fail(ld, d != NULL ? d : root, "ircom.tx_per_period",
+                           "%u messages a period do not fit in %u slots (ircom.slots)",
+                           sc->ircom.tx_per_period, sc->ircom.slots);
     }
     if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0
         || check_inside(ld, root, sc) != 0) {

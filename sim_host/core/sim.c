@@ -79,7 +79,7 @@ static int build_robots(struct sim *sim, char err[256])
             sim_robot_t *r = &sim->robots[i];
             r->hal.sim = sim;
             r->hal.index = i;
-            r->ircom_tx = -1;
+            r->ircom_tx_n = 0;
             r->group = g;
             r->def = def;
             r->moves = grp->moves;
@@ -489,7 +489,7 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
 int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg)
 {
     sim_robot_t *r = &sim->robots[i];
-    if (r->rx_count >= SIM_IRCOM_QUEUE) {
+    if (r->rx_count >= sim->sc->ircom.queue) {
         return -1;
     }
     r->rx[(r->rx_head + r->rx_count) % SIM_IRCOM_QUEUE] = *msg;

@@ -109,10 +109,10 @@ uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->sim->sc->ircom.payload_
 hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
     sim_robot_t *r = robot(hal);
-    if (r->ircom_tx >= 0) {
+    if (r->ircom_tx_n >= hal->sim->sc->ircom.tx_per_period) {
         return HAL_ERR_BUSY;
     }
-    r->ircom_tx = (int32_t)(value & (uint16_t)((1u << hal->sim->sc->ircom.payload_bits) - 1u));
+    r->ircom_tx[r->ircom_tx_n++] = (uint16_t)(value & (uint16_t)((1u << hal->sim->sc->ircom.payload_bits) - 1u));
     return HAL_OK;
 }
 

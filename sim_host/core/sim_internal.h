@@ -18,8 +18,8 @@
 #include "task.h"
 #include "telemetry/robot_telemetry.h"
 
-/** libIrcom keeps a queue of 20 received messages. */
-#define SIM_IRCOM_QUEUE 20u
+/** The receive queue's storage: ircom.queue (default 20, libIrcom's) of it is used. */
+#define SIM_IRCOM_QUEUE SIM_IRCOM_QUEUE_MAX
 
 /** What a controller's `hal_t *` points to in the simulator. */
 struct hal {
@@ -44,7 +44,8 @@ typedef struct sim_robot {
     int8_t pose_status;            /**< of the tracker this step */
     hal_pose_t pose;
 
-    int32_t ircom_tx;              /**< message to send this step, or -1 */
+    uint16_t ircom_tx[SIM_IRCOM_TX_MAX]; /**< messages to send this step */
+    uint8_t ircom_tx_n;            /**< how many (ircom.tx_per_period at most) */
     hal_ircom_msg_t rx[SIM_IRCOM_QUEUE];
     uint8_t rx_head, rx_count;
     uint32_t rx_dropped;

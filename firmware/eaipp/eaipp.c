@@ -1,0 +1,520 @@
+/*
+ * eaipp.c - EAIPP's states and mechanisms (see eaipp.h).  Section numbers
+ * and algorithms are those of the paper (seed 003).
+ */
+#include "eaipp.h"
+
+#include "repatt/odometry.h"
+
+#define Q14 16384.0f
+#define HALF_PI_MRAD 1571
+
+static const char *const state_names[] = { "lost", "explorer", "node", "nest", "food" };
+
+void eaipp_default_params(eaipp_params_t *p)
+{
+    p->role = EAIPP_ROLE_ROBOT;
+    p->speed_steps_s = 388u;       /* 5 cm/s, Table 2 */
+    p->b_ul_min_mm = 420u;         /* 0.7 R, R = 0.6 m */
+    p->b_ul_max_mm = 480u;         /* 0.8 R */
+    /* PERIOD_TIME_1 and _2 are not given.  An explorer at 5 cm/s crosses one
+     * link (0.75 R = 0.45 m) in 9 s: a branch end waits 3 links' travel
+     * (30 s) for an explorer before leaving, and contracts when explorers
+     * have been around it for 30 s without extending it. */
+    p->period1_steps = 300u;
+    p->period2_steps = 300u;
+    p->timeout_steps = 10u;        /* 1 s: 3+ rounds of a node's 3 message kinds */
+    p->w_nodes = 1.0f;
+    p->w_obstacles = 1.0f;
+    p->prox_full = 1000u;          /* ~1 cm from a surface reads 1 */
+    p->lost_turn_prox = 300u;      /* ~2.5 cm */
+    p->food_needs_node = 0u;
+}
+
+void eaipp_init(eaipp_t *self, const eaipp_params_t *params, uint32_t seed)
+{
+    self->p = *params;
+    self->seed = seed;
+    eaipp_reset(self);
+}
+
+void eaipp_reset(eaipp_t *self)
+{
+    rng_seed(&self->rng, self->seed);
+    neighbours_clear(&self->nb);
+    self->state = self->p.role == EAIPP_ROLE_NEST ? (uint8_t)EAIPP_NEST
+        : self->p.role == EAIPP_ROLE_FOOD ? (uint8_t)EAIPP_FOOD : (uint8_t)EAIPP_LOST;
+    self->id = 0u;
+    self->gradient = self->state == EAIPP_LOST ? (uint8_t)EAIPP_GRADIENT_MAX : 0u;
+    self->source = self->state == EAIPP_FOOD ? (uint8_t)EAIPP_SOURCE_FOOD : (uint8_t)EAIPP_SOURCE_NEST;
+    self->root = 0u;
+    self->parent = 0u;
+    self->children = 0u;
+    self->contraction = 0u;
+    self->tx_cursor = 0u;
+    self->turning = 0u;
+    self->turn_dir = 1;
+    self->shun_root = 0u;
+    self->shun_steps = 0u;
+    self->counter1 = 0u;
+    self->counter2 = 0u;
+    self->orphan_steps = 0u;
+    self->heading_x = 1.0f;
+    self->heading_y = 0.0f;
+    self->joins = 0u;
+    self->leaves = 0u;
+}
+
+const char *eaipp_state_name(const eaipp_t *self)
+{
+    return self->state < 5u ? state_names[self->state] : "?";
+}
+
+/* ------------------------------------------------------------ the table */
+
+/* Whether a neighbour is a gradient holder (a node with a gradient heard,
+ * the nest or the food) and its gradient and Source_Type.  Under the maze
+ * rule (food_needs_node) the food is no source: the network grows from the
+ * nest only (section 5.1). */
+static uint8_t holder(const eaipp_t *self, const neighbour_t *n, uint8_t *g, uint8_t *src)
+{
+    if (neighbour_is(n, EAIPP_ST_NEST)) {
+        *g = 0u;
+        *src = EAIPP_SOURCE_NEST;
+        return 1u;
+    }
+    if (neighbour_is(n, EAIPP_ST_FOOD)) {
+        *g = 0u;
+        *src = EAIPP_SOURCE_FOOD;
+        return (uint8_t)(self->p.food_needs_node == 0u);
+    }
+    if (neighbour_is(n, EAIPP_ST_NODE) && (n->heard & NB_HEARD_GRADIENT) != 0u
+        && n->gradient < EAIPP_GRADIENT_MAX) {
+        *g = n->gradient;
+        *src = neighbour_gradient_source(n);
+        return 1u;
+    }
+    return 0u;
+}
+
+/* A node the robot is shunning (the branch it left, section 4.2.1). */
+static uint8_t shunned(const eaipp_t *self, const neighbour_t *n)
+{
+    return (uint8_t)(self->shun_steps > 0u && neighbour_is(n, EAIPP_ST_NODE) && (n->heard & NB_HEARD_ROOT) != 0u
+                     && n->root == self->shun_root);
+}
+
+/* What a lost or exploring robot senses: the nest, the food or a node.  The
+ * maze rule: the food alone does not count, only with a node near. */
+static uint8_t senses_network(const eaipp_t *self)
+{
+    uint8_t i, node = 0u, food = 0u;
+    for (i = 0; i < self->nb.count; i++) {
+        const neighbour_t *n = &self->nb.n[i];
+        if (neighbour_is(n, EAIPP_ST_NEST)) {
+            return 1u;
+        }
+        if (neighbour_is(n, EAIPP_ST_NODE) && !shunned(self, n)) {
+            node = 1u;
+        }
+        if (neighbour_is(n, EAIPP_ST_FOOD)) {
+            food = 1u;
+        }
+    }
+    return (uint8_t)(node != 0u || (food != 0u && self->p.food_needs_node == 0u));
+}
+
+/* ---------------------------------------------------- Algorithm 1: gradient */
+
+uint8_t eaipp_gradient_update(eaipp_t *self)
+{
+    /* The pseudocode assigns neighbor_min_gradient_1 to itself (and the
+     * food branch to _1); the evident intent, done here: the minimum over
+     * nest-sourced neighbours in min1, over food-sourced ones in min2, and
+     * a nest gradient wins over a food one whatever their values. */
+    uint8_t min1 = EAIPP_GRADIENT_MAX, min2 = EAIPP_GRADIENT_MAX;
+    uint8_t par1 = 0u, par2 = 0u, i;
+    const neighbour_t *parent = 0;
+    for (i = 0; i < self->nb.count; i++) {
+        uint8_t g, src;
+        if (!holder(self, &self->nb.n[i], &g, &src)) {
+            continue;
+        }
+        if (src == EAIPP_SOURCE_NEST) {
+            if (g < min1) {
+                min1 = g;
+                par1 = i;
+            }
+        } else if (g < min2) {
+            min2 = g;
+            par2 = i;
+        }
+    }
+    if (min1 < EAIPP_GRADIENT_MAX) {
+        self->source = EAIPP_SOURCE_NEST;
+        self->gradient = (uint8_t)(min1 + 1u);
+        parent = &self->nb.n[par1];
+    } else if (min2 < EAIPP_GRADIENT_MAX) {
+        self->source = EAIPP_SOURCE_FOOD;
+        self->gradient = (uint8_t)(min2 + 1u);
+        parent = &self->nb.n[par2];
+    } else {
+        self->gradient = EAIPP_GRADIENT_MAX;
+        self->children = 0u;
+        return 0u;
+    }
+    if (self->gradient > EAIPP_GRADIENT_LAST) {
+        self->gradient = EAIPP_GRADIENT_MAX;   /* counted to "infinity": no gradient */
+        self->children = 0u;
+        return 0u;
+    }
+    self->parent = parent->id;
+    /* C_Nodes: nodes of my source one hop farther. */
+    self->children = 0u;
+    for (i = 0; i < self->nb.count; i++) {
+        uint8_t g, src;
+        const neighbour_t *n = &self->nb.n[i];
+        if (neighbour_is(n, EAIPP_ST_NODE) && holder(self, n, &g, &src) && src == self->source
+            && g == (uint8_t)(self->gradient + 1u)) {
+            self->children++;
+        }
+    }
+    /* Root_ID: mine where the branch forks, else the parent's (a source's
+     * Root_ID is its own id, which it also sends). */
+    if (self->children >= 2u) {
+        self->root = self->id;
+    } else if ((parent->heard & NB_HEARD_ROOT) != 0u) {
+        self->root = parent->root;
+    } else {
+        self->root = parent->id;
+    }
+    return 1u;
+}
+
+/* -------------------------------------------------- Algorithm 2: extinction */
+
+static void leave(eaipp_t *self, uint8_t state)
+{
+    self->shun_root = self->root;
+    self->shun_steps = self->p.period1_steps;
+    self->state = state;
+    self->counter1 = 0u;
+    self->counter2 = 0u;
+    self->leaves++;
+}
+
+void eaipp_extinction_step(eaipp_t *self)
+{
+    uint8_t i;
+    if (self->children == 0u) {
+        /* The end of a branch: is any explorer around? */
+        uint8_t explorer = 0u;
+        for (i = 0; i < self->nb.count; i++) {
+            if (neighbour_is(&self->nb.n[i], EAIPP_ST_EXPLORER)) {
+                explorer = 1u;
+                break;
+            }
+        }
+        if (explorer) {
+            if (self->counter2 < 0xFFFFu) self->counter2++;
+            self->counter1 = 0u;
+        } else {
+            if (self->counter1 < 0xFFFFu) self->counter1++;
+            self->counter2 = 0u;
+        }
+        if (self->contraction == 0u) {
+            if (self->counter1 > self->p.period1_steps) {
+                /* Explorers could reach this end but none came for long. */
+                leave(self, EAIPP_LOST);
+            } else if (self->counter2 > self->p.period2_steps) {
+                /* Explorers came but no child was made: contract.  The
+                 * pseudocode also sets Robot_Explorer here; the text has the
+                 * end node broadcast the flag, wait for the explorers to
+                 * leave and only then (PERIOD_TIME_1 without explorers, the
+                 * rule below) leave: we follow the text. */
+                self->contraction = 1u;
+                self->counter1 = 0u;
+                self->counter2 = 0u;
+            }
+        } else if (self->counter1 > self->p.period1_steps) {
+            /* Contracting and deserted: leave, back along the branch, unless
+             * this is the last node before the fork (kept as a marker). */
+            if (self->root != self->parent) {
+                leave(self, EAIPP_EXPLORER);
+            } else {
+                self->counter1 = 0u;
+            }
+        }
+    } else {
+        self->counter1 = 0u;
+        self->counter2 = 0u;
+        /* Forward the child's flag along my branch. */
+        for (i = 0; i < self->nb.count; i++) {
+            uint8_t g, src;
+            const neighbour_t *n = &self->nb.n[i];
+            if (neighbour_is(n, EAIPP_ST_NODE) && holder(self, n, &g, &src) && src == self->source
+                && g == (uint8_t)(self->gradient + 1u) && (n->heard & NB_HEARD_ROOT) != 0u
+                && n->root == self->root) {
+                self->contraction = neighbour_contraction(n);
+                break;
+            }
+        }
+    }
+}
+
+/* --------------------------------------------------- Algorithm 4: extension */
+
+uint8_t eaipp_extension_due(const eaipp_t *self)
+{
+    uint8_t i, count = 0u;
+    const neighbour_t *only = 0;
+    for (i = 0; i < self->nb.count; i++) {
+        const neighbour_t *n = &self->nb.n[i];
+        if (neighbour_is(n, EAIPP_ST_NODE) || neighbour_is(n, EAIPP_ST_NEST)
+            || (neighbour_is(n, EAIPP_ST_FOOD) && self->p.food_needs_node == 0u)) {
+            count++;
+            only = n;
+        }
+    }
+    if (count != 1u || neighbour_contraction(only) || shunned(self, only)) {
+        return 0u;
+    }
+    /* A node must have a gradient to extend from. */
+    if (neighbour_is(only, EAIPP_ST_NODE)
+        && ((only->heard & NB_HEARD_GRADIENT) == 0u || only->gradient >= EAIPP_GRADIENT_MAX)) {
+        return 0u;
+    }
+    return (uint8_t)(only->range_mm > self->p.b_ul_min_mm && only->range_mm <= self->p.b_ul_max_mm);
+}
+
+/* ------------------------------------------------------ eq 1 and Algorithm 3 */
+
+void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], const int16_t bearing_mrad[HAL_IR_COUNT],
+                     float *vx, float *vy)
+{
+    /* Eq 1 lost its symbols; from its description we take
+     *   V = w_n (1 - p_max) A/|A| + w_o p_max B/|B|
+     *   A = (1/N) sum_i F_i (g_i - g_mean) u_i / D_i   over the N nodes and
+     *       sources heard: g_i their gradients, g_mean their mean, u_i the
+     *       unit vector toward i, D_i its range (m), F_i = +1, or -1 when i
+     *       carries Flag_Contraction (explorers then retreat down the branch)
+     *   B = sum_j p_j (-v_j)   over the proximity sensors: p_j the reading
+     *       scaled to [0, 1] (prox_full reads 1), v_j the sensor's direction
+     *   p_max = max_j p_j: the nearer an obstacle, the more it dominates.
+     * When A vanishes (one node, or all at one gradient) the robot keeps
+     * its heading (A = ahead), so that it leaves the lone node outward. */
+    float ax = 0.0f, ay = 0.0f, bx = 0.0f, by = 0.0f, mean = 0.0f, pmax = 0.0f, len;
+    uint8_t i, n = 0u;
+    for (i = 0; i < self->nb.count; i++) {
+        uint8_t g, src;
+        if (holder(self, &self->nb.n[i], &g, &src)) {
+            mean += (float)g;
+            n++;
+        }
+    }
+    if (n > 0u) {
+        mean /= (float)n;
+        for (i = 0; i < self->nb.count; i++) {
+            const neighbour_t *nb = &self->nb.n[i];
+            uint8_t g, src;
+            float d, w;
+            if (!holder(self, nb, &g, &src)) {
+                continue;
+            }
+            d = (float)(nb->range_mm < 10u ? 10u : nb->range_mm) / 1000.0f;
+            w = ((float)g - mean) / d;
+            if (neighbour_contraction(nb)) {
+                w = -w;
+            }
+            ax += w * (float)odo_cos_q14(nb->bearing_mrad) / Q14;
+            ay += w * (float)odo_sin_q14(nb->bearing_mrad) / Q14;
+        }
+    }
+    len = ax * ax + ay * ay;
+    if (len < 1e-6f) {
+        ax = 1.0f;
+        ay = 0.0f;
+    }
+    for (i = 0; i < HAL_IR_COUNT; i++) {
+        float pj = (float)prox[i] / (float)self->p.prox_full;
+        if (pj > 1.0f) pj = 1.0f;
+        if (pj > pmax) pmax = pj;
+        bx -= pj * (float)odo_cos_q14(bearing_mrad[i]) / Q14;
+        by -= pj * (float)odo_sin_q14(bearing_mrad[i]) / Q14;
+    }
+    /* Normalise both terms (|.| by the larger component: no sqrt needed for
+     * a direction, and the weights keep their meaning within a factor 1.41). */
+    {
+        float ma = ax < 0 ? -ax : ax, mb = bx < 0 ? -bx : bx, t;
+        t = ay < 0 ? -ay : ay;
+        if (t > ma) ma = t;
+        t = by < 0 ? -by : by;
+        if (t > mb) mb = t;
+        *vx = self->p.w_nodes * (1.0f - pmax) * ax / ma;
+        *vy = self->p.w_nodes * (1.0f - pmax) * ay / ma;
+        if (mb > 1e-6f) {
+            *vx += self->p.w_obstacles * pmax * bx / mb;
+            *vy += self->p.w_obstacles * pmax * by / mb;
+        }
+    }
+}
+
+void eaipp_wheel_law(float vx, float vy, uint16_t speed, int16_t *left, int16_t *right)
+{
+    /* Algorithm 3: angle between the heading and V; the inner wheel slows
+     * by (1 - 2|angle|/pi), reversing beyond a right angle.  The pseudocode
+     * writes (1 - 2 angle/pi) for negative angles too, which would speed the
+     * inner wheel up: the evident intent is |angle|. */
+    int32_t a = odo_atan2_mrad((int32_t)(vy * 1000.0f), (int32_t)(vx * 1000.0f));
+    int32_t slow = (int32_t)speed - (int32_t)speed * 2 * (a < 0 ? -a : a) / (2 * HALF_PI_MRAD);
+    if (a > 0) {
+        *left = (int16_t)slow;
+        *right = (int16_t)speed;
+    } else {
+        *left = (int16_t)speed;
+        *right = (int16_t)slow;
+    }
+}
+
+/* ------------------------------------------------------------------ steps */
+
+static void hear_all(eaipp_t *self, hal_t *hal)
+{
+    hal_ircom_msg_t m;
+    eaipp_msg_t d;
+    neighbours_age(&self->nb, self->p.timeout_steps);
+    while (hal_ircom_receive(hal, &m) == HAL_OK) {
+        if (eaipp_msg_decode(m.value, &d) && d.id != self->id) {
+            (void)neighbours_hear(&self->nb, &d, m.range_mm, m.bearing_mrad);
+        }
+    }
+}
+
+static void send_turn(eaipp_t *self, hal_t *hal)
+{
+    /* Nodes and sources cycle STATE, GRADIENT, ROOT; lost robots and
+     * explorers have only their STATE to say.  As many as the platform
+     * takes this period, at most one cycle. */
+    uint8_t cycle = (self->state == EAIPP_LOST || self->state == EAIPP_EXPLORER) ? 1u : 3u;
+    uint8_t k;
+    for (k = 0; k < cycle; k++) {
+        uint16_t f;
+        uint8_t kind = (uint8_t)(self->tx_cursor % cycle);
+        if (kind == 0u) {
+            f = eaipp_msg_state(self->id, self->state, self->source, self->contraction);
+        } else if (kind == 1u) {
+            f = eaipp_msg_gradient(self->id, self->source, self->gradient);
+        } else {
+            f = eaipp_msg_root(self->id, self->root);
+        }
+        if (hal_ircom_send(hal, f) != HAL_OK) {
+            break;
+        }
+        self->tx_cursor = (uint8_t)((self->tx_cursor + 1u) % cycle);
+    }
+}
+
+static void read_prox(hal_t *hal, uint16_t prox[HAL_IR_COUNT], int16_t bearing[HAL_IR_COUNT])
+{
+    uint8_t i;
+    for (i = 0; i < HAL_IR_COUNT; i++) {
+        prox[i] = hal_ir_proximity(hal, i);
+        bearing[i] = hal_ir_bearing_mrad(hal, i);
+    }
+}
+
+static void become_node(eaipp_t *self, hal_t *hal)
+{
+    self->state = EAIPP_NODE;
+    self->contraction = 0u;
+    self->counter1 = 0u;
+    self->counter2 = 0u;
+    self->joins++;
+    (void)eaipp_gradient_update(self);
+    hal_set_wheel_speeds(hal, 0, 0);
+}
+
+static void lost_step(eaipp_t *self, hal_t *hal, const uint16_t prox[HAL_IR_COUNT])
+{
+    /* Sections 4.1, 4.3: straight on, turning away from what is near. */
+    uint8_t i, best = 0u;
+    int16_t v = (int16_t)self->p.speed_steps_s;
+    for (i = 1; i < HAL_IR_COUNT; i++) {
+        if (prox[i] > prox[best]) best = i;
+    }
+    if (self->turning == 0u && prox[best] > self->p.lost_turn_prox) {
+        /* Sensors 0-3 are on the right (negative bearings): turn left. */
+        self->turn_dir = best < 4u ? (int8_t)1 : (int8_t)-1;
+        self->turning = (uint8_t)(5u + rng_below(&self->rng, 15u));
+    }
+    if (self->turning > 0u) {
+        self->turning--;
+        hal_set_wheel_speeds(hal, (int16_t)(-self->turn_dir * v), (int16_t)(self->turn_dir * v));
+    } else {
+        hal_set_wheel_speeds(hal, v, v);
+    }
+}
+
+void eaipp_step(eaipp_t *self, hal_t *hal)
+{
+    uint16_t prox[HAL_IR_COUNT];
+    int16_t bearing[HAL_IR_COUNT];
+    self->id = (uint8_t)(hal_robot_id(hal) & 0x7Fu);
+    hear_all(self, hal);
+    if (self->shun_steps > 0u) {
+        self->shun_steps--;
+    }
+    switch (self->state) {
+    case EAIPP_NEST:
+    case EAIPP_FOOD:
+        self->gradient = 0u;
+        self->root = self->id;
+        hal_set_wheel_speeds(hal, 0, 0);
+        break;
+    case EAIPP_LOST:
+        read_prox(hal, prox, bearing);
+        if (senses_network(self)) {
+            self->state = EAIPP_EXPLORER;
+        } else {
+            lost_step(self, hal, prox);
+        }
+        break;
+    case EAIPP_EXPLORER:
+        if (!senses_network(self)) {
+            self->state = EAIPP_LOST;
+            break;
+        }
+        if (eaipp_extension_due(self)) {
+            become_node(self, hal);
+            break;
+        }
+        read_prox(hal, prox, bearing);
+        {
+            float vx, vy;
+            int16_t l, r;
+            eaipp_direction(self, prox, bearing, &vx, &vy);
+            self->heading_x = vx;
+            self->heading_y = vy;
+            eaipp_wheel_law(vx, vy, self->p.speed_steps_s, &l, &r);
+            hal_set_wheel_speeds(hal, l, r);
+        }
+        break;
+    case EAIPP_NODE:
+    default:
+        hal_set_wheel_speeds(hal, 0, 0);
+        if (!eaipp_gradient_update(self)) {
+            /* Cut off from every source (section 4.3) for as long as a
+             * neighbour takes to be forgotten: then lost. */
+            if (++self->orphan_steps >= self->p.timeout_steps) {
+                self->orphan_steps = 0u;
+                leave(self, EAIPP_LOST);
+            }
+            break;
+        }
+        self->orphan_steps = 0u;
+        eaipp_extinction_step(self);
+        break;
+    }
+    hal_set_body_led(hal, (uint8_t)(self->state == EAIPP_NODE || self->state >= EAIPP_NEST));
+    send_turn(self, hal);
+}

@@ -1,0 +1,67 @@
+/*
+ * eaipp_def.c - EAIPP as the simulator runs it: its keys and what it shows.
+ * Registration: one controller `eaipp`; the nest and food robots are
+ * groups of it with `role: nest` / `role: food`.
+ */
+#include "eaipp/eaipp.h"
+
+#define EP eaipp_params_t
+
+static const char *const eaipp_roles[] = { "robot", "nest", "food", 0 };
+
+static const param_desc_t eaipp_param_descs[] = {
+    { .key = "role", PARAM_ENUM_U8_FIELD(EP, role, eaipp_roles),
+      .doc = "robot (Lost/Explorer/Node), nest or food (fixed gradient sources)" },
+    { .key = "speed", PARAM_FIELD(EP, speed_steps_s, uint16_t), .min = 0, .max = 1000,
+      .doc = "wheel speed of Algorithm 3, steps/s (388 = 5 cm/s)" },
+    { .key = "b_ul_min", PARAM_FIELD(EP, b_ul_min_mm, uint16_t), .min = 0, .max = 5000,
+      .doc = "extension: the one node must be farther than this, mm (0.7 R)" },
+    { .key = "b_ul_max", PARAM_FIELD(EP, b_ul_max_mm, uint16_t), .min = 0, .max = 5000,
+      .doc = "extension: and not farther than this, mm (0.8 R)" },
+    { .key = "period_time_1", PARAM_FIELD(EP, period1_steps, uint16_t), .min = 1, .max = 60000,
+      .doc = "PERIOD_TIME_1: a branch end with no explorer near leaves, steps (reconstructed)" },
+    { .key = "period_time_2", PARAM_FIELD(EP, period2_steps, uint16_t), .min = 1, .max = 60000,
+      .doc = "PERIOD_TIME_2: explorers near an end but no child: contract, steps (reconstructed)" },
+    { .key = "timeout", PARAM_FIELD(EP, timeout_steps, uint8_t), .min = 1, .max = 255,
+      .doc = "a neighbour not heard for this long is forgotten, steps" },
+    { .key = "w_nodes", PARAM_FIELD(EP, w_nodes, float), .min = 0, .max = 100,
+      .doc = "eq 1 weight of the gradient term" },
+    { .key = "w_obstacles", PARAM_FIELD(EP, w_obstacles, float), .min = 0, .max = 100,
+      .doc = "eq 1 weight of the obstacle term" },
+    { .key = "prox_full", PARAM_FIELD(EP, prox_full, uint16_t), .min = 1, .max = 4095,
+      .doc = "proximity counts read as eq 1's 1" },
+    { .key = "lost_turn_prox", PARAM_FIELD(EP, lost_turn_prox, uint16_t), .min = 0, .max = 4095,
+      .doc = "Robot_Lost turns away above this proximity, counts" },
+    { .key = "food_needs_node", PARAM_BOOL_FIELD(EP, food_needs_node),
+      .doc = "maze rule: the food counts only with a node near, and is no gradient source" },
+    PARAM_END
+};
+
+const observable_t eaipp_observables[] = {
+    { .name = "gradient", OBS_FIELD(eaipp_t, gradient, uint8_t), .scale = 1.0f, .unit = "hops",
+      .doc = "own gradient value (63: none)" },
+    { .name = "source", OBS_FIELD(eaipp_t, source, uint8_t), .scale = 1.0f, .unit = "",
+      .doc = "Source_Type: 0 nest, 1 food" },
+    { .name = "root", OBS_FIELD(eaipp_t, root, uint8_t), .scale = 1.0f, .unit = "",
+      .doc = "Root_ID" },
+    { .name = "contraction", OBS_FIELD(eaipp_t, contraction, uint8_t), .scale = 1.0f, .unit = "",
+      .doc = "Flag_Contraction" },
+    { .name = "neighbours", OBS_FIELD(eaipp_t, nb.count, uint8_t), .scale = 1.0f, .unit = "robots",
+      .doc = "robots in the neighbour table" },
+    { .name = "joins", .kind = OBS_COUNTER, OBS_FIELD(eaipp_t, joins, uint32_t), .scale = 1.0f,
+      .unit = "events", .doc = "explorer -> node" },
+    { .name = "leaves", .kind = OBS_COUNTER, OBS_FIELD(eaipp_t, leaves, uint32_t), .scale = 1.0f,
+      .unit = "events", .doc = "node -> lost or explorer" },
+    OBS_END
+};
+
+CONTROLLER_ADAPTERS(eaipp)
+
+const controller_def_t eaipp_def = {
+    .name = EAIPP_NAME,
+    .doc = "seed 003 EAIPP path formation (role: robot, nest or food)",
+    CONTROLLER_FUNCS(eaipp),
+    .params = eaipp_param_descs,
+    .observables = eaipp_observables,
+    .ircom_bits = 16,
+};

@@ -1,0 +1,389 @@
+/*
+ * test_eaipp.c - EAIPP's mechanisms on the fake HAL (firmware/eaipp):
+ * Algorithm 1 over a hand-built neighbour set, Algorithm 2's timing and
+ * flag forwarding, Algorithm 4's distance check, Algorithm 3's wheel law,
+ * the lost robot's transitions, the sources, and how long a gradient takes
+ * to cross a chain of 10 nodes.  Time: well under a second.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <cmocka.h>
+
+#include "fake_hal.h"
+#include "eaipp/eaipp.h"
+#include "units.h"
+
+static void make(eaipp_t *e, uint8_t role)
+{
+    eaipp_params_t p;
+    eaipp_default_params(&p);
+    p.role = role;
+    eaipp_init(e, &p, 1u);
+}
+
+static void hear(eaipp_t *e, uint16_t frame, uint16_t range, int16_t bearing)
+{
+    eaipp_msg_t m;
+    assert_true(eaipp_msg_decode(frame, &m));
+    assert_non_null(neighbours_hear(&e->nb, &m, range, bearing));
+}
+
+/* A node neighbour with every field heard. */
+static void node(eaipp_t *e, uint8_t id, uint8_t src, uint8_t g, uint8_t root, uint8_t flag, uint16_t range)
+{
+    hear(e, eaipp_msg_state(id, EAIPP_ST_NODE, src, flag), range, 0);
+    hear(e, eaipp_msg_gradient(id, src, g), range, 0);
+    hear(e, eaipp_msg_root(id, root), range, 0);
+}
+
+static void test_gradient(void **state)
+{
+    eaipp_t e;
+    (void)state;
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.state = EAIPP_NODE;
+    e.id = 50u;
+    assert_false(eaipp_gradient_update(&e));          /* nothing heard */
+    assert_int_equal(e.gradient, EAIPP_GRADIENT_MAX);
+    /* Food-sourced nodes at 1 and 4, a nest-sourced node at 6: the nest
+     * gradient wins whatever its value (Algorithm 1's order). */
+    node(&e, 10u, EAIPP_SOURCE_FOOD, 1u, 10u, 0u, 400u);
+    node(&e, 11u, EAIPP_SOURCE_FOOD, 4u, 10u, 0u, 400u);
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.gradient, 2u);
+    assert_int_equal(e.source, EAIPP_SOURCE_FOOD);
+    assert_int_equal(e.parent, 10u);
+    assert_int_equal(e.root, 10u);
+    node(&e, 12u, EAIPP_SOURCE_NEST, 6u, 33u, 0u, 400u);
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.gradient, 7u);
+    assert_int_equal(e.source, EAIPP_SOURCE_NEST);
+    assert_int_equal(e.parent, 12u);
+    assert_int_equal(e.root, 33u);                     /* the parent's Root_ID */
+    assert_int_equal(e.children, 0u);
+    /* The nest itself (gradient 0 from its STATE alone) beats node 12. */
+    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, EAIPP_SOURCE_NEST, 0u), 300u, 0);
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.gradient, 1u);
+    assert_int_equal(e.parent, 0u);
+    assert_int_equal(e.root, 0u);
+    /* Two children (nest-sourced, gradient 2): the branch forks here. */
+    node(&e, 20u, EAIPP_SOURCE_NEST, 2u, 50u, 0u, 400u);
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.children, 1u);
+    assert_int_equal(e.root, 0u);
+    node(&e, 21u, EAIPP_SOURCE_NEST, 2u, 50u, 0u, 400u);
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.children, 2u);
+    assert_int_equal(e.root, 50u);
+    /* Explorers and nodes with no gradient heard are no sources. */
+    make(&e, EAIPP_ROLE_ROBOT);
+    hear(&e, eaipp_msg_state(7u, EAIPP_ST_EXPLORER, 0u, 0u), 300u, 0);
+    hear(&e, eaipp_msg_state(8u, EAIPP_ST_NODE, 0u, 0u), 300u, 0);
+    assert_false(eaipp_gradient_update(&e));
+}
+
+static void test_food_needs_node(void **state)
+{
+    eaipp_t e;
+    (void)state;
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.p.food_needs_node = 1u;
+    e.state = EAIPP_NODE;
+    hear(&e, eaipp_msg_state(3u, EAIPP_ST_FOOD, EAIPP_SOURCE_FOOD, 0u), 300u, 0);
+    assert_false(eaipp_gradient_update(&e));          /* the food is no source */
+    e.p.food_needs_node = 0u;
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.source, EAIPP_SOURCE_FOOD);
+}
+
+/* A branch end: parent 10 (root 5) only, so no child. */
+static void branch_end(eaipp_t *e, uint8_t root_of_parent)
+{
+    make(e, EAIPP_ROLE_ROBOT);
+    e->state = EAIPP_NODE;
+    e->id = 40u;
+    e->p.period1_steps = 20u;
+    e->p.period2_steps = 30u;
+    node(e, 10u, EAIPP_SOURCE_NEST, 3u, root_of_parent, 0u, 450u);
+    assert_true(eaipp_gradient_update(e));
+}
+
+static void test_extinction_timing(void **state)
+{
+    eaipp_t e;
+    uint16_t k;
+    (void)state;
+    /* No explorer: lost after PERIOD_TIME_1 + 1 steps. */
+    branch_end(&e, 5u);
+    for (k = 1; k <= 20u; k++) {
+        eaipp_extinction_step(&e);
+        assert_int_equal(e.state, EAIPP_NODE);
+    }
+    eaipp_extinction_step(&e);
+    assert_int_equal(e.state, EAIPP_LOST);
+    assert_int_equal(e.leaves, 1u);
+    assert_int_equal(e.shun_root, 5u);                 /* will not rejoin that branch */
+    /* Explorers around but no child: the flag rises after PERIOD_TIME_2 + 1. */
+    branch_end(&e, 5u);
+    hear(&e, eaipp_msg_state(60u, EAIPP_ST_EXPLORER, 0u, 0u), 300u, 0);
+    for (k = 1; k <= 30u; k++) {
+        eaipp_extinction_step(&e);
+        assert_int_equal(e.contraction, 0u);
+    }
+    eaipp_extinction_step(&e);
+    assert_int_equal(e.contraction, 1u);
+    assert_int_equal(e.state, EAIPP_NODE);
+    /* The explorer leaves: PERIOD_TIME_1 later the end node leaves as an
+     * explorer, since its parent (10) is not its Root_ID (5). */
+    e.nb.count = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 5u, 1u, 450u);
+    for (k = 1; k <= 20u; k++) {
+        eaipp_extinction_step(&e);
+    }
+    assert_int_equal(e.state, EAIPP_NODE);
+    eaipp_extinction_step(&e);
+    assert_int_equal(e.state, EAIPP_EXPLORER);
+    /* The last node before the fork (parent == Root_ID) stays as a marker. */
+    branch_end(&e, 10u);
+    e.contraction = 1u;
+    for (k = 1; k <= 100u; k++) {
+        eaipp_extinction_step(&e);
+    }
+    assert_int_equal(e.state, EAIPP_NODE);
+}
+
+static void test_flag_forwarding(void **state)
+{
+    eaipp_t e;
+    (void)state;
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.state = EAIPP_NODE;
+    e.id = 40u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 5u, 0u, 450u);        /* parent */
+    node(&e, 41u, EAIPP_SOURCE_NEST, 5u, 5u, 1u, 450u);        /* child, contracting */
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.children, 1u);
+    eaipp_extinction_step(&e);
+    assert_int_equal(e.contraction, 1u);
+    /* A child of another branch (other Root_ID) is not followed. */
+    e.nb.count = 0u;
+    e.contraction = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 5u, 0u, 450u);
+    node(&e, 41u, EAIPP_SOURCE_NEST, 5u, 9u, 1u, 450u);
+    assert_true(eaipp_gradient_update(&e));
+    eaipp_extinction_step(&e);
+    assert_int_equal(e.contraction, 0u);
+}
+
+static void test_extension_distance(void **state)
+{
+    eaipp_t e;
+    (void)state;
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.state = EAIPP_EXPLORER;
+    /* One node at 0.6 R, 0.75 R, 0.85 R (R = 600 mm; window 420..480). */
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 360u);
+    assert_false(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 420u);
+    assert_false(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 421u);
+    assert_true(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 480u);
+    assert_true(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 510u);
+    assert_false(eaipp_extension_due(&e));
+    /* Contracting branch: no. */
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 1u, 450u);
+    assert_false(eaipp_extension_due(&e));
+    /* Two nodes heard: no (Algorithm 4 wants exactly one). */
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 450u);
+    node(&e, 11u, EAIPP_SOURCE_NEST, 1u, 1u, 0u, 700u);
+    assert_false(eaipp_extension_due(&e));
+    /* The nest alone counts as the one. */
+    make(&e, EAIPP_ROLE_ROBOT);
+    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 450u, 0);
+    hear(&e, eaipp_msg_state(7u, EAIPP_ST_EXPLORER, 0u, 0u), 100u, 0);
+    assert_true(eaipp_extension_due(&e));
+}
+
+static void test_wheel_law(void **state)
+{
+    int16_t l, r;
+    (void)state;
+    eaipp_wheel_law(1.0f, 0.0f, 400u, &l, &r);          /* straight ahead */
+    assert_int_equal(l, 400);
+    assert_int_equal(r, 400);
+    eaipp_wheel_law(1.0f, 1.0f, 400u, &l, &r);          /* 45 deg left: left wheel at 1/2 */
+    assert_in_range(l, 198, 202);
+    assert_int_equal(r, 400);
+    eaipp_wheel_law(1.0f, -1.0f, 400u, &l, &r);         /* 45 deg right */
+    assert_int_equal(l, 400);
+    assert_in_range(r, 198, 202);
+    eaipp_wheel_law(0.0f, 1.0f, 400u, &l, &r);          /* 90 deg left: pivot on the left wheel */
+    assert_true(l >= -2 && l <= 2);
+    eaipp_wheel_law(-1.0f, -0.001f, 400u, &l, &r);      /* behind: spin in place */
+    assert_int_equal(l, 400);
+    assert_true(r >= -402 && r <= -396);
+}
+
+static void test_direction(void **state)
+{
+    eaipp_t e;
+    uint16_t prox[HAL_IR_COUNT] = { 0 };
+    int16_t bearing[HAL_IR_COUNT];
+    float vx, vy;
+    uint8_t i;
+    (void)state;
+    for (i = 0; i < HAL_IR_COUNT; i++) bearing[i] = units_ir_bearing_mrad(i);
+    make(&e, EAIPP_ROLE_ROBOT);
+    /* Gradient 1 to the left, gradient 3 to the right: go right (toward
+     * the branch end). */
+    node(&e, 10u, 0u, 1u, 1u, 0u, 400u);
+    e.nb.n[0].bearing_mrad = 1571;
+    node(&e, 11u, 0u, 3u, 1u, 0u, 400u);
+    e.nb.n[1].bearing_mrad = -1571;
+    eaipp_direction(&e, prox, bearing, &vx, &vy);
+    assert_true(vy < -0.9f);
+    /* The branch contracts: back toward the low gradient. */
+    node(&e, 11u, 0u, 3u, 1u, 1u, 400u);
+    node(&e, 10u, 0u, 1u, 1u, 1u, 400u);
+    e.nb.n[0].bearing_mrad = 1571;
+    e.nb.n[1].bearing_mrad = -1571;
+    eaipp_direction(&e, prox, bearing, &vx, &vy);
+    assert_true(vy > 0.9f);
+    /* A wall touching the front sensors dominates: away from it. */
+    prox[0] = prox[7] = 2000u;
+    eaipp_direction(&e, prox, bearing, &vx, &vy);
+    assert_true(vx < -0.5f);
+}
+
+static void test_lost_and_sources(void **state)
+{
+    eaipp_t e;
+    hal_t hal;
+    eaipp_msg_t m;
+    (void)state;
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "lost");
+    assert_int_equal(hal.left, 388);                   /* straight on */
+    assert_int_equal(hal.right, 388);
+    fake_hal_end_step(&hal);
+    hal.proximity[0] = 1500u;                          /* something ahead-right */
+    eaipp_step(&e, &hal);
+    assert_true(hal.left < 0 && hal.right > 0);        /* turns left, away */
+    fake_hal_end_step(&hal);
+    hal.proximity[0] = 0u;
+    /* The food alone under the maze rule: still lost; a node: explorer. */
+    e.p.food_needs_node = 1u;
+    fake_hal_push(&hal, eaipp_msg_state(3u, EAIPP_ST_FOOD, 1u, 0u), 300u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "lost");
+    fake_hal_end_step(&hal);
+    fake_hal_push(&hal, eaipp_msg_state(4u, EAIPP_ST_NODE, 0u, 0u), 300u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "explorer");
+    assert_true(eaipp_msg_decode(hal.last_sent, &m));
+    assert_int_equal(m.kind, EAIPP_MSG_STATE);
+    assert_int_equal(m.state, EAIPP_ST_EXPLORER);
+    assert_int_equal(m.id, 9u);
+    /* The nest never moves and sends STATE, GRADIENT 0, ROOT = own id in turn. */
+    fake_hal_init(&hal, 130u);
+    make(&e, EAIPP_ROLE_NEST);
+    {
+        uint8_t k;
+        for (k = 0; k < 3u; k++) {
+            eaipp_step(&e, &hal);
+            assert_int_equal(hal.left, 0);
+            assert_true(eaipp_msg_decode(hal.last_sent, &m));
+            assert_int_equal(m.id, 2u);
+            assert_int_equal(m.kind, k);
+            fake_hal_end_step(&hal);
+        }
+    }
+    assert_true(eaipp_msg_decode(hal.outbox[1], &m));
+    assert_int_equal(m.gradient, 0u);
+    assert_int_equal(m.source, EAIPP_SOURCE_NEST);
+    assert_true(eaipp_msg_decode(hal.outbox[2], &m));
+    assert_int_equal(m.root, 2u);
+    assert_string_equal(eaipp_state_name(&e), "nest");
+}
+
+/* A chain: robot 0 the nest, 1..10 nodes 450 mm apart, 11 the food; each
+ * hears its two neighbours only, one message a period each, no loss. */
+#define CHAIN 12u
+static uint32_t steps_to_cross(void)
+{
+    static hal_t hal[CHAIN];
+    static eaipp_t e[CHAIN];
+    uint32_t sent[CHAIN] = { 0 };
+    uint32_t t, i;
+    for (i = 0; i < CHAIN; i++) {
+        fake_hal_init(&hal[i], (uint16_t)i);
+        make(&e[i], i == 0u ? EAIPP_ROLE_NEST : i == CHAIN - 1u ? EAIPP_ROLE_FOOD : EAIPP_ROLE_ROBOT);
+        e[i].p.timeout_steps = 250u;   /* a static chain: nobody is forgotten */
+        e[i].p.period1_steps = 60000u;
+        if (i > 0u && i < CHAIN - 1u) e[i].state = EAIPP_NODE;
+    }
+    /* Warm-up with the nest silent: the food's gradient fills the chain;
+     * then the nest speaks, and its gradient (which wins) must reach node
+     * 10, ten hops away. */
+    for (t = 0; t < 2000u; t++) {
+        for (i = 0; i < CHAIN; i++) {
+            if (i == 0u && t < 1000u) continue;
+            eaipp_step(&e[i], &hal[i]);
+        }
+        for (i = 0; i < CHAIN; i++) {
+            while (sent[i] < hal[i].out_count) {
+                uint16_t f = hal[i].outbox[sent[i] % FAKE_OUTBOX_MAX];
+                if (i > 0u) fake_hal_push(&hal[i - 1u], f, 450u, 0);
+                if (i + 1u < CHAIN) fake_hal_push(&hal[i + 1u], f, 450u, 3142);
+                sent[i]++;
+            }
+            fake_hal_end_step(&hal[i]);
+            hal[i].out_count = 0u;
+            sent[i] = 0u;
+        }
+        if (t == 999u) {
+            assert_int_equal(e[1].gradient, 10u);        /* food-sourced, ten hops */
+            assert_int_equal(e[1].source, EAIPP_SOURCE_FOOD);
+        }
+        if (t >= 1000u && e[10].source == EAIPP_SOURCE_NEST && e[10].gradient == 10u) {
+            return t - 999u;
+        }
+    }
+    return 0u;
+}
+
+static void test_chain_crossing(void **state)
+{
+    uint32_t steps;
+    (void)state;
+    steps = steps_to_cross();
+    printf("# a nest gradient crossed 10 nodes in %u steps (%.1f s at 10 Hz), one message a period\n",
+           (unsigned)steps, steps / 10.0);
+    /* Each hop needs the STATE and GRADIENT frames of a 3-kind cycle:
+     * between 1 and 3 periods a hop, plus the step it takes to act. */
+    assert_in_range(steps, 10u, 45u);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_gradient),
+        cmocka_unit_test(test_food_needs_node),
+        cmocka_unit_test(test_extinction_timing),
+        cmocka_unit_test(test_flag_forwarding),
+        cmocka_unit_test(test_extension_distance),
+        cmocka_unit_test(test_wheel_law),
+        cmocka_unit_test(test_direction),
+        cmocka_unit_test(test_lost_and_sources),
+        cmocka_unit_test(test_chain_crossing),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
