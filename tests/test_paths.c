@@ -12,8 +12,8 @@
  * section's checks, and the random cylinders (clear of each other, the
  * walls and the fixed robots by their gap; a new layout per run seed, one
  * layout for a layout_seed; random robots placed clear of them).  Also the
- * square-arena scenario with stand-in controllers (random_walk, idle)
- * where the EAIPP controllers are not yet built.  (0.02 s; 0.2 s under
+ * square arena and the half-scale maze with stand-in controllers
+ * (random_walk, idle) while the EAIPP controllers are not yet built.  (0.02 s; 0.2 s under
  * ASan/UBSan.)
  */
 #include <math.h>
@@ -396,12 +396,13 @@ static void test_random_cylinders(void **state)
 
 /* ------------------------------------------------------------- scenarios */
 
-/* The square arena with stand-ins for the EAIPP controllers (random_walk
- * swarm, idle sources) loads, places 30 cylinders, and runs 100 steps. */
-static void test_square_scenario_stand_in(void **state)
+/* A shipped scenario with stand-ins for the EAIPP controllers (random_walk
+ * for the swarm, idle for the sources), loaded with `set`. */
+static scenario_t *stand_in(const char *file, const scenario_override_t *set, size_t n_set)
 {
-    (void)state;
-    FILE *in = fopen("../sim_host/scenarios/eaipp_square.yaml", "r");
+    char in_path[256];
+    snprintf(in_path, sizeof in_path, "../sim_host/scenarios/%s", file);
+    FILE *in = fopen(in_path, "r");
     assert_non_null(in);
     char path[] = "/tmp/test_paths_XXXXXX";
     int fd = mkstemp(path);
@@ -422,16 +423,45 @@ static void test_square_scenario_stand_in(void **state)
     fclose(out);
     scenario_t *sc = calloc(1, sizeof *sc);
     char err[SCENARIO_ERROR_MAX];
-    scenario_override_t set[] = { { "random_cylinders.count=30" } };
-    int rc = scenario_load(path, set, 1, sc, err);
+    int rc = scenario_load(path, set, n_set, sc, err);
     remove(path);
-    if (rc != 0) fail_msg("%s", err);
+    if (rc != 0) fail_msg("%s: %s", file, err);
+    return sc;
+}
+
+/* The square arena loads, places 30 cylinders, and runs 100 steps. */
+static void test_square_scenario_stand_in(void **state)
+{
+    (void)state;
+    scenario_override_t set[] = { { "random_cylinders.count=30" } };
+    scenario_t *sc = stand_in("eaipp_square.yaml", set, 1);
     sim_t *sim = make(sc, 3);
     assert_int_equal(sim_robot_count(sim), 17);
     assert_int_equal(sim_obstacle_count(sim), 30);
     for (int s = 0; s < 100; s++) sim_step(sim);
     assert_float_equal(metric(sim, "distance_m"), 3.0, 1e-6);
     assert_float_equal(metric(sim, "budget_s"), 1000.0, 0);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* The half-scale maze: 70 robots fit the waiting area, D = 2.5 sqrt 2 m,
+ * and walls hide the food from the nest. */
+static void test_maze_scenario_stand_in(void **state)
+{
+    (void)state;
+    scenario_t *sc = stand_in("eaipp_maze.yaml", NULL, 0);
+    sim_t *sim = make(sc, 1);
+    assert_int_equal(sim_robot_count(sim), 72);
+    assert_int_equal(sim_obstacle_count(sim), 7);
+    for (uint32_t i = 2; i < 72; i++) {
+        double x, y, th;
+        sim_robot_pose(sim, i, &x, &y, &th);
+        assert_true(x < -1.5 && y < -1.5);
+    }
+    assert_true(sim_segment_blocked(sim, -1.25, -1.75, 1.25, 0.75));
+    sim_step(sim);
+    assert_float_equal(metric(sim, "distance_m"), 2.5 * sqrt(2.0), 1e-6);
     sim_destroy(sim);
     free(sc);
 }
@@ -447,6 +477,7 @@ int main(void)
         cmocka_unit_test(test_checks),
         cmocka_unit_test(test_random_cylinders),
         cmocka_unit_test(test_square_scenario_stand_in),
+        cmocka_unit_test(test_maze_scenario_stand_in),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
