@@ -18,6 +18,16 @@
  *   poses      one pose per robot, in order.
  * The heading is the group's (degrees), or drawn uniformly when `random`;
  * a pose's own heading, when given, wins.
+ *
+ * Random cylinders (scenario random_cylinders, placement_cylinders) come
+ * before any robot: cylinder k draws its radius uniformly in [radius_min,
+ * radius_max], then its centre uniformly over the arena, until it clears by
+ * `gap` the walls, every obstacle before it (the scenario's objects, then
+ * cylinders 0..k-1) and the body of every robot of a `poses` group (their
+ * spots are known before the run); up to 20,000 draws per cylinder.  Their
+ * own stream (layout_seed, or the run seed when it is 0; RAND_OBSTACLES)
+ * keeps the robots' placement stream, and every scenario without random
+ * cylinders, as it was.
  */
 #include <math.h>
 #include <stdio.h>
@@ -180,6 +190,86 @@ static int place_group(struct sim *sim, const robot_group_t *grp, uint32_t gi, u
         }
         placed[first + k] = 1;
     }
+    return 0;
+}
+
+/* Gap between a cylinder of radius r at p and obstacle o. */
+static float cylinder_gap(const obstacle_t *o, vec2_t p, float r)
+{
+    return obstacle_gap(o, p) + EPUCK_BODY_RADIUS_M - r;
+}
+
+int placement_cylinders(struct sim *sim, char err[256])
+{
+    const scenario_t *sc = sim->sc;
+    uint32_t count = sc->random_cylinders.count, first = sc->object_count;
+    float gap = sc->random_cylinders.gap, rmin = sc->random_cylinders.radius_min;
+    float rmax = sc->random_cylinders.radius_max;
+    uint64_t seed = sc->random_cylinders.layout_seed ? sc->random_cylinders.layout_seed : sim->seed;
+    obstacle_t *before;
+    sim_rand_t rnd;
+    if (count == 0) {
+        return 0;
+    }
+    /* The obstacles before cylinder k, as the gap test needs them (the
+     * scenario's boxes with their corners). */
+    before = calloc(first + count, sizeof *before);
+    if (!before) {
+        snprintf(err, 256, "out of memory for %u random cylinders", count);
+        return -1;
+    }
+    for (uint32_t k = 0; k < first; k++) {
+        const object_def_t *d = &sim->objects[k];
+        obstacle_t *o = &before[k];
+        o->shape = d->shape;
+        o->c = v2(d->x, d->y);
+        o->r = d->radius;
+        if (d->shape == SHAPE_BOX) {
+            float a = d->angle * (float)UNITS_PI / 180.0f, c = cosf(a), s = sinf(a);
+            float hx = d->width / 2, hy = d->depth / 2;
+            const float ux[4] = { -hx, hx, hx, -hx }, uy[4] = { -hy, -hy, hy, hy };
+            for (int e = 0; e < 4; e++) {
+                o->corner[e] = v2_add(o->c, v2_rot(v2(ux[e], uy[e]), c, s));
+            }
+        }
+    }
+    sim_rand_seed(&rnd, seed, 0, RAND_OBSTACLES);
+    for (uint32_t k = 0; k < count; k++) {
+        int ok = 0;
+        float x = 0.0f, y = 0.0f, r = rmin;
+        for (int attempt = 0; attempt < PLACE_TRIES && !ok; attempt++) {
+            r = (float)(rmin + (rmax - rmin) * sim_rand_uniform(&rnd));
+            float mx = sim->hw - r - gap, my = sim->hh - r - gap;
+            if (mx < 0 || my < 0) {
+                break;
+            }
+            x = (float)((2 * sim_rand_uniform(&rnd) - 1) * mx);
+            y = (float)((2 * sim_rand_uniform(&rnd) - 1) * my);
+            ok = 1;
+            for (uint32_t j = 0; ok && j < first + k; j++) {
+                ok = cylinder_gap(&before[j], v2(x, y), r) >= gap;
+            }
+            for (uint32_t g = 0; ok && g < sc->group_count; g++) {
+                const robot_group_t *grp = &sc->groups[g];
+                for (uint32_t q = 0; ok && grp->placement.shape == PLACE_POSES && q < grp->count; q++) {
+                    float dx = grp->placement.poses[q].x - x, dy = grp->placement.poses[q].y - y;
+                    ok = sqrtf(dx * dx + dy * dy) - r - EPUCK_BODY_RADIUS_M >= gap;
+                }
+            }
+        }
+        if (!ok) {
+            snprintf(err, 256, "random_cylinders: cannot place cylinder %u of %u (radius %.3g m) %.3g m clear of "
+                     "the walls, the obstacles and the fixed robots; use fewer or smaller cylinders, or a "
+                     "smaller gap", k + 1, count, (double)r, (double)gap);
+            free(before);
+            return -1;
+        }
+        before[first + k] = (obstacle_t){ .shape = SHAPE_CYLINDER, .c = v2(x, y), .r = r };
+        sim->objects[first + k] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = x, .y = y, .radius = r,
+                                                  .height = sc->random_cylinders.height,
+                                                  .colour = 0 /* HAL_COLOUR_NONE */ };
+    }
+    free(before);
     return 0;
 }
 

@@ -283,6 +283,24 @@ static const param_desc_t robot_telemetry_params[] = {
     PARAM_END
 };
 
+static const param_desc_t random_cylinders_params[] = {
+    { .key = "count", PARAM_FIELD(SC, random_cylinders.count, uint32_t), .min = 0, .max = SCENARIO_MAX_OBJECTS,
+      .doc = "cylinders drawn at random when each run is built (0: none)" },
+    { .key = "radius_min", PARAM_FIELD(SC, random_cylinders.radius_min, float), .min = 0.001, .max = 100,
+      .doc = "m: smallest radius (uniform between radius_min and radius_max)" },
+    { .key = "radius_max", PARAM_FIELD(SC, random_cylinders.radius_max, float), .min = 0.001, .max = 100,
+      .doc = "m: largest radius" },
+    { .key = "height", PARAM_FIELD(SC, random_cylinders.height, float), .min = 0.001, .max = 100,
+      .doc = "m (camera, pictures)" },
+    { .key = "gap", PARAM_FIELD(SC, random_cylinders.gap, float), .min = 0, .max = 100,
+      .doc = "m: least gap between a cylinder and another obstacle, a wall or the body of a robot "
+             "of a poses group (robots placed at random avoid the cylinders as any obstacle)" },
+    { .key = "layout_seed", PARAM_FIELD(SC, random_cylinders.layout_seed, uint64_t), .min = 0,
+      .max = (double)SCENARIO_SEED_MAX,
+      .doc = "0: each run draws its own layout from its run seed; else this one layout for every run" },
+    PARAM_END
+};
+
 static const param_desc_t output_params[] = {
     { .key = "timeseries_every", PARAM_FIELD(SC, output.timeseries_every, uint32_t), .min = 1,
       .max = 1e9, .doc = "control steps between time-series CSV rows" },
@@ -325,6 +343,7 @@ MAPPING_SCHEMA(wheels);
 MAPPING_SCHEMA(tracker);
 MAPPING_SCHEMA(sound);
 MAPPING_SCHEMA(output);
+MAPPING_SCHEMA(random_cylinders);
 MAPPING_SCHEMA(robot_telemetry);
 
 static const seq_desc_t poses_seq = {
@@ -368,6 +387,8 @@ static const child_t top_children[] = {
     { "arena", CHILD_MAPPING, &arena_schema, NULL, "walled rectangle" },
     { "robots", CHILD_SEQUENCE, NULL, &groups_seq, "groups of robots (at most 16)" },
     { "objects", CHILD_SEQUENCE, NULL, &objects_seq, "static obstacles (at most 4096)" },
+    { "random_cylinders", CHILD_MAPPING, &random_cylinders_schema, NULL,
+      "cylinders at random positions, drawn for each run (seed 003's obstacle tests)" },
     { "lights", CHILD_SEQUENCE, NULL, &lights_seq, "point lights (at most 16)" },
     { "ir", CHILD_MAPPING, &ir_schema, NULL, "IR proximity sensors" },
     { "ambient", CHILD_MAPPING, &ambient_schema, NULL, "ambient light sensors" },
@@ -456,6 +477,12 @@ void scenario_defaults(scenario_t *out)
     out->sound.self_masking = 1;
     out->sound.cutoff = 0.0;
     out->output.timeseries_every = 10;
+    out->random_cylinders.count = 0;
+    out->random_cylinders.radius_min = 0.05f;
+    out->random_cylinders.radius_max = 0.05f;
+    out->random_cylinders.height = 0.1f;
+    out->random_cylinders.gap = 0.08f;
+    out->random_cylinders.layout_seed = 0;
     out->robot_telemetry.enabled = 0;
     snprintf(out->robot_telemetry.channel_prefix, sizeof out->robot_telemetry.channel_prefix, "FW_");
     out->robot_telemetry.baud = 115200;
@@ -799,6 +826,19 @@ static int check_inside(const loader_t *ld, const ynode_t *root, const scenario_
             schema_index_path(path, "objects", i);
             return outside(ld, seq->items[i], path,
                            o->shape == SHAPE_BOX ? "the box reaches" : "the cylinder reaches", sc);
+        }
+    }
+    if (sc->random_cylinders.count > 0) {
+        const ynode_t *rc = ytree_get(root, "random_cylinders");
+        if (sc->random_cylinders.radius_min > sc->random_cylinders.radius_max) {
+            return schema_fail(ld, rc != NULL ? rc : root, "random_cylinders.radius_min",
+                               "%g m is larger than radius_max (%g m)", sc->random_cylinders.radius_min,
+                               sc->random_cylinders.radius_max);
+        }
+        if (sc->random_cylinders.count > SCENARIO_MAX_OBJECTS - sc->object_count) {
+            return schema_fail(ld, rc != NULL ? rc : root, "random_cylinders.count",
+                               "%u cylinders and %u objects pass the %u obstacles a world holds",
+                               sc->random_cylinders.count, sc->object_count, SCENARIO_MAX_OBJECTS);
         }
     }
     for (uint32_t i = 0; i < sc->light_count; i++) {

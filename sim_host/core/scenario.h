@@ -183,6 +183,21 @@ typedef struct scenario {
     uint32_t object_count;
     object_def_t objects[SCENARIO_MAX_OBJECTS];
 
+    /** Cylinders drawn at random when a run is built (placement.c), after
+     *  `objects` and before the robots: each clears every obstacle, the
+     *  walls and every robot of a `poses` group by `gap`; robots placed at
+     *  random then avoid them as any obstacle.  Seed 003's obstacle tests
+     *  ("a random configuration of obstacle cylinders"). */
+    struct {
+        uint32_t count;            /**< cylinders (0: none) */
+        float radius_min;          /**< m */
+        float radius_max;          /**< m; the radius is uniform in [min, max] */
+        float height;              /**< m (camera, pictures) */
+        float gap;                 /**< least gap to an obstacle, a wall or a fixed robot's body, m */
+        uint64_t layout_seed;      /**< 0: each run draws its own layout from its run seed;
+                                        else one layout for every run */
+    } random_cylinders;
+
     uint32_t light_count;
     light_def_t lights[SCENARIO_MAX_LIGHTS];
 

@@ -14,9 +14,8 @@
 
 static void build_obstacles(struct sim *sim)
 {
-    const scenario_t *sc = sim->sc;
     for (uint32_t k = 0; k < sim->n_obstacles; k++) {
-        const object_def_t *d = &sc->objects[k];
+        const object_def_t *d = &sim->objects[k];
         obstacle_t *o = &sim->obstacles[k];
         o->shape = d->shape;
         o->c = v2(d->x, d->y);
@@ -238,7 +237,7 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     sim->hw = sc->arena.width / 2;
     sim->hh = sc->arena.height / 2;
     sim->n = scenario_robot_count(sc);
-    sim->n_obstacles = sc->object_count;
+    sim->n_obstacles = sc->object_count + sc->random_cylinders.count;
     sim->metrics.min_wall_clearance_m = INFINITY;
     size_t n = sim->n ? sim->n : 1, no = sim->n_obstacles ? sim->n_obstacles : 1;
     size_t ng = sc->group_count ? sc->group_count : 1;
@@ -248,12 +247,13 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     sim->px = calloc(n, sizeof *sim->px);
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
+    sim->objects = calloc(no, sizeof *sim->objects);
     sim->obstacle_mark = calloc(no, sizeof *sim->obstacle_mark);
     /* Cells a little larger than the IR reach: an IR query touches at
      * most 3 x 3 cells. */
     float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
     if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
-        || !sim->py || !sim->obstacles || !sim->obstacle_mark
+        || !sim->py || !sim->obstacles || !sim->objects || !sim->obstacle_mark
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
         snprintf(err, 256, "out of memory for %u robots", sim->n);
@@ -264,6 +264,11 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
         sim->step_order[i] = i;
     }
     sensors_init(sim);
+    memcpy(sim->objects, sc->objects, sc->object_count * sizeof *sim->objects);
+    if (placement_cylinders(sim, err) != 0) {
+        sim_destroy(sim);
+        return NULL;
+    }
     build_obstacles(sim);
     float (*boxes)[4] = calloc(no, sizeof *boxes);
     int bad = !boxes;
@@ -321,6 +326,7 @@ void sim_destroy(sim_t *sim)
     free(sim->px);
     free(sim->py);
     free(sim->obstacles);
+    free(sim->objects);
     free(sim->obstacle_mark);
     free(sim->events);
     free(sim->robot_tx);
@@ -501,6 +507,30 @@ void sim_arena_half(const sim_t *sim, float *hw, float *hh)
 {
     *hw = sim->hw;
     *hh = sim->hh;
+}
+
+const object_def_t *sim_object(const sim_t *sim, uint32_t k)
+{
+    return k < sim->n_obstacles ? &sim->objects[k] : NULL;
+}
+
+int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
+{
+    vec2_t p = v2((float)x0, (float)y0), q = v2((float)x1, (float)y1);
+    uint32_t near[256];
+    uint32_t n = sim_gather_obstacles(sim, fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x), fmaxf(p.y, q.y),
+                                      near, 256);
+    for (uint32_t k = 0; k < n; k++) {
+        const obstacle_t *o = &sim->obstacles[near[k]];
+        if (o->shape == SHAPE_CYLINDER) {
+            if (geom_segment_hits_circle(p, q, o->c, o->r)) return 1;
+        } else {
+            for (int e = 0; e < 4; e++) {
+                if (geom_segments_intersect(p, q, o->corner[e], o->corner[(e + 1) & 3])) return 1;
+            }
+        }
+    }
+    return 0;
 }
 
 void sim_obstacle_bounds(const sim_t *sim, uint32_t k, float out[4])

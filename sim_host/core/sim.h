@@ -83,6 +83,12 @@ int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg);
 /** Half the arena's width and height, m. */
 void sim_arena_half(const sim_t *sim, float *hw, float *hh);
 uint32_t sim_obstacle_count(const sim_t *sim);
+/** Obstacle `k` (the scenario's objects, then the run's random cylinders),
+ *  or NULL past the last. */
+const object_def_t *sim_object(const sim_t *sim, uint32_t k);
+/** Non-zero when an obstacle cuts the segment from (x0, y0) to (x1, y1), m:
+ *  the line-of-sight test of IR messages (ircom.c), robots aside. */
+int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1);
 /** Bounding box of obstacle `k`: min x, min y, max x, max y, m. */
 void sim_obstacle_bounds(const sim_t *sim, uint32_t k, float out[4]);
 

@@ -144,7 +144,8 @@ struct sim {
     grid_t robot_grid;
     uint32_t *step_order;          /**< robots in the order they step (phase 2) */
 
-    uint32_t n_obstacles;
+    uint32_t n_obstacles;          /**< the scenario's objects, then its random cylinders */
+    object_def_t *objects;         /**< n_obstacles: what each obstacle is (placement_cylinders) */
     obstacle_t *obstacles;
     grid_t obstacle_grid;
     uint32_t *obstacle_mark;       /**< de-duplicates grid hits per query */
@@ -201,6 +202,9 @@ void world_read_poses(struct sim *sim);
 
 /* placement.c: start poses of every group */
 int placement_run(struct sim *sim, char err[256]);
+/** Draws the scenario's random cylinders into sim->objects after its
+ *  objects (placement.c).  Returns 0, or -1 with a message. */
+int placement_cylinders(struct sim *sim, char err[256]);
 
 /* sensors.c */
 /** Precomputes what the sensor models share (sensor directions). */

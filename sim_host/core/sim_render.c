@@ -71,7 +71,7 @@ static int scene_build(const sim_t *simp, sim_scene_t *ss)
         n_items += item_count[t];
     }
     ss->robots = calloc(n ? n : 1, sizeof *ss->robots);
-    ss->objects = calloc(sc->object_count + n_items + 1, sizeof *ss->objects);
+    ss->objects = calloc(sim->n_obstacles + n_items + 1, sizeof *ss->objects);
     ss->drawing = (drawing_t){ calloc(SHAPES_MAX, sizeof(draw_shape_t)), 0, SHAPES_MAX,
                                calloc(n ? n : 1, sizeof(uint32_t)), n };
     if (!ss->robots || !ss->objects || !ss->drawing.shapes || !ss->drawing.robot_rgb) {
@@ -95,12 +95,12 @@ static int scene_build(const sim_t *simp, sim_scene_t *ss)
         rb->front_led = (uint8_t)((r->leds >> HAL_LED_WORD_FRONT_BIT) & 1u);
         rb->fill_rgb = ss->drawing.robot_rgb[i];
     }
-    for (uint32_t k = 0; k < sc->object_count; k++) {
-        const object_def_t *d = &sc->objects[k];
+    for (uint32_t k = 0; k < sim->n_obstacles; k++) {
+        const object_def_t *d = &sim->objects[k];   /* the scenario's and the random cylinders */
         render_object_t o = { d->shape, d->x, d->y, d->radius, d->width, d->depth, d->angle, d->colour };
         ss->objects[k] = o;
     }
-    uint32_t n_objects = sc->object_count;
+    uint32_t n_objects = sim->n_obstacles;
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         for (uint32_t k = 0; k < item_count[t]; k++) {
             const sim_item_t *it = &items[t][k];

@@ -52,7 +52,7 @@ telemetry_scene_t *telemetry_scene_create(const sim_t *simp)
     if (!s) {
         return NULL;
     }
-    s->obstacles = calloc(sim->sc->object_count ? sim->sc->object_count : 1, sizeof *s->obstacles);
+    s->obstacles = calloc(sim->n_obstacles ? sim->n_obstacles : 1, sizeof *s->obstacles);
     s->drawing.shapes = calloc(TELEMETRY_SCENE_SHAPES_MAX, sizeof *s->drawing.shapes);
     s->drawing.cap = TELEMETRY_SCENE_SHAPES_MAX;
     s->drawing.robot_rgb = calloc(n, sizeof *s->drawing.robot_rgb);
@@ -108,8 +108,8 @@ void telemetry_scene_fill(telemetry_scene_t *s, const sim_t *simp, swarmlcm_scen
 {
     const struct sim *sim = simp;
     const scenario_t *sc = sim->sc;
-    for (uint32_t k = 0; k < sc->object_count; k++) {
-        const object_def_t *o = &sc->objects[k];
+    for (uint32_t k = 0; k < sim->n_obstacles; k++) {
+        const object_def_t *o = &sim->objects[k];   /* the scenario's and the random cylinders */
         swarmlcm_scene_obstacle_t *out = &s->obstacles[k];
         out->shape = (int8_t)o->shape;
         out->x = o->x;
@@ -133,7 +133,7 @@ void telemetry_scene_fill(telemetry_scene_t *s, const sim_t *simp, swarmlcm_scen
     m->arena_height = sc->arena.height;
     m->wall_thickness = sc->arena.wall_thickness;
     m->robot_radius = EPUCK_BODY_RADIUS_M;
-    m->n_obstacles = (int32_t)sc->object_count;
+    m->n_obstacles = (int32_t)sim->n_obstacles;
     m->obstacles = s->obstacles;
     m->n_lights = (int16_t)sc->light_count;
     m->lights = s->lights;

@@ -43,7 +43,7 @@ static void create_static(struct sim *sim)
 
     for (uint32_t k = 0; k < sim->n_obstacles; k++) {
         const obstacle_t *o = &sim->obstacles[k];
-        const object_def_t *d = &sc->objects[k];
+        const object_def_t *d = &sim->objects[k];
         if (o->shape == SHAPE_CYLINDER) {
             b2ShapeDef sd = b2DefaultShapeDef();
             b2Circle c = { { o->c.x, o->c.y }, o->r };
