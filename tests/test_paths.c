@@ -12,8 +12,8 @@
  * section's checks, and the random cylinders (clear of each other, the
  * walls and the fixed robots by their gap; a new layout per run seed, one
  * layout for a layout_seed; random robots placed clear of them).  Also the
- * square arena and the half-scale maze with stand-in controllers
- * (random_walk, idle) while the EAIPP controllers are not yet built.  (0.02 s; 0.2 s under
+ * square arena and the half-scale maze as shipped, with their EAIPP
+ * robots.  (0.02 s; 0.2 s under
  * ASan/UBSan.)
  */
 #include <math.h>
@@ -396,45 +396,24 @@ static void test_random_cylinders(void **state)
 
 /* ------------------------------------------------------------- scenarios */
 
-/* A shipped scenario with stand-ins for the EAIPP controllers (random_walk
- * for the swarm, idle for the sources), loaded with `set`. */
-static scenario_t *stand_in(const char *file, const scenario_override_t *set, size_t n_set)
+/* A shipped scenario as it is (the EAIPP controller and its sources),
+ * loaded with `set`. */
+static scenario_t *shipped(const char *file, const scenario_override_t *set, size_t n_set)
 {
-    char in_path[256];
-    snprintf(in_path, sizeof in_path, "../sim_host/scenarios/%s", file);
-    FILE *in = fopen(in_path, "r");
-    assert_non_null(in);
-    char path[] = "/tmp/test_paths_XXXXXX";
-    int fd = mkstemp(path);
-    assert_true(fd >= 0);
-    FILE *out = fdopen(fd, "w");
-    char line[512];
-    while (fgets(line, sizeof line, in)) {
-        char *c = strstr(line, "controller: eaipp");
-        if (c && c[17] == '_') {
-            fprintf(out, "%.*scontroller: idle\n", (int)(c - line), line);
-        } else if (c) {
-            fprintf(out, "%.*scontroller: random_walk\n", (int)(c - line), line);
-        } else {
-            fputs(line, out);
-        }
-    }
-    fclose(in);
-    fclose(out);
+    char path[256];
+    snprintf(path, sizeof path, "../sim_host/scenarios/%s", file);
     scenario_t *sc = calloc(1, sizeof *sc);
     char err[SCENARIO_ERROR_MAX];
-    int rc = scenario_load(path, set, n_set, sc, err);
-    remove(path);
-    if (rc != 0) fail_msg("%s: %s", file, err);
+    if (scenario_load(path, set, n_set, sc, err) != 0) fail_msg("%s: %s", file, err);
     return sc;
 }
 
 /* The square arena loads, places 30 cylinders, and runs 100 steps. */
-static void test_square_scenario_stand_in(void **state)
+static void test_square_scenario(void **state)
 {
     (void)state;
     scenario_override_t set[] = { { "random_cylinders.count=30" } };
-    scenario_t *sc = stand_in("eaipp_square.yaml", set, 1);
+    scenario_t *sc = shipped("eaipp_square.yaml", set, 1);
     sim_t *sim = make(sc, 3);
     assert_int_equal(sim_robot_count(sim), 17);
     assert_int_equal(sim_obstacle_count(sim), 30);
@@ -447,10 +426,10 @@ static void test_square_scenario_stand_in(void **state)
 
 /* The half-scale maze: 70 robots fit the waiting area, D = 2.5 sqrt 2 m,
  * and walls hide the food from the nest. */
-static void test_maze_scenario_stand_in(void **state)
+static void test_maze_scenario(void **state)
 {
     (void)state;
-    scenario_t *sc = stand_in("eaipp_maze.yaml", NULL, 0);
+    scenario_t *sc = shipped("eaipp_maze.yaml", NULL, 0);
     sim_t *sim = make(sc, 1);
     assert_int_equal(sim_robot_count(sim), 72);
     assert_int_equal(sim_obstacle_count(sim), 7);
@@ -476,8 +455,8 @@ int main(void)
         cmocka_unit_test(test_failure_at_budget),
         cmocka_unit_test(test_checks),
         cmocka_unit_test(test_random_cylinders),
-        cmocka_unit_test(test_square_scenario_stand_in),
-        cmocka_unit_test(test_maze_scenario_stand_in),
+        cmocka_unit_test(test_square_scenario),
+        cmocka_unit_test(test_maze_scenario),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
