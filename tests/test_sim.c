@@ -344,6 +344,87 @@ static void test_same_seed_same_state(void **state)
     assert_true(run_hash(42, 600) != run_hash(43, 600));
 }
 
+/* ----------------------------------------------------- wheel bias (eq 3) */
+
+/* wheels.bias_sd: each robot's two biases are drawn once a run, Gaussian with
+ * the key's sd (m/s), from their own stream; off by default. */
+static void test_wheel_bias_draws(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(400, 20.0f);
+    sim_t *sim = make(sc, 5);
+    for (uint32_t i = 0; i < sim->n; i++) {
+        assert_true(sim->robots[i].bias_left == 0.0 && sim->robots[i].bias_right == 0.0);
+    }
+    sim_destroy(sim);
+    sc->wheels.bias_sd = 0.02f;                       /* 2 cm/s = 155 steps/s */
+    sim = make(sc, 5);
+    sim_t *same = make(sc, 5), *other = make(sc, 6);
+    double sum = 0, sq = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        const sim_robot_t *r = &sim->robots[i];
+        assert_true(r->bias_left != r->bias_right);
+        assert_true(r->bias_left == same->robots[i].bias_left);
+        assert_true(r->bias_left != other->robots[i].bias_left);
+        sum += r->bias_left + r->bias_right;
+        sq += r->bias_left * r->bias_left + r->bias_right * r->bias_right;
+    }
+    const double n = 2.0 * sim->n, sd = sqrt(sq / n), expect = 0.02 / EPUCK_STEP_M;
+    /* 800 draws: the sd within 10 % (about 4 standard errors), the mean
+     * within 4 standard errors of 0. */
+    if (fabs(sd - expect) > 0.10 * expect || fabs(sum / n) > 4.0 * expect / sqrt(n)) {
+        fail_msg("bias sd %.1f steps/s (expected %.1f), mean %.1f", sd, expect, sum / n);
+    }
+    sim_destroy(sim);
+    sim_destroy(same);
+    sim_destroy(other);
+    free(sc);
+}
+
+/* a = f (w + b): a robot driving drifts by its biases (speed and turn rate);
+ * a robot commanded to stand still does not creep (ARGoS adds the noise only
+ * while a wheel is commanded); the sum saturates at the e-puck's 1000 steps/s. */
+static void test_wheel_bias_moves_and_saturates(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(2, 8.0f);
+    sc->wheels.bias_sd = 0.02f;
+    sim_t *sim = make(sc, 9);
+    sim_set_robot_pose(sim, 0, -2.0, 0.0, 0.0);
+    sim_set_robot_pose(sim, 1, 2.0, 2.0, 0.0);
+    const double bl = sim->robots[0].bias_left, br = sim->robots[0].bias_right;
+    hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
+    double turned = 0, prev = 0, x, y, t;
+    for (int k = 0; k < 10; k++) {                      /* 1 s */
+        sim_step(sim);
+        sim_robot_pose(sim, 0, &x, &y, &t);
+        double d = t - prev;
+        turned += d > PI ? d - 2 * PI : (d < -PI ? d + 2 * PI : d);
+        prev = t;
+    }
+    const double w_expect = (br - bl) * EPUCK_STEP_M / EPUCK_AXLE_M;
+    if (fabs(turned - w_expect) > 0.03 * fabs(w_expect) + 1e-3) {
+        fail_msg("turned %.4f rad in 1 s, the biases say %.4f", turned, w_expect);
+    }
+    /* The arc's chord: 1 s at v = (388 + (bl + br) / 2) steps/s. */
+    const double v = (388.0 + 0.5 * (bl + br)) * EPUCK_STEP_M;
+    const double chord = fabs(turned) > 1e-6 ? 2.0 * v / w_expect * sin(0.5 * w_expect) : v;
+    assert_true(fabs(hypot(x + 2.0, y) - fabs(chord)) < 0.03 * fabs(chord));
+    sim_robot_pose(sim, 1, &x, &y, &t);                 /* commanded (0, 0) */
+    assert_true(x == 2.0f && y == 2.0f);
+    /* Saturation: a 0.5 m/s bias on both wheels drives at 1000 steps/s. */
+    sim->robots[1].bias_left = sim->robots[1].bias_right = 0.5 / EPUCK_STEP_M;
+    hal_set_wheel_speeds(sim_robot_hal(sim, 1), 100, 100);
+    for (int k = 0; k < 10; k++) sim_step(sim);
+    sim_robot_pose(sim, 1, &x, &y, &t);
+    const double top = 1000.0 * EPUCK_STEP_M;           /* 12.9 cm/s */
+    if (fabs((x - 2.0) - top) > 0.02 * top || fabs(y - 2.0) > 1e-3) {
+        fail_msg("saturated robot moved %.4f m in 1 s, the motors' top speed is %.4f m/s", x - 2.0, top);
+    }
+    sim_destroy(sim);
+    free(sc);
+}
+
 /* --------------------------------------------------------------- ircom */
 
 static void test_ircom_range_bearing_and_blocking(void **state)
@@ -660,6 +741,8 @@ int main(void)
         cmocka_unit_test(test_step_order_does_not_matter),
         cmocka_unit_test(test_tracker_pose),
         cmocka_unit_test(test_hal_status),
+        cmocka_unit_test(test_wheel_bias_draws),
+        cmocka_unit_test(test_wheel_bias_moves_and_saturates),
     };
     return cmocka_run_group_tests_name("sim", tests, NULL, NULL);
 }

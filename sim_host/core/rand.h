@@ -20,7 +20,8 @@ enum {
     RAND_TRACKER = 7,   /**< the overhead tracker's noise and dropout */
     RAND_FAULTS = 8,    /**< which robots fail, when, and their faults' noise */
     RAND_SOUND = 9,     /**< eq 4's per-pair noise of the sound a robot hears */
-    RAND_OBSTACLES = 10 /**< the random cylinders' layout (scenario random_cylinders) */
+    RAND_OBSTACLES = 10, /**< the random cylinders' layout (scenario random_cylinders) */
+    RAND_WHEEL_BIAS = 11 /**< each robot's wheel biases (wheels.bias_sd), drawn once a run */
 };
 
 /** Seeds a stream from the run seed, an index (robot id) and a purpose. */

@@ -233,6 +233,9 @@ static const param_desc_t ircom_params[] = {
 static const param_desc_t wheels_params[] = {
     { .key = "speed_noise_rel", PARAM_FIELD(SC, wheels.speed_noise_rel, float), .min = 0, .max = 1,
       .doc = "per-wheel relative speed noise (sd)" },
+    { .key = "bias_sd", PARAM_FIELD(SC, wheels.bias_sd, float), .min = 0, .max = 1,
+      .doc = "sd of a per-robot, per-wheel speed bias drawn once a run, m/s (seed 003's eq 3; "
+             "the e-puck saturates at 0.129 m/s)" },
     PARAM_END
 };
 
@@ -467,6 +470,7 @@ void scenario_defaults(scenario_t *out)
     out->ircom.slots = 0;
     out->ircom.queue = 20;
     out->wheels.speed_noise_rel = 0.0f;
+    out->wheels.bias_sd = 0.0f;
     out->tracker.enabled = 0;
     out->sound.enabled = 0;
     out->sound.a0 = 299.18;

@@ -240,8 +240,13 @@ typedef struct scenario {
         uint8_t queue;             /**< messages a receiver's inbox holds */
     } ircom;
 
+    /* Actuation noise, ARGoS's differential-steering model (seed 003's eq 3):
+     * a = f (w + b) per wheel, w the commanded speed, f ~ N(1, speed_noise_rel)
+     * drawn every step, b ~ N(0, bias_sd) drawn once per robot and wheel per
+     * run.  See world_drive. */
     struct {
-        float speed_noise_rel;     /**< per-wheel relative speed noise (sd) */
+        float speed_noise_rel;     /**< per-wheel relative speed noise (sd): f's sd */
+        float bias_sd;             /**< sd of each wheel's bias b, m/s; 0 = none */
     } wheels;
 
     struct {

@@ -88,6 +88,16 @@ static int build_robots(struct sim *sim, char err[256])
             sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
             sim_rand_seed(&r->tracker_rand, sim->seed, i, RAND_TRACKER);
             sim_rand_seed(&r->sound_rand, sim->seed, i, RAND_SOUND);
+            r->bias_left = r->bias_right = 0.0;
+            if (sc->wheels.bias_sd > 0.0f) {
+                /* Eq 3's bias b, drawn once a run as ARGoS does (its own
+                 * stream: other streams and golden hashes are unchanged). */
+                sim_rand_t b;
+                sim_rand_seed(&b, sim->seed, i, RAND_WHEEL_BIAS);
+                const double sd_steps = sc->wheels.bias_sd / EPUCK_STEP_M;
+                r->bias_left = sd_steps * sim_rand_normal(&b);
+                r->bias_right = sd_steps * sim_rand_normal(&b);
+            }
             if (r->ctrl) {
                 def->init(r->ctrl, params.bytes, sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
             }

@@ -108,6 +108,7 @@ void world_destroy(struct sim *sim)
 void world_drive(struct sim *sim)
 {
     const double noise = sim->sc->wheels.speed_noise_rel;
+    const int bias = sim->sc->wheels.bias_sd > 0.0f;
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_robot_t *r = &sim->robots[i];
         double l = r->cmd_left, rr = r->cmd_right;
@@ -120,7 +121,28 @@ void world_drive(struct sim *sim)
         if (!r->moves) {
             continue;
         }
-        if (noise > 0.0) {
+        if (bias && (l != 0.0 || rr != 0.0)) {
+            /* Seed 003's eq 3, read as ARGoS's differential-steering noise
+             * (the paper's simulator; its symbols were lost in our copy, but
+             * its words "a the actual actuation, f a random factor, w the
+             * ideal actuation, b a random bias, both Gaussian" are ARGoS's):
+             * a = f (w + b), b drawn once per robot and wheel per run
+             * (build_robots), f every step, and only while the robot is
+             * commanded to move: a stopped Robot_Node does not creep.  The
+             * motors cannot exceed HAL_WHEEL_SPEED_MAX (1000 steps/s =
+             * 12.9 cm/s): a bias above that saturates the wheels where the
+             * paper's robots (its Figure 17 goes to a 20 cm/s sd) did not. */
+            l += r->bias_left;
+            rr += r->bias_right;
+            if (noise > 0.0) {
+                l *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
+                rr *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
+            }
+            l = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, l));
+            rr = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, rr));
+        } else if (noise > 0.0) {
+            /* Without a bias: the factor f alone, at every step (as before
+             * the bias existed: golden hashes unchanged). */
             l *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
             rr *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
         }
