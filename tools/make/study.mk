@@ -19,3 +19,12 @@ study-faults: deps $(BUILD)/swarmsim
 .PHONY: study-repatt
 study-repatt: deps $(BUILD)/swarmsim
 	$(PYTHON) -m swarmtools.study.repatt --sim $(BUILD)/swarmsim $(STUDY_ARGS)
+
+# Seed 003's study (swarmtools.study.eaipp): Figures 10-17 of the paper
+# (studies/eaipp_*.yaml: maze, distance, obstacles, bearing, loss, bias),
+# through the sweep engine, into out/study_eaipp/.  STUDY_ARGS=--quick: 5
+# seeds a cell; --figures maze,loss for some; --picture: the frame strip
+# docs/figures/eaipp_square_frames.png (no sweep).
+.PHONY: study-eaipp
+study-eaipp: deps $(BUILD)/swarmsim
+	$(PYTHON) -m swarmtools.study.eaipp --sim $(BUILD)/swarmsim $(STUDY_ARGS)

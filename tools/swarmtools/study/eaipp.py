@@ -1,0 +1,555 @@
+"""Seed 003's simulation study (EAIPP path formation, section 5 of the paper):
+Figures 10-17 run through the sweep engine, beside the paper's numbers.
+
+    .venv/bin/python -m swarmtools.study.eaipp [--figures maze,distance,...]
+        [--quick] [--reps N] [--steps N] [--out DIR] [--sim PATH]
+        [--backend slurm ...]                        (make study-eaipp STUDY_ARGS=...)
+
+    .venv/bin/python -m swarmtools.study.eaipp --picture [--picture-seed auto|S]
+        [--picture-px 420] [--picture-out docs/figures/eaipp_square_frames.png]
+                                                     (make study-eaipp STUDY_ARGS=--picture)
+
+The sweeps (studies/eaipp_*.yaml; `--figures` picks among them, default all):
+
+- maze (Figure 10): the half-scale maze, N = 40 .. 70.  Paper: success 54,
+  57, 64, 68, 77, 81, 88 %.
+- distance (Figures 11-12): the square arena, D = 1.0 .. 3.0 m, per
+  controller.  The text gives no numbers.
+- obstacles (Figures 13-14): 0 .. 30 random cylinders at D = 3 m, per
+  controller.  Paper: EAIPP above 90 % in every case (no other number).
+- bearing (Figure 15): the bearing-noise vector's sd.  No numbers in the text.
+- loss (Figure 16): packet loss.  Paper: 92, 86, 83, 89, 91 %, and 0 % at
+  100 % loss.
+- bias (Figure 17): the wheels' bias sd.  Paper: 92, 87, 78, 63, 45 %.
+
+Per figure, per controller and condition, results.md has the success rate
+(a run succeeds when the nest's and the food's networks merge within the
+budget; sim_host/tasks/paths) with its 95 % Wilson score interval (scipy's
+binomtest), the paper's rate beside it where the text gives one (and whether
+it falls inside our interval), the completion time over the successes
+(median and quartiles of merge_time_s), the paper's convention (Figure 11:
+every failure counted at the 1000 s budget, merge_time_capped_s: median and
+quartiles over every run), how many runs perceived the food and the median
+chain length.  A PNG per figure: box plots of the capped completion time by
+condition and controller (the paper's figures; 1 s = 10 steps), and the
+success rates with their intervals and the paper's.  results.json holds
+every run, every cell and the wall times.
+
+Controllers: a sweep's `scenario` axis lists them, one scenario file each
+(eaipp_square.yaml, pfias_square.yaml, ...); a controller is named by its
+file name's prefix before the first `_`, upper-cased (tsasr_square.yaml ->
+TSASR), so a scenario added to the sweep files is picked up as it is.
+CONTROLLERS below orders and colours the known ones as the paper's figures
+do (EAIPP red, TSASR green, PFIAS blue, NNEA purple).  NNEA (the evolved
+controller, a later issue): give it a scenario nnea_square.yaml and add it
+to the `scenario:` lists of studies/eaipp_distance.yaml and
+eaipp_obstacles.yaml; nothing here changes.
+
+Each sweep lives in OUT/<figure>/ with its frozen simulator copy and is
+resumable: rerun the same command.  `--quick` takes 5 seeds a cell, `--reps
+N` N seeds, `--steps N` cuts every run at N steps (a smoke test: a failure
+is then still recorded at the 1000 s budget, and results.md says the runs
+were cut).  `--studies DIR` reads the sweep files from DIR (tests).
+
+The picture: `--picture` runs no sweep.  It runs the square arena's base
+condition (eaipp_square.yaml: N = 15, D = 3 m) for seeds 1..20 (summaries
+only), takes the first seed whose run merges (seed 1 if none does:
+the caption says so), reruns it with frames and tiles 4 of them, from the
+start to the run's end, into docs/figures/eaipp_square_frames.png (the
+working folders in OUT/picture/).  `--picture-seed S` takes seed S,
+`--picture-scenario` another scenario (e.g. sim_host/scenarios/eaipp_maze.yaml).
+
+Exit status: 0 done; 1 a run failed; 2 bad arguments; 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from swarmtools.sweep import cli as sweep_cli
+from swarmtools.sweep import plan as sweep_plan
+from swarmtools.sweep import spec as sweep_spec
+from swarmtools.sweep.spec import SCENARIO_KEY, SweepError
+from swarmtools.sweep.store import atomic_write
+
+REPO_ROOT = Path(__file__).resolve().parents[3]
+STUDIES = REPO_ROOT / "studies"
+SCENARIOS = REPO_ROOT / "sim_host" / "scenarios"
+BUDGET_S = 1000.0       # the paper's 10,000 steps (paths.budget in every eaipp scenario)
+STEPS_PER_S = 10        # control_period_ms: 100 in every eaipp scenario
+QUICK_SEEDS = 5
+METRICS = ("success", "merge_time_s", "merge_time_capped_s", "food_perceived", "food_time_s",
+           "chain_nodes", "nodes_end", "distance_m")
+
+# The controllers the paper compares, in its figures' order and colours
+# (Figure 11: "the red box [EAIPP] is generally at the lowest position ...
+# green [TSASR] ... blue [PFIAS]"; NNEA's boxes are purple).  A controller
+# is the upper-cased prefix of its scenario file's name.  NNEA is a later
+# issue: its scenario (nnea_square.yaml) goes into the sweep files'
+# `scenario:` lists; it is labelled and coloured here already.  Any other
+# prefix is drawn after these in matplotlib's colours.
+CONTROLLERS = {"EAIPP": "tab:red", "TSASR": "tab:green", "PFIAS": "tab:blue", "NNEA": "tab:purple"}
+
+# The override keys the sweep files vary (one place: the files and this script agree).
+COUNT = "robots.2.count"
+NEST_X = "robots.0.placement.poses.0.x"
+FOOD_X = "robots.1.placement.poses.0.x"
+CYLINDERS = "random_cylinders.count"
+BEARING = "ircom.bearing_noise_vec"
+LOSS = "ircom.loss"
+BIAS = "wheels.bias_sd"
+
+
+def distance(row: dict[str, str]) -> float:
+    """D (m) from the nest's and the food's x (the sweep's zip axis)."""
+    return round(float(row[FOOD_X]) - float(row[NEST_X]), 3)
+
+
+@dataclass
+class Figure:
+    name: str                      # --figures name, OUT/<name>/
+    file: str                      # studies/<file>
+    figs: str                      # the paper's figure numbers
+    title: str
+    axis: str                      # the condition's name (table column, x label)
+    keys: tuple[str, ...]          # the varied keys that make the condition
+    value: Callable[[dict[str, str]], float]
+    show: Callable[[float], str]
+    paper: dict[float, float] = field(default_factory=dict)   # EAIPP's success rate by condition
+    paper_min: float | None = None  # "above this in every case" (EAIPP)
+    note: str = ""                 # what the paper's text says
+
+
+FIGURES: dict[str, Figure] = {f.name: f for f in (
+    Figure("maze", "eaipp_maze.yaml", "10", "the maze at half scale, against the swarm size", "N",
+           (COUNT,), lambda r: float(r[COUNT]), lambda v: f"{v:.0f}",
+           paper={40: 0.54, 45: 0.57, 50: 0.64, 55: 0.68, 60: 0.77, 65: 0.81, 70: 0.88},
+           note="Paper (section 5.1): success 54, 57, 64, 68, 77, 81, 88 % for N = 40 .. 70; its completion "
+                "times only in the figure. Our maze is a reconstruction and its budget (1000 s) our choice."),
+    Figure("distance", "eaipp_distance.yaml", "11-12", "the square arena, against the nest-food distance",
+           "D (m)", (NEST_X, FOOD_X), distance, lambda v: f"{v:.1f}",
+           note="Paper (section 5.2.1): no numbers in the text (Figures 11-12 only): EAIPP the most "
+                "efficient, slower than TSASR for D in [1.0, 1.8] m, the highest success rate, most of "
+                "all at long distances; PFIAS's success too low at D = 2.4 .. 3.0 m for boxes."),
+    Figure("obstacles", "eaipp_obstacles.yaml", "13-14", "the square arena, D = 3 m, against random cylinders",
+           "obstacles", (CYLINDERS,), lambda r: float(r[CYLINDERS]), lambda v: f"{v:.0f}",
+           paper_min=0.90,
+           note="Paper (section 5.2.2): EAIPP's success rate above 90 % in every case; PFIAS's and "
+                "TSASR's drop dramatically (no numbers). Levels 0, 5, .., 30 are our reading."),
+    Figure("bearing", "eaipp_bearing.yaml", "15", "direction noise (bearing-noise vector)",
+           "noise vector sd (m)", (BEARING,), lambda r: float(r[BEARING]), lambda v: f"{v:.2f}",
+           note="Paper (section 5.3): \"stable performance\"; no numbers in the text. Levels are our reading."),
+    Figure("loss", "eaipp_loss.yaml", "16", "packet loss", "loss", (LOSS,), lambda r: float(r[LOSS]),
+           lambda v: f"{100 * v:.0f} %",
+           paper={0.0: 0.92, 0.2: 0.86, 0.4: 0.83, 0.6: 0.89, 0.8: 0.91, 1.0: 0.0},
+           note="Paper (section 5.3): 92, 86, 83, 89, 91 % \"from left to right\" over five levels the "
+                "text does not give (0 .. 80 % is our reading), and 0 % at 100 % loss."),
+    Figure("bias", "eaipp_bias.yaml", "17", "wheel bias noise", "bias sd (cm/s)", (BIAS,),
+           lambda r: float(r[BIAS]), lambda v: f"{100 * v:.0f}",
+           paper={0.0: 0.92, 0.05: 0.87, 0.10: 0.78, 0.15: 0.63, 0.20: 0.45},
+           note="Paper (section 5.3): 92, 87, 78, 63, 45 % for 0 .. 20 cm/s. The e-puck's wheels top out at "
+                "12.9 cm/s: our high levels saturate them (an upper bound, docs/notes/i15_paths.md)."),
+)}
+
+
+# ------------------------------------------------------------------ statistics
+def wilson(k: int, n: int) -> tuple[float, float, float]:
+    """k / n and its 95 % Wilson score interval (scipy); NaNs when n = 0."""
+    if n <= 0:
+        return math.nan, math.nan, math.nan
+    from scipy.stats import binomtest
+    ci = binomtest(k, n).proportion_ci(confidence_level=0.95, method="wilson")
+    return k / n, float(ci.low), float(ci.high)
+
+
+def quartiles(values: Sequence[float]) -> tuple[float, float, float]:
+    """(Q1, median, Q3) by numpy's linear interpolation; NaNs when empty."""
+    v = np.asarray([x for x in values if not math.isnan(x)], dtype=float)
+    if v.size == 0:
+        return math.nan, math.nan, math.nan
+    q1, med, q3 = np.percentile(v, [25, 50, 75])
+    return float(q1), float(med), float(q3)
+
+
+def num(row: dict[str, str], key: str) -> float:
+    v = row.get(key)
+    return float(v) if v not in (None, "") else math.nan
+
+
+def controller(row: dict[str, str], default_scenario: str | Path = "") -> str:
+    """EAIPP, PFIAS, TSASR ...: the row's scenario file name's prefix, upper-cased."""
+    scenario = row.get(SCENARIO_KEY) or str(default_scenario)
+    return Path(scenario).stem.split("_")[0].upper()
+
+
+def controller_order(names: Sequence[str]) -> list[str]:
+    known = [c for c in CONTROLLERS if c in names]
+    return known + sorted(set(names) - set(known))
+
+
+def extra(row: dict[str, str], fig: Figure, varied: Sequence[str]) -> str:
+    """Any other varied key (a sweep file extended with another axis): its cells stay apart."""
+    return ", ".join(f"{k}={row.get(k, '')}" for k in varied if k != SCENARIO_KEY and k not in fig.keys)
+
+
+def cells(rows: Sequence[dict[str, str]], fig: Figure, varied: Sequence[str] = (),
+          default_scenario: str | Path = "") -> list[dict[str, Any]]:
+    """One entry per controller and condition, in the table's order."""
+    by: dict[tuple[str, float, str], list[dict[str, str]]] = {}
+    for r in rows:
+        by.setdefault((controller(r, default_scenario), fig.value(r), extra(r, fig, varied)), []).append(r)
+    order = controller_order([k[0] for k in by])
+    out = []
+    for key in sorted(by, key=lambda k: (order.index(k[0]), k[2], k[1])):
+        ctrl, value, ex = key
+        cell = by[key]
+        ok = [r for r in cell if r.get("status") == "ok"]
+        wins = [r for r in ok if num(r, "success") >= 0.5]
+        p, lo, hi = wilson(len(wins), len(ok))
+        t = quartiles([num(r, "merge_time_s") for r in wins])
+        capped = quartiles([num(r, "merge_time_capped_s") for r in ok])
+        paper = fig.paper.get(round(value, 3)) if ctrl == "EAIPP" else None
+        paper_min = fig.paper_min if ctrl == "EAIPP" else None
+        if paper is not None:
+            inside: bool | None = bool(lo <= paper <= hi) if ok else None
+        elif paper_min is not None:
+            inside = bool(hi > paper_min) if ok else None
+        else:
+            inside = None
+        out.append({
+            "figure": fig.name, "controller": ctrl, "condition": value, "label": fig.show(value), "extra": ex,
+            "runs": len(cell), "ok": len(ok), "failed_runs": len(cell) - len(ok), "successes": len(wins),
+            "success_rate": p, "ci_low": lo, "ci_high": hi,
+            "time_q1_s": t[0], "time_median_s": t[1], "time_q3_s": t[2],
+            "capped_q1_s": capped[0], "capped_median_s": capped[1], "capped_q3_s": capped[2],
+            "capped_mean_s": float(np.mean([num(r, "merge_time_capped_s") for r in ok])) if ok else math.nan,
+            "food_perceived": sum(1 for r in ok if num(r, "food_perceived") >= 0.5),
+            "chain_nodes_median": quartiles([num(r, "chain_nodes") for r in wins])[1],
+            "paper_success": paper, "paper_min": paper_min, "paper_within_ci": inside})
+    return out
+
+
+# ------------------------------------------------------------------ rendering
+def fmt(x: float | None, d: int = 0) -> str:
+    return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{d}f}"
+
+
+def pct(x: float | None) -> str:
+    return "-" if x is None or math.isnan(x) else f"{100 * x:.0f}"
+
+
+def iqr(c: dict[str, Any], prefix: str) -> str:
+    if math.isnan(c[f"{prefix}_median_s"]):
+        return "-"
+    return f"{fmt(c[f'{prefix}_median_s'])} [{fmt(c[f'{prefix}_q1_s'])}, {fmt(c[f'{prefix}_q3_s'])}]"
+
+
+def paper_cell(c: dict[str, Any]) -> tuple[str, str]:
+    if c["paper_success"] is not None:
+        p = pct(c["paper_success"])
+    elif c["paper_min"] is not None:
+        p = f"> {pct(c['paper_min'])}"
+    else:
+        return "-", "-"
+    inside = c["paper_within_ci"]
+    return p, "-" if inside is None else ("yes" if inside else "no")
+
+
+def render(fig: Figure, cs: Sequence[dict[str, Any]]) -> list[str]:
+    """The figure's section of results.md."""
+    lines = [f"## Figure{'s' if '-' in fig.figs else ''} {fig.figs} ({fig.name}): {fig.title}", "",
+             fig.note, "",
+             "Success: the nest's and the food's networks merged within the budget; rate in % with its 95 % "
+             "Wilson interval over the runs that ran. Time to merge over the successes, and the paper's "
+             f"convention (every failure counted at the {BUDGET_S:.0f} s budget, x {STEPS_PER_S} for steps): "
+             "median [Q1, Q3] in s. Paper within CI: the paper's rate inside our interval (for \"> 90\": our "
+             "interval reaches above 90).", "",
+             f"| controller | {fig.axis} | runs | success % [95 % CI] | paper % | paper within CI "
+             "| time to merge, successes (s) | time, failures at budget (s) | food perceived | chain nodes |",
+             "|---|---:|---:|---:|---:|---|---:|---:|---:|---:|"]
+    for c in cs:
+        p, inside = paper_cell(c)
+        cond = c["label"] + (f" ({c['extra']})" if c["extra"] else "")
+        runs = f"{c['ok']}" + (f" (+{c['failed_runs']} failed)" if c["failed_runs"] else "")
+        lines.append(
+            f"| {c['controller']} | {cond} | {runs} | {pct(c['success_rate'])} [{pct(c['ci_low'])}, "
+            f"{pct(c['ci_high'])}] | {p} | {inside} | {iqr(c, 'time')} | {iqr(c, 'capped')} "
+            f"| {c['food_perceived']} | {fmt(c['chain_nodes_median'])} |")
+    return lines + [""]
+
+
+def plot(fig: Figure, rows: Sequence[dict[str, str]], cs: Sequence[dict[str, Any]], path: Path,
+         default_scenario: str | Path = "") -> None:
+    """Box plots of the capped completion time (the paper's figures) and the
+    success rates with their intervals and the paper's, against the condition."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    values = sorted({c["condition"] for c in cs})
+    ctrls = controller_order([c["controller"] for c in cs])
+    others = iter(plt.rcParams["axes.prop_cycle"].by_key()["color"])
+    colour = {k: CONTROLLERS.get(k) or next(others) for k in ctrls}
+    width = 0.8 / max(1, len(ctrls))
+    fig_, (top, bottom) = plt.subplots(2, 1, figsize=(min(14.0, max(6.0, 0.45 * len(values) * max(1, len(ctrls)) + 3)), 6.5),
+                                       sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+    for i, ctrl in enumerate(ctrls):
+        off = (i - (len(ctrls) - 1) / 2) * width
+        data, pos = [], []
+        for j, v in enumerate(values):
+            t = [num(r, "merge_time_capped_s") for r in rows if r.get("status") == "ok"
+                 and controller(r, default_scenario) == ctrl and fig.value(r) == v]
+            t = [x for x in t if not math.isnan(x)]
+            if t:
+                data.append(t)
+                pos.append(j + off)
+        if data:
+            bp = top.boxplot(data, positions=pos, widths=width * 0.85, patch_artist=True, manage_ticks=False,
+                             flierprops={"markersize": 2})
+            for b in bp["boxes"]:
+                b.set(facecolor=colour[ctrl], alpha=0.55)
+            for m in bp["medians"]:
+                m.set(color="black")
+        pts = [(values.index(c["condition"]) + off, c) for c in cs if c["controller"] == ctrl
+               and not math.isnan(c["success_rate"])]
+        if pts:
+            x = [p[0] for p in pts]
+            y = np.array([100 * p[1]["success_rate"] for p in pts])
+            lo = y - np.array([100 * p[1]["ci_low"] for p in pts])
+            hi = np.array([100 * p[1]["ci_high"] for p in pts]) - y
+            bottom.errorbar(x, y, yerr=[lo, hi], fmt="o", ms=4, capsize=3, color=colour[ctrl], label=ctrl)
+        top.plot([], [], "s", color=colour[ctrl], alpha=0.55, label=ctrl)
+    paper = [(values.index(v), 100 * p) for v, p in ((round(v, 3), fig.paper.get(round(v, 3))) for v in values)
+             if p is not None]
+    if paper:
+        bottom.plot([p[0] for p in paper], [p[1] for p in paper], "kx", ms=8, label="paper (EAIPP)")
+    if fig.paper_min is not None:
+        bottom.axhline(100 * fig.paper_min, color="k", ls="--", lw=0.8, label=f"paper: EAIPP > {pct(fig.paper_min)} %")
+    top.axhline(BUDGET_S, color="grey", ls=":", lw=0.8)
+    top.set_ylim(0, BUDGET_S * 1.05)
+    top.set_ylabel("completion time (s)\nfailures at the budget")
+    sec = top.secondary_yaxis("right", functions=(lambda s: s * STEPS_PER_S, lambda k: k / STEPS_PER_S))
+    sec.set_ylabel("steps")
+    top.legend(fontsize=8, loc="upper left")
+    top.set_title(f"Seed 003, Figure{'s' if '-' in fig.figs else ''} {fig.figs}: {fig.title}")
+    bottom.set_ylim(-5, 105)
+    bottom.set_ylabel("success (%), 95 % CI")
+    bottom.set_xticks(range(len(values)), [fig.show(v) for v in values])
+    bottom.set_xlabel(fig.axis)
+    bottom.legend(fontsize=8, loc="best")
+    fig_.tight_layout()
+    fig_.savefig(path, dpi=100)
+    plt.close(fig_)
+
+
+def run_entry(fig: Figure, row: dict[str, str], varied: Sequence[str], default_scenario: str | Path) -> dict[str, Any]:
+    """One run for results.json."""
+    e: dict[str, Any] = {"figure": fig.name, "controller": controller(row, default_scenario),
+                         "condition": fig.value(row), "extra": extra(row, fig, varied), "seed": int(row["seed"]),
+                         "status": row["status"], "run_id": row["run_id"]}
+    for m in METRICS:
+        if m in row:
+            v = num(row, m)
+            e[m] = None if math.isnan(v) else v
+    e.update({"state_hash": row.get("state_hash", ""), "code_version": row.get("code_version", "")})
+    return e
+
+
+def json_safe(o: Any) -> Any:
+    if isinstance(o, float) and not math.isfinite(o):
+        return None
+    if isinstance(o, dict):
+        return {k: json_safe(v) for k, v in o.items()}
+    if isinstance(o, list | tuple):
+        return [json_safe(v) for v in o]
+    return o
+
+
+def read_rows(path: Path) -> list[dict[str, str]]:
+    with path.open(newline="") as f:
+        return list(csv.DictReader(f))
+
+
+# ------------------------------------------------------------------ the picture
+def picture(sim: Path, out_png: Path, work: Path, scenario: Path, seed: str = "auto", px: int = 420,
+            frames: int = 4, search: int = 20) -> str:
+    """Frames of one run tiled into out_png; returns the caption."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.image as mpimg
+    import matplotlib.pyplot as plt
+
+    def sim_run(out: Path, *args: str) -> None:
+        cmd = [str(sim), str(scenario), "--lcm", "off", "--quiet", "--replace", "--out", str(out), *args]
+        p = subprocess.run(cmd, capture_output=True, text=True, check=False)
+        if p.returncode != 0:
+            raise SweepError(f"picture: {' '.join(cmd)} failed ({p.returncode}): {p.stderr.strip()}")
+
+    work.mkdir(parents=True, exist_ok=True)
+    note = ""
+    if seed == "auto":
+        sim_run(work / "search", "--seed", "1", "--reps", str(search), "--threads", "2")
+        chosen = None
+        for s in range(1, search + 1):
+            m = json.loads((work / "search" / f"run_{s}" / "summary.json").read_text())["metrics"]
+            if (m.get("success") or 0) >= 0.5:
+                chosen = s
+                break
+        if chosen is None:
+            chosen, note = 1, f" (none of seeds 1-{search} merged)"
+    else:
+        chosen = int(seed)
+    sim_run(work / "probe", "--seed", str(chosen), "--threads", "1")
+    summary = json.loads((work / "probe" / f"run_{chosen}" / "summary.json").read_text())
+    steps = int(summary["steps"])
+    every = max(1, math.ceil(steps / max(1, frames - 1)))
+    sim_run(work / "frames", "--seed", str(chosen), "--threads", "1", "--frames", str(every), "--frame-px", str(px))
+    files = sorted((work / "frames" / f"run_{chosen}" / "frames").glob("frame_*.png"))
+    if not files:
+        raise SweepError("picture: the simulator wrote no frames")
+    idx = sorted({round(i * (len(files) - 1) / max(1, frames - 1)) for i in range(frames)})
+    pick = [files[i] for i in idx]
+    m = summary["metrics"]
+    if (m.get("success") or 0) >= 0.5:
+        outcome = f"merged at {m['merge_time_s']:.1f} s, chain of {m.get('chain_nodes')} nodes"
+    else:
+        outcome = f"no merge within {m.get('budget_s', BUDGET_S):.0f} s"
+    caption = (f"{summary.get('scenario', scenario.stem)}, seed {chosen}{note}: {outcome} "
+               f"(code {summary.get('code_version', '?')})")
+    fig, axes = plt.subplots(1, len(pick), figsize=(3.2 * len(pick), 3.6), squeeze=False)
+    for ax, f in zip(axes[0], pick, strict=True):
+        ax.imshow(mpimg.imread(f))
+        ax.set_axis_off()
+        ax.set_title(f"step {int(f.stem.split('_')[1])}", fontsize=9)
+    fig.suptitle(caption, fontsize=9)
+    fig.tight_layout()
+    out_png.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out_png, dpi=100)
+    plt.close(fig)
+    return caption
+
+
+# ------------------------------------------------------------------ driver
+def load_sweep(fig: Figure, studies: Path, sim: Path, reps: int | None, quick: bool,
+               steps: int | None) -> sweep_spec.Sweep:
+    sw = sweep_spec.load(studies / fig.file, sweep_plan.seed_max(sim))
+    if reps is not None:
+        sw.seeds = list(range(1, reps + 1))
+    elif quick:
+        sw.seeds = sw.seeds[:QUICK_SEEDS]
+    if steps is not None:
+        sw.steps = steps
+    return sw
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="swarmtools.study.eaipp", description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--figures", default=",".join(FIGURES),
+                    help="which sweeps to run, comma-separated: " + ", ".join(
+                        f"{f.name} (Fig {f.figs})" for f in FIGURES.values()))
+    ap.add_argument("--quick", action="store_true", help=f"{QUICK_SEEDS} seeds per cell instead of the files' 100")
+    ap.add_argument("--reps", type=int, default=None, help="seeds per cell (default the files' 100)")
+    ap.add_argument("--steps", type=int, default=None,
+                    help="cut every run at N steps (a smoke test; default the scenarios' 10,000)")
+    ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_eaipp"))
+    ap.add_argument("--sim", default=str(REPO_ROOT / "build" / "swarmsim"))
+    ap.add_argument("--jobs", type=int, default=0, help="runs at a time (default: the CPUs)")
+    ap.add_argument("--studies", default=str(STUDIES), help="folder of the eaipp_*.yaml sweep files")
+    p = ap.add_argument_group("the picture (runs no sweep)")
+    p.add_argument("--picture", action="store_true", help="render frames of one run into --picture-out")
+    p.add_argument("--picture-out", default=str(REPO_ROOT / "docs" / "figures" / "eaipp_square_frames.png"))
+    p.add_argument("--picture-seed", default="auto", help="a seed, or auto: the first of 1..20 that merges")
+    p.add_argument("--picture-px", type=int, default=420, help="each frame's width in pixels")
+    p.add_argument("--picture-frames", type=int, default=4)
+    p.add_argument("--picture-scenario", default=str(SCENARIOS / "eaipp_square.yaml"))
+    sweep_cli.add_backend_options(ap)
+    a = ap.parse_args(argv)
+    command = " ".join(["python -m swarmtools.study.eaipp", *(argv if argv is not None else sys.argv[1:])])
+    t0 = time.monotonic()
+    try:
+        sweep_cli.check_args(a)
+        sim, out = Path(a.sim), Path(a.out)
+        if not sim.is_file():
+            raise SweepError(f"--sim {sim}: no such simulator (make build/swarmsim)")
+        if a.picture:
+            if a.picture_seed != "auto" and not a.picture_seed.isdigit():
+                raise SweepError("--picture-seed: a seed or auto")
+            caption = picture(sim, Path(a.picture_out), out / "picture", Path(a.picture_scenario),
+                              a.picture_seed, a.picture_px, max(1, a.picture_frames))
+            print(f"study_eaipp: wrote {a.picture_out}: {caption}")
+            return 0
+        figs = [f.strip() for f in a.figures.split(",") if f.strip()]
+        bad = [f for f in figs if f not in FIGURES]
+        if bad or not figs:
+            raise SweepError(f"--figures: unknown {', '.join(bad) or '(none)'}; choose from {', '.join(FIGURES)}")
+        if a.reps is not None and a.reps < 1:
+            raise SweepError("--reps must be at least 1")
+        if a.steps is not None and a.steps < 1:
+            raise SweepError("--steps must be at least 1")
+        sweeps = {name: load_sweep(FIGURES[name], Path(a.studies), sim, a.reps, a.quick, a.steps) for name in figs}
+        rc_all = 0
+        md = ["# Seed 003 (EAIPP path formation): the simulation study", "", f"Command: `{command}`.", ""]
+        if a.steps is not None:
+            md += [f"**Every run was cut at {a.steps} steps** (`--steps`): a smoke test, not the study; a run "
+                   f"that did not merge is still recorded at the {BUDGET_S:.0f} s budget.", ""]
+        results: dict[str, Any] = {"command": command, "steps_override": a.steps, "sweeps": {}, "cells": {},
+                                   "runs": []}
+        sections: list[str] = []
+        for name, sw in sweeps.items():
+            fig = FIGURES[name]
+            sweep_dir = out / name
+            t1 = time.monotonic()
+            rc = sweep_cli.run_sweep(sw, argparse.Namespace(**{**vars(a), "out": str(sweep_dir), "quiet": False}), sim)
+            if rc in (130, 143):
+                print("study_eaipp: interrupted; rerun the same command to resume", file=sys.stderr)
+                return 130
+            if a.backend == "slurm" and a.no_wait:
+                continue
+            rc_all = rc_all or rc
+            wall = time.monotonic() - t1
+            rows = read_rows(sweep_dir / "results.csv")
+            varied = sw.varied_keys
+            cs = cells(rows, fig, varied, sw.scenario)
+            builds = sorted({r.get("code_version", "") for r in rows})
+            ctrls = controller_order([c["controller"] for c in cs])
+            md.append(f"- {name} (Fig {fig.figs}): {len(rows)} runs ({', '.join(ctrls)}; {len(sw.seeds)} seeds a "
+                      f"cell), {wall:.0f} s in this invocation, sweep `{sweep_dir}`, simulator build(s) "
+                      f"{', '.join(builds)}.")
+            results["sweeps"][name] = {"file": str(sw.path), "runs": len(rows), "seeds": len(sw.seeds),
+                                       "controllers": ctrls, "wall_s": wall, "sweep_dir": str(sweep_dir),
+                                       "code_versions": builds}
+            results["cells"][name] = cs
+            results["runs"] += [run_entry(fig, r, varied, sw.scenario) for r in rows]
+            png = f"fig{fig.figs.replace('-', '_')}_{name}.png"
+            plot(fig, rows, cs, out / png, sw.scenario)
+            sections += render(fig, cs) + [f"![Figure {fig.figs}]({png})", ""]
+        wall_all = time.monotonic() - t0
+        results["wall_time_s"] = wall_all
+        md += ["", *sections, f"Wall time of this invocation: {wall_all:.0f} s (runs already done in a resumed "
+               "sweep are not rerun and not counted)."]
+        out.mkdir(parents=True, exist_ok=True)
+        atomic_write(out / "results.md", "\n".join(md) + "\n")
+        atomic_write(out / "results.json", json.dumps(json_safe(results), indent=1) + "\n")
+        print("\n".join(md))
+        print(f"study_eaipp: wrote {out / 'results.md'}")
+        return 0 if rc_all == 0 else 1
+    except SweepError as e:
+        print(f"study_eaipp: {e}", file=sys.stderr)
+        return e.exit_code
+
+
+if __name__ == "__main__":
+    sys.exit(main())
