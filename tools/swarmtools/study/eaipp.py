@@ -422,6 +422,7 @@ def picture(sim: Path, out_png: Path, work: Path, scenario: Path, seed: str = "a
     idx = sorted({round(i * (len(files) - 1) / max(1, frames - 1)) for i in range(frames)})
     pick = [files[i] for i in idx]
     m = summary["metrics"]
+    period = float(summary.get("control_period_ms", 1000 / STEPS_PER_S)) / 1000
     if (m.get("success") or 0) >= 0.5:
         outcome = f"merged at {m['merge_time_s']:.1f} s, chain of {m.get('chain_nodes')} nodes"
     else:
@@ -432,11 +433,12 @@ def picture(sim: Path, out_png: Path, work: Path, scenario: Path, seed: str = "a
     for ax, f in zip(axes[0], pick, strict=True):
         ax.imshow(mpimg.imread(f))
         ax.set_axis_off()
-        ax.set_title(f"step {int(f.stem.split('_')[1])}", fontsize=9)
+        step = int(f.stem.split("_")[1])
+        ax.set_title(f"t = {step * period:.0f} s (step {step})", fontsize=9)
     fig.suptitle(caption, fontsize=9)
     fig.tight_layout()
     out_png.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out_png, dpi=100)
+    fig.savefig(out_png, dpi=130)
     plt.close(fig)
     return caption
 
