@@ -175,6 +175,7 @@ static void *paths_create(sim_t *sim, const void *config, char err[256])
         int g = (int)sim_robot_group(sim, i);
         p->role[i] = g == gn ? ROLE_NEST : g == gf ? ROLE_FOOD : ROLE_OTHER;
         p->chain_pos[i] = -1;
+        p->from_nest[i] = p->from_food[i] = UNREACHED;   /* no network drawn before the first step */
     }
     p->distance_m = INFINITY;
     for (uint32_t i = 0; i < n; i++) {
