@@ -45,6 +45,11 @@ controller, a later issue): give it a scenario nnea_square.yaml and add it
 to the `scenario:` lists of studies/eaipp_distance.yaml and
 eaipp_obstacles.yaml; nothing here changes.
 
+Cost (2 cores, this machine, EAIPP failing so every run goes the full
+1000 s): a square-arena run about 0.5 s, a maze run (40-70 robots) about 9 s;
+the full study (5,900 runs, 700 of them in the maze) about 9,000 CPU-s, some
+75 minutes on 2 cores; `--quick` (5 seeds) about 6 minutes.
+
 Each sweep lives in OUT/<figure>/ with its frozen simulator copy and is
 resumable: rerun the same command.  `--quick` takes 5 seeds a cell, `--reps
 N` N seeds, `--steps N` cuts every run at N steps (a smoke test: a failure
@@ -303,7 +308,7 @@ def plot(fig: Figure, rows: Sequence[dict[str, str]], cs: Sequence[dict[str, Any
     others = iter(plt.rcParams["axes.prop_cycle"].by_key()["color"])
     colour = {k: CONTROLLERS.get(k) or next(others) for k in ctrls}
     width = 0.8 / max(1, len(ctrls))
-    fig_, (top, bottom) = plt.subplots(2, 1, figsize=(min(14.0, max(6.0, 0.45 * len(values) * max(1, len(ctrls)) + 3)), 6.5),
+    fig_, (top, bottom) = plt.subplots(2, 1, figsize=(min(14.0, max(7.0, 0.45 * len(values) * max(1, len(ctrls)) + 3)), 6.5),
                                        sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     for i, ctrl in enumerate(ctrls):
         off = (i - (len(ctrls) - 1) / 2) * width
@@ -331,7 +336,8 @@ def plot(fig: Figure, rows: Sequence[dict[str, str]], cs: Sequence[dict[str, Any
             hi = np.array([100 * p[1]["ci_high"] for p in pts]) - y
             bottom.errorbar(x, y, yerr=[lo, hi], fmt="o", ms=4, capsize=3, color=colour[ctrl], label=ctrl)
         top.plot([], [], "s", color=colour[ctrl], alpha=0.55, label=ctrl)
-    paper = [(values.index(v), 100 * p) for v, p in ((round(v, 3), fig.paper.get(round(v, 3))) for v in values)
+    shift = ((ctrls.index("EAIPP") - (len(ctrls) - 1) / 2) * width) if "EAIPP" in ctrls else 0.0
+    paper = [(values.index(v) + shift, 100 * p) for v, p in ((v, fig.paper.get(round(v, 3))) for v in values)
              if p is not None]
     if paper:
         bottom.plot([p[0] for p in paper], [p[1] for p in paper], "kx", ms=8, label="paper (EAIPP)")
@@ -343,7 +349,7 @@ def plot(fig: Figure, rows: Sequence[dict[str, str]], cs: Sequence[dict[str, Any
     sec = top.secondary_yaxis("right", functions=(lambda s: s * STEPS_PER_S, lambda k: k / STEPS_PER_S))
     sec.set_ylabel("steps")
     top.legend(fontsize=8, loc="upper left")
-    top.set_title(f"Seed 003, Figure{'s' if '-' in fig.figs else ''} {fig.figs}: {fig.title}")
+    top.set_title(f"Seed 003, Figure{'s' if '-' in fig.figs else ''} {fig.figs}: {fig.title}", fontsize=10)
     bottom.set_ylim(-5, 105)
     bottom.set_ylabel("success (%), 95 % CI")
     bottom.set_xticks(range(len(values)), [fig.show(v) for v in values])
