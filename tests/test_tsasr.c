@@ -466,6 +466,35 @@ static void test_a_tail_at_the_target_is_never_eliminated(void **state)
     assert_int_equal(last_sent().prey, 1u);
 }
 
+static void test_explorer_reset_variant_holds_the_timer(void **state)
+{
+    uint32_t i;
+    tsasr_params_t p;
+    (void)state;
+    /* Default: an explorer about the tail does not stop the clock. */
+    make_member(0u);
+    for (i = 0u; i < ELIM; i++) {
+        hear(tsasr_msg_explorer(9u), 300u, 0);
+        member_step(0u);
+    }
+    assert_int_equal(T.retreat, 1u);
+    /* elim_explorer_resets: it does, and the count starts again after. */
+    params(&p, ALWAYS, 0u);
+    p.elim_explorer_resets = 1u;
+    make_member_with(&p);
+    for (i = 0u; i < 3u * ELIM; i++) {
+        hear(tsasr_msg_explorer(9u), 300u, 0);
+        member_step(0u);
+    }
+    assert_int_equal(T.retreat, 0u);
+    for (i = 0u; i < FORGET + ELIM - 1u; i++) {
+        member_step(0u);
+        assert_int_equal(T.retreat, 0u);
+    }
+    member_step(0u);
+    assert_int_equal(T.retreat, 1u);
+}
+
 /* ------------------------------------------------------------ PFIAS's leave */
 
 static void test_random_leave_only_without_explorers(void **state)
@@ -561,6 +590,7 @@ int main(void)
         cmocka_unit_test(test_without_cascade_the_new_tail_restarts_its_timer),
         cmocka_unit_test(test_a_new_successor_cancels_the_retreat),
         cmocka_unit_test(test_a_tail_at_the_target_is_never_eliminated),
+        cmocka_unit_test(test_explorer_reset_variant_holds_the_timer),
         cmocka_unit_test(test_random_leave_only_without_explorers),
         cmocka_unit_test(test_member_cut_off_from_the_nest_leaves),
         cmocka_unit_test(test_explorer_moves_about_its_reference),

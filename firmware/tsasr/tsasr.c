@@ -34,7 +34,11 @@ void tsasr_default_params(tsasr_params_t *params)
      * and the explorers about it hear the flag) before it leaves. */
     params->elim_steps = 300u;
     params->retreat_steps = 20u;
-    params->elim_cascade = 1u;      /* the failed chain is eliminated as a whole (notes) */
+    params->elim_cascade = 1u;
+    /* The clock runs whether or not explorers are about (the frontier is
+     * judged by what it found); EAIPP's rule, "no explorer perceived
+     * throughout the period", is the variant elim_explorer_resets (notes). */
+    params->elim_explorer_resets = 0u;      /* the failed chain is eliminated as a whole (notes) */
     params->range_mm = 600u;        /* Table 2: R = 0.6 m */
     params->link_mm = 450u;         /* 0.75 R, PFIAS's link (and EAIPP's B_UL band's middle) */
     params->speed_steps_s = 388;    /* Table 2: 5 cm/s */
@@ -435,7 +439,9 @@ static void step_member(tsasr_t *self, hal_t *hal)
         return;
     }
     self->follow = 0u;
-    if (++self->idle >= p->elim_steps) {
+    if (p->elim_explorer_resets != 0u && tsasr_count(self, TSASR_MSG_EXPLORER) != 0u) {
+        self->idle = 0u;    /* an explorer may yet extend it */
+    } else if (++self->idle >= p->elim_steps) {
         raise_retreat(self);   /* this frontier found nothing in time */
         return;
     }

@@ -24,8 +24,10 @@
  *             back: the chain is not extended while it retracts;
  *   MEMBER    stands still and signals its colour, tail, prey and retreat
  *             flags.  Elimination: a tail that does not perceive the target
- *             counts the steps it has been the tail; after elim_steps (the
- *             chain's frontier found nothing in that time) it raises
+ *             counts the steps it has been the tail (with
+ *             elim_explorer_resets, only the steps with no explorer in
+ *             view); after elim_steps (the chain's frontier found nothing
+ *             in that time) it raises
  *             `retreat`, and retreat_steps later it leaves the chain and
  *             goes back along it as an explorer.  With elim_cascade, a
  *             member whose successor left in retreat retreats at once in
@@ -66,6 +68,7 @@ typedef struct tsasr_params {
     uint8_t lost_steps;     /**< steps without the reference before giving it up */
     uint8_t leave_needs_no_explorer; /**< 1: p_leave only when no explorer is perceived */
     uint8_t elim_cascade;   /**< 1: a member whose successor left in retreat retreats too */
+    uint8_t elim_explorer_resets; /**< 1: a tail's timer restarts while it perceives an explorer */
     uint8_t role;           /**< tsasr_role_t: swarm robot, or fixed nest/food source */
     random_walk_params_t walk;  /**< LOST's walk (its speed is speed_steps_s) */
 } tsasr_params_t;

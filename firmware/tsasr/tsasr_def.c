@@ -19,6 +19,8 @@ static const param_desc_t tsasr_params[] = {
       .doc = "elimination: steps a retreating member shows the flag before it leaves (reconstruction)" },
     { .key = "elim_cascade", PARAM_BOOL_FIELD(TP, elim_cascade),
       .doc = "true: a member whose successor left in retreat retreats too (the failed chain goes as a whole)" },
+    { .key = "elim_explorer_resets", PARAM_BOOL_FIELD(TP, elim_explorer_resets),
+      .doc = "true: a tail's elimination timer restarts while it perceives an explorer (reconstruction)" },
     { .key = "range_mm", PARAM_FIELD(TP, range_mm, uint16_t), .min = 1, .max = 10000,
       .doc = "perception radius R: frames heard from farther are ignored, mm" },
     { .key = "link_mm", PARAM_FIELD(TP, link_mm, uint16_t), .min = 1, .max = 10000,
