@@ -34,11 +34,11 @@ void tsasr_default_params(tsasr_params_t *params)
      * and the explorers about it hear the flag) before it leaves. */
     params->elim_steps = 300u;
     params->retreat_steps = 20u;
-    params->elim_cascade = 1u;
+    params->elim_cascade = 1u;      /* the failed chain is eliminated as a whole (notes) */
     /* The clock runs whether or not explorers are about (the frontier is
      * judged by what it found); EAIPP's rule, "no explorer perceived
      * throughout the period", is the variant elim_explorer_resets (notes). */
-    params->elim_explorer_resets = 0u;      /* the failed chain is eliminated as a whole (notes) */
+    params->elim_explorer_resets = 0u;
     params->range_mm = 600u;        /* Table 2: R = 0.6 m */
     params->link_mm = 450u;         /* 0.75 R, PFIAS's link (and EAIPP's B_UL band's middle) */
     params->speed_steps_s = 388;    /* Table 2: 5 cm/s */
