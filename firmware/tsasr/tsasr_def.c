@@ -1,0 +1,77 @@
+/*
+ * tsasr_def.c - TSASR (firmware/tsasr/tsasr.h, a reconstruction) as the
+ * simulator runs it: its keys, its policies (a swarm robot, or the fixed
+ * nest or food robot that broadcasts its role) and what it shows.
+ */
+#include "tsasr/tsasr.h"
+
+static const char *const tsasr_roles[] = { "robot", "nest", "food", NULL };
+
+#define TP tsasr_params_t
+static const param_desc_t tsasr_params[] = {
+    { .key = "p_join", PARAM_FIELD(TP, p_join, uint16_t), .min = 0, .max = 65535,
+      .doc = "explorer to chain member per step at a tail or chainless nest, /65536 (PFIAS's P_e->c)" },
+    { .key = "p_leave", PARAM_FIELD(TP, p_leave, uint16_t), .min = 0, .max = 65535,
+      .doc = "PFIAS's P_c->e: a tail member leaves at random per step, /65536 (reconstruction)" },
+    { .key = "elim_steps", PARAM_FIELD(TP, elim_steps, uint16_t), .min = 1, .max = 65535,
+      .doc = "elimination: steps a tail may go without the target before it retreats (reconstruction)" },
+    { .key = "retreat_steps", PARAM_FIELD(TP, retreat_steps, uint16_t), .min = 1, .max = 65535,
+      .doc = "elimination: steps a retreating member shows the flag before it leaves (reconstruction)" },
+    { .key = "elim_cascade", PARAM_BOOL_FIELD(TP, elim_cascade),
+      .doc = "true: a member whose successor left in retreat retreats too (the failed chain goes as a whole)" },
+    { .key = "elim_explorer_resets", PARAM_BOOL_FIELD(TP, elim_explorer_resets),
+      .doc = "true: a tail's elimination timer restarts while it perceives an explorer (reconstruction)" },
+    { .key = "range_mm", PARAM_FIELD(TP, range_mm, uint16_t), .min = 1, .max = 10000,
+      .doc = "perception radius R: frames heard from farther are ignored, mm" },
+    { .key = "link_mm", PARAM_FIELD(TP, link_mm, uint16_t), .min = 1, .max = 10000,
+      .doc = "distance an explorer keeps from the object it circles (chain link), mm" },
+    { .key = "speed_steps_s", PARAM_FIELD(TP, speed_steps_s, int16_t), .min = 1, .max = 1000,
+      .doc = "forward wheel speed, steps/s (388 = 5 cm/s)" },
+    { .key = "turn_gain", PARAM_FIELD(TP, turn_gain, int16_t), .min = 0, .max = 10000,
+      .doc = "wheel speed difference per rad of heading error, steps/s" },
+    { .key = "forget_steps", PARAM_FIELD(TP, forget_steps, uint8_t), .min = 1, .max = 255,
+      .doc = "a neighbour not heard for this many steps is forgotten" },
+    { .key = "lost_steps", PARAM_FIELD(TP, lost_steps, uint8_t), .min = 1, .max = 255,
+      .doc = "steps without the reference (explorer) or predecessor (member) before giving up" },
+    { .key = "leave_needs_no_explorer", PARAM_BOOL_FIELD(TP, leave_needs_no_explorer),
+      .doc = "true: p_leave applies only when the tail perceives no explorer (as PFIAS)" },
+    RANDOM_WALK_TUNING_PARAMS(TP, walk.),
+    PARAM_END
+};
+#undef TP
+
+const observable_t tsasr_observables[] = {
+    { .name = "colour", OBS_FIELD(tsasr_t, colour, uint8_t), .scale = 1.0f, .unit = "",
+      .doc = "chain member's colour: 0 blue, 1 green, 2 red (meaningful in state member)" },
+    { .name = "tail", OBS_FIELD(tsasr_t, tail, uint8_t), .scale = 1.0f, .unit = "",
+      .doc = "1 while a chain member perceives no successor" },
+    { .name = "prey", OBS_FIELD(tsasr_t, prey, uint8_t), .scale = 1.0f, .unit = "",
+      .doc = "1 while a chain member perceives (or has perceived) the target" },
+    { .name = "retreat", OBS_FIELD(tsasr_t, retreat, uint8_t), .scale = 1.0f, .unit = "",
+      .doc = "1 while a chain member is being eliminated" },
+    { .name = "joins", OBS_FIELD(tsasr_t, joins, uint32_t), .kind = OBS_COUNTER, .scale = 1.0f,
+      .unit = "events", .doc = "times the robot became a chain member" },
+    { .name = "leaves", OBS_FIELD(tsasr_t, leaves, uint32_t), .kind = OBS_COUNTER, .scale = 1.0f,
+      .unit = "events", .doc = "times the robot left a chain (any reason)" },
+    { .name = "eliminations", OBS_FIELD(tsasr_t, eliminations, uint32_t), .kind = OBS_COUNTER,
+      .scale = 1.0f, .unit = "events", .doc = "times the robot left a chain by elimination" },
+    OBS_END
+};
+
+static void tsasr_set_policy(void *params, uint8_t index)
+{
+    ((tsasr_params_t *)params)->role = index;
+}
+
+CONTROLLER_ADAPTERS(tsasr)
+
+const controller_def_t tsasr_def = {
+    .name = TSASR_NAME,
+    .doc = "seed 003 baseline TSASR (Luo et al. 2020), reconstructed: PFIAS chains plus timed elimination of chains that found nothing",
+    CONTROLLER_FUNCS(tsasr),
+    .params = tsasr_params,
+    .policies = tsasr_roles,
+    .set_policy = tsasr_set_policy,
+    .observables = tsasr_observables,
+    .ircom_bits = 16,   /* tsasr_msg frames: the range-and-bearing turret */
+};
