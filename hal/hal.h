@@ -171,7 +171,10 @@ typedef struct hal_ircom_msg {
 } hal_ircom_msg_t;
 
 /** Queues one message for transmission during this control period:
- *  HAL_OK, or HAL_ERR_BUSY if one is already queued for this period. */
+ *  HAL_OK, or HAL_ERR_BUSY when the period's messages are all queued: one,
+ *  unless the platform is set for more (the simulator's
+ *  `ircom.tx_per_period`, the turret images' `cfg.ircom_tx_per_period`,
+ *  up to 3).  A controller with several messages sends until BUSY. */
 hal_status_t hal_ircom_send(hal_t *hal, uint16_t value);
 
 /** Pops the oldest received message into `out`: HAL_OK, or HAL_ERR_EMPTY

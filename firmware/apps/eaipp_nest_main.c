@@ -39,6 +39,7 @@ static void app_setup(void)
 
     hal_epuck_default_config(&cfg);
     cfg.camera = 0u;
+    cfg.ircom_tx_per_period = 3u;   /* STATE, GRADIENT, ROOT in one period: ~12 ms of sends */
     (void)hal_epuck_init(&app_hal, &cfg, (uint8_t *)0, 0u);
     hal_epuck_start(&app_hal, app_tick);
 

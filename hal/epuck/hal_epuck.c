@@ -37,6 +37,7 @@ void hal_epuck_default_config(hal_epuck_config_t *cfg)
     cfg->randb_range = 0u;
     cfg->randb_range_mm_per_unit = 10u;
     cfg->sound = 0u;
+    cfg->ircom_tx_per_period = 1u;
 }
 
 /* The window is the sensor's full width (the whole field of view) and
@@ -69,6 +70,10 @@ int8_t hal_epuck_init(hal_t *hal, const hal_epuck_config_t *cfg, uint8_t *frames
     hal->cfg = *cfg;
     if (hal->cfg.period_ms == 0u) {
         hal->cfg.period_ms = 100u;
+    }
+    if (cfg->ircom_tx_per_period == 0u || cfg->ircom_tx_per_period > HAL_EPUCK_TX_MAX) {
+        result = -1;
+        hal->cfg.ircom_tx_per_period = 1u;
     }
     hal->cam_complete = 0xFFu;
     hal->leds_applied = LEDS_UNKNOWN;
@@ -228,11 +233,11 @@ void hal_epuck_end_step(hal_t *hal)
     if (hal->cfg.sound != 0u) {
         speaker_end_step(hal);
     }
-    if (hal->out_pending != 0u) {
-        hal_epuck_ir_transmit(hal);
-        hal->out_pending = 0u;
-        hal->sent = (uint16_t)(hal->sent + 1u);
+    for (i = 0; i < hal->out_pending; i++) {
+        hal_epuck_ir_transmit(hal, hal->out_value[i]);
     }
+    hal->sent = (uint16_t)(hal->sent + hal->out_pending);
+    hal->out_pending = 0u;
     hal->time_ms += hal->cfg.period_ms;
     hal->step++;
 }
@@ -452,11 +457,11 @@ hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
 hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
     uint8_t bits = hal_ircom_payload_bits(hal);
-    if (hal->out_pending != 0u) {
+    if (hal->out_pending >= hal->cfg.ircom_tx_per_period) {
         return HAL_ERR_BUSY;
     }
-    hal->out_value = bits >= 16u ? value : (uint16_t)(value & ((1u << bits) - 1u));
-    hal->out_pending = 1u;
+    hal->out_value[hal->out_pending] = bits >= 16u ? value : (uint16_t)(value & ((1u << bits) - 1u));
+    hal->out_pending++;
     return HAL_OK;
 }
 

@@ -81,6 +81,12 @@
 
 /** Received IR messages kept between two steps (libIrcom's queue is 20). */
 #define HAL_EPUCK_INBOX 16u
+/** Most IR messages one control period may send (cfg.ircom_tx_per_period).
+ *  An e-RandB frame is 16 data bits, a 3-bit header and a 4-bit CRC,
+ *  Manchester coded at 100 us a half bit (455 kHz receivers): 4.6 ms on the
+ *  air, and the library's send busy-waits about 4 ms; three sends take about
+ *  12 ms of a 100 ms period.  libIrcom sends one at a time (the rest wait). */
+#define HAL_EPUCK_TX_MAX 3u
 /** Telemetry bytes handed to the UART at once. */
 #define HAL_EPUCK_TX_BYTES 64u
 /** Camera frame of the default configuration: the whole width of the
@@ -116,6 +122,10 @@ typedef struct hal_epuck_config {
                                         (10: cm) [?] */
     uint8_t sound;                 /**< 1: speaker (codec started) and
                                         microphone levels (0) */
+    uint8_t ircom_tx_per_period;   /**< messages hal_ircom_send accepts per
+                                        control period, 1..HAL_EPUCK_TX_MAX (1);
+                                        sent one after another after the step.
+                                        The simulator's ircom.tx_per_period */
 } hal_epuck_config_t;
 
 /** The robot.  Fields are private to hal/epuck; an image only defines one
@@ -160,8 +170,8 @@ struct hal {
     hal_ircom_msg_t inbox[HAL_EPUCK_INBOX];
     uint8_t in_head, in_count;
     uint16_t in_dropped;         /**< messages lost because the inbox was full */
-    uint16_t out_value;
-    uint8_t out_pending;         /**< a message is queued for end_step */
+    uint16_t out_value[HAL_EPUCK_TX_MAX];
+    uint8_t out_pending;         /**< messages queued for end_step */
     uint16_t sent;               /**< messages sent (wraps) */
 
     /* Sound (cfg.sound). */
@@ -250,8 +260,8 @@ void hal_epuck_ir_start(hal_t *hal);
 void hal_epuck_ir_sample(hal_t *hal);
 /** Moves received messages into the inbox (hal_epuck_inbox_push). */
 void hal_epuck_ir_poll(hal_t *hal);
-/** Sends hal->out_value. */
-void hal_epuck_ir_transmit(hal_t *hal);
+/** Sends one message (the IR backend's). */
+void hal_epuck_ir_transmit(hal_t *hal, uint16_t value);
 
 /** Copies the newest TONE_DETECT_N samples of microphone `mic` (0..2,
  *  oldest first, raw 12-bit A/D counts) into `out`: 1, or 0 when the

@@ -65,10 +65,13 @@ void hal_epuck_ir_poll(hal_t *hal)
     }
 }
 
-void hal_epuck_ir_transmit(hal_t *hal)
+/* libIrcom sends one message at a time: while one is going out the others
+ * of the period are dropped (images on libIrcom keep tx_per_period 1). */
+void hal_epuck_ir_transmit(hal_t *hal, uint16_t value)
 {
+    (void)hal;
     if (ircomIsSending() == 0) {
-        ircomSend((long int)(hal->out_value & 0xFFu));
+        ircomSend((long int)(value & 0xFFu));
     }
 }
 

@@ -95,9 +95,10 @@ void hal_epuck_ir_poll(hal_t *hal)
     (void)hal_epuck_inbox_push(hal, &m);
 }
 
-void hal_epuck_ir_transmit(hal_t *hal)
+void hal_epuck_ir_transmit(hal_t *hal, uint16_t value)
 {
-    e_randb_send_all_data(hal->out_value);
+    (void)hal;
+    e_randb_send_all_data(value);
 }
 
 uint8_t hal_ircom_payload_bits(hal_t *hal)

@@ -525,6 +525,28 @@ static void test_ircom_randb(void)
     CHECK(epuck_stub.randb_sends == 1 && epuck_stub.randb_sent[0] == 0xBEEFu);
     idle_step();
     CHECK(epuck_stub.randb_sends == 1);
+    /* an image set for three messages a period sends them in order after
+     * the step; a fourth is refused; 0 or more than the most is refused */
+    {
+        hal_epuck_config_t cfg;
+        hal_epuck_default_config(&cfg);
+        cfg.camera = 0u;
+        cfg.ircom_tx_per_period = 0u;
+        CHECK(hal_epuck_init(&robot, &cfg, NULL, 0u) == -1);
+        cfg.ircom_tx_per_period = HAL_EPUCK_TX_MAX + 1u;
+        CHECK(hal_epuck_init(&robot, &cfg, NULL, 0u) == -1);
+        cfg.ircom_tx_per_period = 3u;
+        CHECK(hal_epuck_init(&robot, &cfg, NULL, 0u) == 0);
+        epuck_stub.randb_sends = 0;
+        CHECK(hal_ircom_send(&robot, 0x0101u) == HAL_OK);
+        CHECK(hal_ircom_send(&robot, 0x0202u) == HAL_OK);
+        CHECK(hal_ircom_send(&robot, 0x0303u) == HAL_OK);
+        CHECK(hal_ircom_send(&robot, 0x0404u) == HAL_ERR_BUSY);
+        hal_epuck_end_step(&robot);
+        CHECK(epuck_stub.randb_sends == 3 && epuck_stub.randb_sent[0] == 0x0101u
+              && epuck_stub.randb_sent[1] == 0x0202u && epuck_stub.randb_sent[2] == 0x0303u);
+        CHECK(hal_ircom_send(&robot, 0x0505u) == HAL_OK);   /* a new period */
+    }
     /* a full inbox drops and counts */
     for (i = 0; i < HAL_EPUCK_INBOX + 3u; i++) {
         epuck_stub.randb_data[0] = i;
