@@ -86,16 +86,21 @@ static void test_gradient(void **state)
     assert_false(eaipp_gradient_update(&e));
 }
 
-static void test_food_needs_node(void **state)
+static void test_food_source(void **state)
 {
     eaipp_t e;
     (void)state;
     make(&e, EAIPP_ROLE_ROBOT);
-    e.p.food_needs_node = 1u;
+    assert_int_equal(e.p.food_source, 0u);             /* the default: the food is the target only */
     e.state = EAIPP_NODE;
     hear(&e, eaipp_msg_state(3u, EAIPP_ST_FOOD, EAIPP_SOURCE_FOOD, 0u), 300u, 0);
     assert_false(eaipp_gradient_update(&e));          /* the food is no source */
-    e.p.food_needs_node = 0u;
+    e.state = EAIPP_EXPLORER;
+    e.nb.n[0].range_mm = 450u;
+    assert_false(eaipp_extension_due(&e));            /* nor the one of Algorithm 4 */
+    e.p.food_source = 1u;
+    assert_true(eaipp_extension_due(&e));
+    e.state = EAIPP_NODE;
     assert_true(eaipp_gradient_update(&e));
     assert_int_equal(e.source, EAIPP_SOURCE_FOOD);
 }
@@ -279,8 +284,7 @@ static void test_lost_and_sources(void **state)
     assert_true(hal.left < 0 && hal.right > 0);        /* turns left, away */
     fake_hal_end_step(&hal);
     hal.proximity[0] = 0u;
-    /* The food alone under the maze rule: still lost; a node: explorer. */
-    e.p.food_needs_node = 1u;
+    /* The food alone (not a source, the default): still lost; a node: explorer. */
     fake_hal_push(&hal, eaipp_msg_state(3u, EAIPP_ST_FOOD, 1u, 0u), 300u, 0);
     eaipp_step(&e, &hal);
     assert_string_equal(eaipp_state_name(&e), "lost");
@@ -328,6 +332,7 @@ static uint32_t steps_to_cross(void)
         make(&e[i], i == 0u ? EAIPP_ROLE_NEST : i == CHAIN - 1u ? EAIPP_ROLE_FOOD : EAIPP_ROLE_ROBOT);
         e[i].p.timeout_steps = 250u;   /* a static chain: nobody is forgotten */
         e[i].p.period1_steps = 60000u;
+        e[i].p.food_source = 1u;       /* two gradients, to see the nest's override the food's */
         if (i > 0u && i < CHAIN - 1u) e[i].state = EAIPP_NODE;
     }
     /* Warm-up with the nest silent: the food's gradient fills the chain;
@@ -376,7 +381,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gradient),
-        cmocka_unit_test(test_food_needs_node),
+        cmocka_unit_test(test_food_source),
         cmocka_unit_test(test_extinction_timing),
         cmocka_unit_test(test_flag_forwarding),
         cmocka_unit_test(test_extension_distance),

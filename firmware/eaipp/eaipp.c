@@ -28,7 +28,13 @@ void eaipp_default_params(eaipp_params_t *p)
     p->w_obstacles = 1.0f;
     p->prox_full = 1000u;          /* ~1 cm from a surface reads 1 */
     p->lost_turn_prox = 300u;      /* ~2.5 cm */
-    p->food_needs_node = 0u;
+    /* The food is the target, not a source (Algorithm 4 and eq 1 count
+     * Robot_Node and Robot_Nest only; section 5.2 ends a run when the food
+     * is perceived).  With the food a source as well, two networks grown by
+     * Algorithm 4 never merge: an explorer becomes a node only where it
+     * hears exactly one node, so the new node is out of range of the other
+     * network's nodes. */
+    p->food_source = 0u;
 }
 
 void eaipp_init(eaipp_t *self, const eaipp_params_t *params, uint32_t seed)
@@ -73,9 +79,10 @@ const char *eaipp_state_name(const eaipp_t *self)
 /* ------------------------------------------------------------ the table */
 
 /* Whether a neighbour is a gradient holder (a node with a gradient heard,
- * the nest or the food) and its gradient and Source_Type.  Under the maze
- * rule (food_needs_node) the food is no source: the network grows from the
- * nest only (section 5.1). */
+ * the nest, or the food when food_source is set) and its gradient and
+ * Source_Type.  By default (food_source 0, the printed Algorithm 4 and eq 1,
+ * and section 5.1's maze rule) the food is no source: the network grows from
+ * the nest only. */
 static uint8_t holder(const eaipp_t *self, const neighbour_t *n, uint8_t *g, uint8_t *src)
 {
     if (neighbour_is(n, EAIPP_ST_NEST)) {
@@ -86,7 +93,7 @@ static uint8_t holder(const eaipp_t *self, const neighbour_t *n, uint8_t *g, uin
     if (neighbour_is(n, EAIPP_ST_FOOD)) {
         *g = 0u;
         *src = EAIPP_SOURCE_FOOD;
-        return (uint8_t)(self->p.food_needs_node == 0u);
+        return (uint8_t)(self->p.food_source != 0u);
     }
     if (neighbour_is(n, EAIPP_ST_NODE) && (n->heard & NB_HEARD_GRADIENT) != 0u
         && n->gradient < EAIPP_GRADIENT_MAX) {
@@ -104,8 +111,10 @@ static uint8_t shunned(const eaipp_t *self, const neighbour_t *n)
                      && n->root == self->shun_root);
 }
 
-/* What a lost or exploring robot senses: the nest, the food or a node.  The
- * maze rule: the food alone does not count, only with a node near. */
+/* What a lost or exploring robot senses: the nest, a node, or the food when
+ * it is a source (food_source).  Otherwise the food alone does not count,
+ * only with a node near (section 5.1's rule; section 4.3: a lost robot walks
+ * "until it perceives a Robot_Node or the Robot_Nest again"). */
 static uint8_t senses_network(const eaipp_t *self)
 {
     uint8_t i, node = 0u, food = 0u;
@@ -121,7 +130,7 @@ static uint8_t senses_network(const eaipp_t *self)
             food = 1u;
         }
     }
-    return (uint8_t)(node != 0u || (food != 0u && self->p.food_needs_node == 0u));
+    return (uint8_t)(node != 0u || (food != 0u && self->p.food_source != 0u));
 }
 
 /* ---------------------------------------------------- Algorithm 1: gradient */
@@ -271,7 +280,7 @@ uint8_t eaipp_extension_due(const eaipp_t *self)
     for (i = 0; i < self->nb.count; i++) {
         const neighbour_t *n = &self->nb.n[i];
         if (neighbour_is(n, EAIPP_ST_NODE) || neighbour_is(n, EAIPP_ST_NEST)
-            || (neighbour_is(n, EAIPP_ST_FOOD) && self->p.food_needs_node == 0u)) {
+            || (neighbour_is(n, EAIPP_ST_FOOD) && self->p.food_source != 0u)) {
             count++;
             only = n;
         }

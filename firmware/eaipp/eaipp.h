@@ -61,7 +61,10 @@ typedef struct eaipp_params {
     float w_obstacles;             /**< eq 1's weight of the obstacle term */
     uint16_t prox_full;            /**< proximity counts taken as eq 1's reading 1 */
     uint16_t lost_turn_prox;       /**< Robot_Lost turns away above this proximity */
-    uint8_t food_needs_node;       /**< maze rule (section 5.1): the food counts only with a node near */
+    uint8_t food_source;           /**< 1: the food is a second gradient source and network root
+                                        (sections 4.2.1, 4.3); 0 (default): Algorithm 4, eq 1 and
+                                        section 5.2 as printed, the food is the target only (also
+                                        section 5.1's maze rule) */
 } eaipp_params_t;
 
 typedef struct eaipp {

@@ -32,8 +32,9 @@ static const param_desc_t eaipp_param_descs[] = {
       .doc = "proximity counts read as eq 1's 1" },
     { .key = "lost_turn_prox", PARAM_FIELD(EP, lost_turn_prox, uint16_t), .min = 0, .max = 4095,
       .doc = "Robot_Lost turns away above this proximity, counts" },
-    { .key = "food_needs_node", PARAM_BOOL_FIELD(EP, food_needs_node),
-      .doc = "maze rule: the food counts only with a node near, and is no gradient source" },
+    { .key = "food_source", PARAM_BOOL_FIELD(EP, food_source),
+      .doc = "the food is a second gradient source and root (default false: the printed Algorithm 4"
+             " and eq 1, the food is the target only, as in the maze rule)" },
     PARAM_END
 };
 
