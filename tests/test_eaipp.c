@@ -318,6 +318,26 @@ static void test_lost_and_sources(void **state)
     assert_string_equal(eaipp_state_name(&e), "nest");
 }
 
+/* Robot_Lost turns only from what is ahead: a wall behind it (after a turn
+ * away from it) must not start another turn, or it spins in the corner. */
+static void test_lost_rear_wall(void **state)
+{
+    eaipp_t e;
+    hal_t hal;
+    (void)state;
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    hal.proximity[3] = hal.proximity[4] = 1500u;       /* behind, +-150 deg */
+    hal.proximity[2] = 1500u;                          /* beside, -90 deg */
+    eaipp_step(&e, &hal);
+    assert_int_equal(hal.left, 388);
+    assert_int_equal(hal.right, 388);
+    fake_hal_end_step(&hal);
+    hal.proximity[7] = 1500u;                          /* ahead-left: turn right */
+    eaipp_step(&e, &hal);
+    assert_true(hal.left > 0 && hal.right < 0);
+}
+
 /* A chain: robot 0 the nest, 1..10 nodes 450 mm apart, 11 the food; each
  * hears its two neighbours only, one message a period each, no loss. */
 #define CHAIN 12u
@@ -388,6 +408,7 @@ int main(void)
         cmocka_unit_test(test_wheel_law),
         cmocka_unit_test(test_direction),
         cmocka_unit_test(test_lost_and_sources),
+        cmocka_unit_test(test_lost_rear_wall),
         cmocka_unit_test(test_chain_crossing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -443,17 +443,30 @@ static void become_node(eaipp_t *self, hal_t *hal)
     hal_set_wheel_speeds(hal, 0, 0);
 }
 
-static void lost_step(eaipp_t *self, hal_t *hal, const uint16_t prox[HAL_IR_COUNT])
+static void lost_step(eaipp_t *self, hal_t *hal, const uint16_t prox[HAL_IR_COUNT],
+                      const int16_t bearing[HAL_IR_COUNT])
 {
-    /* Sections 4.1, 4.3: straight on, turning away from what is near. */
-    uint8_t i, best = 0u;
+    /* Sections 4.1, 4.3: "the robot keeps moving in a straight line ... when
+     * encountering the boundary of the environment or with other robots ...
+     * changes the direction of movement to avoid collisions".  Only what is
+     * ahead (a sensor within +-90 deg of the heading, exclusive) starts a
+     * turn: a robot that has turned its back to a wall drives away from it.
+     * (Turning on the rear sensors too kept robots spinning in the corners
+     * for hundreds of steps: after a turn away from a wall the rear sensors
+     * still read it, and the robot turned again.) */
+    uint8_t i, best = HAL_IR_COUNT;
     int16_t v = (int16_t)self->p.speed_steps_s;
-    for (i = 1; i < HAL_IR_COUNT; i++) {
-        if (prox[i] > prox[best]) best = i;
+    for (i = 0; i < HAL_IR_COUNT; i++) {
+        if (bearing[i] > -HALF_PI_MRAD && bearing[i] < HALF_PI_MRAD
+            && (best == HAL_IR_COUNT || prox[i] > prox[best])) {
+            best = i;
+        }
     }
-    if (self->turning == 0u && prox[best] > self->p.lost_turn_prox) {
-        /* Sensors 0-3 are on the right (negative bearings): turn left. */
-        self->turn_dir = best < 4u ? (int8_t)1 : (int8_t)-1;
+    if (self->turning == 0u && best < HAL_IR_COUNT && prox[best] > self->p.lost_turn_prox) {
+        /* Negative bearings are on the right: turn left, and vice versa.
+         * The paper gives no angle: 5..19 steps of a spin, about 55..210 deg
+         * at 5 cm/s (a reconstruction). */
+        self->turn_dir = bearing[best] < 0 ? (int8_t)1 : (int8_t)-1;
         self->turning = (uint8_t)(5u + rng_below(&self->rng, 15u));
     }
     if (self->turning > 0u) {
@@ -485,7 +498,7 @@ void eaipp_step(eaipp_t *self, hal_t *hal)
         if (senses_network(self)) {
             self->state = EAIPP_EXPLORER;
         } else {
-            lost_step(self, hal, prox);
+            lost_step(self, hal, prox, bearing);
         }
         break;
     case EAIPP_EXPLORER:
