@@ -96,7 +96,7 @@ static void test_food_source(void **state)
     hear(&e, eaipp_msg_state(3u, EAIPP_ST_FOOD, EAIPP_SOURCE_FOOD, 0u), 300u, 0);
     assert_false(eaipp_gradient_update(&e));          /* the food is no source */
     e.state = EAIPP_EXPLORER;
-    e.nb.n[0].range_mm = 450u;
+    e.nb.n[0].range_mm = 500u;
     assert_false(eaipp_extension_due(&e));            /* nor the one of Algorithm 4 */
     e.p.food_source = 1u;
     assert_true(eaipp_extension_due(&e));
@@ -190,17 +190,23 @@ static void test_extension_distance(void **state)
     (void)state;
     make(&e, EAIPP_ROLE_ROBOT);
     e.state = EAIPP_EXPLORER;
-    /* One node at 0.6 R, 0.75 R, 0.85 R (R = 600 mm; window 420..480). */
+    /* One node at 0.6 R, at B_UL = 0.75 R, just beyond, near R (R = 600 mm):
+     * Algorithm 4's "measured_distance > B_UL", no upper bound. */
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 360u);
     assert_false(eaipp_extension_due(&e));
-    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 420u);
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 450u);
     assert_false(eaipp_extension_due(&e));
-    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 421u);
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 451u);
     assert_true(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 590u);
+    assert_true(eaipp_extension_due(&e));
+    /* The optional window (b_ul_max): not beyond it. */
+    e.p.b_ul_max_mm = 480u;
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 480u);
     assert_true(eaipp_extension_due(&e));
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 510u);
     assert_false(eaipp_extension_due(&e));
+    e.p.b_ul_max_mm = 0u;
     /* Contracting branch: no. */
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 1u, 450u);
     assert_false(eaipp_extension_due(&e));
@@ -210,7 +216,7 @@ static void test_extension_distance(void **state)
     assert_false(eaipp_extension_due(&e));
     /* The nest alone counts as the one. */
     make(&e, EAIPP_ROLE_ROBOT);
-    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 450u, 0);
+    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 460u, 0);
     hear(&e, eaipp_msg_state(7u, EAIPP_ST_EXPLORER, 0u, 0u), 100u, 0);
     assert_true(eaipp_extension_due(&e));
 }

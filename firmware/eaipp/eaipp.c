@@ -15,8 +15,13 @@ void eaipp_default_params(eaipp_params_t *p)
 {
     p->role = EAIPP_ROLE_ROBOT;
     p->speed_steps_s = 388u;       /* 5 cm/s, Table 2 */
-    p->b_ul_min_mm = 420u;         /* 0.7 R, R = 0.6 m */
-    p->b_ul_max_mm = 480u;         /* 0.8 R */
+    /* Algorithm 4: "if measured_distance(Object_N) > B_UL", with Table 2's
+     * 0.7 R < B_UL < 0.8 R: a threshold, the middle of the interval
+     * (R = 0.6 m).  No upper bound: an explorer that enters the range of a
+     * lone node from outside becomes a node at once (a window (0.7 R, 0.8 R]
+     * let such explorers cross the range without joining, and get lost). */
+    p->b_ul_mm = 450u;
+    p->b_ul_max_mm = 0u;
     /* PERIOD_TIME_1 and _2 are not given.  An explorer at 5 cm/s crosses one
      * link (0.75 R = 0.45 m) in 9 s: a branch end waits 3 links' travel
      * (30 s) for an explorer before leaving, and contracts when explorers
@@ -273,6 +278,10 @@ void eaipp_extinction_step(eaipp_t *self)
 
 /* --------------------------------------------------- Algorithm 4: extension */
 
+/* Exactly one Robot_Node or Robot_Nest heard (the food too when it is a
+ * source), not contracting, farther than B_UL: become a node (the printed
+ * last line's "state <- Robot_Explorer" read as Robot_Node). */
+
 uint8_t eaipp_extension_due(const eaipp_t *self)
 {
     uint8_t i, count = 0u;
@@ -293,7 +302,8 @@ uint8_t eaipp_extension_due(const eaipp_t *self)
         && ((only->heard & NB_HEARD_GRADIENT) == 0u || only->gradient >= EAIPP_GRADIENT_MAX)) {
         return 0u;
     }
-    return (uint8_t)(only->range_mm > self->p.b_ul_min_mm && only->range_mm <= self->p.b_ul_max_mm);
+    return (uint8_t)(only->range_mm > self->p.b_ul_mm
+                     && (self->p.b_ul_max_mm == 0u || only->range_mm <= self->p.b_ul_max_mm));
 }
 
 /* ------------------------------------------------------ eq 1 and Algorithm 3 */

@@ -49,9 +49,10 @@ typedef enum eaipp_state {
 typedef struct eaipp_params {
     uint8_t role;                  /**< eaipp_role_t */
     uint16_t speed_steps_s;        /**< m_fWheelVelocity of Algorithm 3, steps/s (388 = 5 cm/s) */
-    uint16_t b_ul_min_mm;          /**< extension window (Algorithm 4, Table 2: 0.7 R < B_UL < 0.8 R):
-                                        an explorer becomes a node when its one node is farther */
-    uint16_t b_ul_max_mm;          /**< ... and not farther than this, mm */
+    uint16_t b_ul_mm;              /**< B_UL (Algorithm 4, Table 2: 0.7 R < B_UL < 0.8 R): an explorer
+                                        becomes a node when its one node is farther than this, mm */
+    uint16_t b_ul_max_mm;          /**< 0 (default): no upper bound, as printed; else the one node
+                                        must also be no farther than this (a window), mm */
     uint16_t period1_steps;        /**< PERIOD_TIME_1: a branch end with no explorer near leaves
                                         (reconstruction: the paper gives no value) */
     uint16_t period2_steps;        /**< PERIOD_TIME_2: explorers near a branch end but no child:
