@@ -161,6 +161,52 @@ static void test_extinction_timing(void **state)
     assert_int_equal(e.state, EAIPP_NODE);
 }
 
+/* A node that left does not rejoin its branch: neither nodes of its old
+ * Root_ID nor its old P_Node, whose Root_ID changes when the leaver was one
+ * of the two children of a fork; nor the nest when that was its parent. */
+static void test_shunning(void **state)
+{
+    eaipp_t e;
+    uint16_t k;
+    (void)state;
+    branch_end(&e, 10u);                               /* parent 10 is a fork: Root_ID 10 */
+    for (k = 0; k <= 20u; k++) {
+        eaipp_extinction_step(&e);
+    }
+    assert_int_equal(e.state, EAIPP_LOST);
+    e.state = EAIPP_EXPLORER;
+    e.shun_steps = 5u;
+    e.nb.count = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 2u, 0u, 500u); /* no longer a fork: Root_ID 2 */
+    assert_false(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 10u, 0u, 500u);
+    assert_false(eaipp_extension_due(&e));
+    e.nb.count = 0u;
+    node(&e, 11u, EAIPP_SOURCE_NEST, 3u, 10u, 0u, 500u); /* another node of the old branch */
+    assert_false(eaipp_extension_due(&e));
+    e.nb.count = 0u;
+    node(&e, 12u, EAIPP_SOURCE_NEST, 3u, 7u, 0u, 500u);  /* another branch: yes */
+    assert_true(eaipp_extension_due(&e));
+    e.shun_steps = 0u;                                  /* the shunning is over */
+    e.nb.count = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 2u, 0u, 500u);
+    assert_true(eaipp_extension_due(&e));
+    /* A node next to the nest that left ignores the nest for a while. */
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.state = EAIPP_NODE;
+    e.id = 40u;
+    e.p.period1_steps = 20u;
+    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, EAIPP_SOURCE_NEST, 0u), 460u, 0);
+    hear(&e, eaipp_msg_root(0u, 0u), 460u, 0);
+    assert_true(eaipp_gradient_update(&e));
+    for (k = 0; k <= 20u; k++) {
+        eaipp_extinction_step(&e);
+    }
+    assert_int_equal(e.state, EAIPP_LOST);
+    e.state = EAIPP_EXPLORER;
+    assert_false(eaipp_extension_due(&e));
+}
+
 static void test_flag_forwarding(void **state)
 {
     eaipp_t e;
@@ -409,6 +455,7 @@ int main(void)
         cmocka_unit_test(test_gradient),
         cmocka_unit_test(test_food_source),
         cmocka_unit_test(test_extinction_timing),
+        cmocka_unit_test(test_shunning),
         cmocka_unit_test(test_flag_forwarding),
         cmocka_unit_test(test_extension_distance),
         cmocka_unit_test(test_wheel_law),

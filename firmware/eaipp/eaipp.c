@@ -66,6 +66,7 @@ void eaipp_reset(eaipp_t *self)
     self->turning = 0u;
     self->turn_dir = 1;
     self->shun_root = 0u;
+    self->shun_parent = 0u;
     self->shun_steps = 0u;
     self->counter1 = 0u;
     self->counter2 = 0u;
@@ -109,11 +110,20 @@ static uint8_t holder(const eaipp_t *self, const neighbour_t *n, uint8_t *g, uin
     return 0u;
 }
 
-/* A node the robot is shunning (the branch it left, section 4.2.1). */
+/* A node (or the nest) the robot is shunning: the branch it left (section
+ * 4.2.1: "a Robot_Node that leaves the network due to the extinction
+ * mechanism will not rejoin the same branch chain").  The branch is the
+ * Root_ID the robot had, and also its old P_Node by id: the Root_ID of a
+ * fork changes when the leaving child was one of its two, so that by Root_ID
+ * alone the robot rejoined its parent at once, in the same place.  The nest
+ * (Root_ID = own id) is shunned like a node: a node next to the nest that
+ * left would otherwise rejoin it the next step. */
 static uint8_t shunned(const eaipp_t *self, const neighbour_t *n)
 {
-    return (uint8_t)(self->shun_steps > 0u && neighbour_is(n, EAIPP_ST_NODE) && (n->heard & NB_HEARD_ROOT) != 0u
-                     && n->root == self->shun_root);
+    if (self->shun_steps == 0u || !(neighbour_is(n, EAIPP_ST_NODE) || neighbour_is(n, EAIPP_ST_NEST))) {
+        return 0u;
+    }
+    return (uint8_t)(n->id == self->shun_parent || ((n->heard & NB_HEARD_ROOT) != 0u && n->root == self->shun_root));
 }
 
 /* What a lost or exploring robot senses: the nest, a node, or the food when
@@ -125,7 +135,7 @@ static uint8_t senses_network(const eaipp_t *self)
     uint8_t i, node = 0u, food = 0u;
     for (i = 0; i < self->nb.count; i++) {
         const neighbour_t *n = &self->nb.n[i];
-        if (neighbour_is(n, EAIPP_ST_NEST)) {
+        if (neighbour_is(n, EAIPP_ST_NEST) && !shunned(self, n)) {
             return 1u;
         }
         if (neighbour_is(n, EAIPP_ST_NODE) && !shunned(self, n)) {
@@ -210,6 +220,7 @@ uint8_t eaipp_gradient_update(eaipp_t *self)
 static void leave(eaipp_t *self, uint8_t state)
 {
     self->shun_root = self->root;
+    self->shun_parent = self->parent;
     self->shun_steps = self->p.period1_steps;
     self->state = state;
     self->counter1 = 0u;

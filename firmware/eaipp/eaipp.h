@@ -84,7 +84,8 @@ typedef struct eaipp {
     uint8_t tx_cursor;             /**< next message kind of the role's cycle */
     uint8_t turning;               /**< Robot_Lost: steps left of a turn away */
     int8_t turn_dir;               /**< +1 left, -1 right */
-    uint8_t shun_root;             /**< a node that left a branch does not rejoin it ... */
+    uint8_t shun_root;             /**< a node that left a branch does not rejoin it (its Root_ID) ... */
+    uint8_t shun_parent;           /**< ... nor its P_Node (by id, whatever Root_ID it has now) ... */
     uint16_t shun_steps;           /**< ... for this many more steps */
     uint16_t counter1;             /**< Algorithm 2: steps with no explorer near a branch end */
     uint16_t counter2;             /**< Algorithm 2: steps with explorers near it */
