@@ -270,21 +270,42 @@ static void test_extension_distance(void **state)
 static void test_wheel_law(void **state)
 {
     int16_t l, r;
+    int8_t side = 0;
     (void)state;
-    eaipp_wheel_law(1.0f, 0.0f, 400u, &l, &r);          /* straight ahead */
+    eaipp_wheel_law(1.0f, 0.0f, 400u, 400u, &side, &l, &r);          /* straight ahead */
     assert_int_equal(l, 400);
     assert_int_equal(r, 400);
-    eaipp_wheel_law(1.0f, 1.0f, 400u, &l, &r);          /* 45 deg left: left wheel at 1/2 */
+    eaipp_wheel_law(1.0f, 1.0f, 400u, 400u, &side, &l, &r);          /* 45 deg left: left wheel at 1/2 */
     assert_in_range(l, 198, 202);
     assert_int_equal(r, 400);
-    eaipp_wheel_law(1.0f, -1.0f, 400u, &l, &r);         /* 45 deg right */
+    assert_int_equal(side, 1);
+    eaipp_wheel_law(1.0f, -1.0f, 400u, 400u, &side, &l, &r);         /* 45 deg right */
     assert_int_equal(l, 400);
     assert_in_range(r, 198, 202);
-    eaipp_wheel_law(0.0f, 1.0f, 400u, &l, &r);          /* 90 deg left: pivot on the left wheel */
+    assert_int_equal(side, -1);
+    eaipp_wheel_law(0.0f, 1.0f, 400u, 400u, &side, &l, &r);          /* 90 deg left: pivot on the left wheel */
     assert_true(l >= -2 && l <= 2);
-    eaipp_wheel_law(-1.0f, -0.001f, 400u, &l, &r);      /* behind: spin in place */
+    side = 0;
+    eaipp_wheel_law(-1.0f, -0.001f, 400u, 400u, &side, &l, &r);      /* behind: spin in place */
     assert_int_equal(l, 400);
     assert_true(r >= -402 && r <= -396);
+    /* Behind, a little to the left then a little to the right: the spin
+     * keeps its side (right) instead of dithering. */
+    eaipp_wheel_law(-1.0f, 0.1f, 400u, 400u, &side, &l, &r);
+    assert_int_equal(l, 400);
+    assert_true(r < -300);
+    eaipp_wheel_law(-1.0f, -0.1f, 400u, 400u, &side, &l, &r);
+    assert_int_equal(l, 400);
+    assert_true(r < -300);
+    /* Off (hold 0): the sign of the angle decides. */
+    eaipp_wheel_law(-1.0f, 0.1f, 400u, 0u, &side, &l, &r);
+    assert_true(l < -300);
+    assert_int_equal(r, 400);
+    /* Well to the side, the angle decides whatever the last side. */
+    side = -1;
+    eaipp_wheel_law(-1.0f, 1.0f, 400u, 400u, &side, &l, &r);          /* 135 deg left */
+    assert_true(l < 0);
+    assert_int_equal(r, 400);
 }
 
 static void test_direction(void **state)

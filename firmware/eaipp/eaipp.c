@@ -33,6 +33,7 @@ void eaipp_default_params(eaipp_params_t *p)
     p->w_obstacles = 1.0f;
     p->prox_full = 1000u;          /* ~1 cm from a surface reads 1 */
     p->lost_turn_prox = 300u;      /* ~2.5 cm */
+    p->turn_hold_mrad = 400u;      /* two periods of an e-puck's spin at 5 cm/s (0.19 rad each) */
     /* The food is the target, not a source (Algorithm 4 and eq 1 count
      * Robot_Node and Robot_Nest only; section 5.2 ends a run when the food
      * is perceived).  With the food a source as well, two networks grown by
@@ -65,6 +66,7 @@ void eaipp_reset(eaipp_t *self)
     self->tx_cursor = 0u;
     self->turning = 0u;
     self->turn_dir = 1;
+    self->turn_side = 0;
     self->shun_root = 0u;
     self->shun_parent = 0u;
     self->shun_steps = 0u;
@@ -389,20 +391,36 @@ void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], con
     }
 }
 
-void eaipp_wheel_law(float vx, float vy, uint16_t speed, int16_t *left, int16_t *right)
+void eaipp_wheel_law(float vx, float vy, uint16_t speed, uint16_t hold_mrad, int8_t *side, int16_t *left,
+                     int16_t *right)
 {
     /* Algorithm 3: angle between the heading and V; the inner wheel slows
      * by (1 - 2|angle|/pi), reversing beyond a right angle.  The pseudocode
      * writes (1 - 2 angle/pi) for negative angles too, which would speed the
-     * inner wheel up: the evident intent is |angle|. */
+     * inner wheel up: the evident intent is |angle|.
+     *
+     * Modelling correction (the paper is silent): a direction behind the
+     * robot, within hold_mrad of +-pi, keeps the side of the last turn
+     * (*side).  The turret's bearings are one control period old and a
+     * robot turning toward a target behind it spins at the full 2 v / L
+     * (0.19 rad a period for an e-puck at 5 cm/s): the sign of the angle
+     * flips every period and the robot dithered in place for hundreds of
+     * steps. */
     int32_t a = odo_atan2_mrad((int32_t)(vy * 1000.0f), (int32_t)(vx * 1000.0f));
-    int32_t slow = (int32_t)speed - (int32_t)speed * 2 * (a < 0 ? -a : a) / (2 * HALF_PI_MRAD);
+    int32_t mag = a < 0 ? -a : a;
+    int32_t slow;
+    if (mag > 2 * HALF_PI_MRAD - (int32_t)hold_mrad && *side != 0) {
+        a = *side > 0 ? mag : -mag;
+    }
+    slow = (int32_t)speed - (int32_t)speed * 2 * mag / (2 * HALF_PI_MRAD);
     if (a > 0) {
         *left = (int16_t)slow;
         *right = (int16_t)speed;
+        *side = 1;
     } else {
         *left = (int16_t)speed;
         *right = (int16_t)slow;
+        *side = (int8_t)(a < 0 ? -1 : 0);
     }
 }
 
@@ -538,7 +556,7 @@ void eaipp_step(eaipp_t *self, hal_t *hal)
             eaipp_direction(self, prox, bearing, &vx, &vy);
             self->heading_x = vx;
             self->heading_y = vy;
-            eaipp_wheel_law(vx, vy, self->p.speed_steps_s, &l, &r);
+            eaipp_wheel_law(vx, vy, self->p.speed_steps_s, self->p.turn_hold_mrad, &self->turn_side, &l, &r);
             hal_set_wheel_speeds(hal, l, r);
         }
         break;

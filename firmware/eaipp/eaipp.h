@@ -62,6 +62,8 @@ typedef struct eaipp_params {
     float w_obstacles;             /**< eq 1's weight of the obstacle term */
     uint16_t prox_full;            /**< proximity counts taken as eq 1's reading 1 */
     uint16_t lost_turn_prox;       /**< Robot_Lost turns away above this proximity */
+    uint16_t turn_hold_mrad;       /**< Algorithm 3: a direction within this of straight behind keeps
+                                        the side of the last turn (0: off) */
     uint8_t food_source;           /**< 1: the food is a second gradient source and network root
                                         (sections 4.2.1, 4.3); 0 (default): Algorithm 4, eq 1 and
                                         section 5.2 as printed, the food is the target only (also
@@ -84,6 +86,7 @@ typedef struct eaipp {
     uint8_t tx_cursor;             /**< next message kind of the role's cycle */
     uint8_t turning;               /**< Robot_Lost: steps left of a turn away */
     int8_t turn_dir;               /**< +1 left, -1 right */
+    int8_t turn_side;              /**< Algorithm 3: side of the last turn, +1 left, -1 right, 0 none */
     uint8_t shun_root;             /**< a node that left a branch does not rejoin it (its Root_ID) ... */
     uint8_t shun_parent;           /**< ... nor its P_Node (by id, whatever Root_ID it has now) ... */
     uint16_t shun_steps;           /**< ... for this many more steps */
@@ -114,8 +117,11 @@ uint8_t eaipp_extension_due(const eaipp_t *self);
 void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], const int16_t bearing_mrad[HAL_IR_COUNT],
                      float *vx, float *vy);
 
-/** Algorithm 3: wheel speeds (steps/s) steering toward (vx, vy). */
-void eaipp_wheel_law(float vx, float vy, uint16_t speed, int16_t *left, int16_t *right);
+/** Algorithm 3: wheel speeds (steps/s) steering toward (vx, vy); a direction
+ *  within hold_mrad of straight behind turns to the side *side of the last
+ *  turn (when nonzero), and *side is updated. */
+void eaipp_wheel_law(float vx, float vy, uint16_t speed, uint16_t hold_mrad, int8_t *side, int16_t *left,
+                     int16_t *right);
 
 extern const observable_t eaipp_observables[];
 

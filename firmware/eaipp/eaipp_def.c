@@ -32,6 +32,8 @@ static const param_desc_t eaipp_param_descs[] = {
       .doc = "proximity counts read as eq 1's 1" },
     { .key = "lost_turn_prox", PARAM_FIELD(EP, lost_turn_prox, uint16_t), .min = 0, .max = 4095,
       .doc = "Robot_Lost turns away above this proximity, counts" },
+    { .key = "turn_hold", PARAM_FIELD(EP, turn_hold_mrad, uint16_t), .min = 0, .max = 3141,
+      .doc = "Algorithm 3: a direction within this of straight behind keeps the last turn's side, mrad (0: off)" },
     { .key = "food_source", PARAM_BOOL_FIELD(EP, food_source),
       .doc = "the food is a second gradient source and root (default false: the printed Algorithm 4"
              " and eq 1, the food is the target only, as in the maze rule)" },
