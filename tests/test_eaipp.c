@@ -333,6 +333,20 @@ static void test_direction(void **state)
     e.nb.n[1].bearing_mrad = -1571;
     eaipp_direction(&e, prox, bearing, &vx, &vy);
     assert_true(vy > 0.9f);
+    /* Just past the end node of a branch (gradient 2, 0.1 m behind), the
+     * node before it (gradient 1) 0.55 m behind: the linear reading (the
+     * default) leads on, beyond the end; the inverse one back to the end. */
+    e.nb.count = 0u;
+    node(&e, 10u, 0u, 2u, 1u, 0u, 100u);
+    e.nb.n[0].bearing_mrad = 3141;
+    node(&e, 11u, 0u, 1u, 1u, 0u, 550u);
+    e.nb.n[1].bearing_mrad = 3141;
+    assert_int_equal(e.p.a_distance, EAIPP_A_LINEAR);
+    eaipp_direction(&e, prox, bearing, &vx, &vy);
+    assert_true(vx > 0.9f);
+    e.p.a_distance = EAIPP_A_INVERSE;
+    eaipp_direction(&e, prox, bearing, &vx, &vy);
+    assert_true(vx < -0.9f);
     /* A wall touching the front sensors dominates: away from it. */
     prox[0] = prox[7] = 2000u;
     eaipp_direction(&e, prox, bearing, &vx, &vy);

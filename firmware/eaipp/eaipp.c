@@ -33,6 +33,17 @@ void eaipp_default_params(eaipp_params_t *p)
     p->w_obstacles = 1.0f;
     p->prox_full = 1000u;          /* ~1 cm from a surface reads 1 */
     p->lost_turn_prox = 300u;      /* ~2.5 cm */
+    /* Eq 1 lost its symbols: D_i may divide or multiply the node term.
+     * With 1/D_i the highest node heard is a point attractor: an explorer
+     * reaching the end node of a branch is held against its body, in range
+     * of the node before it (0.45 m back: an e-puck touching the end node is
+     * 0.08 m from it; a marXbot, 17 cm wide, would be 0.17 m off and nearly
+     * out of that range), so Algorithm 4 (exactly one node heard) never
+     * fires and the end contracts with explorers around it.  With D_i u_i
+     * (the vector to the neighbour) the term is sum (g_i - g_mean) x_i, one
+     * direction down the branch wherever the explorer is: it passes the end
+     * node and extends the branch.  We take the linear reading. */
+    p->a_distance = EAIPP_A_LINEAR;
     p->turn_hold_mrad = 400u;      /* two periods of an e-puck's spin at 5 cm/s (0.19 rad each) */
     /* The food is the target, not a source (Algorithm 4 and eq 1 count
      * Robot_Node and Robot_Nest only; section 5.2 ends a run when the food
@@ -326,10 +337,11 @@ void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], con
 {
     /* Eq 1 lost its symbols; from its description we take
      *   V = w_n (1 - p_max) A/|A| + w_o p_max B/|B|
-     *   A = (1/N) sum_i F_i (g_i - g_mean) u_i / D_i   over the N nodes and
+     *   A = (1/N) sum_i F_i (g_i - g_mean) D_i u_i   over the N nodes and
      *       sources heard: g_i their gradients, g_mean their mean, u_i the
      *       unit vector toward i, D_i its range (m), F_i = +1, or -1 when i
-     *       carries Flag_Contraction (explorers then retreat down the branch)
+     *       carries Flag_Contraction (explorers then retreat down the branch);
+     *       with a_distance = inverse, u_i / D_i instead (see the default)
      *   B = sum_j p_j (-v_j)   over the proximity sensors: p_j the reading
      *       scaled to [0, 1] (prox_full reads 1), v_j the sensor's direction
      *   p_max = max_j p_j: the nearer an obstacle, the more it dominates.
@@ -354,7 +366,7 @@ void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], con
                 continue;
             }
             d = (float)(nb->range_mm < 10u ? 10u : nb->range_mm) / 1000.0f;
-            w = ((float)g - mean) / d;
+            w = self->p.a_distance == EAIPP_A_LINEAR ? ((float)g - mean) * d : ((float)g - mean) / d;
             if (neighbour_contraction(nb)) {
                 w = -w;
             }

@@ -46,6 +46,13 @@ typedef enum eaipp_state {
     EAIPP_FOOD = EAIPP_ST_FOOD
 } eaipp_state_t;
 
+/** Eq 1's node term: how a neighbour's distance D_i weighs it (the printed
+ *  formula lost its symbols). */
+typedef enum eaipp_a_distance {
+    EAIPP_A_INVERSE = 0,           /**< (g_i - g_mean) u_i / D_i: the nearest high node attracts most */
+    EAIPP_A_LINEAR = 1             /**< (g_i - g_mean) D_i u_i: one direction down the branch */
+} eaipp_a_distance_t;
+
 typedef struct eaipp_params {
     uint8_t role;                  /**< eaipp_role_t */
     uint16_t speed_steps_s;        /**< m_fWheelVelocity of Algorithm 3, steps/s (388 = 5 cm/s) */
@@ -62,6 +69,8 @@ typedef struct eaipp_params {
     float w_obstacles;             /**< eq 1's weight of the obstacle term */
     uint16_t prox_full;            /**< proximity counts taken as eq 1's reading 1 */
     uint16_t lost_turn_prox;       /**< Robot_Lost turns away above this proximity */
+    uint8_t a_distance;            /**< eq 1's D_i in the node term: EAIPP_A_INVERSE (u_i / D_i) or
+                                        EAIPP_A_LINEAR (D_i u_i, the vector to the neighbour) */
     uint16_t turn_hold_mrad;       /**< Algorithm 3: a direction within this of straight behind keeps
                                         the side of the last turn (0: off) */
     uint8_t food_source;           /**< 1: the food is a second gradient source and network root

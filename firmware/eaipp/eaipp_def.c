@@ -8,6 +8,7 @@
 #define EP eaipp_params_t
 
 static const char *const eaipp_roles[] = { "robot", "nest", "food", 0 };
+static const char *const eaipp_a_distances[] = { "inverse", "linear", 0 };
 
 static const param_desc_t eaipp_param_descs[] = {
     { .key = "role", PARAM_ENUM_U8_FIELD(EP, role, eaipp_roles),
@@ -32,6 +33,8 @@ static const param_desc_t eaipp_param_descs[] = {
       .doc = "proximity counts read as eq 1's 1" },
     { .key = "lost_turn_prox", PARAM_FIELD(EP, lost_turn_prox, uint16_t), .min = 0, .max = 4095,
       .doc = "Robot_Lost turns away above this proximity, counts" },
+    { .key = "a_distance", PARAM_ENUM_U8_FIELD(EP, a_distance, eaipp_a_distances),
+      .doc = "eq 1's node term weighs neighbour i by 1/D_i (inverse) or D_i (linear: the vector to it)" },
     { .key = "turn_hold", PARAM_FIELD(EP, turn_hold_mrad, uint16_t), .min = 0, .max = 3141,
       .doc = "Algorithm 3: a direction within this of straight behind keeps the last turn's side, mrad (0: off)" },
     { .key = "food_source", PARAM_BOOL_FIELD(EP, food_source),
