@@ -228,6 +228,16 @@ static void test_flag_forwarding(void **state)
     assert_true(eaipp_gradient_update(&e));
     eaipp_extinction_step(&e);
     assert_int_equal(e.contraction, 0u);
+    /* A fork (two children, Root_ID its own id) does not take a child's flag. */
+    e.nb.count = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 5u, 0u, 450u);
+    node(&e, 41u, EAIPP_SOURCE_NEST, 5u, 40u, 1u, 450u);
+    node(&e, 42u, EAIPP_SOURCE_NEST, 5u, 40u, 0u, 450u);
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.children, 2u);
+    assert_int_equal(e.root, 40u);
+    eaipp_extinction_step(&e);
+    assert_int_equal(e.contraction, 0u);
 }
 
 static void test_extension_distance(void **state)

@@ -283,6 +283,16 @@ void eaipp_extinction_step(eaipp_t *self)
                 self->counter1 = 0u;
             }
         }
+    } else if (self->children >= 2u) {
+        /* A fork (Root_ID = own id) is the root of the branches below it,
+         * not one of their members: their Root_ID is its id, so the printed
+         * "Root_ID(n) = Root_ID(self)" would have it take the flag of
+         * whichever child it heard first and repel explorers from its other,
+         * healthy branches.  The flag stops at the last node before the fork
+         * (Algorithm 2's marker). */
+        self->counter1 = 0u;
+        self->counter2 = 0u;
+        self->contraction = 0u;
     } else {
         self->counter1 = 0u;
         self->counter2 = 0u;
