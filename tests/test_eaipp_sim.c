@@ -5,7 +5,7 @@
  * (docs/notes/i15_eaipp.md has the success rates over seeds).  It checks
  * that the controller as shipped forms a chain of Robot_Nodes from the nest
  * to the food within a bound, and that the task's still robots on it are
- * EAIPP nodes.  Time: 180 simulated seconds, 0.03 s (0.2 s under ASan).
+ * EAIPP nodes.  Time: 240 simulated seconds, 0.04 s (0.2 s under ASan).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -23,10 +23,12 @@
 #include "core/sim.h"
 #include "tasks/paths/paths.h"
 
-/* The seed and the bound: seed 4 merged at 180.2 s when this test was
- * written (most seeds merge at D = 1.4 m; this one needs 18 joins, several
- * extinctions and a branch of 6 nodes, so it exercises every mechanism). */
-#define PATH_SEED 4u
+/* The seed and the bound: seed 15 merged at 242.1 s when this test was
+ * written (most seeds merge at D = 1.4 m; this one needs 18 joins, 9
+ * extinctions and a chain of 5 nodes, so it exercises every mechanism).  A
+ * change of the controller changes the runs: pick another seed that merges
+ * (build/swarmsim ... --reps 20) and say so in the commit. */
+#define PATH_SEED 15u
 #define PATH_BOUND_S 300.0
 
 static double metric(const sim_t *sim, const char *name)

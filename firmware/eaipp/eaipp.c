@@ -326,9 +326,20 @@ uint8_t eaipp_extension_due(const eaipp_t *self)
             || (neighbour_is(n, EAIPP_ST_FOOD) && self->p.food_source != 0u)) {
             count++;
             only = n;
+        } else if ((n->heard & NB_HEARD_STATE) == 0u) {
+            /* Heard, but its STATE frame not yet (a node's comes every third
+             * period): it may be a node, and "exactly one" cannot be
+             * decided.  Wait (at most two periods). */
+            return 0u;
         }
     }
     if (count != 1u || neighbour_contraction(only) || shunned(self, only)) {
+        return 0u;
+    }
+    /* measured_distance: a range measured this period, not one the table
+     * kept from an earlier message (lost messages leave it up to `timeout`
+     * periods old while the explorer moves on). */
+    if (only->age != 0u) {
         return 0u;
     }
     /* A node must have a gradient to extend from. */
