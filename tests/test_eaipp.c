@@ -446,6 +446,88 @@ static void test_lost_rear_wall(void **state)
     assert_true(hal.left > 0 && hal.right < 0);
 }
 
+/* Section 5.1's exit (lj_exit): a lost robot that hears the nest, or an
+ * exiting robot, starts exiting; it heads for the nest, or for the exiting
+ * neighbour nearest to it, pushed off exiting robots that are too near
+ * (Lennard-Jones), broadcasts its distance, and becomes an explorer at the
+ * nest.  Off by default. */
+static void test_lj_exit(void **state)
+{
+    eaipp_t e;
+    hal_t hal;
+    eaipp_msg_t m;
+    float vx, vy;
+    uint8_t k, exits = 0u;
+    (void)state;
+    /* Off: the nest makes an explorer, as in the square arena. */
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    fake_hal_push(&hal, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 700u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "explorer");
+    /* On: an exiting neighbour (its distance 1.0 m, 300 mm to my left). */
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.p.lj_exit = 1u;
+    fake_hal_push(&hal, eaipp_msg_state(20u, EAIPP_ST_EXITING, 0u, 0u), 300u, 1571);
+    fake_hal_push(&hal, eaipp_msg_exit(20u, 1000u, 1u), 300u, 1571);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "exiting");
+    fake_hal_end_step(&hal);
+    fake_hal_push(&hal, eaipp_msg_exit(20u, 1000u, 1u), 300u, 1571);
+    eaipp_step(&e, &hal);
+    assert_int_equal(e.exit_mm, 1300u);                /* its distance + the range to it */
+    assert_true(e.heading_y > 0.5f);                   /* toward it (left) */
+    assert_true(hal.right > hal.left);
+    for (k = 0; k < hal.out_count; k++) {
+        assert_true(eaipp_msg_decode(hal.outbox[k], &m));
+        if (m.kind == EAIPP_MSG_EXIT) {
+            exits++;
+            assert_int_equal(m.exit_units, 65u);       /* 1300 mm / 20 */
+        }
+    }
+    assert_int_equal(exits, 1u);                       /* STATE, then EXIT: one each a period */
+    fake_hal_end_step(&hal);
+    /* The nest heard at 600 mm ahead wins over the neighbour's 1.3 m. */
+    fake_hal_push(&hal, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 600u, 0);
+    eaipp_step(&e, &hal);
+    assert_int_equal(e.exit_mm, 600u);
+    assert_true(eaipp_exit_direction(&e, &vx, &vy));
+    assert_true(vx > 0.9f);
+    fake_hal_end_step(&hal);
+    /* Lennard-Jones: an exiting robot 60 mm ahead pushes harder than the
+     * pull to the nest ahead; one at 300 mm (beyond 2^(1/6) sigma = 168 mm)
+     * pulls a little. */
+    hear(&e, eaipp_msg_state(21u, EAIPP_ST_EXITING, 0u, 0u), 60u, 0);
+    assert_true(eaipp_exit_direction(&e, &vx, &vy));
+    assert_true(vx < 0.5f);
+    hear(&e, eaipp_msg_state(21u, EAIPP_ST_EXITING, 0u, 0u), 300u, 1571);
+    assert_true(eaipp_exit_direction(&e, &vx, &vy));
+    assert_true(vy > 0.0f && vx > 0.9f);
+    /* At the nest: an explorer, and never exiting again. */
+    fake_hal_push(&hal, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 200u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "explorer");
+    assert_int_equal(e.exited, 1u);
+    e.state = EAIPP_LOST;
+    e.nb.count = 0u;
+    fake_hal_end_step(&hal);
+    fake_hal_push(&hal, eaipp_msg_state(20u, EAIPP_ST_EXITING, 0u, 0u), 300u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "lost");
+    /* Exiting with nothing to follow: lost again (still to exit). */
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.p.lj_exit = 1u;
+    fake_hal_push(&hal, eaipp_msg_state(20u, EAIPP_ST_EXITING, 0u, 0u), 300u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "exiting");
+    fake_hal_end_step(&hal);
+    eaipp_step(&e, &hal);                              /* 20's distance never heard */
+    assert_string_equal(eaipp_state_name(&e), "lost");
+    assert_int_equal(e.exited, 0u);
+}
+
 /* A chain: robot 0 the nest, 1..10 nodes 450 mm apart, 11 the food; each
  * hears its two neighbours only, one message a period each, no loss. */
 #define CHAIN 12u
@@ -518,6 +600,7 @@ int main(void)
         cmocka_unit_test(test_direction),
         cmocka_unit_test(test_lost_and_sources),
         cmocka_unit_test(test_lost_rear_wall),
+        cmocka_unit_test(test_lj_exit),
         cmocka_unit_test(test_chain_crossing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -9,7 +9,7 @@
 #define Q14 16384.0f
 #define HALF_PI_MRAD 1571
 
-static const char *const state_names[] = { "lost", "explorer", "node", "nest", "food" };
+static const char *const state_names[] = { "lost", "explorer", "node", "nest", "food", "exiting" };
 
 void eaipp_default_params(eaipp_params_t *p)
 {
@@ -52,6 +52,14 @@ void eaipp_default_params(eaipp_params_t *p)
      * hears exactly one node, so the new node is out of range of the other
      * network's nodes. */
     p->food_source = 0u;
+    /* Section 5.1's exit from the waiting area: off (the square arena's
+     * robots start anywhere).  sigma 150 mm: exiting e-pucks (74 mm) settle
+     * 168 mm apart, two bodies; the exit is done 250 mm from the nest (the
+     * half-scale maze's door is 0.25 m from it). */
+    p->lj_exit = 0u;
+    p->lj_sigma_mm = 150u;
+    p->lj_weight = 1.0f;
+    p->exit_near_mm = 250u;
 }
 
 void eaipp_init(eaipp_t *self, const eaipp_params_t *params, uint32_t seed)
@@ -84,6 +92,8 @@ void eaipp_reset(eaipp_t *self)
     self->counter1 = 0u;
     self->counter2 = 0u;
     self->orphan_steps = 0u;
+    self->exited = 0u;
+    self->exit_mm = 0xFFFFu;
     self->heading_x = 1.0f;
     self->heading_y = 0.0f;
     self->joins = 0u;
@@ -92,7 +102,7 @@ void eaipp_reset(eaipp_t *self)
 
 const char *eaipp_state_name(const eaipp_t *self)
 {
-    return self->state < 5u ? state_names[self->state] : "?";
+    return self->state < 6u ? state_names[self->state] : "?";
 }
 
 /* ------------------------------------------------------------ the table */
@@ -457,6 +467,117 @@ void eaipp_wheel_law(float vx, float vy, uint16_t speed, uint16_t hold_mrad, int
     }
 }
 
+/* ------------------------------------------------- section 5.1: exiting */
+
+uint8_t eaipp_exit_direction(eaipp_t *self, float *vx, float *vy)
+{
+    /* "the robots are attracted to the Robot_Nest, maintain a safe distance
+     * from other exiting robots based on the LJ model, and broadcast their
+     * distances from the Robot_Nest ... The robots that cannot perceive the
+     * Robot_Nest directly are attracted to their neighbours that are
+     * broadcasting the shortest distances to the landmark."  The pull is a
+     * unit vector toward the nest or that neighbour (own distance: its
+     * distance plus the range to it); each exiting neighbour j adds
+     * -lj_weight f(r_j) u_j with the Lennard-Jones shape
+     * f(r) = (s/r)^12 - (s/r)^6 (s = sigma; repulsive below 2^(1/6) s,
+     * weakly attractive above), clamped to [-1, 1]. */
+    const neighbour_t *target = 0;
+    uint32_t best = 0xFFFFFFFFu;
+    float ax = 0.0f, ay = 0.0f;
+    uint8_t i;
+    for (i = 0; i < self->nb.count; i++) {
+        const neighbour_t *n = &self->nb.n[i];
+        uint32_t d;
+        if (neighbour_is(n, EAIPP_ST_NEST)) {
+            d = n->range_mm;
+        } else if (neighbour_is(n, EAIPP_ST_EXITING) && (n->heard & NB_HEARD_EXIT) != 0u
+                   && n->exit_units < EAIPP_MSG_EXIT_UNKNOWN) {
+            d = (uint32_t)n->exit_units * EAIPP_MSG_EXIT_MM + n->range_mm;
+        } else {
+            continue;
+        }
+        if (d < best) {
+            best = d;
+            target = n;
+        }
+    }
+    if (target == 0) {
+        self->exit_mm = 0xFFFFu;
+        return 0u;
+    }
+    self->exit_mm = (uint16_t)(best > 0xFFFEu ? 0xFFFEu : best);
+    ax = (float)odo_cos_q14(target->bearing_mrad) / Q14;
+    ay = (float)odo_sin_q14(target->bearing_mrad) / Q14;
+    for (i = 0; i < self->nb.count; i++) {
+        const neighbour_t *n = &self->nb.n[i];
+        float q, q6, f;
+        if (!neighbour_is(n, EAIPP_ST_EXITING)) {
+            continue;
+        }
+        q = (float)self->p.lj_sigma_mm / (float)(n->range_mm < 10u ? 10u : n->range_mm);
+        q6 = q * q * q;
+        q6 = q6 * q6;
+        f = q6 * q6 - q6;
+        if (f > 1.0f) f = 1.0f;
+        if (f < -1.0f) f = -1.0f;
+        f *= self->p.lj_weight;
+        ax -= f * (float)odo_cos_q14(n->bearing_mrad) / Q14;
+        ay -= f * (float)odo_sin_q14(n->bearing_mrad) / Q14;
+    }
+    *vx = ax;
+    *vy = ay;
+    return 1u;
+}
+
+/* Whether a lost robot of the waiting area starts exiting: it hears the nest
+ * or an exiting robot (section 5.1: "other robots detect the presence of
+ * robots in the exiting state and switch to the same state"). */
+static uint8_t exit_due(const eaipp_t *self)
+{
+    uint8_t i;
+    if (self->p.lj_exit == 0u || self->exited != 0u) {
+        return 0u;
+    }
+    for (i = 0; i < self->nb.count; i++) {
+        if (neighbour_is(&self->nb.n[i], EAIPP_ST_NEST) || neighbour_is(&self->nb.n[i], EAIPP_ST_EXITING)) {
+            return 1u;
+        }
+    }
+    return 0u;
+}
+
+/* Eq 1's blend of a direction with the obstacle term, for exiting robots. */
+static void blend_obstacles(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT],
+                            const int16_t bearing_mrad[HAL_IR_COUNT], float *vx, float *vy)
+{
+    float bx = 0.0f, by = 0.0f, pmax = 0.0f, ma, mb, t;
+    uint8_t i;
+    for (i = 0; i < HAL_IR_COUNT; i++) {
+        float pj = (float)prox[i] / (float)self->p.prox_full;
+        if (pj > 1.0f) pj = 1.0f;
+        if (pj > pmax) pmax = pj;
+        bx -= pj * (float)odo_cos_q14(bearing_mrad[i]) / Q14;
+        by -= pj * (float)odo_sin_q14(bearing_mrad[i]) / Q14;
+    }
+    ma = *vx < 0 ? -*vx : *vx;
+    t = *vy < 0 ? -*vy : *vy;
+    if (t > ma) ma = t;
+    if (ma < 1e-6f) {
+        *vx = 1.0f;
+        *vy = 0.0f;
+        ma = 1.0f;
+    }
+    mb = bx < 0 ? -bx : bx;
+    t = by < 0 ? -by : by;
+    if (t > mb) mb = t;
+    *vx = (1.0f - pmax) * *vx / ma;
+    *vy = (1.0f - pmax) * *vy / ma;
+    if (mb > 1e-6f) {
+        *vx += pmax * bx / mb;
+        *vy += pmax * by / mb;
+    }
+}
+
 /* ------------------------------------------------------------------ steps */
 
 static void hear_all(eaipp_t *self, hal_t *hal)
@@ -476,13 +597,17 @@ static void send_turn(eaipp_t *self, hal_t *hal)
     /* Nodes and sources cycle STATE, GRADIENT, ROOT; lost robots and
      * explorers have only their STATE to say.  As many as the platform
      * takes this period, at most one cycle. */
-    uint8_t cycle = (self->state == EAIPP_LOST || self->state == EAIPP_EXPLORER) ? 1u : 3u;
+    uint8_t cycle = (self->state == EAIPP_LOST || self->state == EAIPP_EXPLORER) ? 1u
+        : self->state == EAIPP_EXITING ? 2u : 3u;
     uint8_t k;
     for (k = 0; k < cycle; k++) {
         uint16_t f;
         uint8_t kind = (uint8_t)(self->tx_cursor % cycle);
         if (kind == 0u) {
             f = eaipp_msg_state(self->id, self->state, self->source, self->contraction);
+        } else if (self->state == EAIPP_EXITING) {
+            /* Exiting robots alternate STATE and EXIT (their distance to the nest). */
+            f = eaipp_msg_exit(self->id, self->exit_mm, (uint8_t)(self->exit_mm != 0xFFFFu));
         } else if (kind == 1u) {
             f = eaipp_msg_gradient(self->id, self->source, self->gradient);
         } else {
@@ -567,12 +692,47 @@ void eaipp_step(eaipp_t *self, hal_t *hal)
         break;
     case EAIPP_LOST:
         read_prox(hal, prox, bearing);
-        if (senses_network(self)) {
+        if (exit_due(self)) {
+            self->state = EAIPP_EXITING;
+            self->tx_cursor = 0u;
+            lost_step(self, hal, prox, bearing);
+        } else if (senses_network(self)) {
             self->state = EAIPP_EXPLORER;
         } else {
             lost_step(self, hal, prox, bearing);
         }
         break;
+    case EAIPP_EXITING: {
+        float vx, vy;
+        int16_t l, r;
+        const neighbour_t *nest = 0;
+        uint8_t i;
+        for (i = 0; i < self->nb.count; i++) {
+            if (neighbour_is(&self->nb.n[i], EAIPP_ST_NEST)) {
+                nest = &self->nb.n[i];
+            }
+        }
+        if (nest != 0 && nest->age == 0u && nest->range_mm <= self->p.exit_near_mm) {
+            /* Out of the waiting area, at the nest: search (EAIPP). */
+            self->exited = 1u;
+            self->exit_mm = 0xFFFFu;
+            self->tx_cursor = 0u;
+            self->state = EAIPP_EXPLORER;
+            break;
+        }
+        if (!eaipp_exit_direction(self, &vx, &vy)) {
+            self->state = EAIPP_LOST;
+            self->tx_cursor = 0u;
+            break;
+        }
+        read_prox(hal, prox, bearing);
+        blend_obstacles(self, prox, bearing, &vx, &vy);
+        self->heading_x = vx;
+        self->heading_y = vy;
+        eaipp_wheel_law(vx, vy, self->p.speed_steps_s, self->p.turn_hold_mrad, &self->turn_side, &l, &r);
+        hal_set_wheel_speeds(hal, l, r);
+        break;
+    }
     case EAIPP_EXPLORER:
         if (!senses_network(self)) {
             self->state = EAIPP_LOST;

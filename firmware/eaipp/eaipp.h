@@ -43,7 +43,8 @@ typedef enum eaipp_state {
     EAIPP_EXPLORER = EAIPP_ST_EXPLORER,
     EAIPP_NODE = EAIPP_ST_NODE,
     EAIPP_NEST = EAIPP_ST_NEST,
-    EAIPP_FOOD = EAIPP_ST_FOOD
+    EAIPP_FOOD = EAIPP_ST_FOOD,
+    EAIPP_EXITING = EAIPP_ST_EXITING   /**< leaving the maze's waiting area (section 5.1, lj_exit) */
 } eaipp_state_t;
 
 /** Eq 1's node term: how a neighbour's distance D_i weighs it (the printed
@@ -73,6 +74,11 @@ typedef struct eaipp_params {
                                         EAIPP_A_LINEAR (D_i u_i, the vector to the neighbour) */
     uint16_t turn_hold_mrad;       /**< Algorithm 3: a direction within this of straight behind keeps
                                         the side of the last turn (0: off) */
+    uint8_t lj_exit;               /**< section 5.1: robots leave the waiting area in the "exiting"
+                                        state (Lennard-Jones model) before they search */
+    uint16_t lj_sigma_mm;          /**< LJ sigma: exiting robots settle 2^(1/6) sigma apart, mm */
+    float lj_weight;               /**< LJ term's weight against the pull to the nest (1) */
+    uint16_t exit_near_mm;         /**< an exiting robot this near the nest has left: explorer, mm */
     uint8_t food_source;           /**< 1: the food is a second gradient source and network root
                                         (sections 4.2.1, 4.3); 0 (default): Algorithm 4, eq 1 and
                                         section 5.2 as printed, the food is the target only (also
@@ -102,6 +108,8 @@ typedef struct eaipp {
     uint16_t counter1;             /**< Algorithm 2: steps with no explorer near a branch end */
     uint16_t counter2;             /**< Algorithm 2: steps with explorers near it */
     uint8_t orphan_steps;          /**< a node's steps without any source heard */
+    uint8_t exited;                /**< went through the exiting state once (lj_exit) */
+    uint16_t exit_mm;              /**< exiting: own distance to the nest as broadcast (0xFFFF: unknown) */
     float heading_x, heading_y;    /**< eq 1's last direction, robot frame (observables) */
     uint32_t joins;                /**< explorer -> node transitions */
     uint32_t leaves;               /**< node -> lost/explorer transitions */
@@ -125,6 +133,13 @@ uint8_t eaipp_extension_due(const eaipp_t *self);
  *  (*vx, *vy) (not normalised), from the table and the proximity readings. */
 void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], const int16_t bearing_mrad[HAL_IR_COUNT],
                      float *vx, float *vy);
+
+/** Section 5.1, one step of an exiting robot: the direction to move in
+ *  (robot frame, into *vx, *vy) toward the nest or the exiting neighbour
+ *  nearest to it, with the Lennard-Jones term of the other exiting robots,
+ *  and self->exit_mm.  Returns 0 when neither the nest nor an exiting robot
+ *  with a known distance is heard. */
+uint8_t eaipp_exit_direction(eaipp_t *self, float *vx, float *vy);
 
 /** Algorithm 3: wheel speeds (steps/s) steering toward (vx, vy); a direction
  *  within hold_mrad of straight behind turns to the side *side of the last
