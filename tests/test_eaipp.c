@@ -152,6 +152,19 @@ static void test_extinction_timing(void **state)
     assert_int_equal(e.state, EAIPP_NODE);
     eaipp_extinction_step(&e);
     assert_int_equal(e.state, EAIPP_EXPLORER);
+    /* It retreats along its branch: the node it shuns still keeps it an
+     * explorer (not lost), but it does not join it. */
+    {
+        hal_t hal;
+        fake_hal_init(&hal, 40u);
+        e.nb.count = 0u;
+        fake_hal_push(&hal, eaipp_msg_state(10u, EAIPP_ST_NODE, EAIPP_SOURCE_NEST, 1u), 500u, 0);
+        fake_hal_push(&hal, eaipp_msg_gradient(10u, EAIPP_SOURCE_NEST, 3u), 500u, 0);
+        fake_hal_push(&hal, eaipp_msg_root(10u, 5u), 500u, 0);
+        eaipp_step(&e, &hal);
+        assert_int_equal(e.state, EAIPP_EXPLORER);
+        assert_int_equal(e.retreating, 1u);
+    }
     /* The last node before the fork (parent == Root_ID) stays as a marker. */
     branch_end(&e, 10u);
     e.contraction = 1u;

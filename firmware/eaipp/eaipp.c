@@ -93,6 +93,7 @@ void eaipp_reset(eaipp_t *self)
     self->counter2 = 0u;
     self->orphan_steps = 0u;
     self->exited = 0u;
+    self->retreating = 0u;
     self->exit_mm = 0xFFFFu;
     self->heading_x = 1.0f;
     self->heading_y = 0.0f;
@@ -152,16 +153,21 @@ static uint8_t shunned(const eaipp_t *self, const neighbour_t *n)
 /* What a lost or exploring robot senses: the nest, a node, or the food when
  * it is a source (food_source).  Otherwise the food alone does not count,
  * only with a node near (section 5.1's rule; section 4.3: a lost robot walks
- * "until it perceives a Robot_Node or the Robot_Nest again"). */
+ * "until it perceives a Robot_Node or the Robot_Nest again").  Shunned
+ * nodes do not count, except for a node that left a contracting branch as
+ * an explorer (Algorithm 2): it must "move back along this branch towards
+ * other branches", guided by the branch it shuns (it still may not join
+ * it); by the shunning alone it was lost the step after it left. */
 static uint8_t senses_network(const eaipp_t *self)
 {
     uint8_t i, node = 0u, food = 0u;
     for (i = 0; i < self->nb.count; i++) {
         const neighbour_t *n = &self->nb.n[i];
-        if (neighbour_is(n, EAIPP_ST_NEST) && !shunned(self, n)) {
+        uint8_t ok = (uint8_t)(self->retreating != 0u || !shunned(self, n));
+        if (neighbour_is(n, EAIPP_ST_NEST) && ok) {
             return 1u;
         }
-        if (neighbour_is(n, EAIPP_ST_NODE) && !shunned(self, n)) {
+        if (neighbour_is(n, EAIPP_ST_NODE) && ok) {
             node = 1u;
         }
         if (neighbour_is(n, EAIPP_ST_FOOD)) {
@@ -245,6 +251,7 @@ static void leave(eaipp_t *self, uint8_t state)
     self->shun_root = self->root;
     self->shun_parent = self->parent;
     self->shun_steps = self->p.period1_steps;
+    self->retreating = (uint8_t)(state == EAIPP_EXPLORER);
     self->state = state;
     self->counter1 = 0u;
     self->counter2 = 0u;
@@ -632,6 +639,7 @@ static void read_prox(hal_t *hal, uint16_t prox[HAL_IR_COUNT], int16_t bearing[H
 static void become_node(eaipp_t *self, hal_t *hal)
 {
     self->state = EAIPP_NODE;
+    self->retreating = 0u;
     self->contraction = 0u;
     self->counter1 = 0u;
     self->counter2 = 0u;
@@ -736,6 +744,7 @@ void eaipp_step(eaipp_t *self, hal_t *hal)
     case EAIPP_EXPLORER:
         if (!senses_network(self)) {
             self->state = EAIPP_LOST;
+            self->retreating = 0u;
             break;
         }
         if (eaipp_extension_due(self)) {

@@ -108,6 +108,8 @@ typedef struct eaipp {
     uint16_t counter1;             /**< Algorithm 2: steps with no explorer near a branch end */
     uint16_t counter2;             /**< Algorithm 2: steps with explorers near it */
     uint8_t orphan_steps;          /**< a node's steps without any source heard */
+    uint8_t retreating;            /**< left a contracting branch as an explorer (Algorithm 2): the
+                                        branch it shuns still guides it back */
     uint8_t exited;                /**< went through the exiting state once (lj_exit) */
     uint16_t exit_mm;              /**< exiting: own distance to the nest as broadcast (0xFFFF: unknown) */
     float heading_x, heading_y;    /**< eq 1's last direction, robot frame (observables) */
