@@ -283,16 +283,20 @@ static void test_extension_distance(void **state)
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 450u);
     node(&e, 11u, EAIPP_SOURCE_NEST, 1u, 1u, 0u, 700u);
     assert_false(eaipp_extension_due(&e));
-    /* A neighbour whose STATE is not heard yet may be a node: wait. */
+    /* ext_strict: a neighbour whose STATE is not heard yet may be a node:
+     * wait; the one node's range must be this period's.  Off: neither. */
     make(&e, EAIPP_ROLE_ROBOT);
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 500u);
     assert_true(eaipp_extension_due(&e));
     hear(&e, eaipp_msg_gradient(12u, EAIPP_SOURCE_NEST, 3u), 550u, 0);
+    assert_true(eaipp_extension_due(&e));
+    e.p.ext_strict = 1u;
     assert_false(eaipp_extension_due(&e));
-    /* The one node's range must be this period's. */
     make(&e, EAIPP_ROLE_ROBOT);
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 500u);
     neighbours_age(&e.nb, 10u);
+    assert_true(eaipp_extension_due(&e));
+    e.p.ext_strict = 1u;
     assert_false(eaipp_extension_due(&e));
     /* The nest alone counts as the one. */
     make(&e, EAIPP_ROLE_ROBOT);

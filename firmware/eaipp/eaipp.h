@@ -72,6 +72,8 @@ typedef struct eaipp_params {
     uint16_t lost_turn_prox;       /**< Robot_Lost turns away above this proximity */
     uint8_t a_distance;            /**< eq 1's D_i in the node term: EAIPP_A_INVERSE (u_i / D_i) or
                                         EAIPP_A_LINEAR (D_i u_i, the vector to the neighbour) */
+    uint8_t ext_strict;            /**< Algorithm 4 only on current, known entries: wait for every
+                                        neighbour's STATE, use this period's range (0: off) */
     uint16_t turn_hold_mrad;       /**< Algorithm 3: a direction within this of straight behind keeps
                                         the side of the last turn (0: off) */
     uint8_t lj_exit;               /**< section 5.1: robots leave the waiting area in the "exiting"

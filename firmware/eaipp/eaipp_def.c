@@ -35,6 +35,8 @@ static const param_desc_t eaipp_param_descs[] = {
       .doc = "Robot_Lost turns away above this proximity, counts" },
     { .key = "a_distance", PARAM_ENUM_U8_FIELD(EP, a_distance, eaipp_a_distances),
       .doc = "eq 1's node term weighs neighbour i by 1/D_i (inverse) or D_i (linear: the vector to it)" },
+    { .key = "ext_strict", PARAM_BOOL_FIELD(EP, ext_strict),
+      .doc = "Algorithm 4 waits for every neighbour's STATE and takes only this period's range (off)" },
     { .key = "turn_hold", PARAM_FIELD(EP, turn_hold_mrad, uint16_t), .min = 0, .max = 3141,
       .doc = "Algorithm 3: a direction within this of straight behind keeps the last turn's side, mrad (0: off)" },
     { .key = "lj_exit", PARAM_BOOL_FIELD(EP, lj_exit),
