@@ -5,7 +5,7 @@
  * (docs/notes/i15_eaipp.md has the success rates over seeds).  It checks
  * that the controller as shipped forms a chain of Robot_Nodes from the nest
  * to the food within a bound, and that the task's still robots on it are
- * EAIPP nodes.  Time: 240 simulated seconds, 0.04 s (0.2 s under ASan).
+ * EAIPP nodes.  Time: about 200 simulated seconds, 0.04 s (0.2 s under ASan).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -24,8 +24,9 @@
 #include "tasks/paths/paths.h"
 
 /* The seed and the bound: seed 15 merged at 242.1 s when this test was
- * written (most seeds merge at D = 1.4 m; this one needs 18 joins, 9
- * extinctions and a chain of 5 nodes, so it exercises every mechanism).  A
+ * written, 202.7 s since the neighbour timeout is 30 periods (most seeds
+ * merge at D = 1.4 m; this one needs 15-18 joins, several extinctions and a
+ * chain of 5-6 nodes, so it exercises every mechanism).  A
  * change of the controller changes the runs: pick another seed that merges
  * (build/swarmsim ... --reps 20) and say so in the commit. */
 #define PATH_SEED 15u
