@@ -86,16 +86,21 @@ static void test_gradient(void **state)
     assert_false(eaipp_gradient_update(&e));
 }
 
-static void test_food_needs_node(void **state)
+static void test_food_source(void **state)
 {
     eaipp_t e;
     (void)state;
     make(&e, EAIPP_ROLE_ROBOT);
-    e.p.food_needs_node = 1u;
+    assert_int_equal(e.p.food_source, 0u);             /* the default: the food is the target only */
     e.state = EAIPP_NODE;
     hear(&e, eaipp_msg_state(3u, EAIPP_ST_FOOD, EAIPP_SOURCE_FOOD, 0u), 300u, 0);
     assert_false(eaipp_gradient_update(&e));          /* the food is no source */
-    e.p.food_needs_node = 0u;
+    e.state = EAIPP_EXPLORER;
+    e.nb.n[0].range_mm = 500u;
+    assert_false(eaipp_extension_due(&e));            /* nor the one of Algorithm 4 */
+    e.p.food_source = 1u;
+    assert_true(eaipp_extension_due(&e));
+    e.state = EAIPP_NODE;
     assert_true(eaipp_gradient_update(&e));
     assert_int_equal(e.source, EAIPP_SOURCE_FOOD);
 }
@@ -147,6 +152,19 @@ static void test_extinction_timing(void **state)
     assert_int_equal(e.state, EAIPP_NODE);
     eaipp_extinction_step(&e);
     assert_int_equal(e.state, EAIPP_EXPLORER);
+    /* It retreats along its branch: the node it shuns still keeps it an
+     * explorer (not lost), but it does not join it. */
+    {
+        hal_t hal;
+        fake_hal_init(&hal, 40u);
+        e.nb.count = 0u;
+        fake_hal_push(&hal, eaipp_msg_state(10u, EAIPP_ST_NODE, EAIPP_SOURCE_NEST, 1u), 500u, 0);
+        fake_hal_push(&hal, eaipp_msg_gradient(10u, EAIPP_SOURCE_NEST, 3u), 500u, 0);
+        fake_hal_push(&hal, eaipp_msg_root(10u, 5u), 500u, 0);
+        eaipp_step(&e, &hal);
+        assert_int_equal(e.state, EAIPP_EXPLORER);
+        assert_int_equal(e.retreating, 1u);
+    }
     /* The last node before the fork (parent == Root_ID) stays as a marker. */
     branch_end(&e, 10u);
     e.contraction = 1u;
@@ -154,6 +172,52 @@ static void test_extinction_timing(void **state)
         eaipp_extinction_step(&e);
     }
     assert_int_equal(e.state, EAIPP_NODE);
+}
+
+/* A node that left does not rejoin its branch: neither nodes of its old
+ * Root_ID nor its old P_Node, whose Root_ID changes when the leaver was one
+ * of the two children of a fork; nor the nest when that was its parent. */
+static void test_shunning(void **state)
+{
+    eaipp_t e;
+    uint16_t k;
+    (void)state;
+    branch_end(&e, 10u);                               /* parent 10 is a fork: Root_ID 10 */
+    for (k = 0; k <= 20u; k++) {
+        eaipp_extinction_step(&e);
+    }
+    assert_int_equal(e.state, EAIPP_LOST);
+    e.state = EAIPP_EXPLORER;
+    e.shun_steps = 5u;
+    e.nb.count = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 2u, 0u, 500u); /* no longer a fork: Root_ID 2 */
+    assert_false(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 10u, 0u, 500u);
+    assert_false(eaipp_extension_due(&e));
+    e.nb.count = 0u;
+    node(&e, 11u, EAIPP_SOURCE_NEST, 3u, 10u, 0u, 500u); /* another node of the old branch */
+    assert_false(eaipp_extension_due(&e));
+    e.nb.count = 0u;
+    node(&e, 12u, EAIPP_SOURCE_NEST, 3u, 7u, 0u, 500u);  /* another branch: yes */
+    assert_true(eaipp_extension_due(&e));
+    e.shun_steps = 0u;                                  /* the shunning is over */
+    e.nb.count = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 2u, 0u, 500u);
+    assert_true(eaipp_extension_due(&e));
+    /* A node next to the nest that left ignores the nest for a while. */
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.state = EAIPP_NODE;
+    e.id = 40u;
+    e.p.period1_steps = 20u;
+    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, EAIPP_SOURCE_NEST, 0u), 460u, 0);
+    hear(&e, eaipp_msg_root(0u, 0u), 460u, 0);
+    assert_true(eaipp_gradient_update(&e));
+    for (k = 0; k <= 20u; k++) {
+        eaipp_extinction_step(&e);
+    }
+    assert_int_equal(e.state, EAIPP_LOST);
+    e.state = EAIPP_EXPLORER;
+    assert_false(eaipp_extension_due(&e));
 }
 
 static void test_flag_forwarding(void **state)
@@ -177,6 +241,16 @@ static void test_flag_forwarding(void **state)
     assert_true(eaipp_gradient_update(&e));
     eaipp_extinction_step(&e);
     assert_int_equal(e.contraction, 0u);
+    /* A fork (two children, Root_ID its own id) does not take a child's flag. */
+    e.nb.count = 0u;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 3u, 5u, 0u, 450u);
+    node(&e, 41u, EAIPP_SOURCE_NEST, 5u, 40u, 1u, 450u);
+    node(&e, 42u, EAIPP_SOURCE_NEST, 5u, 40u, 0u, 450u);
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.children, 2u);
+    assert_int_equal(e.root, 40u);
+    eaipp_extinction_step(&e);
+    assert_int_equal(e.contraction, 0u);
 }
 
 static void test_extension_distance(void **state)
@@ -185,17 +259,23 @@ static void test_extension_distance(void **state)
     (void)state;
     make(&e, EAIPP_ROLE_ROBOT);
     e.state = EAIPP_EXPLORER;
-    /* One node at 0.6 R, 0.75 R, 0.85 R (R = 600 mm; window 420..480). */
+    /* One node at 0.6 R, at B_UL = 0.75 R, just beyond, near R (R = 600 mm):
+     * Algorithm 4's "measured_distance > B_UL", no upper bound. */
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 360u);
     assert_false(eaipp_extension_due(&e));
-    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 420u);
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 450u);
     assert_false(eaipp_extension_due(&e));
-    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 421u);
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 451u);
     assert_true(eaipp_extension_due(&e));
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 590u);
+    assert_true(eaipp_extension_due(&e));
+    /* The optional window (b_ul_max): not beyond it. */
+    e.p.b_ul_max_mm = 480u;
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 480u);
     assert_true(eaipp_extension_due(&e));
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 510u);
     assert_false(eaipp_extension_due(&e));
+    e.p.b_ul_max_mm = 0u;
     /* Contracting branch: no. */
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 1u, 450u);
     assert_false(eaipp_extension_due(&e));
@@ -203,9 +283,24 @@ static void test_extension_distance(void **state)
     node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 450u);
     node(&e, 11u, EAIPP_SOURCE_NEST, 1u, 1u, 0u, 700u);
     assert_false(eaipp_extension_due(&e));
+    /* ext_strict: a neighbour whose STATE is not heard yet may be a node:
+     * wait; the one node's range must be this period's.  Off: neither. */
+    make(&e, EAIPP_ROLE_ROBOT);
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 500u);
+    assert_true(eaipp_extension_due(&e));
+    hear(&e, eaipp_msg_gradient(12u, EAIPP_SOURCE_NEST, 3u), 550u, 0);
+    assert_true(eaipp_extension_due(&e));
+    e.p.ext_strict = 1u;
+    assert_false(eaipp_extension_due(&e));
+    make(&e, EAIPP_ROLE_ROBOT);
+    node(&e, 10u, EAIPP_SOURCE_NEST, 2u, 1u, 0u, 500u);
+    neighbours_age(&e.nb, 10u);
+    assert_true(eaipp_extension_due(&e));
+    e.p.ext_strict = 1u;
+    assert_false(eaipp_extension_due(&e));
     /* The nest alone counts as the one. */
     make(&e, EAIPP_ROLE_ROBOT);
-    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 450u, 0);
+    hear(&e, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 460u, 0);
     hear(&e, eaipp_msg_state(7u, EAIPP_ST_EXPLORER, 0u, 0u), 100u, 0);
     assert_true(eaipp_extension_due(&e));
 }
@@ -213,21 +308,42 @@ static void test_extension_distance(void **state)
 static void test_wheel_law(void **state)
 {
     int16_t l, r;
+    int8_t side = 0;
     (void)state;
-    eaipp_wheel_law(1.0f, 0.0f, 400u, &l, &r);          /* straight ahead */
+    eaipp_wheel_law(1.0f, 0.0f, 400u, 400u, &side, &l, &r);          /* straight ahead */
     assert_int_equal(l, 400);
     assert_int_equal(r, 400);
-    eaipp_wheel_law(1.0f, 1.0f, 400u, &l, &r);          /* 45 deg left: left wheel at 1/2 */
+    eaipp_wheel_law(1.0f, 1.0f, 400u, 400u, &side, &l, &r);          /* 45 deg left: left wheel at 1/2 */
     assert_in_range(l, 198, 202);
     assert_int_equal(r, 400);
-    eaipp_wheel_law(1.0f, -1.0f, 400u, &l, &r);         /* 45 deg right */
+    assert_int_equal(side, 1);
+    eaipp_wheel_law(1.0f, -1.0f, 400u, 400u, &side, &l, &r);         /* 45 deg right */
     assert_int_equal(l, 400);
     assert_in_range(r, 198, 202);
-    eaipp_wheel_law(0.0f, 1.0f, 400u, &l, &r);          /* 90 deg left: pivot on the left wheel */
+    assert_int_equal(side, -1);
+    eaipp_wheel_law(0.0f, 1.0f, 400u, 400u, &side, &l, &r);          /* 90 deg left: pivot on the left wheel */
     assert_true(l >= -2 && l <= 2);
-    eaipp_wheel_law(-1.0f, -0.001f, 400u, &l, &r);      /* behind: spin in place */
+    side = 0;
+    eaipp_wheel_law(-1.0f, -0.001f, 400u, 400u, &side, &l, &r);      /* behind: spin in place */
     assert_int_equal(l, 400);
     assert_true(r >= -402 && r <= -396);
+    /* Behind, a little to the left then a little to the right: the spin
+     * keeps its side (right) instead of dithering. */
+    eaipp_wheel_law(-1.0f, 0.1f, 400u, 400u, &side, &l, &r);
+    assert_int_equal(l, 400);
+    assert_true(r < -300);
+    eaipp_wheel_law(-1.0f, -0.1f, 400u, 400u, &side, &l, &r);
+    assert_int_equal(l, 400);
+    assert_true(r < -300);
+    /* Off (hold 0): the sign of the angle decides. */
+    eaipp_wheel_law(-1.0f, 0.1f, 400u, 0u, &side, &l, &r);
+    assert_true(l < -300);
+    assert_int_equal(r, 400);
+    /* Well to the side, the angle decides whatever the last side. */
+    side = -1;
+    eaipp_wheel_law(-1.0f, 1.0f, 400u, 400u, &side, &l, &r);          /* 135 deg left */
+    assert_true(l < 0);
+    assert_int_equal(r, 400);
 }
 
 static void test_direction(void **state)
@@ -255,6 +371,20 @@ static void test_direction(void **state)
     e.nb.n[1].bearing_mrad = -1571;
     eaipp_direction(&e, prox, bearing, &vx, &vy);
     assert_true(vy > 0.9f);
+    /* Just past the end node of a branch (gradient 2, 0.1 m behind), the
+     * node before it (gradient 1) 0.55 m behind: the linear reading (the
+     * default) leads on, beyond the end; the inverse one back to the end. */
+    e.nb.count = 0u;
+    node(&e, 10u, 0u, 2u, 1u, 0u, 100u);
+    e.nb.n[0].bearing_mrad = 3141;
+    node(&e, 11u, 0u, 1u, 1u, 0u, 550u);
+    e.nb.n[1].bearing_mrad = 3141;
+    assert_int_equal(e.p.a_distance, EAIPP_A_LINEAR);
+    eaipp_direction(&e, prox, bearing, &vx, &vy);
+    assert_true(vx > 0.9f);
+    e.p.a_distance = EAIPP_A_INVERSE;
+    eaipp_direction(&e, prox, bearing, &vx, &vy);
+    assert_true(vx < -0.9f);
     /* A wall touching the front sensors dominates: away from it. */
     prox[0] = prox[7] = 2000u;
     eaipp_direction(&e, prox, bearing, &vx, &vy);
@@ -279,8 +409,7 @@ static void test_lost_and_sources(void **state)
     assert_true(hal.left < 0 && hal.right > 0);        /* turns left, away */
     fake_hal_end_step(&hal);
     hal.proximity[0] = 0u;
-    /* The food alone under the maze rule: still lost; a node: explorer. */
-    e.p.food_needs_node = 1u;
+    /* The food alone (not a source, the default): still lost; a node: explorer. */
     fake_hal_push(&hal, eaipp_msg_state(3u, EAIPP_ST_FOOD, 1u, 0u), 300u, 0);
     eaipp_step(&e, &hal);
     assert_string_equal(eaipp_state_name(&e), "lost");
@@ -314,6 +443,108 @@ static void test_lost_and_sources(void **state)
     assert_string_equal(eaipp_state_name(&e), "nest");
 }
 
+/* Robot_Lost turns only from what is ahead: a wall behind it (after a turn
+ * away from it) must not start another turn, or it spins in the corner. */
+static void test_lost_rear_wall(void **state)
+{
+    eaipp_t e;
+    hal_t hal;
+    (void)state;
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    hal.proximity[3] = hal.proximity[4] = 1500u;       /* behind, +-150 deg */
+    hal.proximity[2] = 1500u;                          /* beside, -90 deg */
+    eaipp_step(&e, &hal);
+    assert_int_equal(hal.left, 388);
+    assert_int_equal(hal.right, 388);
+    fake_hal_end_step(&hal);
+    hal.proximity[7] = 1500u;                          /* ahead-left: turn right */
+    eaipp_step(&e, &hal);
+    assert_true(hal.left > 0 && hal.right < 0);
+}
+
+/* Section 5.1's exit (lj_exit): a lost robot that hears the nest, or an
+ * exiting robot, starts exiting; it heads for the nest, or for the exiting
+ * neighbour nearest to it, pushed off exiting robots that are too near
+ * (Lennard-Jones), broadcasts its distance, and becomes an explorer at the
+ * nest.  Off by default. */
+static void test_lj_exit(void **state)
+{
+    eaipp_t e;
+    hal_t hal;
+    eaipp_msg_t m;
+    float vx, vy;
+    uint8_t k, exits = 0u;
+    (void)state;
+    /* Off: the nest makes an explorer, as in the square arena. */
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    fake_hal_push(&hal, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 700u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "explorer");
+    /* On: an exiting neighbour (its distance 1.0 m, 300 mm to my left). */
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.p.lj_exit = 1u;
+    fake_hal_push(&hal, eaipp_msg_state(20u, EAIPP_ST_EXITING, 0u, 0u), 300u, 1571);
+    fake_hal_push(&hal, eaipp_msg_exit(20u, 1000u, 1u), 300u, 1571);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "exiting");
+    fake_hal_end_step(&hal);
+    fake_hal_push(&hal, eaipp_msg_exit(20u, 1000u, 1u), 300u, 1571);
+    eaipp_step(&e, &hal);
+    assert_int_equal(e.exit_mm, 1300u);                /* its distance + the range to it */
+    assert_true(e.heading_y > 0.5f);                   /* toward it (left) */
+    assert_true(hal.right > hal.left);
+    for (k = 0; k < hal.out_count; k++) {
+        assert_true(eaipp_msg_decode(hal.outbox[k], &m));
+        if (m.kind == EAIPP_MSG_EXIT) {
+            exits++;
+            assert_int_equal(m.exit_units, 65u);       /* 1300 mm / 20 */
+        }
+    }
+    assert_int_equal(exits, 1u);                       /* STATE, then EXIT: one each a period */
+    fake_hal_end_step(&hal);
+    /* The nest heard at 600 mm ahead wins over the neighbour's 1.3 m. */
+    fake_hal_push(&hal, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 600u, 0);
+    eaipp_step(&e, &hal);
+    assert_int_equal(e.exit_mm, 600u);
+    assert_true(eaipp_exit_direction(&e, &vx, &vy));
+    assert_true(vx > 0.9f);
+    fake_hal_end_step(&hal);
+    /* Lennard-Jones: an exiting robot 60 mm ahead pushes harder than the
+     * pull to the nest ahead; one at 300 mm (beyond 2^(1/6) sigma = 168 mm)
+     * pulls a little. */
+    hear(&e, eaipp_msg_state(21u, EAIPP_ST_EXITING, 0u, 0u), 60u, 0);
+    assert_true(eaipp_exit_direction(&e, &vx, &vy));
+    assert_true(vx < 0.5f);
+    hear(&e, eaipp_msg_state(21u, EAIPP_ST_EXITING, 0u, 0u), 300u, 1571);
+    assert_true(eaipp_exit_direction(&e, &vx, &vy));
+    assert_true(vy > 0.0f && vx > 0.9f);
+    /* At the nest: an explorer, and never exiting again. */
+    fake_hal_push(&hal, eaipp_msg_state(0u, EAIPP_ST_NEST, 0u, 0u), 200u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "explorer");
+    assert_int_equal(e.exited, 1u);
+    e.state = EAIPP_LOST;
+    e.nb.count = 0u;
+    fake_hal_end_step(&hal);
+    fake_hal_push(&hal, eaipp_msg_state(20u, EAIPP_ST_EXITING, 0u, 0u), 300u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "lost");
+    /* Exiting with nothing to follow: lost again (still to exit). */
+    fake_hal_init(&hal, 9u);
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.p.lj_exit = 1u;
+    fake_hal_push(&hal, eaipp_msg_state(20u, EAIPP_ST_EXITING, 0u, 0u), 300u, 0);
+    eaipp_step(&e, &hal);
+    assert_string_equal(eaipp_state_name(&e), "exiting");
+    fake_hal_end_step(&hal);
+    eaipp_step(&e, &hal);                              /* 20's distance never heard */
+    assert_string_equal(eaipp_state_name(&e), "lost");
+    assert_int_equal(e.exited, 0u);
+}
+
 /* A chain: robot 0 the nest, 1..10 nodes 450 mm apart, 11 the food; each
  * hears its two neighbours only, one message a period each, no loss. */
 #define CHAIN 12u
@@ -328,6 +559,7 @@ static uint32_t steps_to_cross(void)
         make(&e[i], i == 0u ? EAIPP_ROLE_NEST : i == CHAIN - 1u ? EAIPP_ROLE_FOOD : EAIPP_ROLE_ROBOT);
         e[i].p.timeout_steps = 250u;   /* a static chain: nobody is forgotten */
         e[i].p.period1_steps = 60000u;
+        e[i].p.food_source = 1u;       /* two gradients, to see the nest's override the food's */
         if (i > 0u && i < CHAIN - 1u) e[i].state = EAIPP_NODE;
     }
     /* Warm-up with the nest silent: the food's gradient fills the chain;
@@ -376,13 +608,16 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gradient),
-        cmocka_unit_test(test_food_needs_node),
+        cmocka_unit_test(test_food_source),
         cmocka_unit_test(test_extinction_timing),
+        cmocka_unit_test(test_shunning),
         cmocka_unit_test(test_flag_forwarding),
         cmocka_unit_test(test_extension_distance),
         cmocka_unit_test(test_wheel_law),
         cmocka_unit_test(test_direction),
         cmocka_unit_test(test_lost_and_sources),
+        cmocka_unit_test(test_lost_rear_wall),
+        cmocka_unit_test(test_lj_exit),
         cmocka_unit_test(test_chain_crossing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -199,6 +199,42 @@ static void test_table_bounded(void **state)
     assert_int_equal(t.count, NEIGHBOURS_MAX);
 }
 
+/* A crowd: nodes and sources keep their places against moving robots. */
+static void test_table_nodes_first(void **state)
+{
+    neighbours_t t;
+    eaipp_msg_t m;
+    uint16_t id;
+    (void)state;
+    neighbours_clear(&t);
+    for (id = 0; id < NEIGHBOURS_MAX; id++) {
+        hear(&t, eaipp_msg_state(id, id == 5u ? EAIPP_ST_NODE : EAIPP_ST_EXPLORER, 0u, 0u), 100u, 0);
+    }
+    /* Full of robots heard this period: a node's GRADIENT frame takes an
+     * explorer's place; an explorer's frame is dropped. */
+    assert_true(eaipp_msg_decode(eaipp_msg_gradient(100u, 0u, 4u), &m));
+    assert_non_null(neighbours_hear(&t, &m, 100u, 0));
+    assert_non_null(neighbours_find(&t, 100u));
+    assert_non_null(neighbours_find(&t, 5u));             /* the node stays */
+    assert_true(eaipp_msg_decode(eaipp_msg_state(101u, EAIPP_ST_EXPLORER, 0u, 0u), &m));
+    assert_null(neighbours_hear(&t, &m, 100u, 0));
+    /* A period later, the explorer takes the place of an explorer, not of
+     * the nodes, even though they were not heard again either. */
+    neighbours_age(&t, 10u);
+    assert_non_null(neighbours_hear(&t, &m, 100u, 0));
+    assert_non_null(neighbours_find(&t, 5u));
+    assert_non_null(neighbours_find(&t, 100u));
+    assert_non_null(neighbours_find(&t, 101u));
+    /* Full of nodes: an explorer is dropped even when they are old. */
+    neighbours_clear(&t);
+    for (id = 0; id < NEIGHBOURS_MAX; id++) {
+        hear(&t, eaipp_msg_state(id, EAIPP_ST_NODE, 0u, 0u), 100u, 0);
+    }
+    neighbours_age(&t, 10u);
+    assert_null(neighbours_hear(&t, &m, 100u, 0));
+    assert_int_equal(t.count, NEIGHBOURS_MAX);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -208,6 +244,7 @@ int main(void)
         cmocka_unit_test(test_table_files_fields),
         cmocka_unit_test(test_table_ages_out),
         cmocka_unit_test(test_table_bounded),
+        cmocka_unit_test(test_table_nodes_first),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

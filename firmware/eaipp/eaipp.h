@@ -43,15 +43,24 @@ typedef enum eaipp_state {
     EAIPP_EXPLORER = EAIPP_ST_EXPLORER,
     EAIPP_NODE = EAIPP_ST_NODE,
     EAIPP_NEST = EAIPP_ST_NEST,
-    EAIPP_FOOD = EAIPP_ST_FOOD
+    EAIPP_FOOD = EAIPP_ST_FOOD,
+    EAIPP_EXITING = EAIPP_ST_EXITING   /**< leaving the maze's waiting area (section 5.1, lj_exit) */
 } eaipp_state_t;
+
+/** Eq 1's node term: how a neighbour's distance D_i weighs it (the printed
+ *  formula lost its symbols). */
+typedef enum eaipp_a_distance {
+    EAIPP_A_INVERSE = 0,           /**< (g_i - g_mean) u_i / D_i: the nearest high node attracts most */
+    EAIPP_A_LINEAR = 1             /**< (g_i - g_mean) D_i u_i: one direction down the branch */
+} eaipp_a_distance_t;
 
 typedef struct eaipp_params {
     uint8_t role;                  /**< eaipp_role_t */
     uint16_t speed_steps_s;        /**< m_fWheelVelocity of Algorithm 3, steps/s (388 = 5 cm/s) */
-    uint16_t b_ul_min_mm;          /**< extension window (Algorithm 4, Table 2: 0.7 R < B_UL < 0.8 R):
-                                        an explorer becomes a node when its one node is farther */
-    uint16_t b_ul_max_mm;          /**< ... and not farther than this, mm */
+    uint16_t b_ul_mm;              /**< B_UL (Algorithm 4, Table 2: 0.7 R < B_UL < 0.8 R): an explorer
+                                        becomes a node when its one node is farther than this, mm */
+    uint16_t b_ul_max_mm;          /**< 0 (default): no upper bound, as printed; else the one node
+                                        must also be no farther than this (a window), mm */
     uint16_t period1_steps;        /**< PERIOD_TIME_1: a branch end with no explorer near leaves
                                         (reconstruction: the paper gives no value) */
     uint16_t period2_steps;        /**< PERIOD_TIME_2: explorers near a branch end but no child:
@@ -61,7 +70,21 @@ typedef struct eaipp_params {
     float w_obstacles;             /**< eq 1's weight of the obstacle term */
     uint16_t prox_full;            /**< proximity counts taken as eq 1's reading 1 */
     uint16_t lost_turn_prox;       /**< Robot_Lost turns away above this proximity */
-    uint8_t food_needs_node;       /**< maze rule (section 5.1): the food counts only with a node near */
+    uint8_t a_distance;            /**< eq 1's D_i in the node term: EAIPP_A_INVERSE (u_i / D_i) or
+                                        EAIPP_A_LINEAR (D_i u_i, the vector to the neighbour) */
+    uint8_t ext_strict;            /**< Algorithm 4 only on current, known entries: wait for every
+                                        neighbour's STATE, use this period's range (0: off) */
+    uint16_t turn_hold_mrad;       /**< Algorithm 3: a direction within this of straight behind keeps
+                                        the side of the last turn (0: off) */
+    uint8_t lj_exit;               /**< section 5.1: robots leave the waiting area in the "exiting"
+                                        state (Lennard-Jones model) before they search */
+    uint16_t lj_sigma_mm;          /**< LJ sigma: exiting robots settle 2^(1/6) sigma apart, mm */
+    float lj_weight;               /**< LJ term's weight against the pull to the nest (1) */
+    uint16_t exit_near_mm;         /**< an exiting robot this near the nest has left: explorer, mm */
+    uint8_t food_source;           /**< 1: the food is a second gradient source and network root
+                                        (sections 4.2.1, 4.3); 0 (default): Algorithm 4, eq 1 and
+                                        section 5.2 as printed, the food is the target only (also
+                                        section 5.1's maze rule) */
 } eaipp_params_t;
 
 typedef struct eaipp {
@@ -80,11 +103,17 @@ typedef struct eaipp {
     uint8_t tx_cursor;             /**< next message kind of the role's cycle */
     uint8_t turning;               /**< Robot_Lost: steps left of a turn away */
     int8_t turn_dir;               /**< +1 left, -1 right */
-    uint8_t shun_root;             /**< a node that left a branch does not rejoin it ... */
+    int8_t turn_side;              /**< Algorithm 3: side of the last turn, +1 left, -1 right, 0 none */
+    uint8_t shun_root;             /**< a node that left a branch does not rejoin it (its Root_ID) ... */
+    uint8_t shun_parent;           /**< ... nor its P_Node (by id, whatever Root_ID it has now) ... */
     uint16_t shun_steps;           /**< ... for this many more steps */
     uint16_t counter1;             /**< Algorithm 2: steps with no explorer near a branch end */
     uint16_t counter2;             /**< Algorithm 2: steps with explorers near it */
     uint8_t orphan_steps;          /**< a node's steps without any source heard */
+    uint8_t retreating;            /**< left a contracting branch as an explorer (Algorithm 2): the
+                                        branch it shuns still guides it back */
+    uint8_t exited;                /**< went through the exiting state once (lj_exit) */
+    uint16_t exit_mm;              /**< exiting: own distance to the nest as broadcast (0xFFFF: unknown) */
     float heading_x, heading_y;    /**< eq 1's last direction, robot frame (observables) */
     uint32_t joins;                /**< explorer -> node transitions */
     uint32_t leaves;               /**< node -> lost/explorer transitions */
@@ -109,8 +138,18 @@ uint8_t eaipp_extension_due(const eaipp_t *self);
 void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], const int16_t bearing_mrad[HAL_IR_COUNT],
                      float *vx, float *vy);
 
-/** Algorithm 3: wheel speeds (steps/s) steering toward (vx, vy). */
-void eaipp_wheel_law(float vx, float vy, uint16_t speed, int16_t *left, int16_t *right);
+/** Section 5.1, one step of an exiting robot: the direction to move in
+ *  (robot frame, into *vx, *vy) toward the nest or the exiting neighbour
+ *  nearest to it, with the Lennard-Jones term of the other exiting robots,
+ *  and self->exit_mm.  Returns 0 when neither the nest nor an exiting robot
+ *  with a known distance is heard. */
+uint8_t eaipp_exit_direction(eaipp_t *self, float *vx, float *vy);
+
+/** Algorithm 3: wheel speeds (steps/s) steering toward (vx, vy); a direction
+ *  within hold_mrad of straight behind turns to the side *side of the last
+ *  turn (when nonzero), and *side is updated. */
+void eaipp_wheel_law(float vx, float vy, uint16_t speed, uint16_t hold_mrad, int8_t *side, int16_t *left,
+                     int16_t *right);
 
 extern const observable_t eaipp_observables[];
 

@@ -8,16 +8,17 @@
 #define EP eaipp_params_t
 
 static const char *const eaipp_roles[] = { "robot", "nest", "food", 0 };
+static const char *const eaipp_a_distances[] = { "inverse", "linear", 0 };
 
 static const param_desc_t eaipp_param_descs[] = {
     { .key = "role", PARAM_ENUM_U8_FIELD(EP, role, eaipp_roles),
       .doc = "robot (Lost/Explorer/Node), nest or food (fixed gradient sources)" },
     { .key = "speed", PARAM_FIELD(EP, speed_steps_s, uint16_t), .min = 0, .max = 1000,
       .doc = "wheel speed of Algorithm 3, steps/s (388 = 5 cm/s)" },
-    { .key = "b_ul_min", PARAM_FIELD(EP, b_ul_min_mm, uint16_t), .min = 0, .max = 5000,
-      .doc = "extension: the one node must be farther than this, mm (0.7 R)" },
+    { .key = "b_ul", PARAM_FIELD(EP, b_ul_mm, uint16_t), .min = 0, .max = 5000,
+      .doc = "B_UL of Algorithm 4: an explorer becomes a node when its one node is farther, mm (0.75 R)" },
     { .key = "b_ul_max", PARAM_FIELD(EP, b_ul_max_mm, uint16_t), .min = 0, .max = 5000,
-      .doc = "extension: and not farther than this, mm (0.8 R)" },
+      .doc = "0: no upper bound (as printed); else the one node must also be no farther, mm" },
     { .key = "period_time_1", PARAM_FIELD(EP, period1_steps, uint16_t), .min = 1, .max = 60000,
       .doc = "PERIOD_TIME_1: a branch end with no explorer near leaves, steps (reconstructed)" },
     { .key = "period_time_2", PARAM_FIELD(EP, period2_steps, uint16_t), .min = 1, .max = 60000,
@@ -32,8 +33,23 @@ static const param_desc_t eaipp_param_descs[] = {
       .doc = "proximity counts read as eq 1's 1" },
     { .key = "lost_turn_prox", PARAM_FIELD(EP, lost_turn_prox, uint16_t), .min = 0, .max = 4095,
       .doc = "Robot_Lost turns away above this proximity, counts" },
-    { .key = "food_needs_node", PARAM_BOOL_FIELD(EP, food_needs_node),
-      .doc = "maze rule: the food counts only with a node near, and is no gradient source" },
+    { .key = "a_distance", PARAM_ENUM_U8_FIELD(EP, a_distance, eaipp_a_distances),
+      .doc = "eq 1's node term weighs neighbour i by 1/D_i (inverse) or D_i (linear: the vector to it)" },
+    { .key = "ext_strict", PARAM_BOOL_FIELD(EP, ext_strict),
+      .doc = "Algorithm 4 waits for every neighbour's STATE and takes only this period's range (off)" },
+    { .key = "turn_hold", PARAM_FIELD(EP, turn_hold_mrad, uint16_t), .min = 0, .max = 3141,
+      .doc = "Algorithm 3: a direction within this of straight behind keeps the last turn's side, mrad (0: off)" },
+    { .key = "lj_exit", PARAM_BOOL_FIELD(EP, lj_exit),
+      .doc = "section 5.1: leave the waiting area in the exiting state (Lennard-Jones) before searching" },
+    { .key = "lj_sigma", PARAM_FIELD(EP, lj_sigma_mm, uint16_t), .min = 10, .max = 2000,
+      .doc = "LJ sigma between exiting robots, mm (they settle 2^(1/6) sigma apart)" },
+    { .key = "lj_weight", PARAM_FIELD(EP, lj_weight, float), .min = 0, .max = 100,
+      .doc = "weight of the LJ term against the pull to the nest" },
+    { .key = "exit_near", PARAM_FIELD(EP, exit_near_mm, uint16_t), .min = 0, .max = 5000,
+      .doc = "an exiting robot this near the nest has left the waiting area: explorer, mm" },
+    { .key = "food_source", PARAM_BOOL_FIELD(EP, food_source),
+      .doc = "the food is a second gradient source and root (default false: the printed Algorithm 4"
+             " and eq 1, the food is the target only, as in the maze rule)" },
     PARAM_END
 };
 

@@ -5,6 +5,22 @@ void neighbours_clear(neighbours_t *t)
     t->count = 0u;
 }
 
+/* States of the robots that hold a gradient (nodes and the sources). */
+static uint8_t holder_state(uint8_t state)
+{
+    return (uint8_t)(state == EAIPP_ST_NODE || state == EAIPP_ST_NEST || state == EAIPP_ST_FOOD);
+}
+
+/* An entry that is, or may be, a node or a source: its STATE says so, or it
+ * has sent GRADIENT or ROOT frames (only those send them) and no STATE yet. */
+static uint8_t entry_holder(const neighbour_t *nb)
+{
+    if ((nb->heard & NB_HEARD_STATE) != 0u) {
+        return holder_state(nb->state);
+    }
+    return (uint8_t)((nb->heard & (NB_HEARD_GRADIENT | NB_HEARD_ROOT)) != 0u);
+}
+
 neighbour_t *neighbours_hear(neighbours_t *t, const eaipp_msg_t *m, uint16_t range_mm,
                              int16_t bearing_mrad)
 {
@@ -20,18 +36,34 @@ neighbour_t *neighbours_hear(neighbours_t *t, const eaipp_msg_t *m, uint16_t ran
         if (t->count < NEIGHBOURS_MAX) {
             nb = &t->n[t->count++];
         } else {
-            /* Full: the entry heard longest ago makes room, unless all were
-             * heard this period. */
-            uint8_t oldest = 0u;
-            for (i = 1; i < t->count; i++) {
-                if (t->n[i].age > t->n[oldest].age) {
+            /* Full (a crowd: the maze's 70 robots).  Nodes and sources come
+             * first, since Algorithm 4 must count every node heard: a frame
+             * of a node or source takes the place of the moving robot heard
+             * longest ago, even one heard this period; failing that, as any
+             * frame, of the entry heard longest ago, unless all were heard
+             * this period.  (Oldest-first alone let moving robots push nodes
+             * out of the table, and explorers that kept one node entry
+             * became nodes beside other nodes.) */
+            uint8_t oldest = NEIGHBOURS_MAX, mover = NEIGHBOURS_MAX;
+            uint8_t incoming_holder = (uint8_t)(m->kind == EAIPP_MSG_GRADIENT || m->kind == EAIPP_MSG_ROOT
+                                                || (m->kind == EAIPP_MSG_STATE && holder_state(m->state)));
+            for (i = 0; i < t->count; i++) {
+                if (oldest == NEIGHBOURS_MAX || t->n[i].age > t->n[oldest].age) {
                     oldest = i;
                 }
+                if (!entry_holder(&t->n[i]) && (mover == NEIGHBOURS_MAX || t->n[i].age > t->n[mover].age)) {
+                    mover = i;
+                }
             }
-            if (t->n[oldest].age == 0u) {
+            if (incoming_holder && mover < NEIGHBOURS_MAX) {
+                nb = &t->n[mover];
+            } else if (mover < NEIGHBOURS_MAX && t->n[mover].age > 0u) {
+                nb = &t->n[mover];
+            } else if (incoming_holder && t->n[oldest].age > 0u) {
+                nb = &t->n[oldest];
+            } else {
                 return 0;
             }
-            nb = &t->n[oldest];
         }
         nb->id = m->id;
         nb->heard = 0u;

@@ -7,9 +7,12 @@
  * A robot not heard for `timeout` periods is forgotten (neighbours_age),
  * so that a robot which left, stopped sending or went out of range stops
  * counting as a node, an explorer or a parent.  The table is bounded
- * (NEIGHBOURS_MAX entries, 12 bytes each): when it is full, a new sender
- * replaces the entry heard longest ago, and is dropped if every entry was
- * heard this period.
+ * (NEIGHBOURS_MAX entries, 12 bytes each): when it is full, a frame of a
+ * node or a source (a STATE saying so, a GRADIENT or a ROOT) replaces the
+ * moving robot (lost, explorer, exiting) heard longest ago, if any; any
+ * other new sender replaces the moving robot heard longest ago, if not heard
+ * this period; a node's frame then replaces the entry heard longest ago if
+ * not heard this period; otherwise the frame is dropped.
  *
  * Fields arrive in different message kinds; `heard` says which have arrived
  * since the entry was made (NB_HEARD_*), so that a neighbour whose state is
