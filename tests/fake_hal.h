@@ -53,6 +53,7 @@ struct hal {
     uint32_t out_count;           /**< frames sent in all (the log keeps the first FAKE_OUTBOX_MAX) */
     uint16_t last_sent;
     uint8_t sent_this_step;
+    uint8_t tx_per_step;          /**< sends accepted per step (1, as the HAL's default) */
 };
 
 /* ------------------------------------------------------------ test side */
@@ -65,6 +66,7 @@ static inline void fake_hal_init(hal_t *hal, uint16_t id)
     hal->id = id;
     hal->period_ms = 100u;
     hal->payload_bits = 16u;
+    hal->tx_per_step = 1u;
     for (i = 0; i < HAL_IR_COUNT; i++) {
         hal->ambient[i] = 4000u;
     }
@@ -173,13 +175,13 @@ uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->payload_bits; }
 
 hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
 {
-    if (hal->sent_this_step != 0u) {
+    if (hal->sent_this_step >= hal->tx_per_step) {
         return HAL_ERR_BUSY;
     }
     if (hal->payload_bits < 16u) {
         value = (uint16_t)(value & ((1u << hal->payload_bits) - 1u));
     }
-    hal->sent_this_step = 1u;
+    hal->sent_this_step++;
     if (hal->out_count < FAKE_OUTBOX_MAX) {
         hal->outbox[hal->out_count] = value;
     }

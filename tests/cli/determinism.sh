@@ -51,6 +51,18 @@ for mode in duplex slotted; do
     done
     check "repatt ($mode): seeds 1 and 2 gave the same run" "! same '$tmp/r1$mode/run_1/timeseries.csv' '$tmp/r1$mode/run_2/timeseries.csv'"
 done
+# Path formation (seed 003): EAIPP over the turret with collisions, packet
+# loss, the bearing-noise vector and wheel bias, with random cylinders.
+eargs=(sim_host/scenarios/eaipp_square.yaml --steps 3000 --reps 3 --quiet --set random_cylinders.count=10
+       --set ircom.loss=0.2 --set ircom.bearing_noise_vec=0.05 --set wheels.bias_sd=0.01)
+"$sim" "${eargs[@]}" --threads 1 --out "$tmp/e1"
+"$sim" "${eargs[@]}" --threads 2 --out "$tmp/e2"
+for seed in 1 2 3; do
+    for f in summary.json timeseries.csv; do
+        check "eaipp run_$seed/$f differs between 1 and 2 threads" "same '$tmp/e1/run_$seed/$f' '$tmp/e2/run_$seed/$f'"
+    done
+done
+check "eaipp: seeds 1 and 2 gave the same run" "! same '$tmp/e1/run_1/timeseries.csv' '$tmp/e1/run_2/timeseries.csv'"
 check "state hash missing" "grep -q state_hash '$tmp/t1/run_1/summary.json'"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
