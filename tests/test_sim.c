@@ -425,6 +425,39 @@ static void test_wheel_bias_moves_and_saturates(void **state)
     free(sc);
 }
 
+/* wheels.bias_per_step: a new bias every step while the robot moves, with
+ * the key's sd; deterministic per seed. */
+static void test_wheel_bias_per_step(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(1, 8.0f);
+    sc->wheels.bias_sd = 0.02f;
+    sc->wheels.bias_per_step = 1;
+    sim_t *sim = make(sc, 9), *same = make(sc, 9);
+    hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
+    hal_set_wheel_speeds(sim_robot_hal(same, 0), 388, 388);
+    double sq = 0, prev = sim->robots[0].bias_left;
+    int changed = 0;
+    const int steps = 400;
+    for (int k = 0; k < steps; k++) {
+        sim_step(sim);
+        sim_step(same);
+        const sim_robot_t *r = &sim->robots[0];
+        assert_true(r->bias_left == same->robots[0].bias_left && r->bias_right == same->robots[0].bias_right);
+        changed += r->bias_left != prev;
+        prev = r->bias_left;
+        sq += r->bias_left * r->bias_left + r->bias_right * r->bias_right;
+        hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
+        hal_set_wheel_speeds(sim_robot_hal(same, 0), 388, 388);
+    }
+    assert_int_equal(changed, steps);
+    const double sd = sqrt(sq / (2.0 * steps)), expect = 0.02 / EPUCK_STEP_M;
+    if (fabs(sd - expect) > 0.10 * expect) fail_msg("per-step bias sd %.1f steps/s, expected %.1f", sd, expect);
+    sim_destroy(sim);
+    sim_destroy(same);
+    free(sc);
+}
+
 /* --------------------------------------------------------------- ircom */
 
 static void test_ircom_range_bearing_and_blocking(void **state)
@@ -742,6 +775,7 @@ int main(void)
         cmocka_unit_test(test_tracker_pose),
         cmocka_unit_test(test_hal_status),
         cmocka_unit_test(test_wheel_bias_draws),
+        cmocka_unit_test(test_wheel_bias_per_step),
         cmocka_unit_test(test_wheel_bias_moves_and_saturates),
     };
     return cmocka_run_group_tests_name("sim", tests, NULL, NULL);

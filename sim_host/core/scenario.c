@@ -236,6 +236,8 @@ static const param_desc_t wheels_params[] = {
     { .key = "bias_sd", PARAM_FIELD(SC, wheels.bias_sd, float), .min = 0, .max = 1,
       .doc = "sd of a per-robot, per-wheel speed bias drawn once a run, m/s (seed 003's eq 3; "
              "the e-puck saturates at 0.129 m/s)" },
+    { .key = "bias_per_step", PARAM_BOOL_FIELD(SC, wheels.bias_per_step),
+      .doc = "draw the bias anew every control step instead of once a run (another reading of eq 3)" },
     PARAM_END
 };
 
@@ -471,6 +473,7 @@ void scenario_defaults(scenario_t *out)
     out->ircom.queue = 20;
     out->wheels.speed_noise_rel = 0.0f;
     out->wheels.bias_sd = 0.0f;
+    out->wheels.bias_per_step = 0;
     out->tracker.enabled = 0;
     out->sound.enabled = 0;
     out->sound.a0 = 299.18;

@@ -247,6 +247,8 @@ typedef struct scenario {
     struct {
         float speed_noise_rel;     /**< per-wheel relative speed noise (sd): f's sd */
         float bias_sd;             /**< sd of each wheel's bias b, m/s; 0 = none */
+        uint8_t bias_per_step;     /**< 1: b drawn anew every control step (a reading of
+                                        eq 3 other than ARGoS's once-a-run bias) */
     } wheels;
 
     struct {

@@ -92,11 +92,10 @@ static int build_robots(struct sim *sim, char err[256])
             if (sc->wheels.bias_sd > 0.0f) {
                 /* Eq 3's bias b, drawn once a run as ARGoS does (its own
                  * stream: other streams and golden hashes are unchanged). */
-                sim_rand_t b;
-                sim_rand_seed(&b, sim->seed, i, RAND_WHEEL_BIAS);
+                sim_rand_seed(&r->bias_rand, sim->seed, i, RAND_WHEEL_BIAS);
                 const double sd_steps = sc->wheels.bias_sd / EPUCK_STEP_M;
-                r->bias_left = sd_steps * sim_rand_normal(&b);
-                r->bias_right = sd_steps * sim_rand_normal(&b);
+                r->bias_left = sd_steps * sim_rand_normal(&r->bias_rand);
+                r->bias_right = sd_steps * sim_rand_normal(&r->bias_rand);
             }
             if (r->ctrl) {
                 def->init(r->ctrl, params.bytes, sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));

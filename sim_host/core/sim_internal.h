@@ -53,7 +53,8 @@ typedef struct sim_robot {
     sim_rand_t noise;              /**< sensor noise */
     sim_rand_t ircom_rand;         /**< loss and estimate noise at this receiver */
     sim_rand_t wheel_rand;         /**< actuation noise */
-    double bias_left, bias_right;  /**< wheels.bias_sd's biases of this run, steps/s */
+    double bias_left, bias_right;  /**< wheels.bias_sd's biases (this run's, or this step's), steps/s */
+    sim_rand_t bias_rand;          /**< their draws (RAND_WHEEL_BIAS) */
     sim_rand_t tracker_rand;       /**< the overhead tracker's noise and dropout */
     sim_rand_t sound_rand;         /**< eq 4's noise of every pair this robot hears */
 

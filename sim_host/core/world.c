@@ -132,6 +132,13 @@ void world_drive(struct sim *sim)
              * motors cannot exceed HAL_WHEEL_SPEED_MAX (1000 steps/s =
              * 12.9 cm/s): a bias above that saturates the wheels where the
              * paper's robots (its Figure 17 goes to a 20 cm/s sd) did not. */
+            if (sim->sc->wheels.bias_per_step) {
+                /* The other reading of "a random bias drawn from a Gaussian":
+                 * a new b every step, which averages out along a path. */
+                const double sd_steps = sim->sc->wheels.bias_sd / EPUCK_STEP_M;
+                r->bias_left = sd_steps * sim_rand_normal(&r->bias_rand);
+                r->bias_right = sd_steps * sim_rand_normal(&r->bias_rand);
+            }
             l += r->bias_left;
             rr += r->bias_right;
             if (noise > 0.0) {

@@ -21,6 +21,8 @@ The sweeps (studies/eaipp_*.yaml; `--figures` picks among them, default all):
 - loss (Figure 16): packet loss.  Paper: 92, 86, 83, 89, 91 %, and 0 % at
   100 % loss.
 - bias (Figure 17): the wheels' bias sd.  Paper: 92, 87, 78, 63, 45 %.
+- bias_step (Figure 17 again): the bias drawn anew every step (eq 3's
+  other reading).
 
 Per figure, per controller and condition, results.md has the success rate
 (a run succeeds when the nest's and the food's networks merge within the
@@ -166,6 +168,11 @@ FIGURES: dict[str, Figure] = {f.name: f for f in (
            paper={0.0: 0.92, 0.05: 0.87, 0.10: 0.78, 0.15: 0.63, 0.20: 0.45},
            note="Paper (section 5.3): 92, 87, 78, 63, 45 % for 0 .. 20 cm/s. The e-puck's wheels top out at "
                 "12.9 cm/s: our high levels saturate them (an upper bound, docs/notes/i15_paths.md)."),
+    Figure("bias_step", "eaipp_bias_step.yaml", "17", "wheel bias noise, drawn anew every step",
+           "bias sd (cm/s)", (BIAS,), lambda r: float(r[BIAS]), lambda v: f"{100 * v:.0f}",
+           paper={0.0: 0.92, 0.05: 0.87, 0.10: 0.78, 0.15: 0.63, 0.20: 0.45},
+           note="Eq 3's other reading (wheels.bias_per_step): b redrawn every control step, not once a run "
+                "as ARGoS draws it; with a once-a-run bias an open-loop Robot_Lost drives in circles."),
 )}
 
 
