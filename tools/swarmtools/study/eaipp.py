@@ -72,7 +72,6 @@ Exit status: 0 done; 1 a run failed; 2 bad arguments; 130 interrupted.
 from __future__ import annotations
 
 import argparse
-import csv
 import json
 import math
 import subprocess
@@ -85,11 +84,11 @@ from typing import Any
 
 import numpy as np
 
+from swarmtools.study.common import INTERRUPTED, pick, read_rows, run_sweep, write_results
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
 from swarmtools.sweep.spec import SCENARIO_KEY, SweepError
-from swarmtools.sweep.store import atomic_write
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 STUDIES = REPO_ROOT / "studies"
@@ -380,21 +379,6 @@ def run_entry(fig: Figure, row: dict[str, str], varied: Sequence[str], default_s
     return e
 
 
-def json_safe(o: Any) -> Any:
-    if isinstance(o, float) and not math.isfinite(o):
-        return None
-    if isinstance(o, dict):
-        return {k: json_safe(v) for k, v in o.items()}
-    if isinstance(o, list | tuple):
-        return [json_safe(v) for v in o]
-    return o
-
-
-def read_rows(path: Path) -> list[dict[str, str]]:
-    with path.open(newline="") as f:
-        return list(csv.DictReader(f))
-
-
 # ------------------------------------------------------------------ the picture
 def picture(sim: Path, out_png: Path, work: Path, scenario: Path, seed: str = "auto", px: int = 420,
             frames: int = 4, search: int = 20) -> str:
@@ -506,10 +490,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                               a.picture_seed, a.picture_px, max(1, a.picture_frames))
             print(f"study_eaipp: wrote {a.picture_out}: {caption}")
             return 0
-        figs = [f.strip() for f in a.figures.split(",") if f.strip()]
-        bad = [f for f in figs if f not in FIGURES]
-        if bad or not figs:
-            raise SweepError(f"--figures: unknown {', '.join(bad) or '(none)'}; choose from {', '.join(FIGURES)}")
+        figs = pick(a.figures, FIGURES)
         if a.reps is not None and a.reps < 1:
             raise SweepError("--reps must be at least 1")
         if a.steps is not None and a.steps < 1:
@@ -527,11 +508,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             fig = FIGURES[name]
             sweep_dir = out / name
             t1 = time.monotonic()
-            rc = sweep_cli.run_sweep(sw, argparse.Namespace(**{**vars(a), "out": str(sweep_dir), "quiet": False}), sim)
-            if rc in (130, 143):
-                print("study_eaipp: interrupted; rerun the same command to resume", file=sys.stderr)
-                return 130
-            if a.backend == "slurm" and a.no_wait:
+            rc = run_sweep(sw, a, sim, sweep_dir, "study_eaipp")
+            if rc == INTERRUPTED:
+                return rc
+            if rc is None:
                 continue
             rc_all = rc_all or rc
             wall = time.monotonic() - t1
@@ -555,11 +535,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         results["wall_time_s"] = wall_all
         md += ["", *sections, f"Wall time of this invocation: {wall_all:.0f} s (runs already done in a resumed "
                "sweep are not rerun and not counted)."]
-        out.mkdir(parents=True, exist_ok=True)
-        atomic_write(out / "results.md", "\n".join(md) + "\n")
-        atomic_write(out / "results.json", json.dumps(json_safe(results), indent=1) + "\n")
-        print("\n".join(md))
-        print(f"study_eaipp: wrote {out / 'results.md'}")
+        write_results(out, md, results, "study_eaipp")
         return 0 if rc_all == 0 else 1
     except SweepError as e:
         print(f"study_eaipp: {e}", file=sys.stderr)

@@ -30,8 +30,6 @@ Exit status: 0 done; 1 a run failed; 2 bad arguments; 130 interrupted.
 from __future__ import annotations
 
 import argparse
-import csv
-import json
 import math
 import sys
 import time
@@ -41,11 +39,11 @@ from typing import Any
 
 import numpy as np
 
+from swarmtools.study.common import INTERRUPTED, pick, read_rows, run_sweep, write_results
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
 from swarmtools.sweep.spec import SweepError
-from swarmtools.sweep.store import atomic_write
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 STUDIES = REPO_ROOT / "studies"
@@ -295,21 +293,6 @@ def run_entry(row: dict[str, str]) -> dict[str, Any]:
             "finished": num(FINISHED), "picked": num("picked"), "state_hash": row.get("state_hash", "")}
 
 
-def read_rows(path: Path) -> list[dict[str, str]]:
-    with path.open(newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def json_safe(o: Any) -> Any:
-    if isinstance(o, float) and not math.isfinite(o):
-        return None
-    if isinstance(o, dict):
-        return {k: json_safe(v) for k, v in o.items()}
-    if isinstance(o, list):
-        return [json_safe(v) for v in o]
-    return o
-
-
 def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.repatt", description=__doc__.split("\n\n")[0])
     ap.add_argument("--figures", default="worlds,slotted,scale",
@@ -326,10 +309,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     t0 = time.monotonic()
     try:
         sweep_cli.check_args(a)
-        figs = [f.strip() for f in a.figures.split(",") if f.strip()]
-        bad = [f for f in figs if f not in FIGURES]
-        if bad or not figs:
-            raise SweepError(f"--figures: unknown {', '.join(bad) or '(none)'}; choose from {', '.join(FIGURES)}")
+        figs = pick(a.figures, FIGURES)
         if a.reps is not None and a.reps < 1:
             raise SweepError("--reps must be at least 1")
         sim, out = Path(a.sim), Path(a.out)
@@ -340,11 +320,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             sw = load_sweep(name, sim, a.reps, a.quick)
             sweep_dir = out / name
             t1 = time.monotonic()
-            rc = sweep_cli.run_sweep(sw, argparse.Namespace(**{**vars(a), "out": str(sweep_dir), "quiet": False}), sim)
-            if rc in (130, 143):
-                print("study_repatt: interrupted; rerun the same command to resume", file=sys.stderr)
-                return 130
-            if a.backend == "slurm" and a.no_wait:
+            rc = run_sweep(sw, a, sim, sweep_dir, "study_repatt")
+            if rc == INTERRUPTED:
+                return rc
+            if rc is None:
                 continue
             rc_all = rc_all or rc
             rows = tables[name] = read_rows(sweep_dir / "results.csv")
@@ -377,10 +356,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             md.append("![Figure 4](fig4_efficiency.png)\n")
             results["fig4"] = res
         md.append(f"Wall time: {time.monotonic() - t0:.0f} s.")
-        atomic_write(out / "results.md", "\n".join(md) + "\n")
-        atomic_write(out / "results.json", json.dumps(json_safe(results), indent=1) + "\n")
-        print("\n".join(md))
-        print(f"study_repatt: wrote {out / 'results.md'}")
+        write_results(out, md, results, "study_repatt")
         return 0 if rc_all == 0 else 1
     except SweepError as e:
         print(f"study_repatt: {e}", file=sys.stderr)

@@ -16,6 +16,7 @@ import unittest
 from pathlib import Path
 
 from swarmtools.study import eaipp as E
+from swarmtools.study.common import json_safe
 
 ROOT = Path(__file__).resolve().parents[3]
 SWARMSIM = Path(os.environ.get("SWARMSIM", ROOT / "build" / "swarmsim"))
@@ -141,7 +142,7 @@ class Arithmetic(unittest.TestCase):
         e = E.run_entry(fig, rows[1], ["scenario", E.CYLINDERS], "")
         self.assertEqual((e["controller"], e["condition"], e["success"], e["merge_time_s"],
                           e["merge_time_capped_s"]), ("EAIPP", 0.0, 0.0, None, 1000.0))
-        json.dumps(E.json_safe({"cells": cs}), allow_nan=False)
+        json.dumps(json_safe({"cells": cs}), allow_nan=False)
 
 
 @unittest.skipUnless(SWARMSIM.is_file(), f"no simulator at {SWARMSIM}")

@@ -1,0 +1,70 @@
+"""What the seed studies share: picking their sweeps, running each through
+the sweep engine into OUT/<name>/, and writing results.md / results.json
+whole (atomic writes).  A study module keeps only its figures and tables."""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import sys
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import Any
+
+from swarmtools.sweep import cli as sweep_cli
+from swarmtools.sweep.spec import Sweep, SweepError
+from swarmtools.sweep.store import atomic_write
+
+INTERRUPTED = 130
+
+
+def pick(arg: str, known: Iterable[str], option: str = "--figures") -> list[str]:
+    """The comma-separated names of `arg`, each one of `known`."""
+    known = list(known)
+    names = [f.strip() for f in arg.split(",") if f.strip()]
+    bad = [f for f in names if f not in known]
+    if bad or not names:
+        raise SweepError(f"{option}: unknown {', '.join(bad) or '(none)'}; choose from {', '.join(known)}")
+    return names
+
+
+def run_sweep(sw: Sweep, args: argparse.Namespace, sim: Path, sweep_dir: Path, tag: str) -> int | None:
+    """Runs (or resumes) one sweep into sweep_dir with the study's backend
+    options.  Returns its exit status; None when the jobs were only submitted
+    (slurm --no-wait); INTERRUPTED after saying how to resume."""
+    rc = sweep_cli.run_sweep(sw, argparse.Namespace(**{**vars(args), "out": str(sweep_dir), "quiet": False}), sim)
+    if rc in (130, 143):
+        print(f"{tag}: interrupted; rerun the same command to resume", file=sys.stderr)
+        return INTERRUPTED
+    if args.backend == "slurm" and args.no_wait:
+        return None
+    return rc
+
+
+def read_rows(path: Path) -> list[dict[str, str]]:
+    """A sweep's results.csv as rows of strings."""
+    with path.open(newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def json_safe(o: Any) -> Any:
+    """NaN and infinities as null (JSON has neither), recursively."""
+    if isinstance(o, float) and not math.isfinite(o):
+        return None
+    if isinstance(o, dict):
+        return {k: json_safe(v) for k, v in o.items()}
+    if isinstance(o, list):
+        return [json_safe(v) for v in o]
+    return o
+
+
+def write_results(out: Path, md: Sequence[str], results: dict[str, Any], tag: str) -> None:
+    """results.md and results.json into out, each written whole; the tables
+    echoed to stdout."""
+    out.mkdir(parents=True, exist_ok=True)
+    atomic_write(out / "results.md", "\n".join(md) + "\n")
+    atomic_write(out / "results.json", json.dumps(json_safe(results), indent=1) + "\n")
+    print("\n".join(md))
+    print(f"{tag}: wrote {out / 'results.md'}")
