@@ -134,6 +134,23 @@ const pfias_neighbour_t *pfias_nearest(const pfias_t *self, uint8_t kind, uint8_
 /** How many remembered neighbours are of `kind`. */
 uint8_t pfias_count(const pfias_t *self, uint8_t kind);
 
+/** The keys of the chain model's perception and motion (range_mm, link_mm,
+ *  speed_steps_s, turn_gain, forget_steps, lost_steps) in a param_desc_t
+ *  table over params type T (pfias_def.c, tsasr_def.c). */
+#define PFIAS_CHAIN_PARAMS(T)                                                                     \
+    { .key = "range_mm", PARAM_FIELD(T, range_mm, uint16_t), .min = 1, .max = 10000,              \
+      .doc = "perception radius R: frames heard from farther are ignored, mm" },                  \
+    { .key = "link_mm", PARAM_FIELD(T, link_mm, uint16_t), .min = 1, .max = 10000,                \
+      .doc = "distance an explorer keeps from the object it circles (chain link), mm" },          \
+    { .key = "speed_steps_s", PARAM_FIELD(T, speed_steps_s, int16_t), .min = 1, .max = 1000,      \
+      .doc = "forward wheel speed, steps/s (388 = 5 cm/s)" },                                     \
+    { .key = "turn_gain", PARAM_FIELD(T, turn_gain, int16_t), .min = 0, .max = 10000,             \
+      .doc = "wheel speed difference per rad of heading error, steps/s" },                        \
+    { .key = "forget_steps", PARAM_FIELD(T, forget_steps, uint8_t), .min = 1, .max = 255,         \
+      .doc = "a neighbour not heard for this many steps is forgotten" },                          \
+    { .key = "lost_steps", PARAM_FIELD(T, lost_steps, uint8_t), .min = 1, .max = 255,             \
+      .doc = "steps without the reference (explorer) or predecessor (member) before giving up" }
+
 #define PFIAS_NAME "pfias"
 extern const observable_t pfias_observables[];
 extern const controller_def_t pfias_def;
