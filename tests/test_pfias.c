@@ -12,20 +12,13 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "fake_hal.h"
 #include "pfias/pfias.h"
 #include "pfias/pfias_msg.h"
 
-static hal_t H;
-static pfias_t P;
-
-#define ALWAYS 65535u
-
-static void start_with(const pfias_params_t *p)
-{
-    fake_hal_init(&H, 7u);
-    pfias_init(&P, p, 42u);
-}
+#define CHAIN_INIT pfias_init
+#define CHAIN_STEP pfias_step
+#define CHAIN_DECODE pfias_msg_decode
+#include "chain_fixture.h"
 
 static void start(uint16_t p_join, uint16_t p_leave)
 {
@@ -34,24 +27,6 @@ static void start(uint16_t p_join, uint16_t p_leave)
     p.p_join = p_join;
     p.p_leave = p_leave;
     start_with(&p);
-}
-
-static void step(void)
-{
-    pfias_step(&P, &H);
-    fake_hal_end_step(&H);
-}
-
-static void hear(uint16_t frame, uint16_t range_mm, int16_t bearing_mrad)
-{
-    assert_true(fake_hal_push(&H, frame, range_mm, bearing_mrad));
-}
-
-static pfias_msg_t last_sent(void)
-{
-    pfias_msg_t m;
-    (void)pfias_msg_decode(H.last_sent, &m);
-    return m;
 }
 
 /* ------------------------------------------------------------ codec */
@@ -109,7 +84,7 @@ static void test_sources_broadcast_their_role(void **state)
     p.role = PFIAS_ROLE_NEST;
     start_with(&p);
     step();
-    assert_string_equal(pfias_state_name(&P), "source");
+    assert_string_equal(pfias_state_name(&C), "source");
     assert_int_equal(last_sent().kind, PFIAS_MSG_NEST);
     assert_int_equal(H.left, 0);
     assert_int_equal(H.right, 0);
@@ -130,18 +105,18 @@ static void test_lost_walks_silently_until_it_perceives_the_nest(void **state)
     for (i = 0; i < 20; i++) {
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "lost");
+    assert_string_equal(pfias_state_name(&C), "lost");
     assert_int_equal(H.out_count, 0u);
     assert_true(H.left != 0 || H.right != 0);
     /* A nest beyond R is not perceived. */
     hear(pfias_msg_nest(1u), 700u, 0);
     step();
-    assert_string_equal(pfias_state_name(&P), "lost");
+    assert_string_equal(pfias_state_name(&C), "lost");
     hear(pfias_msg_nest(1u), 590u, 0);
     step();
-    assert_string_equal(pfias_state_name(&P), "explorer");
+    assert_string_equal(pfias_state_name(&C), "explorer");
     assert_int_equal(last_sent().kind, PFIAS_MSG_EXPLORER);
-    assert_int_equal(P.ref, PFIAS_REF_NEST);
+    assert_int_equal(C.ref, PFIAS_REF_NEST);
 }
 
 static void test_joins_a_chainless_nest_on_the_link_circle(void **state)
@@ -153,21 +128,21 @@ static void test_joins_a_chainless_nest_on_the_link_circle(void **state)
         hear(pfias_msg_nest(1u), 450u, 1000);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "explorer");   /* P_e->c = 0: never */
+    assert_string_equal(pfias_state_name(&C), "explorer");   /* P_e->c = 0: never */
 
     start(ALWAYS, 0u);
     hear(pfias_msg_nest(1u), 200u, 0);   /* inside the link circle: not yet */
     step();
     hear(pfias_msg_nest(1u), 200u, 0);
     step();
-    assert_string_equal(pfias_state_name(&P), "explorer");
-    for (i = 0; i < 5 && P.state != PFIAS_MEMBER; i++) {
+    assert_string_equal(pfias_state_name(&C), "explorer");
+    for (i = 0; i < 5 && C.state != PFIAS_MEMBER; i++) {
         hear(pfias_msg_nest(1u), 450u, 0);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "member");
-    assert_int_equal(P.colour, PFIAS_BLUE);
-    assert_int_equal(P.joins, 1u);
+    assert_string_equal(pfias_state_name(&C), "member");
+    assert_int_equal(C.colour, PFIAS_BLUE);
+    assert_int_equal(C.joins, 1u);
     assert_int_equal(H.left, 0);
     assert_int_equal(H.right, 0);
     hear(pfias_msg_nest(1u), 450u, 0);
@@ -190,9 +165,9 @@ static void test_nest_with_a_chain_is_no_place_to_join(void **state)
         hear(pfias_msg_chain(2u, PFIAS_BLUE, 0u, 0u), 580u, 1500);
         hear(pfias_msg_chain(3u, PFIAS_GREEN, 1u, 0u), 590u, 1400);
         step();
-        assert_string_equal(pfias_state_name(&P), "explorer");
+        assert_string_equal(pfias_state_name(&C), "explorer");
     }
-    assert_int_equal(P.ref, PFIAS_GREEN);   /* blue, then green: the next colours */
+    assert_int_equal(C.ref, PFIAS_GREEN);   /* blue, then green: the next colours */
 }
 
 static void test_joins_at_the_tail_with_the_next_colour(void **state)
@@ -205,15 +180,15 @@ static void test_joins_at_the_tail_with_the_next_colour(void **state)
         hear(pfias_msg_chain(4u, PFIAS_GREEN, 1u, 0u), 450u, 0);
         hear(pfias_msg_chain(5u, PFIAS_BLUE, 0u, 0u), 500u, 3000);
         step();
-        assert_string_equal(pfias_state_name(&P), "explorer");
+        assert_string_equal(pfias_state_name(&C), "explorer");
     }
     /* The blue one out of range: only the tail in view, on the link circle. */
-    for (i = 0; i < 5 && P.state != PFIAS_MEMBER; i++) {
+    for (i = 0; i < 5 && C.state != PFIAS_MEMBER; i++) {
         hear(pfias_msg_chain(4u, PFIAS_GREEN, 1u, 0u), 450u, 0);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "member");
-    assert_int_equal(P.colour, PFIAS_RED);
+    assert_string_equal(pfias_state_name(&C), "member");
+    assert_int_equal(C.colour, PFIAS_RED);
 }
 
 static void test_not_at_a_member_that_is_not_the_tail(void **state)
@@ -225,7 +200,7 @@ static void test_not_at_a_member_that_is_not_the_tail(void **state)
         hear(pfias_msg_chain(4u, PFIAS_GREEN, 0u, 0u), 450u, 0);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "explorer");
+    assert_string_equal(pfias_state_name(&C), "explorer");
 }
 
 static void test_prey_rule_joins_at_once_and_never_leaves(void **state)
@@ -238,14 +213,14 @@ static void test_prey_rule_joins_at_once_and_never_leaves(void **state)
     hear(pfias_msg_chain(4u, PFIAS_RED, 1u, 0u), 500u, 0);
     hear(pfias_msg_food(8u), 400u, 500);
     step();
-    assert_string_equal(pfias_state_name(&P), "member");
-    assert_int_equal(P.colour, PFIAS_BLUE);
-    assert_int_equal(P.prey, 1u);
+    assert_string_equal(pfias_state_name(&C), "member");
+    assert_int_equal(C.colour, PFIAS_BLUE);
+    assert_int_equal(C.prey, 1u);
     for (i = 0; i < 200; i++) {
         hear(pfias_msg_chain(4u, PFIAS_RED, 0u, 0u), 500u, 0);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "member");   /* P_c->e = 1, but prey */
+    assert_string_equal(pfias_state_name(&C), "member");   /* P_c->e = 1, but prey */
     assert_int_equal(last_sent().prey, 1u);
     assert_int_equal(last_sent().tail, 1u);
 }
@@ -261,7 +236,7 @@ static void test_prey_rule_needs_at_most_one_member(void **state)
         hear(pfias_msg_food(8u), 400u, 500);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "explorer");
+    assert_string_equal(pfias_state_name(&C), "explorer");
 }
 
 /* A member made by joining a chainless nest. */
@@ -269,11 +244,11 @@ static void make_member(uint16_t p_leave)
 {
     int i;
     start(ALWAYS, p_leave);
-    for (i = 0; i < 10 && P.state != PFIAS_MEMBER; i++) {
+    for (i = 0; i < 10 && C.state != PFIAS_MEMBER; i++) {
         hear(pfias_msg_nest(1u), 450u, 0);
         step();
     }
-    assert_int_equal(P.state, PFIAS_MEMBER);
+    assert_int_equal(C.state, PFIAS_MEMBER);
 }
 
 static void test_tail_leaves_only_without_explorers(void **state)
@@ -286,15 +261,15 @@ static void test_tail_leaves_only_without_explorers(void **state)
         hear(pfias_msg_explorer(9u), 300u, 0);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "member");
-    for (i = 0; i < 5 && P.state == PFIAS_MEMBER; i++) {
+    assert_string_equal(pfias_state_name(&C), "member");
+    for (i = 0; i < 5 && C.state == PFIAS_MEMBER; i++) {
         hear(pfias_msg_nest(1u), 450u, 0);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "explorer");
-    assert_int_equal(P.outward, 0u);   /* back towards the nest */
-    assert_int_equal(P.ref, PFIAS_REF_NEST);
-    assert_int_equal(P.leaves, 1u);
+    assert_string_equal(pfias_state_name(&C), "explorer");
+    assert_int_equal(C.outward, 0u);   /* back towards the nest */
+    assert_int_equal(C.ref, PFIAS_REF_NEST);
+    assert_int_equal(C.leaves, 1u);
 }
 
 static void test_member_with_a_successor_never_leaves(void **state)
@@ -307,8 +282,8 @@ static void test_member_with_a_successor_never_leaves(void **state)
         hear(pfias_msg_chain(3u, PFIAS_GREEN, 1u, 0u), 450u, 3000);
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "member");
-    assert_int_equal(P.tail, 0u);
+    assert_string_equal(pfias_state_name(&C), "member");
+    assert_int_equal(C.tail, 0u);
     assert_int_equal(last_sent().tail, 0u);
 }
 
@@ -319,10 +294,10 @@ static void test_member_cut_off_from_the_nest_leaves(void **state)
     make_member(0u);
     for (i = 0; i < 3 + 30; i++) {   /* forget_steps, then lost_steps */
         step();
-        assert_string_equal(pfias_state_name(&P), "member");
+        assert_string_equal(pfias_state_name(&C), "member");
     }
     step();
-    assert_string_equal(pfias_state_name(&P), "explorer");
+    assert_string_equal(pfias_state_name(&C), "explorer");
 }
 
 static void test_reference_walks_back_to_the_nest(void **state)
@@ -331,28 +306,28 @@ static void test_reference_walks_back_to_the_nest(void **state)
     make_member(ALWAYS);
     hear(pfias_msg_nest(1u), 450u, 0);
     step();
-    assert_int_equal(P.state, PFIAS_EXPLORER);
-    assert_int_equal(P.outward, 0u);
+    assert_int_equal(C.state, PFIAS_EXPLORER);
+    assert_int_equal(C.outward, 0u);
     /* At the nest (within the link circle and a quarter) it turns outward. */
     hear(pfias_msg_nest(1u), 500u, 0);
     step();
-    assert_int_equal(P.outward, 1u);
+    assert_int_equal(C.outward, 1u);
 
     /* Going back from red: green, blue, nest, in the pattern's reverse. */
     start(0u, 0u);
     hear(pfias_msg_chain(4u, PFIAS_RED, 1u, 0u), 500u, 0);
     step();
-    P.outward = 0u;
+    C.outward = 0u;
     hear(pfias_msg_chain(4u, PFIAS_RED, 1u, 0u), 500u, 0);
     hear(pfias_msg_chain(5u, PFIAS_GREEN, 0u, 0u), 550u, 3000);
     step();
-    assert_int_equal(P.ref, PFIAS_GREEN);
+    assert_int_equal(C.ref, PFIAS_GREEN);
     hear(pfias_msg_chain(6u, PFIAS_BLUE, 0u, 0u), 550u, 3000);
     step();
-    assert_int_equal(P.ref, PFIAS_BLUE);
+    assert_int_equal(C.ref, PFIAS_BLUE);
     hear(pfias_msg_nest(1u), 590u, 3000);
     step();
-    assert_int_equal(P.ref, PFIAS_REF_NEST);
+    assert_int_equal(C.ref, PFIAS_REF_NEST);
 }
 
 static void test_explorer_without_reference_gets_lost(void **state)
@@ -362,13 +337,13 @@ static void test_explorer_without_reference_gets_lost(void **state)
     start(0u, 0u);
     hear(pfias_msg_nest(1u), 450u, 0);
     step();
-    assert_int_equal(P.state, PFIAS_EXPLORER);
+    assert_int_equal(C.state, PFIAS_EXPLORER);
     for (i = 0; i < 3 + 30; i++) {   /* forget_steps, then lost_steps */
         step();
     }
-    assert_string_equal(pfias_state_name(&P), "explorer");
+    assert_string_equal(pfias_state_name(&C), "explorer");
     step();
-    assert_string_equal(pfias_state_name(&P), "lost");
+    assert_string_equal(pfias_state_name(&C), "lost");
 }
 
 /* ------------------------------------------------------------ motion */
@@ -387,14 +362,14 @@ static void test_motion_about_the_reference(void **state)
     step();
     assert_true(H.left == -H.right);
     assert_true(H.left != 0);
-    if (P.circle_sign > 0) {
+    if (C.circle_sign > 0) {
         assert_true(H.right > 0);   /* counter-clockwise about it: turn left */
     } else {
         assert_true(H.right < 0);
     }
     /* On the circle with the reference on its left (circling
      * counter-clockwise, robot tangent): straight on. */
-    P.circle_sign = 1;
+    C.circle_sign = 1;
     hear(pfias_msg_nest(1u), 450u, -1571);
     step();
     assert_true(H.left > 0 && H.right > 0);
@@ -424,7 +399,7 @@ static void test_reset_replays_the_same_run(void **state)
         uint16_t *out = r == 0 ? a : b;
         start(20000u, 20000u);
         if (r == 1) {
-            pfias_reset(&P);
+            pfias_reset(&C);
         }
         for (i = 0; i < 60; i++) {
             hear(pfias_msg_nest(1u), 450u, (int16_t)(i * 50));
@@ -432,7 +407,7 @@ static void test_reset_replays_the_same_run(void **state)
                 hear(pfias_msg_explorer(9u), 300u, 0);
             }
             step();
-            out[i] = (uint16_t)(P.state * 1000 + (uint16_t)H.left);
+            out[i] = (uint16_t)(C.state * 1000 + (uint16_t)H.left);
         }
     }
     assert_memory_equal(a, b, sizeof a);

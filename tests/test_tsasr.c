@@ -14,23 +14,17 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "fake_hal.h"
 #include "tsasr/tsasr.h"
 #include "tsasr/tsasr_msg.h"
 
-static hal_t H;
-static tsasr_t T;
+#define CHAIN_INIT tsasr_init
+#define CHAIN_STEP tsasr_step
+#define CHAIN_DECODE tsasr_msg_decode
+#include "chain_fixture.h"
 
-#define ALWAYS 65535u
 #define ELIM 50u        /* elim_steps in the timing tests */
 #define RETREAT 5u      /* retreat_steps in the timing tests */
 #define FORGET 3u       /* forget_steps (the default): heard at t, gone at t + FORGET + 1 */
-
-static void start_with(const tsasr_params_t *p)
-{
-    fake_hal_init(&H, 7u);
-    tsasr_init(&T, p, 42u);
-}
 
 static void params(tsasr_params_t *p, uint16_t p_join, uint16_t p_leave)
 {
@@ -46,24 +40,6 @@ static void start(uint16_t p_join, uint16_t p_leave)
     tsasr_params_t p;
     params(&p, p_join, p_leave);
     start_with(&p);
-}
-
-static void step(void)
-{
-    tsasr_step(&T, &H);
-    fake_hal_end_step(&H);
-}
-
-static void hear(uint16_t frame, uint16_t range_mm, int16_t bearing_mrad)
-{
-    assert_true(fake_hal_push(&H, frame, range_mm, bearing_mrad));
-}
-
-static tsasr_msg_t last_sent(void)
-{
-    tsasr_msg_t m;
-    (void)tsasr_msg_decode(H.last_sent, &m);
-    return m;
 }
 
 /* ------------------------------------------------------------ codec */
@@ -137,7 +113,7 @@ static void test_sources_broadcast_their_role(void **state)
         hear(tsasr_msg_chain(2u, TSASR_BLUE, 1u, 0u, 0u), 450u, 0);
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "source");
+    assert_string_equal(tsasr_state_name(&C), "source");
     assert_int_equal(last_sent().kind, TSASR_MSG_NEST);
     assert_int_equal(H.left, 0);
     assert_int_equal(H.right, 0);
@@ -156,17 +132,17 @@ static void test_lost_walks_silently_until_it_perceives_the_nest(void **state)
     for (i = 0; i < 20; i++) {
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "lost");
+    assert_string_equal(tsasr_state_name(&C), "lost");
     assert_int_equal(H.out_count, 0u);
     assert_true(H.left != 0 || H.right != 0);
     hear(tsasr_msg_nest(1u), 700u, 0);   /* beyond R */
     step();
-    assert_string_equal(tsasr_state_name(&T), "lost");
+    assert_string_equal(tsasr_state_name(&C), "lost");
     hear(tsasr_msg_nest(1u), 590u, 0);
     step();
-    assert_string_equal(tsasr_state_name(&T), "explorer");
+    assert_string_equal(tsasr_state_name(&C), "explorer");
     assert_int_equal(last_sent().kind, TSASR_MSG_EXPLORER);
-    assert_int_equal(T.ref, TSASR_REF_NEST);
+    assert_int_equal(C.ref, TSASR_REF_NEST);
 }
 
 /* ------------------------------------------------------------ joining */
@@ -180,21 +156,21 @@ static void test_joins_a_chainless_nest_on_the_link_circle(void **state)
         hear(tsasr_msg_nest(1u), 450u, 1000);
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "explorer");   /* p_join = 0: never */
+    assert_string_equal(tsasr_state_name(&C), "explorer");   /* p_join = 0: never */
 
     start(ALWAYS, 0u);
     hear(tsasr_msg_nest(1u), 200u, 0);   /* inside the link circle: not yet */
     step();
     hear(tsasr_msg_nest(1u), 200u, 0);
     step();
-    assert_string_equal(tsasr_state_name(&T), "explorer");
-    for (i = 0; i < 5 && T.state != TSASR_MEMBER; i++) {
+    assert_string_equal(tsasr_state_name(&C), "explorer");
+    for (i = 0; i < 5 && C.state != TSASR_MEMBER; i++) {
         hear(tsasr_msg_nest(1u), 450u, 0);
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "member");
-    assert_int_equal(T.colour, TSASR_BLUE);
-    assert_int_equal(T.joins, 1u);
+    assert_string_equal(tsasr_state_name(&C), "member");
+    assert_int_equal(C.colour, TSASR_BLUE);
+    assert_int_equal(C.joins, 1u);
     assert_int_equal(H.left, 0);
     assert_int_equal(H.right, 0);
     hear(tsasr_msg_nest(1u), 450u, 0);
@@ -215,15 +191,15 @@ static void test_joins_at_the_tail_with_the_next_colour(void **state)
         hear(tsasr_msg_chain(4u, TSASR_GREEN, 1u, 0u, 0u), 450u, 0);
         hear(tsasr_msg_chain(5u, TSASR_BLUE, 0u, 0u, 0u), 500u, 3000);
         step();
-        assert_string_equal(tsasr_state_name(&T), "explorer");
+        assert_string_equal(tsasr_state_name(&C), "explorer");
     }
     /* Only the tail in view, on the link circle. */
-    for (i = 0; i < 5 && T.state != TSASR_MEMBER; i++) {
+    for (i = 0; i < 5 && C.state != TSASR_MEMBER; i++) {
         hear(tsasr_msg_chain(4u, TSASR_GREEN, 1u, 0u, 0u), 450u, 0);
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "member");
-    assert_int_equal(T.colour, TSASR_RED);
+    assert_string_equal(tsasr_state_name(&C), "member");
+    assert_int_equal(C.colour, TSASR_RED);
 }
 
 static void test_not_at_a_member_that_is_not_the_tail(void **state)
@@ -235,7 +211,7 @@ static void test_not_at_a_member_that_is_not_the_tail(void **state)
         hear(tsasr_msg_chain(4u, TSASR_GREEN, 0u, 0u, 0u), 450u, 0);
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "explorer");
+    assert_string_equal(tsasr_state_name(&C), "explorer");
 }
 
 static void test_retreating_tail_is_not_extended_and_turns_explorers_back(void **state)
@@ -246,10 +222,10 @@ static void test_retreating_tail_is_not_extended_and_turns_explorers_back(void *
     for (i = 0; i < 100; i++) {
         hear(tsasr_msg_chain(4u, TSASR_GREEN, 1u, 0u, 1u), 450u, 0);
         step();
-        assert_string_equal(tsasr_state_name(&T), "explorer");
+        assert_string_equal(tsasr_state_name(&C), "explorer");
     }
-    assert_int_equal(T.outward, 0u);   /* going back towards the nest */
-    assert_int_equal(T.joins, 0u);
+    assert_int_equal(C.outward, 0u);   /* going back towards the nest */
+    assert_int_equal(C.joins, 0u);
 }
 
 static void test_prey_rule_joins_a_retreating_tail_and_never_leaves(void **state)
@@ -262,16 +238,16 @@ static void test_prey_rule_joins_a_retreating_tail_and_never_leaves(void **state
     hear(tsasr_msg_chain(4u, TSASR_RED, 1u, 0u, 1u), 500u, 0);
     hear(tsasr_msg_food(8u), 400u, 500);
     step();
-    assert_string_equal(tsasr_state_name(&T), "member");
-    assert_int_equal(T.colour, TSASR_BLUE);
-    assert_int_equal(T.prey, 1u);
+    assert_string_equal(tsasr_state_name(&C), "member");
+    assert_int_equal(C.colour, TSASR_BLUE);
+    assert_int_equal(C.prey, 1u);
     for (i = 0; i < 4 * (int)ELIM; i++) {   /* p_leave = 1 and past the elimination time */
         hear(tsasr_msg_chain(4u, TSASR_RED, 0u, 0u, 0u), 500u, 0);
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "member");
-    assert_int_equal(T.retreat, 0u);
-    assert_int_equal(T.leaves, 0u);
+    assert_string_equal(tsasr_state_name(&C), "member");
+    assert_int_equal(C.retreat, 0u);
+    assert_int_equal(C.leaves, 0u);
     assert_int_equal(last_sent().prey, 1u);
     assert_int_equal(last_sent().tail, 1u);
 }
@@ -287,7 +263,7 @@ static void test_prey_rule_needs_at_most_one_member(void **state)
         hear(tsasr_msg_food(8u), 400u, 500);
         step();
     }
-    assert_string_equal(tsasr_state_name(&T), "explorer");
+    assert_string_equal(tsasr_state_name(&C), "explorer");
 }
 
 /* ------------------------------------------------------------ elimination */
@@ -297,11 +273,11 @@ static void make_member_with(const tsasr_params_t *p)
 {
     int i;
     start_with(p);
-    for (i = 0; i < 10 && T.state != TSASR_MEMBER; i++) {
+    for (i = 0; i < 10 && C.state != TSASR_MEMBER; i++) {
         hear(tsasr_msg_nest(1u), 450u, 0);
         step();
     }
-    assert_int_equal(T.state, TSASR_MEMBER);
+    assert_int_equal(C.state, TSASR_MEMBER);
 }
 
 static void make_member(uint16_t p_leave)
@@ -328,27 +304,27 @@ static void test_tail_is_eliminated_after_elim_steps_then_retreat_steps(void **s
     make_member(0u);
     for (i = 1u; i < ELIM; i++) {
         member_step(0u);
-        assert_int_equal(T.retreat, 0u);
+        assert_int_equal(C.retreat, 0u);
         assert_int_equal(last_sent().retreat, 0u);
     }
     member_step(0u);   /* the ELIM-th step as the tail: found nothing in time */
-    assert_int_equal(T.retreat, 1u);
-    assert_string_equal(tsasr_state_name(&T), "member");
+    assert_int_equal(C.retreat, 1u);
+    assert_string_equal(tsasr_state_name(&C), "member");
     assert_int_equal(last_sent().retreat, 1u);
     assert_int_equal(last_sent().tail, 1u);
     assert_int_equal(H.leds, 0xFFu);   /* all ring LEDs while retreating */
     for (i = 1u; i < RETREAT; i++) {
         member_step(0u);
-        assert_string_equal(tsasr_state_name(&T), "member");
+        assert_string_equal(tsasr_state_name(&C), "member");
         assert_int_equal(H.left, 0);
         assert_int_equal(H.right, 0);
     }
     member_step(0u);
-    assert_string_equal(tsasr_state_name(&T), "explorer");
-    assert_int_equal(T.outward, 0u);              /* back along the chain */
-    assert_int_equal(T.ref, TSASR_REF_NEST);
-    assert_int_equal(T.eliminations, 1u);
-    assert_int_equal(T.leaves, 1u);
+    assert_string_equal(tsasr_state_name(&C), "explorer");
+    assert_int_equal(C.outward, 0u);              /* back along the chain */
+    assert_int_equal(C.ref, TSASR_REF_NEST);
+    assert_int_equal(C.eliminations, 1u);
+    assert_int_equal(C.leaves, 1u);
     assert_int_equal(last_sent().kind, TSASR_MSG_EXPLORER);
 }
 
@@ -361,22 +337,22 @@ static void test_a_successor_resets_the_timer(void **state)
     for (i = 0u; i < 3u * ELIM; i++) {   /* the chain goes on past it: never */
         member_step(green);
     }
-    assert_int_equal(T.tail, 0u);
-    assert_int_equal(T.retreat, 0u);
+    assert_int_equal(C.tail, 0u);
+    assert_int_equal(C.retreat, 0u);
     assert_int_equal(last_sent().tail, 0u);
     /* The successor leaves at random (no retreat flag): it is the tail again
      * once it has forgotten it, and its timer starts from zero there. */
     for (i = 0u; i < FORGET; i++) {
         member_step(0u);
-        assert_int_equal(T.tail, 0u);
+        assert_int_equal(C.tail, 0u);
     }
     for (i = 1u; i < ELIM; i++) {
         member_step(0u);
-        assert_int_equal(T.tail, 1u);
-        assert_int_equal(T.retreat, 0u);
+        assert_int_equal(C.tail, 1u);
+        assert_int_equal(C.retreat, 0u);
     }
     member_step(0u);
-    assert_int_equal(T.retreat, 1u);
+    assert_int_equal(C.retreat, 1u);
 }
 
 static void test_the_elimination_cascades_down_the_chain(void **state)
@@ -388,25 +364,25 @@ static void test_the_elimination_cascades_down_the_chain(void **state)
     /* While its successor retreats it waits (it is not the tail). */
     for (i = 0u; i < 2u * ELIM; i++) {
         member_step(retreating);
-        assert_int_equal(T.tail, 0u);
-        assert_int_equal(T.retreat, 0u);
+        assert_int_equal(C.tail, 0u);
+        assert_int_equal(C.retreat, 0u);
     }
     /* The successor has left: it retreats as soon as it is the tail ... */
     for (i = 0u; i < FORGET; i++) {
         member_step(0u);
-        assert_int_equal(T.retreat, 0u);
+        assert_int_equal(C.retreat, 0u);
     }
     member_step(0u);
-    assert_int_equal(T.tail, 1u);
-    assert_int_equal(T.retreat, 1u);
+    assert_int_equal(C.tail, 1u);
+    assert_int_equal(C.retreat, 1u);
     /* ... and leaves retreat_steps later. */
     for (i = 1u; i < RETREAT; i++) {
         member_step(0u);
-        assert_int_equal(T.state, TSASR_MEMBER);
+        assert_int_equal(C.state, TSASR_MEMBER);
     }
     member_step(0u);
-    assert_string_equal(tsasr_state_name(&T), "explorer");
-    assert_int_equal(T.eliminations, 1u);
+    assert_string_equal(tsasr_state_name(&C), "explorer");
+    assert_int_equal(C.eliminations, 1u);
 }
 
 static void test_without_cascade_the_new_tail_restarts_its_timer(void **state)
@@ -422,10 +398,10 @@ static void test_without_cascade_the_new_tail_restarts_its_timer(void **state)
     }
     for (i = 0u; i < FORGET + ELIM - 1u; i++) {
         member_step(0u);
-        assert_int_equal(T.retreat, 0u);
+        assert_int_equal(C.retreat, 0u);
     }
     member_step(0u);
-    assert_int_equal(T.retreat, 1u);
+    assert_int_equal(C.retreat, 1u);
 }
 
 static void test_a_new_successor_cancels_the_retreat(void **state)
@@ -436,15 +412,15 @@ static void test_a_new_successor_cancels_the_retreat(void **state)
     for (i = 0u; i < ELIM; i++) {
         member_step(0u);
     }
-    assert_int_equal(T.retreat, 1u);
+    assert_int_equal(C.retreat, 1u);
     /* An explorer reached the target past it (the prey rule): it stays. */
     member_step(tsasr_msg_chain(3u, TSASR_GREEN, 1u, 1u, 0u));
-    assert_int_equal(T.retreat, 0u);
+    assert_int_equal(C.retreat, 0u);
     for (i = 0u; i < 2u * ELIM; i++) {
         member_step(tsasr_msg_chain(3u, TSASR_GREEN, 1u, 1u, 0u));
     }
-    assert_string_equal(tsasr_state_name(&T), "member");
-    assert_int_equal(T.eliminations, 0u);
+    assert_string_equal(tsasr_state_name(&C), "member");
+    assert_int_equal(C.eliminations, 0u);
 }
 
 static void test_a_tail_at_the_target_is_never_eliminated(void **state)
@@ -460,9 +436,9 @@ static void test_a_tail_at_the_target_is_never_eliminated(void **state)
     for (i = 0u; i < 4u * ELIM; i++) {
         member_step(0u);
     }
-    assert_string_equal(tsasr_state_name(&T), "member");
-    assert_int_equal(T.prey, 1u);
-    assert_int_equal(T.retreat, 0u);
+    assert_string_equal(tsasr_state_name(&C), "member");
+    assert_int_equal(C.prey, 1u);
+    assert_int_equal(C.retreat, 0u);
     assert_int_equal(last_sent().prey, 1u);
 }
 
@@ -477,7 +453,7 @@ static void test_explorer_reset_variant_holds_the_timer(void **state)
         hear(tsasr_msg_explorer(9u), 300u, 0);
         member_step(0u);
     }
-    assert_int_equal(T.retreat, 1u);
+    assert_int_equal(C.retreat, 1u);
     /* elim_explorer_resets: it does, and the count starts again after. */
     params(&p, ALWAYS, 0u);
     p.elim_explorer_resets = 1u;
@@ -486,13 +462,13 @@ static void test_explorer_reset_variant_holds_the_timer(void **state)
         hear(tsasr_msg_explorer(9u), 300u, 0);
         member_step(0u);
     }
-    assert_int_equal(T.retreat, 0u);
+    assert_int_equal(C.retreat, 0u);
     for (i = 0u; i < FORGET + ELIM - 1u; i++) {
         member_step(0u);
-        assert_int_equal(T.retreat, 0u);
+        assert_int_equal(C.retreat, 0u);
     }
     member_step(0u);
-    assert_int_equal(T.retreat, 1u);
+    assert_int_equal(C.retreat, 1u);
 }
 
 /* ------------------------------------------------------------ PFIAS's leave */
@@ -506,15 +482,15 @@ static void test_random_leave_only_without_explorers(void **state)
         hear(tsasr_msg_explorer(9u), 300u, 0);
         member_step(0u);
     }
-    assert_string_equal(tsasr_state_name(&T), "member");
-    for (i = 0; i < 5 && T.state == TSASR_MEMBER; i++) {
+    assert_string_equal(tsasr_state_name(&C), "member");
+    for (i = 0; i < 5 && C.state == TSASR_MEMBER; i++) {
         member_step(0u);
     }
-    assert_string_equal(tsasr_state_name(&T), "explorer");
-    assert_int_equal(T.outward, 0u);
-    assert_int_equal(T.ref, TSASR_REF_NEST);
-    assert_int_equal(T.leaves, 1u);
-    assert_int_equal(T.eliminations, 0u);   /* at random, not by elimination */
+    assert_string_equal(tsasr_state_name(&C), "explorer");
+    assert_int_equal(C.outward, 0u);
+    assert_int_equal(C.ref, TSASR_REF_NEST);
+    assert_int_equal(C.leaves, 1u);
+    assert_int_equal(C.eliminations, 0u);   /* at random, not by elimination */
 }
 
 static void test_member_cut_off_from_the_nest_leaves(void **state)
@@ -524,11 +500,11 @@ static void test_member_cut_off_from_the_nest_leaves(void **state)
     make_member(0u);
     for (i = 0; i < 3 + 30; i++) {   /* forget_steps, then lost_steps */
         step();
-        assert_string_equal(tsasr_state_name(&T), "member");
+        assert_string_equal(tsasr_state_name(&C), "member");
     }
     step();
-    assert_string_equal(tsasr_state_name(&T), "explorer");
-    assert_int_equal(T.eliminations, 0u);
+    assert_string_equal(tsasr_state_name(&C), "explorer");
+    assert_int_equal(C.eliminations, 0u);
 }
 
 /* ------------------------------------------------------------ motion, replay */
@@ -557,7 +533,7 @@ static void test_reset_replays_the_same_run(void **state)
         uint16_t *out = r == 0 ? a : b;
         start_with(&p);
         if (r == 1) {
-            tsasr_reset(&T);
+            tsasr_reset(&C);
         }
         for (i = 0; i < 400; i++) {
             hear(tsasr_msg_nest(1u), 450u, (int16_t)((i % 60) * 50));
@@ -565,7 +541,7 @@ static void test_reset_replays_the_same_run(void **state)
                 hear(tsasr_msg_explorer(9u), 300u, 0);
             }
             step();
-            out[i] = (uint16_t)(T.state * 1000u + T.retreat * 100u + (uint16_t)H.left);
+            out[i] = (uint16_t)(C.state * 1000u + C.retreat * 100u + (uint16_t)H.left);
         }
     }
     assert_memory_equal(a, b, sizeof a);

@@ -1,70 +1,7 @@
 /*
- * eaipp_food_main.c - seed 003's EAIPP image: Robot_Food, the fixed gradient source at the food, running
- * firmware/eaipp/eaipp.c with role food over the range-and-bearing turret
- * (16-bit messages).  No camera (its frames would cost 3.2 KB of RAM for
- * nothing).  The parameters are eaipp_default_params (the square arena of
- * Table 2: R = 0.6 m, 5 cm/s).
- *
- * Static storage: the robot's struct hal, the controller and the telemetry
- * sender with its buffers (see forager_main.c).
+ * eaipp_food_main.c - seed 003's EAIPP image: Robot_Food, the fixed
+ * gradient source at the food.  It is eaipp_main.c (the one source of the
+ * EAIPP images) with the role food.
  */
-#include <stdint.h>
-
-#include "app_telemetry.h"
-#include "eaipp/eaipp.h"
-#include "hal_epuck.h"
-
-static struct hal app_hal;
-static eaipp_t app_eaipp;
-static robot_telemetry_t app_telemetry;
-
-static void app_tick(void)
-{
-    hal_epuck_tick(&app_hal);
-}
-
-static void app_send_telemetry(void)
-{
-    const robot_telemetry_source_t src = {
-        .controller = EAIPP_NAME, .observables = eaipp_observables,
-        .state = &app_eaipp, .state_name = eaipp_state_name(&app_eaipp),
-    };
-    app_telemetry_step(&app_telemetry, &app_hal, &src, 0u);
-}
-
-static void app_setup(void)
-{
-    hal_epuck_config_t cfg;
-    eaipp_params_t params;
-
-    hal_epuck_default_config(&cfg);
-    cfg.camera = 0u;
-    cfg.ircom_tx_per_period = 3u;   /* STATE, GRADIENT, ROOT in one period: ~12 ms of sends */
-    (void)hal_epuck_init(&app_hal, &cfg, (uint8_t *)0, 0u);
-    hal_epuck_start(&app_hal, app_tick);
-
-    eaipp_default_params(&params);
-    params.role = (uint8_t)EAIPP_ROLE_FOOD;
-    eaipp_init(&app_eaipp, &params, (uint32_t)hal_robot_id(&app_hal));
-    robot_telemetry_init(&app_telemetry);
-}
-
-static void app_loop_once(void)
-{
-    if (hal_epuck_step_due(&app_hal) != 0u) {
-        hal_epuck_begin_step(&app_hal);
-        eaipp_step(&app_eaipp, &app_hal);
-        app_send_telemetry();
-        hal_epuck_end_step(&app_hal);
-    } else {
-        hal_epuck_poll(&app_hal);
-    }
-}
-
-int main(void)
-{
-    app_setup();
-    for (;;) {
-        app_loop_once();
-    }
-}
+#define APP_EAIPP_ROLE EAIPP_ROLE_FOOD
+#include "eaipp_main.c"

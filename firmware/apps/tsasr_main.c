@@ -1,9 +1,11 @@
 /*
  * tsasr_main.c - seed 003's TSASR baseline image (Luo, Guo, Ye et al.
  * 2020, reconstructed: firmware/tsasr/tsasr.h, docs/notes/i15_tsasr.md):
- * the swarm robot (lost / explorer / chain member),
- * running firmware/tsasr/tsasr.c with role robot
- * over the range-and-bearing turret (16-bit messages).  No camera (its
+ * the swarm robot (lost / explorer / chain member), running
+ * firmware/tsasr/tsasr.c with role robot over the range-and-bearing turret
+ * (16-bit messages); with APP_TSASR_ROLE (tsasr_nest_main.c,
+ * tsasr_food_main.c), the nest or the food, a fixed robot that broadcasts
+ * TSASR NEST or FOOD frames.  No camera (its
  * frames would cost 3.2 KB of RAM for nothing).  The parameters are
  * tsasr_default_params (the square arena of Table 2: R = 0.6 m, 5 cm/s).
  *
@@ -15,6 +17,15 @@
 #include "app_telemetry.h"
 #include "tsasr/tsasr.h"
 #include "hal_epuck.h"
+
+/* The image's role: the swarm robot here; tsasr_nest_main.c and
+ * tsasr_food_main.c are this source with APP_TSASR_ROLE set to
+ * TSASR_ROLE_NEST and TSASR_ROLE_FOOD (the fixed sources, which read no
+ * sensors). */
+#ifndef APP_TSASR_ROLE
+#define APP_TSASR_ROLE TSASR_ROLE_ROBOT
+#endif
+#define APP_READS_SENSORS ((uint8_t)(APP_TSASR_ROLE == TSASR_ROLE_ROBOT))
 
 static struct hal app_hal;
 static tsasr_t app_tsasr;
@@ -31,7 +42,7 @@ static void app_send_telemetry(void)
         .controller = TSASR_NAME, .observables = tsasr_observables,
         .state = &app_tsasr, .state_name = tsasr_state_name(&app_tsasr),
     };
-    app_telemetry_step(&app_telemetry, &app_hal, &src, 1u);
+    app_telemetry_step(&app_telemetry, &app_hal, &src, APP_READS_SENSORS);
 }
 
 static void app_setup(void)
@@ -45,7 +56,7 @@ static void app_setup(void)
     hal_epuck_start(&app_hal, app_tick);
 
     tsasr_default_params(&params);
-    params.role = (uint8_t)TSASR_ROLE_ROBOT;
+    params.role = (uint8_t)APP_TSASR_ROLE;
     tsasr_init(&app_tsasr, &params, (uint32_t)hal_robot_id(&app_hal));
     robot_telemetry_init(&app_telemetry);
 }

@@ -1,6 +1,9 @@
 /*
  * pfias.c - PFIAS chain-based path formation (see pfias.h and
- * docs/notes/i15_baselines.md for what is sourced and reconstructed).
+ * docs/notes/i15_baselines.md for what is sourced and reconstructed), and
+ * the chain model of TSASR (firmware/tsasr/tsasr.h): with params `elim`,
+ * step_member's tail timer and retreat, the explorers' respect of a
+ * retreating tail, and TSASR's frames (docs/notes/i15_tsasr.md).
  */
 #include "pfias/pfias.h"
 
@@ -26,6 +29,12 @@ void pfias_default_params(pfias_params_t *params)
     params->forget_steps = 3u;
     params->lost_steps = 30u;       /* 3 s */
     params->leave_needs_no_explorer = 1u;
+    /* No elimination (tsasr_default_params turns it on, with its values). */
+    params->elim = 0u;
+    params->elim_steps = 0u;
+    params->retreat_steps = 0u;
+    params->elim_cascade = 0u;
+    params->elim_explorer_resets = 0u;
     params->role = (uint8_t)PFIAS_ROLE_ROBOT;
     params->walk.speed_steps_s = params->speed_steps_s;
 }
@@ -52,9 +61,13 @@ void pfias_reset(pfias_t *self)
     self->colour = 0u;
     self->tail = 0u;
     self->prey = 0u;
+    self->retreat = 0u;
+    self->follow = 0u;
     self->missing = 0u;
+    self->idle = 0u;
     self->joins = 0u;
     self->leaves = 0u;
+    self->eliminations = 0u;
     for (i = 0; i < PFIAS_MAX_NEIGHBOURS; i++) {
         self->nb[i].kind = PFIAS_MSG_INVALID;
     }
@@ -112,14 +125,21 @@ static pfias_neighbour_t *slot_for(pfias_t *self, uint16_t id)
     return best;
 }
 
+/* The frames it sends and reads: PFIAS's, or TSASR's with elimination. */
+static uint8_t frame_format(const pfias_t *self)
+{
+    return self->params.elim != 0u ? (uint8_t)PFIAS_FMT_RETREAT : (uint8_t)PFIAS_FMT_PFIAS;
+}
+
 static void hear(pfias_t *self, hal_t *hal)
 {
     hal_ircom_msg_t m;
     pfias_msg_t d;
-    uint16_t own = (uint16_t)(hal_robot_id(hal) & PFIAS_ID_MASK);
+    uint8_t fmt = frame_format(self);
+    uint16_t own = pfias_fmt_id(fmt, hal_robot_id(hal));
     while (hal_ircom_receive(hal, &m) == HAL_OK) {
         pfias_neighbour_t *n;
-        if (pfias_msg_decode(m.value, &d) == PFIAS_MSG_INVALID || m.range_mm > self->params.range_mm
+        if (pfias_fmt_decode(fmt, m.value, &d) == PFIAS_MSG_INVALID || m.range_mm > self->params.range_mm
             || d.id == own) {
             continue;   /* not ours, beyond R, or our own echo */
         }
@@ -129,6 +149,7 @@ static void hear(pfias_t *self, hal_t *hal)
         n->colour = d.colour;
         n->tail = d.tail;
         n->prey = d.prey;
+        n->retreat = d.retreat;
         n->age = 0u;
         n->range_mm = m.range_mm;
         n->bearing_mrad = m.bearing_mrad;
@@ -224,7 +245,10 @@ static void become_member(pfias_t *self, uint8_t colour, uint8_t prey)
     self->colour = (uint8_t)(colour % PFIAS_COLOURS);
     self->tail = 1u;
     self->prey = prey;
+    self->retreat = 0u;
+    self->follow = 0u;
     self->missing = 0u;
+    self->idle = 0u;
     self->joins++;
 }
 
@@ -314,10 +338,16 @@ static void step_explorer(pfias_t *self, hal_t *hal)
     if (self->outward == 0u && self->ref == PFIAS_REF_NEST && ref->range_mm <= p->link_mm + p->link_mm / 4u) {
         self->outward = 1u;   /* home: out again along a chain */
     }
+    /* Elimination: a chain that retracts is not extended; an explorer that
+     * reaches its end turns back (and so leaves the chain's robots free to
+     * search elsewhere).  (Without elim no frame carries `retreat`.) */
+    if (self->outward != 0u && self->ref != PFIAS_REF_NEST && ref->tail != 0u && ref->retreat != 0u) {
+        self->outward = 0u;
+    }
     /* P_e->c at the tail (only the tail in view) or at a nest without chain. */
     if (self->outward != 0u && on_link(self, ref)
         && ((self->ref == PFIAS_REF_NEST && members == 0u)
-            || (self->ref != PFIAS_REF_NEST && ref->tail != 0u && members == 1u))
+            || (self->ref != PFIAS_REF_NEST && ref->tail != 0u && ref->retreat == 0u && members == 1u))
         && rng_chance(&self->rng, p->p_join) != 0u) {
         become_member(self, self->ref == PFIAS_REF_NEST ? (uint8_t)PFIAS_BLUE : pfias_next_colour(self->ref), 0u);
         hal_set_wheel_speeds(hal, 0, 0);
@@ -326,13 +356,46 @@ static void step_explorer(pfias_t *self, hal_t *hal)
     move_about(self, hal, ref);
 }
 
+/* The reference a member takes when it leaves: back along its chain. */
+static uint8_t way_back(const pfias_t *self, uint8_t pred)
+{
+    return self->colour == PFIAS_BLUE && pred != 0u && pfias_nearest(self, PFIAS_MSG_NEST, 0u) != NULL
+               ? (uint8_t)PFIAS_REF_NEST : pfias_prev_colour(self->colour);
+}
+
+static void raise_retreat(pfias_t *self)
+{
+    self->retreat = 1u;
+    self->follow = 0u;
+    self->idle = 0u;
+}
+
 static void step_member(pfias_t *self, hal_t *hal)
 {
     const pfias_params_t *p = &self->params;
-    uint8_t pred;
+    uint8_t next = pfias_next_colour(self->colour);
+    uint8_t healthy = 0u, retreating = 0u;
+    uint8_t pred, i;
 
     hal_set_wheel_speeds(hal, 0, 0);
-    self->tail = (uint8_t)(pfias_nearest(self, PFIAS_MSG_CHAIN, pfias_next_colour(self->colour)) == NULL);
+    for (i = 0; i < PFIAS_MAX_NEIGHBOURS; i++) {
+        const pfias_neighbour_t *n = &self->nb[i];
+        if (n->kind == PFIAS_MSG_CHAIN && n->colour == next) {
+            if (n->retreat != 0u) {
+                retreating = 1u;
+            } else {
+                healthy = 1u;
+            }
+        }
+    }
+    self->tail = (uint8_t)(healthy == 0u && retreating == 0u);
+    /* The successor it heard last decides what its leaving means: a healthy
+     * one (the chain goes on) clears the mark a retreating one leaves. */
+    if (healthy != 0u) {
+        self->follow = 0u;
+    } else if (retreating != 0u) {
+        self->follow = 1u;
+    }
     if (pfias_nearest(self, PFIAS_MSG_FOOD, 0u) != NULL) {
         self->prey = 1u;
     }
@@ -343,27 +406,62 @@ static void step_member(pfias_t *self, hal_t *hal)
         /* Cut off from the nest: the chain behind it has gone. */
         self->leaves++;
         self->prey = 0u;
+        self->retreat = 0u;
         become_explorer(self, 0u, pfias_prev_colour(self->colour));
         return;
     }
-    if (self->tail != 0u && self->prey == 0u
-        && (p->leave_needs_no_explorer == 0u || pfias_count(self, PFIAS_MSG_EXPLORER) == 0u)
+    if (self->prey != 0u || healthy != 0u) {
+        /* It found the target, or the chain goes on past it: it stays. */
+        self->retreat = 0u;
+        self->idle = 0u;
+        return;
+    }
+    /* Without elim nothing retreats: the tail goes on to P_c->e below. */
+    if (self->retreat != 0u) {
+        if (retreating == 0u && ++self->idle >= p->retreat_steps) {
+            self->leaves++;
+            self->eliminations++;
+            self->retreat = 0u;
+            become_explorer(self, 0u, way_back(self, pred));
+        }
+        return;
+    }
+    if (self->tail == 0u) {
+        self->idle = 0u;    /* its successor is retreating: it waits */
+        return;
+    }
+    if (p->elim != 0u) {
+        /* The tail.  Its successor left in retreat: the elimination goes on. */
+        if (self->follow != 0u && p->elim_cascade != 0u) {
+            raise_retreat(self);
+            return;
+        }
+        self->follow = 0u;
+        if (p->elim_explorer_resets != 0u && pfias_count(self, PFIAS_MSG_EXPLORER) != 0u) {
+            self->idle = 0u;    /* an explorer may yet extend it */
+        } else if (++self->idle >= p->elim_steps) {
+            raise_retreat(self);   /* this frontier found nothing in time */
+            return;
+        }
+    }
+    /* P_c->e: the tail leaves at random, back along its chain. */
+    if ((p->leave_needs_no_explorer == 0u || pfias_count(self, PFIAS_MSG_EXPLORER) == 0u)
         && rng_chance(&self->rng, p->p_leave) != 0u) {
         self->leaves++;
-        become_explorer(self, 0u, self->colour == PFIAS_BLUE && pred != 0u
-                                      && pfias_nearest(self, PFIAS_MSG_NEST, 0u) != NULL
-                                  ? (uint8_t)PFIAS_REF_NEST : pfias_prev_colour(self->colour));
+        become_explorer(self, 0u, way_back(self, pred));
     }
 }
 
 /* What the robot's LEDs would show, as its frame for this period. */
 static uint16_t own_frame(const pfias_t *self, uint16_t id)
 {
+    uint8_t fmt = frame_format(self);
     switch (self->state) {
-    case PFIAS_EXPLORER: return pfias_msg_explorer(id);
-    case PFIAS_MEMBER: return pfias_msg_chain(id, self->colour, self->tail, self->prey);
+    case PFIAS_EXPLORER: return pfias_fmt_frame(fmt, PFIAS_MSG_EXPLORER, id);
+    case PFIAS_MEMBER: return pfias_fmt_chain(fmt, id, self->colour, self->tail, self->prey, self->retreat);
     case PFIAS_SOURCE:
-        return self->params.role == (uint8_t)PFIAS_ROLE_FOOD ? pfias_msg_food(id) : pfias_msg_nest(id);
+        return pfias_fmt_frame(fmt, self->params.role == (uint8_t)PFIAS_ROLE_FOOD ? (uint8_t)PFIAS_MSG_FOOD
+                                                                                  : (uint8_t)PFIAS_MSG_NEST, id);
     default: return 0u;   /* a lost robot signals nothing */
     }
 }
@@ -371,9 +469,10 @@ static uint16_t own_frame(const pfias_t *self, uint16_t id)
 static void show(const pfias_t *self, hal_t *hal)
 {
     uint8_t i;
-    /* Members light 1..3 ring LEDs for their colour, explorers the front LED. */
+    /* Members light 1..3 ring LEDs for their colour (all eight in retreat),
+     * explorers the front LED. */
     for (i = 0; i < HAL_LED_COUNT; i++) {
-        hal_set_led(hal, i, (uint8_t)(self->state == PFIAS_MEMBER && i <= self->colour));
+        hal_set_led(hal, i, (uint8_t)(self->state == PFIAS_MEMBER && (i <= self->colour || self->retreat != 0u)));
     }
     hal_set_body_led(hal, (uint8_t)(self->state == PFIAS_MEMBER || self->state == PFIAS_SOURCE));
     hal_set_front_led(hal, (uint8_t)(self->state == PFIAS_EXPLORER));

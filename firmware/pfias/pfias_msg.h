@@ -31,6 +31,11 @@
  * invalid (so that a stray frame of another controller's codec is not
  * believed).  Over libIrcom's 8 bits the kind bits are dropped and every
  * frame decodes as invalid.
+ *
+ * The codec also writes TSASR's frames (firmware/tsasr/tsasr_msg.h, the
+ * format PFIAS_FMT_RETREAT): the same layout with bit 8 the elimination's
+ * retreat flag (chain frames), and so 8-bit ids.  The chain controller
+ * (pfias.c) sends and reads the format of its params' `elim`.
  */
 #ifndef FW_PFIAS_MSG_H
 #define FW_PFIAS_MSG_H
@@ -54,13 +59,18 @@ typedef enum pfias_kind {
 /** Ids a frame carries (9 bits). */
 #define PFIAS_ID_MASK 0x01FFu
 
+/** Frame formats: PFIAS's, and TSASR's (bit 8 the retreat flag, 8-bit ids). */
+#define PFIAS_FMT_PFIAS 0u
+#define PFIAS_FMT_RETREAT 1u
+
 /** A decoded frame. */
 typedef struct pfias_msg {
     uint8_t kind;     /**< pfias_kind_t; PFIAS_MSG_INVALID if malformed */
     uint8_t colour;   /**< chain frames: 0..2 */
     uint8_t tail;     /**< chain frames: 1 = last member of its chain */
     uint8_t prey;     /**< chain frames: 1 = perceives the food */
-    uint16_t id;      /**< sender id & 511 */
+    uint8_t retreat;  /**< chain frames of PFIAS_FMT_RETREAT: 1 = being eliminated (else 0) */
+    uint16_t id;      /**< sender id & 511 (PFIAS_FMT_RETREAT: & 255) */
 } pfias_msg_t;
 
 uint16_t pfias_msg_nest(uint16_t id);
@@ -72,6 +82,16 @@ uint16_t pfias_msg_chain(uint16_t id, uint8_t colour, uint8_t tail, uint8_t prey
 /** Decodes `frame` into `out` and returns its kind (PFIAS_MSG_INVALID, with
  *  `out` all zero, for anything malformed). */
 uint8_t pfias_msg_decode(uint16_t frame, pfias_msg_t *out);
+
+/** The codec of either format `fmt` (PFIAS_FMT_*): a NEST, FOOD or EXPLORER
+ *  frame of `kind`; a chain frame (`retreat` is sent in PFIAS_FMT_RETREAT
+ *  only); the decoder, as pfias_msg_decode. */
+uint16_t pfias_fmt_frame(uint8_t fmt, uint8_t kind, uint16_t id);
+uint16_t pfias_fmt_chain(uint8_t fmt, uint16_t id, uint8_t colour, uint8_t tail, uint8_t prey,
+                         uint8_t retreat);
+uint8_t pfias_fmt_decode(uint8_t fmt, uint16_t frame, pfias_msg_t *out);
+/** `id` as frames of format `fmt` carry it. */
+uint16_t pfias_fmt_id(uint8_t fmt, uint16_t id);
 
 /** The colour that follows `colour` away from the nest (0 -> 1 -> 2 -> 0). */
 uint8_t pfias_next_colour(uint8_t colour);

@@ -41,6 +41,10 @@
  *
  * Units: distances mm, angles mrad, wheel speeds steps/s, probabilities in
  * 1/65536 per control step (rng_chance), times in control steps (100 ms).
+ *
+ * The code is PFIAS's (firmware/pfias/pfias.c) with its params `elim` on:
+ * tsasr_t is pfias_t, and tsasr.c sets the elimination's parameters and
+ * registers the controller with its keys and observables.
  */
 #ifndef FW_TSASR_H
 #define FW_TSASR_H
@@ -49,91 +53,47 @@
 
 #include "hal.h"
 #include "common/controller.h"
-#include "common/random_walk.h"
-#include "common/rng.h"
+#include "pfias/pfias.h"
+#include "tsasr/tsasr_msg.h"
 
 /** Neighbours remembered at once (the nest, the food, members, explorers). */
-#define TSASR_MAX_NEIGHBOURS 12u
+#define TSASR_MAX_NEIGHBOURS PFIAS_MAX_NEIGHBOURS
 
-typedef struct tsasr_params {
-    uint16_t p_join;        /**< explorer -> member per step at a tail or chainless nest, /65536 */
-    uint16_t p_leave;       /**< PFIAS's P_c->e: a tail leaves at random per step, /65536 */
-    uint16_t elim_steps;    /**< steps a tail may go without the target before it is eliminated */
-    uint16_t retreat_steps; /**< steps an eliminated member shows `retreat` before it leaves */
-    uint16_t range_mm;      /**< perception radius R: frames from farther are ignored */
-    uint16_t link_mm;       /**< AD distance an explorer keeps from its reference (a chain link) */
-    int16_t speed_steps_s;  /**< forward wheel speed, steps/s (388 = 5 cm/s) */
-    int16_t turn_gain;      /**< wheel speed difference per rad of heading error, steps/s */
-    uint8_t forget_steps;   /**< a neighbour not heard for this many steps is forgotten */
-    uint8_t lost_steps;     /**< steps without the reference before giving it up */
-    uint8_t leave_needs_no_explorer; /**< 1: p_leave only when no explorer is perceived */
-    uint8_t elim_cascade;   /**< 1: a member whose successor left in retreat retreats too */
-    uint8_t elim_explorer_resets; /**< 1: a tail's timer restarts while it perceives an explorer */
-    uint8_t role;           /**< tsasr_role_t: swarm robot, or fixed nest/food source */
-    random_walk_params_t walk;  /**< LOST's walk (its speed is speed_steps_s) */
-} tsasr_params_t;
+/** PFIAS's parameters (pfias.h), with `elim` = 1 and the elimination's:
+ *  elim_steps, retreat_steps, elim_cascade, elim_explorer_resets. */
+typedef pfias_params_t tsasr_params_t;
 
 /** What a robot is: a swarm robot, or a fixed source that only broadcasts. */
-typedef enum tsasr_role {
-    TSASR_ROLE_ROBOT = 0,
-    TSASR_ROLE_NEST = 1,
-    TSASR_ROLE_FOOD = 2
-} tsasr_role_t;
+typedef pfias_role_t tsasr_role_t;
+#define TSASR_ROLE_ROBOT PFIAS_ROLE_ROBOT
+#define TSASR_ROLE_NEST PFIAS_ROLE_NEST
+#define TSASR_ROLE_FOOD PFIAS_ROLE_FOOD
 
-typedef enum tsasr_state {
-    TSASR_LOST = 0,
-    TSASR_EXPLORER = 1,
-    TSASR_MEMBER = 2,
-    TSASR_SOURCE = 3      /**< a nest or food robot */
-} tsasr_state_t;
+typedef pfias_state_t tsasr_state_t;
+#define TSASR_LOST PFIAS_LOST
+#define TSASR_EXPLORER PFIAS_EXPLORER
+#define TSASR_MEMBER PFIAS_MEMBER
+#define TSASR_SOURCE PFIAS_SOURCE
 
 /** Where an explorer's reference is: the nest, or a chain member's colour. */
-#define TSASR_REF_NEST 3u
+#define TSASR_REF_NEST PFIAS_REF_NEST
 
-/** One neighbour heard lately (tsasr_msg kinds). */
-typedef struct tsasr_neighbour {
-    uint8_t id;             /**< sender id & 255 */
-    uint8_t kind;           /**< tsasr_kind_t; 0 = free slot */
-    uint8_t colour, tail, prey, retreat;
-    uint8_t age;            /**< steps since last heard */
-    uint16_t range_mm;
-    int16_t bearing_mrad;
-} tsasr_neighbour_t;
+/** One neighbour heard lately (tsasr_msg kinds; ids & 255). */
+typedef pfias_neighbour_t tsasr_neighbour_t;
 
-typedef struct tsasr {
-    tsasr_params_t params;
-    rng_t rng;
-    uint32_t seed;
-    random_walk_t walk;
-    uint8_t state;          /**< tsasr_state_t */
-    uint8_t outward;        /**< explorer: 1 going to the tail, 0 back to the nest */
-    uint8_t ref;            /**< explorer: TSASR_REF_NEST or the colour circled */
-    int8_t circle_sign;     /**< explorer: +1 circles counter-clockwise */
-    uint8_t colour;         /**< member: its colour */
-    uint8_t tail;           /**< member: no successor perceived */
-    uint8_t prey;           /**< member: perceives (has perceived) the target: never leaves */
-    uint8_t retreat;        /**< member: being eliminated */
-    uint8_t follow;         /**< member: its last successor heard was retreating */
-    uint8_t missing;        /**< steps the reference (explorer) or the predecessor
-                                 (member) has not been perceived */
-    uint16_t idle;          /**< member: steps as the tail without the target;
-                                 in retreat, steps since it was raised */
-    uint32_t joins;         /**< times it became a chain member */
-    uint32_t leaves;        /**< times it left a chain (any reason) */
-    uint32_t eliminations;  /**< times it left a chain by elimination */
-    tsasr_neighbour_t nb[TSASR_MAX_NEIGHBOURS];
-} tsasr_t;
+/** PFIAS's state, with the elimination's fields (retreat, follow, idle,
+ *  eliminations) in use. */
+typedef pfias_t tsasr_t;
 
 /* The controller contract (controller.h); state names "lost", "explorer",
  * "member", "source". */
 CONTROLLER_API(tsasr);
 
 /** The nearest remembered neighbour of `kind` (and, for chain frames,
- *  colour `colour`; TSASR_COLOURS = any colour), or NULL. */
-const tsasr_neighbour_t *tsasr_nearest(const tsasr_t *self, uint8_t kind, uint8_t colour);
-
-/** How many remembered neighbours are of `kind`. */
-uint8_t tsasr_count(const tsasr_t *self, uint8_t kind);
+ *  colour `colour`; TSASR_COLOURS = any colour), or NULL; how many
+ *  remembered neighbours are of `kind`: PFIAS's. */
+#define tsasr_nearest pfias_nearest
+#define tsasr_count pfias_count
 
 #define TSASR_NAME "tsasr"
 extern const observable_t tsasr_observables[];

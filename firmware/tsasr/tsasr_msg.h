@@ -27,38 +27,36 @@
  * Bits a kind does not use are zero; a frame with any of them set is
  * invalid.  Over libIrcom's 8 bits the kind bits are dropped and every
  * frame decodes as invalid.
+ *
+ * PFIAS's codec writes and reads this format too (pfias_msg.h,
+ * PFIAS_FMT_RETREAT): the names below are its, for TSASR.
  */
 #ifndef FW_TSASR_MSG_H
 #define FW_TSASR_MSG_H
 
 #include <stdint.h>
 
-typedef enum tsasr_kind {
-    TSASR_MSG_INVALID = 0,
-    TSASR_MSG_NEST = 1,
-    TSASR_MSG_FOOD = 2,
-    TSASR_MSG_EXPLORER = 3,
-    TSASR_MSG_CHAIN = 4
-} tsasr_kind_t;
+#include "pfias/pfias_msg.h"
+
+typedef pfias_kind_t tsasr_kind_t;
+#define TSASR_MSG_INVALID PFIAS_MSG_INVALID
+#define TSASR_MSG_NEST PFIAS_MSG_NEST
+#define TSASR_MSG_FOOD PFIAS_MSG_FOOD
+#define TSASR_MSG_EXPLORER PFIAS_MSG_EXPLORER
+#define TSASR_MSG_CHAIN PFIAS_MSG_CHAIN
 
 /** The three colours of the chain's cyclic pattern, in order from the nest. */
-#define TSASR_COLOURS 3u
-#define TSASR_BLUE 0u
-#define TSASR_GREEN 1u
-#define TSASR_RED 2u
+#define TSASR_COLOURS PFIAS_COLOURS
+#define TSASR_BLUE PFIAS_BLUE
+#define TSASR_GREEN PFIAS_GREEN
+#define TSASR_RED PFIAS_RED
 
 /** Ids a frame carries (8 bits). */
 #define TSASR_ID_MASK 0x00FFu
 
-/** A decoded frame. */
-typedef struct tsasr_msg {
-    uint8_t kind;     /**< tsasr_kind_t; TSASR_MSG_INVALID if malformed */
-    uint8_t colour;   /**< chain frames: 0..2 */
-    uint8_t tail;     /**< chain frames: 1 = no successor in view */
-    uint8_t prey;     /**< chain frames: 1 = perceives the target */
-    uint8_t retreat;  /**< chain frames: 1 = being eliminated */
-    uint16_t id;      /**< sender id & 255 */
-} tsasr_msg_t;
+/** A decoded frame (its `retreat`: chain frames, 1 = being eliminated;
+ *  its `id`: sender id & 255). */
+typedef pfias_msg_t tsasr_msg_t;
 
 uint16_t tsasr_msg_nest(uint16_t id);
 uint16_t tsasr_msg_food(uint16_t id);
@@ -70,9 +68,9 @@ uint16_t tsasr_msg_chain(uint16_t id, uint8_t colour, uint8_t tail, uint8_t prey
  *  `out` all zero, for anything malformed). */
 uint8_t tsasr_msg_decode(uint16_t frame, tsasr_msg_t *out);
 
-/** The colour that follows `colour` away from the nest (0 -> 1 -> 2 -> 0). */
-uint8_t tsasr_next_colour(uint8_t colour);
-/** The colour that precedes `colour` (towards the nest). */
-uint8_t tsasr_prev_colour(uint8_t colour);
+/** The colour that follows `colour` away from the nest (0 -> 1 -> 2 -> 0),
+ *  and the one that precedes it (towards the nest): PFIAS's. */
+#define tsasr_next_colour pfias_next_colour
+#define tsasr_prev_colour pfias_prev_colour
 
 #endif
