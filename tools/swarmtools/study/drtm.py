@@ -141,6 +141,7 @@ from typing import Any
 
 import numpy as np
 
+from swarmtools.study.common import json_safe
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
@@ -875,17 +876,6 @@ def _series_to_json(agg: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def _json_safe(obj: Any) -> Any:
-    """NaN/inf are not JSON: write them as null."""
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, list):
-        return [_json_safe(v) for v in obj]
-    return obj
-
-
 def parse_list(text: str | None, allowed: Sequence[str], what: str,
                strip_prefix: str = "") -> list[str]:
     if text is None:
@@ -1119,7 +1109,7 @@ def write_outputs(results: dict[str, Any], out_dir: Path, figures: bool,
     out_dir.mkdir(parents=True, exist_ok=True)
     if rerender_command is None:
         _atomic_write_text(out_dir / "results.json",
-                           json.dumps(_json_safe(results), indent=1, allow_nan=False) + "\n")
+                           json.dumps(json_safe(results), indent=1, allow_nan=False) + "\n")
     if figures:
         made = render_figures(results, out_dir)
     else:   # list the figures already there, if any
