@@ -21,7 +21,7 @@ enum {
     RAND_FAULTS = 8,    /**< which robots fail, when, and their faults' noise */
     RAND_SOUND = 9,     /**< eq 4's per-pair noise of the sound a robot hears */
     RAND_OBSTACLES = 10, /**< the random cylinders' layout (scenario random_cylinders) */
-    RAND_WHEEL_BIAS = 11 /**< each robot's wheel biases (wheels.bias_sd), drawn once a run */
+    RAND_WHEEL_BIAS = 11 /**< each robot's wheel biases (wheels.bias_sd): once a run, or every step (bias_per_step) */
 };
 
 /** Seeds a stream from the run seed, an index (robot id) and a purpose. */
