@@ -74,7 +74,7 @@ class HostileLogs(TempDir):
         path.write_bytes(raw_event(0, b"../../escROBOT_STATE", self.good(1))
                          + raw_event(1, b"A/BROBOT_STATE", self.good(2))
                          + raw_event(2, b"ROBOT_STATE", self.good(3)))
-        work = self.tmp / "deep" / "work"
+        work = self.tmp / "deep" / "cwd"
         work.mkdir(parents=True)
         r = run_tool("export_csv", path, "-o", "out/", cwd=work)
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -82,5 +82,5 @@ class HostileLogs(TempDir):
         written = sorted(p.relative_to(self.tmp) for p in self.tmp.rglob("*.csv"))
         self.assertEqual(len(written), 3, written)
         for p in written:
-            self.assertEqual(p.parent.as_posix(), "deep/work/out", written)
-        self.assertIn("deep/work/out/ROBOT_STATE.csv", [p.as_posix() for p in written])
+            self.assertEqual(p.parent.as_posix(), "deep/cwd/out", written)
+        self.assertIn("deep/cwd/out/ROBOT_STATE.csv", [p.as_posix() for p in written])
