@@ -18,6 +18,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "core/metrics.h"
 #include "core/scenario.h"
 #include "core/sim.h"
@@ -31,17 +33,6 @@
  * seed that merges (build/swarmsim ... --reps 20) and say so in the commit. */
 #define PATH_SEED 10u
 #define PATH_BOUND_S 300.0
-
-static double metric(const sim_t *sim, const char *name)
-{
-    metric_list_t m;
-    metrics_final(sim, &m);
-    for (unsigned k = 0; k < m.count; k++) {
-        if (!strcmp(m.name[k], name)) return m.value[k];
-    }
-    fail_msg("no metric %s", name);
-    return NAN;
-}
 
 static void test_square_path_forms(void **state)
 {
@@ -58,11 +49,11 @@ static void test_square_path_forms(void **state)
     uint64_t cap = (uint64_t)(PATH_BOUND_S * 10.0) + 20u;   /* + the 1 s hold */
     while (!sim_done(sim) && sim_step_count(sim) < cap) sim_step(sim);
     assert_true(sim_done(sim));
-    assert_float_equal(metric(sim, "distance_m"), 1.4, 1e-6);
-    assert_int_equal((int)metric(sim, "success"), 1);
-    double t = metric(sim, "merge_time_s");
+    assert_float_equal(fixture_metric(sim, "distance_m"), 1.4, 1e-6);
+    assert_int_equal((int)fixture_metric(sim, "success"), 1);
+    double t = fixture_metric(sim, "merge_time_s");
     printf("# EAIPP, D = 1.4 m, N = 15, seed %u: path at %.1f s (%g chain nodes, %g joins)\n", PATH_SEED, t,
-           metric(sim, "chain_nodes"), metric(sim, "joins_total"));
+           fixture_metric(sim, "chain_nodes"), fixture_metric(sim, "joins_total"));
     assert_true(t > 0.0 && t < PATH_BOUND_S);
     /* The still robots are EAIPP's Robot_Nodes (the task judges from the
      * wheels alone). */

@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "core/scenario.h"
 #include "core/metrics.h"
 #include "core/sim.h"
@@ -54,14 +56,6 @@ static foraging_truth_t truth(const sim_t *sim)
 /* Foragers are robots 0..N_r-1; the beacon, when there is one, comes next. */
 static uint32_t foragers(const scenario_t *sc) { return sc->groups[0].count; }
 
-static sim_t *make(const scenario_t *sc, uint64_t seed)
-{
-    char err[256];
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("%s", err);
-    return sim;
-}
-
 /* 3000 steps (5 min) of the base condition with DRTM and the beacon:
  * tokens are collected and delivered, each delivery raises the nest level
  * by one token less that step's costs, and the ledger balances. */
@@ -69,7 +63,7 @@ static void test_base_run_collects_and_balances(void **state)
 {
     (void)state;
     scenario_t *sc = load("drtm", "beacon");
-    sim_t *sim = make(sc, 7);
+    sim_t *sim = fixture_sim(sc, 7);
     const foraging_config_t *c = config(sc);
     const double E = c->token_energy;
     uint64_t forage_steps = 0, rises = 0;
@@ -129,17 +123,6 @@ static void test_base_run_collects_and_balances(void **state)
     free(sc);
 }
 
-static double metric(const sim_t *sim, const char *name)
-{
-    metric_list_t m;
-    metrics_final(sim, &m);
-    for (unsigned k = 0; k < m.count; k++) {
-        if (!strcmp(m.name[k], name)) return m.value[k];
-    }
-    fail_msg("no metric %s", name);
-    return NAN;
-}
-
 /* A full base run (seed 000's 1200 s) with the beacon: robots leave the nest
  * in seconds (turning away from the lamp; keeping their heading they took
  * about 27 s and crossed the nest again), and the beacon's F(t) tracks the
@@ -150,10 +133,10 @@ static void test_beacon_tracks_the_truth_and_robots_leave_the_nest(void **state)
     (void)state;
     for (uint64_t seed = 1; seed <= 3; seed++) {
         scenario_t *sc = load("drtm", "beacon");
-        sim_t *sim = make(sc, seed);
+        sim_t *sim = fixture_sim(sc, seed);
         for (int k = 0; k < 12000; k++) sim_step(sim);
-        double exit_s = metric(sim, "exit_time_s"), err_mean = metric(sim, "beacon_error_mean"),
-               err_max = metric(sim, "beacon_error_max");
+        double exit_s = fixture_metric(sim, "exit_time_s"), err_mean = fixture_metric(sim, "beacon_error_mean"),
+               err_max = fixture_metric(sim, "beacon_error_max");
         if (!(exit_s < 10.0 && err_mean <= 1.0 && err_max <= 3.0)) {
             fail_msg("seed %llu: exit %.2f s, |F_beacon - F| mean %.2f, max %.2f", (unsigned long long)seed,
                      exit_s, err_mean, err_max);
@@ -168,7 +151,7 @@ static void test_lost_token_goes_back_to_search(void **state)
 {
     (void)state;
     scenario_t *sc = load("drtm", "beacon");
-    sim_t *sim = make(sc, 8);
+    sim_t *sim = fixture_sim(sc, 8);
     int32_t carrier = -1;
     for (int k = 0; k < 6000 && carrier < 0; k++) {
         sim_step(sim);
@@ -198,7 +181,7 @@ static void test_everyone_leaves_at_first_decision(void **state)
 {
     (void)state;
     scenario_t *sc = load("drtm", "global");
-    sim_t *sim = make(sc, 9);
+    sim_t *sim = fixture_sim(sc, 9);
     assert_int_equal(sim_robot_count(sim), 20);   /* no beacon */
     for (int k = 0; k < 49; k++) sim_step(sim);
     assert_int_equal(truth(sim).waiting, 20);
@@ -218,7 +201,7 @@ static void test_full_nest_keeps_everyone_home(void **state)
         foraging_config_t *c = (foraging_config_t *)scenario_task_config(sc, &foraging_task);
         c->initial_food = 40.0f;     /* 40 - 600 s x 2/min > 20 */
         c->consumption = 2.0f;
-        sim_t *sim = make(sc, 10);
+        sim_t *sim = fixture_sim(sc, 10);
         for (int k = 0; k < 3000; k++) {
             sim_step(sim);
             assert_int_equal(truth(sim).waiting, 20);

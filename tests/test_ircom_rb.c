@@ -15,6 +15,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "hal.h"
 #include "registry.h"
 #include "core/scenario.h"
@@ -41,14 +43,6 @@ static scenario_t *idle_scenario(uint32_t robots)
     return sc;
 }
 
-static sim_t *make(const scenario_t *sc, uint64_t seed)
-{
-    char err[256] = "";
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("sim_create: %s", err);
-    return sim;
-}
-
 static uint32_t drain(sim_t *sim, uint32_t robot)
 {
     hal_ircom_msg_t m;
@@ -62,7 +56,7 @@ static void test_several_per_period(void **state)
     (void)state;
     scenario_t *sc = idle_scenario(2);
     sc->ircom.tx_per_period = 3;
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     hal_ircom_msg_t m;
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.5, 0.0, 0.0);
@@ -88,7 +82,7 @@ static void test_loss_is_per_message(void **state)
     scenario_t *sc = idle_scenario(2);
     sc->ircom.loss = 0.3f;
     sc->ircom.tx_per_period = 4;
-    sim_t *sim = make(sc, 2);
+    sim_t *sim = fixture_sim(sc, 2);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);
     uint32_t got = 0, sent = 0;
@@ -108,7 +102,7 @@ static void test_bearing_noise_vector(void **state)
     (void)state;
     scenario_t *sc = idle_scenario(2);
     sc->ircom.bearing_noise_vec = 0.05f;
-    sim_t *sim = make(sc, 3);
+    sim_t *sim = fixture_sim(sc, 3);
     /* Sender 0.5 m ahead: the measured vector minus the true one is the
      * noise vector, whose mean squared length is sd^2 (uniform azimuth,
      * Gaussian length) and whose mean is zero. */
@@ -136,7 +130,7 @@ static void test_bearing_noise_vector(void **state)
 
     /* sd 0: exact. */
     sc->ircom.bearing_noise_vec = 0.0f;
-    sim = make(sc, 3);
+    sim = fixture_sim(sc, 3);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.0, 0.4, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 7);
@@ -156,7 +150,7 @@ static void test_collisions(void **state)
      * collide at robot 0, and each is deaf while it sends. */
     scenario_t *sc = idle_scenario(3);
     sc->ircom.slots = 1;
-    sim_t *sim = make(sc, 4);
+    sim_t *sim = fixture_sim(sc, 4);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);
     sim_set_robot_pose(sim, 2, -0.3, 0.0, 0.0);
@@ -178,7 +172,7 @@ static void test_collisions(void **state)
     sim_destroy(sim);
     /* With 10 slots the two frames share one a tenth of the time. */
     sc->ircom.slots = 10;
-    sim = make(sc, 5);
+    sim = fixture_sim(sc, 5);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);
     sim_set_robot_pose(sim, 2, -0.3, 0.0, 0.0);
@@ -202,7 +196,7 @@ static void test_queue_size(void **state)
     (void)state;
     scenario_t *sc = idle_scenario(4);
     sc->ircom.queue = 2;
-    sim_t *sim = make(sc, 6);
+    sim_t *sim = fixture_sim(sc, 6);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);
     sim_set_robot_pose(sim, 2, -0.3, 0.0, 0.0);

@@ -27,6 +27,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
@@ -76,30 +78,11 @@ static paths_config_t *config(scenario_t *sc)
     return (paths_config_t *)sc->tasks[0].config.bytes;
 }
 
-static sim_t *make(const scenario_t *sc, uint64_t seed)
-{
-    char err[256] = "";
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("sim_create: %s", err);
-    return sim;
-}
-
 static paths_truth_t truth(const sim_t *sim)
 {
     paths_truth_t t;
     assert_int_equal(paths_truth(sim, &t), 1);
     return t;
-}
-
-static double metric(const sim_t *sim, const char *name)
-{
-    metric_list_t m;
-    metrics_final(sim, &m);
-    for (unsigned k = 0; k < m.count; k++) {
-        if (!strcmp(m.name[k], name)) return m.value[k];
-    }
-    fail_msg("no metric %s", name);
-    return NAN;
 }
 
 /* Robot 2 + k of the swarm to (x, y). */
@@ -120,7 +103,7 @@ static void test_chain_detection(void **state)
     (void)state;
     scenario_t *sc = world(4);
     config(sc)->hold = 0.0f;
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     /* Three nodes 0.5 m apart: nest -0.5 0 0.5 food, every link 0.5 m <= 0.6. */
     pose(sim, 0, -0.5, 0.0);
     pose(sim, 1, 0.5, 0.0);   /* the middle one is missing: a 1 m gap */
@@ -154,12 +137,12 @@ static void test_chain_detection(void **state)
     /* hold 0: merged at the end of this (the third) step, and the run is done. */
     assert_float_equal(t.merge_time_s, 0.3, 1e-9);
     assert_int_equal(sim_done(sim), 1);
-    assert_float_equal(metric(sim, "success"), 1.0, 0);
-    assert_float_equal(metric(sim, "merge_time_capped_s"), 0.3, 1e-9);
-    assert_float_equal(metric(sim, "merge_steps_capped"), 3.0, 0);
-    assert_float_equal(metric(sim, "chain_nodes"), 3.0, 0);
-    assert_float_equal(metric(sim, "distance_m"), 2.0, 1e-6);
-    assert_float_equal(metric(sim, "completed"), 1.0, 0);
+    assert_float_equal(fixture_metric(sim, "success"), 1.0, 0);
+    assert_float_equal(fixture_metric(sim, "merge_time_capped_s"), 0.3, 1e-9);
+    assert_float_equal(fixture_metric(sim, "merge_steps_capped"), 3.0, 0);
+    assert_float_equal(fixture_metric(sim, "chain_nodes"), 3.0, 0);
+    assert_float_equal(fixture_metric(sim, "distance_m"), 2.0, 1e-6);
+    assert_float_equal(fixture_metric(sim, "completed"), 1.0, 0);
     sim_destroy(sim);
     free(sc);
 }
@@ -173,7 +156,7 @@ static void test_links_need_range_and_sight(void **state)
     sc->object_count = 1;
     sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.25f, .y = 0.0f, .radius = 0.05f,
                                      .height = 0.1f };
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     /* Links of 0.61 m: one centimetre too long (above the cylinder). */
     pose(sim, 0, -0.39, 0.2);
     pose(sim, 1, 0.22, 0.2);
@@ -204,7 +187,7 @@ static void test_hold(void **state)
     (void)state;
     scenario_t *sc = world(3);
     config(sc)->hold = 1.0f;   /* 10 steps past the first */
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     pose(sim, 0, -0.5, 0.0);
     pose(sim, 1, 0.0, 0.0);
     pose(sim, 2, 0.5, 0.0);
@@ -225,7 +208,7 @@ static void test_hold(void **state)
     sim_step(sim);   /* step 17 */
     assert_float_equal(truth(sim).merge_time_s, 0.7, 1e-9);   /* the end of step 7 */
     assert_int_equal(sim_done(sim), 1);
-    assert_float_equal(metric(sim, "merge_time_s"), 0.7, 1e-9);
+    assert_float_equal(fixture_metric(sim, "merge_time_s"), 0.7, 1e-9);
     sim_destroy(sim);
     free(sc);
 }
@@ -234,7 +217,7 @@ static void test_food_perceived(void **state)
 {
     (void)state;
     scenario_t *sc = world(1);
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     pose(sim, 0, 0.35, 0.0);   /* 0.65 m from the food */
     drive(sim, 0, 200);        /* 2.6 cm/s toward it */
     sim_step(sim);
@@ -251,8 +234,8 @@ static void test_food_perceived(void **state)
     assert_float_equal(truth(sim).food_time_s, steps * 0.1, 1e-9);
     assert_int_equal(truth(sim).perceivers, 1);
     assert_false(truth(sim).linked);   /* perceived is not merged */
-    assert_float_equal(metric(sim, "food_perceived"), 1.0, 0);
-    assert_float_equal(metric(sim, "success"), 0.0, 0);
+    assert_float_equal(fixture_metric(sim, "food_perceived"), 1.0, 0);
+    assert_float_equal(fixture_metric(sim, "success"), 0.0, 0);
     sim_destroy(sim);
     free(sc);
 }
@@ -264,7 +247,7 @@ static void test_failure_at_budget(void **state)
     sc->duration = 3.0;
     config(sc)->budget = 2.0f;
     config(sc)->hold = 0.0f;
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     for (int s = 0; s < 20; s++) sim_step(sim);   /* the budget: nothing linked, nothing seen */
     pose(sim, 0, -0.5, 0.0);
     pose(sim, 1, 0.0, 0.0);
@@ -272,21 +255,21 @@ static void test_failure_at_budget(void **state)
     sim_step(sim);   /* a chain at 2.1 s: after the budget */
     assert_true(truth(sim).linked);
     assert_int_equal(sim_done(sim), 0);
-    assert_float_equal(metric(sim, "success"), 0.0, 0);
-    assert_true(isnan(metric(sim, "merge_time_s")));
-    assert_float_equal(metric(sim, "merge_time_capped_s"), 2.0, 0);
-    assert_float_equal(metric(sim, "merge_steps_capped"), 20.0, 0);
-    assert_float_equal(metric(sim, "food_perceived"), 0.0, 0);   /* robot 4 is 0.5 m from the food, too late */
-    assert_float_equal(metric(sim, "food_time_capped_s"), 2.0, 0);
-    assert_true(isnan(metric(sim, "chain_nodes")));
+    assert_float_equal(fixture_metric(sim, "success"), 0.0, 0);
+    assert_true(isnan(fixture_metric(sim, "merge_time_s")));
+    assert_float_equal(fixture_metric(sim, "merge_time_capped_s"), 2.0, 0);
+    assert_float_equal(fixture_metric(sim, "merge_steps_capped"), 20.0, 0);
+    assert_float_equal(fixture_metric(sim, "food_perceived"), 0.0, 0);   /* robot 4 is 0.5 m from the food, too late */
+    assert_float_equal(fixture_metric(sim, "food_time_capped_s"), 2.0, 0);
+    assert_true(isnan(fixture_metric(sim, "chain_nodes")));
     sim_destroy(sim);
     free(sc);
     /* Seed 003's budget: a failure is recorded at 10,000 steps. */
     sc = world(0);
-    sim = make(sc, 1);
+    sim = fixture_sim(sc, 1);
     sim_step(sim);
-    assert_float_equal(metric(sim, "merge_steps_capped"), 10000.0, 0);
-    assert_float_equal(metric(sim, "budget_s"), 1000.0, 0);
+    assert_float_equal(fixture_metric(sim, "merge_steps_capped"), 10000.0, 0);
+    assert_float_equal(fixture_metric(sim, "budget_s"), 1000.0, 0);
     sim_destroy(sim);
     free(sc);
 }
@@ -340,7 +323,7 @@ static void test_random_cylinders(void **state)
     sc->random_cylinders.radius_max = 0.15f;
     sc->random_cylinders.gap = 0.10f;
     float a[3 * COUNT], b[3 * COUNT], c[3 * COUNT];
-    sim_t *sim = make(sc, 7);
+    sim_t *sim = fixture_sim(sc, 7);
     cylinders_of(sim, 1, COUNT, a);
     float rmin = 1, rmax = 0;
     for (uint32_t k = 0; k < COUNT; k++) {
@@ -368,20 +351,20 @@ static void test_random_cylinders(void **state)
     assert_true(rmax - rmin > 0.05f);   /* radii spread over the range */
     sim_destroy(sim);
     /* The same run seed, the same layout; another, another. */
-    sim = make(sc, 7);
+    sim = fixture_sim(sc, 7);
     cylinders_of(sim, 1, COUNT, b);
     assert_memory_equal(a, b, sizeof a);
     sim_destroy(sim);
-    sim = make(sc, 8);
+    sim = fixture_sim(sc, 8);
     cylinders_of(sim, 1, COUNT, b);
     assert_memory_not_equal(a, b, sizeof a);
     sim_destroy(sim);
     /* A layout seed: one layout whatever the run seed. */
     sc->random_cylinders.layout_seed = 5;
-    sim = make(sc, 7);
+    sim = fixture_sim(sc, 7);
     cylinders_of(sim, 1, COUNT, b);
     sim_destroy(sim);
-    sim = make(sc, 8);
+    sim = fixture_sim(sc, 8);
     cylinders_of(sim, 1, COUNT, c);
     assert_memory_equal(b, c, sizeof b);
     sim_destroy(sim);
@@ -414,12 +397,12 @@ static void test_square_scenario(void **state)
     (void)state;
     scenario_override_t set[] = { { "random_cylinders.count=30" } };
     scenario_t *sc = shipped("eaipp_square.yaml", set, 1);
-    sim_t *sim = make(sc, 3);
+    sim_t *sim = fixture_sim(sc, 3);
     assert_int_equal(sim_robot_count(sim), 17);
     assert_int_equal(sim_obstacle_count(sim), 30);
     for (int s = 0; s < 100; s++) sim_step(sim);
-    assert_float_equal(metric(sim, "distance_m"), 3.0, 1e-6);
-    assert_float_equal(metric(sim, "budget_s"), 1000.0, 0);
+    assert_float_equal(fixture_metric(sim, "distance_m"), 3.0, 1e-6);
+    assert_float_equal(fixture_metric(sim, "budget_s"), 1000.0, 0);
     sim_destroy(sim);
     free(sc);
 }
@@ -430,7 +413,7 @@ static void test_maze_scenario(void **state)
 {
     (void)state;
     scenario_t *sc = shipped("eaipp_maze.yaml", NULL, 0);
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     assert_int_equal(sim_robot_count(sim), 72);
     assert_int_equal(sim_obstacle_count(sim), 7);
     for (uint32_t i = 2; i < 72; i++) {
@@ -440,7 +423,7 @@ static void test_maze_scenario(void **state)
     }
     assert_true(sim_segment_blocked(sim, -1.25, -1.75, 1.25, 0.75));
     sim_step(sim);
-    assert_float_equal(metric(sim, "distance_m"), 2.5 * sqrt(2.0), 1e-6);
+    assert_float_equal(fixture_metric(sim, "distance_m"), 2.5 * sqrt(2.0), 1e-6);
     sim_destroy(sim);
     free(sc);
 }

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "common/random_walk.h"
 #include "hal.h"
 #include "registry.h"
@@ -38,14 +40,6 @@ static scenario_t *idle_scenario(uint32_t robots, float arena)
     return sc;
 }
 
-static sim_t *make(const scenario_t *sc, uint64_t seed)
-{
-    char err[256] = "";
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("sim_create: %s", err);
-    return sim;
-}
-
 /* Mean of `n` readings of IR sensor `s`, one per control step. */
 static double mean_ir(sim_t *sim, uint32_t robot, uint8_t s, int n)
 {
@@ -65,7 +59,7 @@ static void test_ir_follows_calibration_table(void **state)
     static const double d_m[] = { 0.005, 0.010, 0.015, 0.020, 0.030, 0.040, 0.050, 0.060, 0.070 };
     static const double raw[] = { 2133, 1466, 601, 384, 235, 158, 120, 104, 67 };
     scenario_t *sc = idle_scenario(1, 2.0f);
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     for (size_t k = 0; k < sizeof d_m / sizeof d_m[0]; k++) {
         /* Heading +17 deg puts IR0's axis (-17 deg) square onto the +x wall. */
         double x = 1.0 - 0.033 - d_m[k];
@@ -93,7 +87,7 @@ static void test_ir_bearing_left_is_ir5(void **state)
     sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.035f + 0.01f + 0.05f,
                                      .radius = 0.05f, .height = 0.05f };
     sc->groups[0].placement.shape = PLACE_RECTANGLE;
-    sim_t *sim = make(sc, 2);
+    sim_t *sim = fixture_sim(sc, 2);
     /* Robot at the origin heading +x: the cylinder is at +90 deg (left). */
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     uint16_t v[HAL_IR_COUNT];
@@ -115,7 +109,7 @@ static void test_ir_sees_other_robot(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(2, 2.0f);
-    sim_t *sim = make(sc, 3);
+    sim_t *sim = fixture_sim(sc, 3);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     /* Robot 1 just ahead: body surfaces 15 mm apart. */
     sim_set_robot_pose(sim, 1, 0.085, 0.0, 0.0);
@@ -136,7 +130,7 @@ static void test_light_falls_with_distance(void **state)
     sc->light_count = 1;
     sc->lights[0] = (light_def_t){ .x = 0.0f, .y = 0.0f, .height = 0.1f, .intensity = 1.0f };
     sc->ambient.noise_rel = 0.0f;
-    sim_t *sim = make(sc, 4);
+    sim_t *sim = fixture_sim(sc, 4);
     double prev = 0;
     static const double dist[] = { 0.3, 0.6, 1.2, 2.4 };
     for (size_t k = 0; k < 4; k++) {
@@ -170,7 +164,7 @@ static void test_camera_field_of_view_and_occlusion(void **state)
     sc->object_count = 1;
     sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f, .radius = 0.03f,
                                      .height = 0.05f, .colour = HAL_COLOUR_RED };
-    sim_t *sim = make(sc, 5);
+    sim_t *sim = fixture_sim(sc, 5);
     hal_blob_t b[HAL_MAX_BLOBS];
     sim_set_robot_pose(sim, 1, -1.0, -1.0, 0.0);   /* out of the way */
 
@@ -210,7 +204,7 @@ static void test_motion_straight_500_steps(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(1, 4.0f);
-    sim_t *sim = make(sc, 6);
+    sim_t *sim = fixture_sim(sc, 6);
     sim_set_robot_pose(sim, 0, -1.0, 0.0, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 500, 500);
     for (int k = 0; k < 100; k++) sim_step(sim);     /* 10 s */
@@ -232,7 +226,7 @@ static void test_motion_rotation_in_place(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(1, 4.0f);
-    sim_t *sim = make(sc, 7);
+    sim_t *sim = fixture_sim(sc, 7);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), -300, 300);
     double turned = 0, x, y, t, prev = 0;
@@ -255,7 +249,7 @@ static void test_speed_is_clamped_and_counters_wrap(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(1, 20.0f);
-    sim_t *sim = make(sc, 8);
+    sim_t *sim = fixture_sim(sc, 8);
     sim_set_robot_pose(sim, 0, -9.0, 0.0, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 3000, 3000);   /* clamps to 1000 */
     for (int k = 0; k < 400; k++) sim_step(sim);              /* 40 s: 40000 steps */
@@ -273,7 +267,7 @@ static void test_robot_cannot_pass_wall_and_pushes_robot(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(2, 1.0f);
-    sim_t *sim = make(sc, 9);
+    sim_t *sim = fixture_sim(sc, 9);
     sim_set_robot_pose(sim, 0, 0.3, 0.2, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 1000, 1000);
     /* Robot 1 drives into robot 0's path, robot 0 drives into the wall. */
@@ -303,7 +297,7 @@ static void test_twenty_robots_100k_steps_stay_inside(void **state)
     sc->object_count = 1;
     sc->objects[0] = (object_def_t){ .shape = SHAPE_BOX, .x = 0.5f, .y = 0.5f, .width = 0.5f,
                                      .depth = 0.1f, .angle = 30.0f, .height = 0.05f };
-    sim_t *sim = make(sc, 10);
+    sim_t *sim = fixture_sim(sc, 10);
     for (int k = 0; k < 100000; k++) {
         sim_step(sim);
     }
@@ -329,7 +323,7 @@ static uint64_t run_hash(uint64_t seed, int steps)
     scenario_t *sc = calloc(1, sizeof *sc);
     scenario_defaults(sc);
     sc->wheels.speed_noise_rel = 0.05f;
-    sim_t *sim = make(sc, seed);
+    sim_t *sim = fixture_sim(sc, seed);
     for (int k = 0; k < steps; k++) sim_step(sim);
     uint64_t h = sim_state_hash(sim);
     sim_destroy(sim);
@@ -352,14 +346,14 @@ static void test_wheel_bias_draws(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(400, 20.0f);
-    sim_t *sim = make(sc, 5);
+    sim_t *sim = fixture_sim(sc, 5);
     for (uint32_t i = 0; i < sim->n; i++) {
         assert_true(sim->robots[i].bias_left == 0.0 && sim->robots[i].bias_right == 0.0);
     }
     sim_destroy(sim);
     sc->wheels.bias_sd = 0.02f;                       /* 2 cm/s = 155 steps/s */
-    sim = make(sc, 5);
-    sim_t *same = make(sc, 5), *other = make(sc, 6);
+    sim = fixture_sim(sc, 5);
+    sim_t *same = fixture_sim(sc, 5), *other = fixture_sim(sc, 6);
     double sum = 0, sq = 0;
     for (uint32_t i = 0; i < sim->n; i++) {
         const sim_robot_t *r = &sim->robots[i];
@@ -389,7 +383,7 @@ static void test_wheel_bias_moves_and_saturates(void **state)
     (void)state;
     scenario_t *sc = idle_scenario(2, 8.0f);
     sc->wheels.bias_sd = 0.02f;
-    sim_t *sim = make(sc, 9);
+    sim_t *sim = fixture_sim(sc, 9);
     sim_set_robot_pose(sim, 0, -2.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 2.0, 2.0, 0.0);
     const double bl = sim->robots[0].bias_left, br = sim->robots[0].bias_right;
@@ -433,7 +427,7 @@ static void test_wheel_bias_per_step(void **state)
     scenario_t *sc = idle_scenario(1, 8.0f);
     sc->wheels.bias_sd = 0.02f;
     sc->wheels.bias_per_step = 1;
-    sim_t *sim = make(sc, 9), *same = make(sc, 9);
+    sim_t *sim = fixture_sim(sc, 9), *same = fixture_sim(sc, 9);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
     hal_set_wheel_speeds(sim_robot_hal(same, 0), 388, 388);
     double sq = 0, prev = sim->robots[0].bias_left;
@@ -468,7 +462,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sc->object_count = 1;
     sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.03f,
                                      .height = 0.05f };
-    sim_t *sim = make(sc, 11);
+    sim_t *sim = fixture_sim(sc, 11);
     hal_ircom_msg_t m;
     /* Sender 0.15 m to the left of the receiver (heading +x): IR5. */
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
@@ -507,7 +501,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
 
     /* 16-bit payload (range-and-bearing turret). */
     sc->ircom.payload_bits = 16;
-    sim = make(sc, 13);
+    sim = fixture_sim(sc, 13);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 0xBEEF);
@@ -519,7 +513,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     /* Loss 1: nothing arrives. */
     sc->ircom.loss = 1.0f;
     sc->object_count = 0;
-    sim = make(sc, 12);
+    sim = fixture_sim(sc, 12);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
     hal_ircom_send(sim_robot_hal(sim, 1), 3);
@@ -566,7 +560,7 @@ static void test_static_group_is_not_pushed(void **state)
     (void)state;
     for (int moves = 0; moves < 2; moves++) {
         scenario_t *sc = two_groups(1, (uint8_t)moves);
-        sim_t *sim = make(sc, 3);
+        sim_t *sim = fixture_sim(sc, 3);
         double x, y, t;
         sim_robot_pose(sim, 1, &x, &y, &t);
         assert_true(x == 0.5f && y == 0.5f && fabs(t - PI / 2) < 1e-6);   /* its pose */
@@ -598,7 +592,7 @@ static void test_placement_shapes(void **state)
                                           .height = 0.8f, .radius = 0.6f, .inner = 0.4f, .outer = 0.9f };
         g->min_spacing = 0.1f;
         g->heading = shape == PLACE_GRID ? NAN : 30.0f;
-        sim_t *sim = make(sc, 11);
+        sim_t *sim = fixture_sim(sc, 11);
         for (uint32_t i = 0; i < 30; i++) {
             double x, y, t, dx, dy, d;
             sim_robot_pose(sim, i, &x, &y, &t);
@@ -650,7 +644,7 @@ static void test_step_order_does_not_matter(void **state)
         assert_non_null(sc);
         if (scenario_load(files[f], NULL, 0, sc, err) != 0) fail_msg("%s", err);
         for (int order = 0; order < 3; order++) {
-            sim_t *sim = make(sc, 5);
+            sim_t *sim = fixture_sim(sc, 5);
             sim_set_step_order(sim, order, 99);
             for (int k = 0; k < 1500; k++) sim_step(sim);
             hash[order] = sim_state_hash(sim);
@@ -669,13 +663,13 @@ static void test_tracker_pose(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(1, 2.0f);
-    sim_t *sim = make(sc, 4);
+    sim_t *sim = fixture_sim(sc, 4);
     hal_pose_t p;
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
     sim_destroy(sim);
 
     sc->tracker.enabled = 1;
-    sim = make(sc, 4);
+    sim = fixture_sim(sc, 4);
     sim_set_robot_pose(sim, 0, 0.1234, -0.5678, 1.0);
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_OK);
     assert_int_equal(p.x_mm, 123);
@@ -684,7 +678,7 @@ static void test_tracker_pose(void **state)
     sim_destroy(sim);
 
     sc->tracker.noise_mm = 10.0f;
-    sim = make(sc, 4);
+    sim = fixture_sim(sc, 4);
     double sum = 0, sq = 0;
     for (int k = 0; k < 400; k++) {
         sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
@@ -699,7 +693,7 @@ static void test_tracker_pose(void **state)
 
     sc->tracker.noise_mm = 0.0f;
     sc->tracker.dropout = 1.0f;
-    sim = make(sc, 4);
+    sim = fixture_sim(sc, 4);
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
     sim_destroy(sim);
     free(sc);
@@ -714,7 +708,7 @@ static void test_hal_status(void **state)
     scenario_t *sc = idle_scenario(1, 2.0f);
     sc->camera.width_px = 40;
     sc->camera.height_px = 20;
-    sim_t *sim = make(sc, 4);
+    sim_t *sim = fixture_sim(sc, 4);
     hal_t *hal = sim_robot_hal(sim, 0);
     uint32_t level = 5;
     uint16_t w = 0, h = 0;
@@ -732,7 +726,7 @@ static void test_hal_status(void **state)
     sim_destroy(sim);
 
     sc->sound.enabled = 1;
-    sim = make(sc, 4);
+    sim = fixture_sim(sc, 4);
     hal = sim_robot_hal(sim, 0);
     assert_int_equal(hal_mic_level(hal, 2, 3, &level), HAL_OK);
     assert_int_equal(level, 0);   /* alone: no other robot to hear */

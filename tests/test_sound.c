@@ -17,6 +17,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "common/random_walk.h"
 #include "hal.h"
 #include "core/scenario.h"
@@ -89,14 +91,6 @@ static scenario_t *probe_scenario(uint32_t robots)
     return sc;
 }
 
-static sim_t *make(const scenario_t *sc, uint64_t seed)
-{
-    char err[256] = "";
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("sim_create: %s", err);
-    return sim;
-}
-
 static probe_t *probe(sim_t *sim, uint32_t i) { return sim_robot_controller(sim, i); }
 
 /* Eq 1 in counts, computed here on its own. */
@@ -122,7 +116,7 @@ static void test_one_emitter_at_known_distances(void **state)
     scenario_t *sc = probe_scenario(2);
     assert_int_equal(counts(loud(0.0)), 347360u);   /* a0 + ae = 347.36 units */
     for (size_t t = 0; t < 3; t++) {
-        sim_t *sim = make(sc, 1);
+        sim_t *sim = fixture_sim(sc, 1);
         sim_set_robot_pose(sim, 0, -dist[t] / 2, 0.0, 0.0);
         sim_set_robot_pose(sim, 1, dist[t] / 2, 0.0, 0.0);
         probe(sim, 0)->emit = 1;
@@ -154,7 +148,7 @@ static void test_sources_sum_under_both_rules(void **state)
     scenario_t *sc = probe_scenario(5);
     for (int rule = 0; rule < 2; rule++) {
         sc->sound.silent_robots = rule == 0 ? SOUND_SILENT_AMBIENT : SOUND_SILENT_NONE;
-        sim_t *sim = make(sc, 1);
+        sim_t *sim = fixture_sim(sc, 1);
         sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);    /* the listener */
         sim_set_robot_pose(sim, 1, 1.0, 0.0, 0.0);    /* band 1 at 1 m */
         sim_set_robot_pose(sim, 2, -2.0, 0.0, 0.0);   /* band 1 at 2 m */
@@ -189,7 +183,7 @@ static void test_noise_statistics(void **state)
     (void)state;
     scenario_t *sc = probe_scenario(2);
     sc->sound.noise = 0.06;
-    sim_t *sim = make(sc, 7);
+    sim_t *sim = fixture_sim(sc, 7);
     sim_set_robot_pose(sim, 0, -0.5, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.5, 0.0, 0.0);
     probe(sim, 0)->emit = 1;
@@ -234,7 +228,7 @@ static void test_self_masking_and_duplex(void **state)
     scenario_t *sc = probe_scenario(2);
     for (int duplex = 0; duplex < 2; duplex++) {
         sc->sound.self_masking = (uint8_t)!duplex;
-        sim_t *sim = make(sc, 1);
+        sim_t *sim = fixture_sim(sc, 1);
         sim_set_robot_pose(sim, 0, -0.5, 0.0, 0.0);
         sim_set_robot_pose(sim, 1, 0.5, 0.0, 0.0);
         probe(sim, 0)->emit = 1;
@@ -271,7 +265,7 @@ static void test_speaker_takes_effect_next_period(void **state)
 {
     (void)state;
     scenario_t *sc = probe_scenario(2);
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     sim_set_robot_pose(sim, 0, -0.5, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.5, 0.0, 0.0);
     hal_t *h0 = sim_robot_hal(sim, 0), *h1 = sim_robot_hal(sim, 1);
@@ -312,7 +306,7 @@ static void test_cutoff_error(void **state)
     (void)state;
     scenario_t *sc = probe_scenario(3);
     sc->sound.cutoff = 2.0;
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 1.0, 0.0, 0.0);   /* inside: exact */
     sim_set_robot_pose(sim, 2, -3.0, 0.0, 0.0);  /* outside: ae only */

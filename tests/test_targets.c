@@ -22,6 +22,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
@@ -61,30 +63,11 @@ static targets_config_t *config(scenario_t *sc)
     return (targets_config_t *)sc->tasks[0].config.bytes;
 }
 
-static sim_t *make(const scenario_t *sc, uint64_t seed)
-{
-    char err[256] = "";
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("sim_create: %s", err);
-    return sim;
-}
-
 static targets_truth_t truth(const sim_t *sim)
 {
     targets_truth_t t;
     assert_int_equal(targets_truth(sim, &t), 1);
     return t;
-}
-
-static double metric(const sim_t *sim, const char *name)
-{
-    metric_list_t m;
-    metrics_final(sim, &m);
-    for (unsigned k = 0; k < m.count; k++) {
-        if (!strcmp(m.name[k], name)) return m.value[k];
-    }
-    fail_msg("no metric %s", name);
-    return NAN;
 }
 
 static int picked_up_this_step(const sim_t *sim, uint32_t *robot)
@@ -176,7 +159,7 @@ static void test_layout_same_in_both_worlds_and_every_seed(void **state)
     scenario_t *w50 = world(1, 8.264f), *w100 = world(1, 16.529f);
     for (int d = TARGETS_ONE; d <= TARGETS_UNIFORM; d++) {
         config(w50)->distribution = config(w100)->distribution = d;
-        sim_t *a = make(w50, 1), *b = make(w100, 1), *c = make(w50, 987654321);
+        sim_t *a = fixture_sim(w50, 1), *b = fixture_sim(w100, 1), *c = fixture_sim(w50, 987654321);
         assert_int_equal(truth(a).count, 200);
         for (uint32_t k = 0; k < 200; k++) {
             const sim_item_t *p = targets_item(a, k), *q = targets_item(b, k), *r = targets_item(c, k);
@@ -256,7 +239,7 @@ static void test_pickup_after_pick_time_not_before(void **state)
 {
     (void)state;
     scenario_t *sc = sparse_world(2);
-    sim_t *sim = make(sc, 3);
+    sim_t *sim = fixture_sim(sc, 3);
     const targets_config_t *c = config(sc);
     uint32_t steps = 200, who = 99;   /* 5 s at 25 ms */
     double reach = EPUCK_BODY_RADIUS_M + c->target_radius + c->pick_reach;
@@ -286,7 +269,7 @@ static void test_pickup_needs_reach_and_stillness(void **state)
 {
     (void)state;
     scenario_t *sc = sparse_world(2);
-    sim_t *sim = make(sc, 4);
+    sim_t *sim = fixture_sim(sc, 4);
     const targets_config_t *c = config(sc);
     double reach = EPUCK_BODY_RADIUS_M + c->target_radius + c->pick_reach;
     uint32_t who = 99;
@@ -330,7 +313,7 @@ static void test_two_robots_first_to_finish_wins(void **state)
     double reach = EPUCK_BODY_RADIUS_M + c->target_radius + c->pick_reach;
     uint32_t who = 99;
     for (int late = 0; late < 2; late++) {
-        sim_t *sim = make(sc, 5);
+        sim_t *sim = fixture_sim(sc, 5);
         beside(sim, 0, 0, reach - 0.003, 1);
         beside(sim, 1, 0, reach - 0.003, -1);
         if (late) {   /* robot 0 starts 10 steps after robot 1 */
@@ -382,9 +365,9 @@ static void test_done_at_ninety_percent(void **state)
     c->count = 10;
     c->distribution = TARGETS_UNIFORM;
     c->pick_time = 0.1f;
-    sim_t *sim = make(sc, 6);
-    assert_int_equal(metric(sim, "finished"), 0);
-    assert_true(isnan(metric(sim, "time_to_stop_s")));
+    sim_t *sim = fixture_sim(sc, 6);
+    assert_int_equal(fixture_metric(sim, "finished"), 0);
+    assert_true(isnan(fixture_metric(sim, "time_to_stop_s")));
     for (uint32_t k = 0; k < 9; k++) {
         assert_false(sim_done(sim));
         beside(sim, 0, k, 0.0, 1);
@@ -395,13 +378,13 @@ static void test_done_at_ninety_percent(void **state)
     double t = sim_time_s(sim);
     assert_true(fabs(t - 9 * 4 * 0.025) < 1e-9);
     assert_true(fabs(truth(sim).stop_time_s - t) < 1e-9);
-    assert_true(fabs(metric(sim, "time_to_stop_s") - t) < 1e-9);
-    assert_true(fabs(metric(sim, "completion_time_s") - t) < 1e-9);
-    assert_int_equal(metric(sim, "finished"), 1);
-    assert_int_equal(metric(sim, "stop_count"), 9);
-    assert_int_equal(metric(sim, "picked"), 9);
-    assert_int_equal(metric(sim, "robots"), 1);
-    assert_true(fabs(metric(sim, "efficiency") - 9.0 / (1 * t)) < 1e-9);
+    assert_true(fabs(fixture_metric(sim, "time_to_stop_s") - t) < 1e-9);
+    assert_true(fabs(fixture_metric(sim, "completion_time_s") - t) < 1e-9);
+    assert_int_equal(fixture_metric(sim, "finished"), 1);
+    assert_int_equal(fixture_metric(sim, "stop_count"), 9);
+    assert_int_equal(fixture_metric(sim, "picked"), 9);
+    assert_int_equal(fixture_metric(sim, "robots"), 1);
+    assert_true(fabs(fixture_metric(sim, "efficiency") - 9.0 / (1 * t)) < 1e-9);
     sim_destroy(sim);
     free(sc);
 }
@@ -432,7 +415,7 @@ static void test_all_round_camera_bearings(void **state)
 {
     (void)state;
     scenario_t *sc = camera_world(360.0f);
-    sim_t *sim = make(sc, 7);
+    sim_t *sim = fixture_sim(sc, 7);
     hal_blob_t b[HAL_MAX_BLOBS];
     sim_set_robot_pose(sim, 1, -1.2, -1.2, 0.0);
     /* The object at (0, 0); the robot 0.3 m away, its lens on its axis. */
@@ -476,7 +459,7 @@ static void test_all_round_camera_blind_sector(void **state)
 {
     (void)state;
     scenario_t *sc = camera_world(270.0f);
-    sim_t *sim = make(sc, 8);
+    sim_t *sim = fixture_sim(sc, 8);
     hal_blob_t b[HAL_MAX_BLOBS];
     sim_set_robot_pose(sim, 1, -1.2, -1.2, 0.0);
     sim_set_robot_pose(sim, 0, 0.3, 0.0, 0.0);            /* behind: blind */
@@ -508,7 +491,7 @@ static void test_all_round_camera_in_a_crowd(void **state)
     sc->camera.range = 0.496f;
     sc->camera.width_px = 640;
     sc->camera.height_px = 60;
-    sim_t *sim = make(sc, 9);
+    sim_t *sim = fixture_sim(sc, 9);
     uint32_t high = 140;
     for (uint32_t k = 140; k < 150; k++) {
         const sim_item_t *t = targets_item(sim, k), *h = targets_item(sim, high);
@@ -553,7 +536,7 @@ static void test_pinhole_unchanged(void **state)
 {
     (void)state;
     scenario_t *sc = camera_world(56.0f);
-    sim_t *sim = make(sc, 10);
+    sim_t *sim = fixture_sim(sc, 10);
     hal_blob_t b[HAL_MAX_BLOBS];
     sim_set_robot_pose(sim, 1, -1.2, -1.2, 0.0);
     sim_set_robot_pose(sim, 0, 0.3, 0.0, 0.0);

@@ -12,6 +12,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -47,14 +49,6 @@ static scenario_t *load(const char *path)
     assert_non_null(sc);
     if (scenario_load(path, NULL, 0, sc, err) != 0) fail_msg("%s", err);
     return sc;
-}
-
-static sim_t *make(const scenario_t *sc, uint64_t seed)
-{
-    char err[256];
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("%s", err);
-    return sim;
 }
 
 /* Event kinds counted by name. */
@@ -296,7 +290,7 @@ static void test_memq_foraging_run(void **state)
 {
     (void)state;
     scenario_t *sc = load(BASE);
-    sim_t *sim = make(sc, 3);
+    sim_t *sim = fixture_sim(sc, 3);
     seen_t *s = calloc(1, sizeof *s);
     s->swarm_steps_in_order = 1;
     telemetry_t *t = open_memq(sim, TELEMETRY_DEFAULT_ROBOT_HZ, TELEMETRY_DEFAULT_SWARM_HZ);
@@ -396,7 +390,7 @@ static void test_memq_rates(void **state)
     scenario_t *sc = load(WALK);
     const uint64_t steps = 300;   /* 30 s */
     for (int pass = 0; pass < 2; pass++) {
-        sim_t *sim = make(sc, 1);
+        sim_t *sim = fixture_sim(sc, 1);
         seen_t *s = calloc(1, sizeof *s);
         telemetry_t *t = open_memq(sim, pass ? 0.0 : 2.0, pass ? 0.0 : 1.0);
         subscribe_all(telemetry_lcm(t), s);
@@ -431,7 +425,7 @@ static void test_telemetry_does_not_change_a_run(void **state)
 {
     (void)state;
     scenario_t *sc = load(BASE);
-    sim_t *a = make(sc, 11), *b = make(sc, 11);
+    sim_t *a = fixture_sim(sc, 11), *b = fixture_sim(sc, 11);
     telemetry_t *t = open_memq(b, 10.0, 10.0);
     seen_t *s = calloc(1, sizeof *s);
     subscribe_all(telemetry_lcm(t), s);
@@ -473,7 +467,7 @@ static void test_disabled(void **state)
 {
     (void)state;
     scenario_t *sc = load(WALK);
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     telemetry_options_t o;
     telemetry_t *t = (telemetry_t *)&o;
     char err[256];
@@ -514,7 +508,7 @@ static void test_log_file(void **state)
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     snprintf(copy, sizeof copy, "%s/copy.lcmlog", dir);
     scenario_t *sc = load(BASE);
-    sim_t *sim = make(sc, 5);
+    sim_t *sim = fixture_sim(sc, 5);
     telemetry_options_t o;
     telemetry_t *t = NULL;
     telemetry_default_options(&o);
@@ -586,7 +580,7 @@ static void test_bad_url(void **state)
 {
     (void)state;
     scenario_t *sc = load(WALK);
-    sim_t *sim = make(sc, 1);
+    sim_t *sim = fixture_sim(sc, 1);
     telemetry_options_t o;
     telemetry_t *t = NULL;
     char err[256];

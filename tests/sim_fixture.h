@@ -1,0 +1,39 @@
+/*
+ * sim_fixture.h - what the simulator's tests share: a run built from a
+ * scenario (the test fails with the simulator's message when it cannot be)
+ * and a summary metric by name.  Include after <cmocka.h>.
+ */
+#ifndef TESTS_SIM_FIXTURE_H
+#define TESTS_SIM_FIXTURE_H
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "core/metrics.h"
+#include "core/scenario.h"
+#include "core/sim.h"
+
+/** A run of `sc` with `seed`; fails the test when sim_create refuses it. */
+static inline sim_t *fixture_sim(const scenario_t *sc, uint64_t seed)
+{
+    char err[256] = "";
+    sim_t *sim = sim_create(sc, seed, err);
+    if (!sim) fail_msg("sim_create: %s", err);
+    return sim;
+}
+
+/** The summary metric `name` of the run so far; fails the test when the
+ *  run has none of that name. */
+static inline double fixture_metric(const sim_t *sim, const char *name)
+{
+    metric_list_t m;
+    metrics_final(sim, &m);
+    for (unsigned k = 0; k < m.count; k++) {
+        if (!strcmp(m.name[k], name)) return m.value[k];
+    }
+    fail_msg("no metric %s", name);
+    return NAN;
+}
+
+#endif
