@@ -106,16 +106,16 @@ static void app_setup(void)
     robot_telemetry_init(&app_telemetry);
 }
 
+/* The controller's step and the telemetry of this step. */
+static void app_step(void)
+{
+    forager_step(&app_forager, &app_hal);
+    app_send_telemetry();
+}
+
 static void app_loop_once(void)
 {
-    if (hal_epuck_step_due(&app_hal) != 0u) {
-        hal_epuck_begin_step(&app_hal);
-        forager_step(&app_forager, &app_hal);
-        app_send_telemetry();
-        hal_epuck_end_step(&app_hal);
-    } else {
-        hal_epuck_poll(&app_hal);
-    }
+    HAL_EPUCK_LOOP_ONCE(&app_hal, app_step());
 }
 
 int main(void)

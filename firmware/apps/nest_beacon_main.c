@@ -82,22 +82,17 @@ static void app_setup(void)
     robot_telemetry_init(&app_telemetry);
 }
 
-static void app_loop_once(void)
+/* The controller's step and the telemetry of this step. */
+static void app_step(void)
 {
-    if (hal_epuck_step_due(&app_hal) != 0u) {
-        hal_epuck_begin_step(&app_hal);
-        nest_beacon_step(&app_beacon, &app_hal);
-        app_send_telemetry();
-        hal_epuck_end_step(&app_hal);
-    } else {
-        hal_epuck_poll(&app_hal);
-    }
+    nest_beacon_step(&app_beacon, &app_hal);
+    app_send_telemetry();
 }
 
 int main(void)
 {
     app_setup();
     for (;;) {
-        app_loop_once();
+        HAL_EPUCK_LOOP_ONCE(&app_hal, app_step());
     }
 }

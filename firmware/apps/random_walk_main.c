@@ -21,6 +21,12 @@ static void app_tick(void)
     hal_epuck_tick(&app_hal);
 }
 
+/* The controller's step. */
+static void app_step(void)
+{
+    random_walk_step(&app_walk, &app_hal);
+}
+
 int main(void)
 {
     hal_epuck_config_t cfg;
@@ -36,12 +42,6 @@ int main(void)
     random_walk_init(&app_walk, &params, hal_epuck_seed(&app_hal));
 
     for (;;) {
-        if (hal_epuck_step_due(&app_hal) != 0u) {
-            hal_epuck_begin_step(&app_hal);
-            random_walk_step(&app_walk, &app_hal);
-            hal_epuck_end_step(&app_hal);
-        } else {
-            hal_epuck_poll(&app_hal);
-        }
+        HAL_EPUCK_LOOP_ONCE(&app_hal, app_step());
     }
 }

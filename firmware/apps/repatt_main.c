@@ -67,6 +67,13 @@ static void app_send_telemetry(void)
     app_telemetry_step(&app_telemetry, &app_hal, &src, 1u);
 }
 
+/* The controller's step and the telemetry of this step. */
+static void app_step(void)
+{
+    repatt_step(&app_repatt, &app_hal);
+    app_send_telemetry();
+}
+
 int main(void)
 {
     hal_epuck_config_t cfg;
@@ -88,13 +95,6 @@ int main(void)
     robot_telemetry_init(&app_telemetry);
 
     for (;;) {
-        if (hal_epuck_step_due(&app_hal) != 0u) {
-            hal_epuck_begin_step(&app_hal);
-            repatt_step(&app_repatt, &app_hal);
-            app_send_telemetry();
-            hal_epuck_end_step(&app_hal);
-        } else {
-            hal_epuck_poll(&app_hal);
-        }
+        HAL_EPUCK_LOOP_ONCE(&app_hal, app_step());
     }
 }
