@@ -30,8 +30,9 @@ void eaipp_default_params(eaipp_params_t *p)
     p->period2_steps = 300u;
     /* A neighbour not heard for this long is forgotten.  A node's fields come
      * in three frames (three periods on a one-message turret, one period on
-     * the e-RandB images' three): without loss 10 periods would do, but a neighbour still in range is forgotten with probability
-     * loss^timeout, and the robustness tests (Figure 16) go to a loss of 0.8:
+     * the e-RandB images' three): without loss 10 periods would do, but a
+     * neighbour still in range is forgotten with probability loss^timeout,
+     * and the robustness tests (Figure 16) go to a loss of 0.8:
      * 0.8^10 = 11 % (nodes lost their parents and left, explorers got lost:
      * 0/20 merged at D = 3 m), 0.8^30 = 0.1 % (5/20).  30 periods (3 s)
      * change nothing without loss (D = 1.4, 3.0 m: 15 and 10 of 20, against
