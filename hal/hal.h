@@ -215,7 +215,7 @@ void hal_set_body_led(hal_t *hal, uint8_t on);
 void hal_set_front_led(hal_t *hal, uint8_t on);
 
 /* ------------------------------------------------------------------ */
-/* Pose from an overhead tracker                                       */
+/* Pose from an overhead tracker, messages from the host               */
 /* ------------------------------------------------------------------ */
 
 /** Where the robot is, as an external tracker sees it, in the arena's
@@ -224,11 +224,32 @@ typedef struct hal_pose {
     int32_t x_mm;
     int32_t y_mm;
     int16_t heading_mrad;  /**< CCW from +x, (-3142, 3142] */
+    uint16_t age_ms;       /**< how old the fix is when read: 0 from the
+                                simulator's tracker (a fix every step); on
+                                the e-puck the time since its pose frame
+                                arrived over Bluetooth */
 } hal_pose_t;
 
+/** A pose older than this is not given (HAL_ERR_UNAVAILABLE), ms. */
+#define HAL_POSE_MAX_AGE_MS 1000u
+
 /** The tracker's pose this step: HAL_OK, or HAL_ERR_UNAVAILABLE when there
- *  is no tracker (a bare e-puck) or it lost the robot this step. */
+ *  is no tracker (a bare e-puck), it lost the robot this step, or its last
+ *  fix is older than HAL_POSE_MAX_AGE_MS. */
 hal_status_t hal_pose(hal_t *hal, hal_pose_t *out);
+
+/** Longest message from the host, bytes. */
+#define HAL_HOST_MSG_MAX 64u
+
+/** The oldest message the host (the PC running a study: a planner, an
+ *  operator) sent this robot and it has not yet taken, copied into `buf`
+ *  (room for `cap` bytes) with its length in `*len`: HAL_OK; HAL_ERR_EMPTY
+ *  when none is waiting; HAL_ERR_RANGE when it is longer than `cap` (it
+ *  stays); HAL_ERR_UNAVAILABLE on a platform with no host link.  What the
+ *  bytes mean is the controller's (a route: firmware/waypoint/route_msg.h).
+ *  On the e-puck they arrive over Bluetooth (hal/epuck/host_link.h), in the
+ *  simulator from the scenario's `host.messages` file. */
+hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len);
 
 /* ------------------------------------------------------------------ */
 /* Telemetry                                                           */

@@ -992,6 +992,34 @@ static void test_print_schema(void **state)
     free(text);
 }
 
+/* host.messages: hex decoded into bytes; a robot that does not exist, bad
+ * hex and a robot's messages out of time order are errors at their line. */
+static void test_host_messages(void **state)
+{
+    fixture_t *fx = *state;
+    static const bad_case_t cases[] = {
+        { RW "    count: 2\nhost:\n  messages:\n    - {robot: 2, at: 0, hex: '52'}\n", 6,
+          "host.messages[0].robot: robot 2: the run has 2 robots (ids 0 to 1)" },
+        { RW "    count: 2\nhost:\n  messages:\n    - {robot: 0, hex: '5'}\n", 6,
+          "host.messages[0].hex: 1 hex digits: a message is 1 to 64 bytes, two digits each" },
+        { RW "    count: 2\nhost:\n  messages:\n    - {robot: 0, hex: ''}\n", 6,
+          "host.messages[0].hex: " },
+        { RW "    count: 2\nhost:\n  messages:\n    - {robot: 0, hex: '5x'}\n", 6,
+          "host.messages[0].hex: 'x' (digit 2) is not a hex digit" },
+        { RW "    count: 2\nhost:\n  messages:\n    - {robot: 1, at: 2, hex: '01'}\n"
+             "    - {robot: 0, at: 0, hex: '01'}\n    - {robot: 1, at: 1, hex: '02'}\n", 8,
+          "host.messages[2].at: 1 s is before robot 1's message 0 (2 s): list a robot's messages in time order" },
+    };
+    expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
+    assert_int_equal(load_sets(fx, "s.yaml", RW "    count: 2\nhost:\n  messages:\n"
+                               "    - {robot: 1, at: 0.5, hex: 'A1b2'}\n", NULL), 0);
+    assert_int_equal(fx->sc->host.message_count, 1);
+    assert_int_equal(fx->sc->host.messages[0].robot, 1);
+    assert_int_equal(fx->sc->host.messages[0].len, 2);
+    assert_int_equal(fx->sc->host.messages[0].bytes[0], 0xA1);
+    assert_int_equal(fx->sc->host.messages[0].bytes[1], 0xB2);
+}
+
 #define T(f) cmocka_unit_test_setup_teardown(f, setup, teardown)
 
 int main(void)
@@ -1028,6 +1056,7 @@ int main(void)
         T(test_controller_needs),
         T(test_task_sections),
         T(test_print_schema),
+        T(test_host_messages),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

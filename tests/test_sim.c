@@ -699,6 +699,50 @@ static void test_tracker_pose(void **state)
     free(sc);
 }
 
+/* The host's messages: none configured is no link; each robot gets its own,
+ * in order, not before their time; a short buffer leaves it waiting. */
+static void test_host_messages(void **state)
+{
+    (void)state;
+    scenario_t *sc = idle_scenario(2, 2.0f);
+    sim_t *sim = fixture_sim(sc, 4);
+    uint8_t buf[HAL_HOST_MSG_MAX], len = 9;
+    assert_int_equal(hal_host_receive(sim_robot_hal(sim, 0), buf, sizeof buf, &len), HAL_ERR_UNAVAILABLE);
+    assert_int_equal(len, 0);
+    sim_destroy(sim);
+
+    const struct { uint32_t robot; float at; uint8_t len, b0; } m[] = {
+        { 1, 0.0f, 3, 0x11 }, { 0, 0.25f, 1, 0x22 }, { 1, 0.0f, 2, 0x33 },
+    };
+    for (uint32_t k = 0; k < 3; k++) {
+        host_message_def_t *d = &sc->host.messages[k];
+        memset(d, 0, sizeof *d);
+        d->robot = m[k].robot;
+        d->at = m[k].at;
+        d->len = m[k].len;
+        d->bytes[0] = m[k].b0;
+    }
+    sc->host.message_count = 3;
+    sim = fixture_sim(sc, 4);   /* 100 ms control period */
+    hal_t *h0 = sim_robot_hal(sim, 0), *h1 = sim_robot_hal(sim, 1);
+    assert_int_equal(hal_host_receive(h0, buf, sizeof buf, &len), HAL_ERR_EMPTY);   /* not before 0.25 s */
+    assert_int_equal(hal_host_receive(h1, buf, 2, &len), HAL_ERR_RANGE);            /* 3 bytes wait */
+    assert_int_equal(hal_host_receive(h1, buf, sizeof buf, &len), HAL_OK);
+    assert_int_equal(len, 3);
+    assert_int_equal(buf[0], 0x11);
+    assert_int_equal(hal_host_receive(h1, buf, sizeof buf, &len), HAL_OK);
+    assert_int_equal(buf[0], 0x33);
+    assert_int_equal(hal_host_receive(h1, buf, sizeof buf, &len), HAL_ERR_EMPTY);
+    for (int k = 0; k < 2; k++) sim_step(sim);
+    assert_int_equal(hal_host_receive(h0, buf, sizeof buf, &len), HAL_ERR_EMPTY);  /* 0.2 s */
+    sim_step(sim);
+    assert_int_equal(hal_host_receive(h0, buf, sizeof buf, &len), HAL_OK);         /* 0.3 s */
+    assert_int_equal(len, 1);
+    assert_int_equal(buf[0], 0x22);
+    sim_destroy(sim);
+    free(sc);
+}
+
 /* One status convention: sound is unavailable unless the scenario enables
  * it, then OK, and busy the period after the robot's own tone; a channel
  * out of range says so either way; the camera tells its frame size. */
@@ -767,6 +811,7 @@ int main(void)
         cmocka_unit_test(test_bad_pose_is_reported),
         cmocka_unit_test(test_step_order_does_not_matter),
         cmocka_unit_test(test_tracker_pose),
+        cmocka_unit_test(test_host_messages),
         cmocka_unit_test(test_hal_status),
         cmocka_unit_test(test_wheel_bias_draws),
         cmocka_unit_test(test_wheel_bias_per_step),

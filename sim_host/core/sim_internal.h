@@ -43,6 +43,7 @@ typedef struct sim_robot {
     uint8_t blob_count;
     int8_t pose_status;            /**< of the tracker this step */
     hal_pose_t pose;
+    uint32_t host_next;            /**< host.messages: where its next one may be */
 
     uint16_t ircom_tx[SIM_IRCOM_TX_MAX]; /**< messages to send this step */
     uint8_t ircom_tx_n;            /**< how many (ircom.tx_per_period at most) */
