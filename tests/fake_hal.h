@@ -2,7 +2,8 @@
  * fake_hal.h - a scripted hal.h for unit tests of controllers.
  *
  * Defines `struct hal` (sensor values the test sets, wheel speeds and LEDs
- * the controller sets, an IR inbox queue and an outbox log) and a
+ * the controller sets, an IR inbox queue and an outbox log, a tracker pose
+ * and a queue of host messages) and a
  * non-static definition of every hal_* function of hal/hal.h except
  * hal_ir_bearing_mrad and hal_camera_widest (hal/hal_common.c).  Include it from exactly one .c
  * per test binary; then the simulator's HAL is not linked in, so such a
@@ -21,6 +22,7 @@
 
 #define FAKE_INBOX_MAX 64u
 #define FAKE_OUTBOX_MAX 4096u
+#define FAKE_HOST_QUEUE_MAX 8u
 
 struct hal {
     /* Identity and time. */
@@ -54,6 +56,20 @@ struct hal {
     uint16_t last_sent;
     uint8_t sent_this_step;
     uint8_t tx_per_step;          /**< sends accepted per step (1, as the HAL's default) */
+
+    /* Tracker: hal_pose gives `pose` while pose_valid (0 after init: no
+     * tracker), and HAL_ERR_UNAVAILABLE when its age_ms is above
+     * HAL_POSE_MAX_AGE_MS, as hal.h says. */
+    uint8_t pose_valid;
+    hal_pose_t pose;
+
+    /* Host messages (hal_host_receive): a queue the test fills with
+     * fake_hal_host_push; host_unavailable makes the link absent. */
+    uint8_t host_msg[FAKE_HOST_QUEUE_MAX][HAL_HOST_MSG_MAX];
+    uint8_t host_len[FAKE_HOST_QUEUE_MAX];
+    uint32_t host_head, host_count;
+    uint32_t host_polls;          /**< hal_host_receive calls */
+    uint8_t host_unavailable;
 };
 
 /* ------------------------------------------------------------ test side */
@@ -106,6 +122,36 @@ static inline void fake_hal_show_blob(hal_t *hal, uint8_t colour, int16_t bearin
 }
 
 static inline void fake_hal_clear_blobs(hal_t *hal) { hal->n_blobs = 0u; }
+
+/** The tracker sees the robot at (x, y) heading `heading_mrad`, a fix
+ *  `age_ms` old. */
+static inline void fake_hal_set_pose(hal_t *hal, int32_t x_mm, int32_t y_mm, int16_t heading_mrad, uint16_t age_ms)
+{
+    hal->pose_valid = 1u;
+    hal->pose.x_mm = x_mm;
+    hal->pose.y_mm = y_mm;
+    hal->pose.heading_mrad = heading_mrad;
+    hal->pose.age_ms = age_ms;
+}
+
+/** The tracker has lost the robot. */
+static inline void fake_hal_lose_pose(hal_t *hal) { hal->pose_valid = 0u; }
+
+/** Queues a message from the host (at most HAL_HOST_MSG_MAX bytes are
+ *  kept, the length as given so that an over-long one can be tried);
+ *  returns 0 when the queue is full. */
+static inline int fake_hal_host_push(hal_t *hal, const uint8_t *bytes, uint8_t len)
+{
+    uint32_t k;
+    if (hal->host_count >= FAKE_HOST_QUEUE_MAX) {
+        return 0;
+    }
+    k = (hal->host_head + hal->host_count) % FAKE_HOST_QUEUE_MAX;
+    memcpy(hal->host_msg[k], bytes, len < HAL_HOST_MSG_MAX ? len : HAL_HOST_MSG_MAX);
+    hal->host_len[k] = len;
+    hal->host_count++;
+    return 1;
+}
 
 /* ------------------------------------------------------------ hal.h */
 
@@ -166,9 +212,31 @@ hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
 
 hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
 {
-    (void)hal;
-    (void)out;
-    return HAL_ERR_UNAVAILABLE;
+    if (hal->pose_valid == 0u || hal->pose.age_ms > HAL_POSE_MAX_AGE_MS) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    *out = hal->pose;
+    return HAL_OK;
+}
+
+hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len)
+{
+    uint32_t k = hal->host_head;
+    hal->host_polls++;
+    if (hal->host_unavailable != 0u) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    if (hal->host_count == 0u) {
+        return HAL_ERR_EMPTY;
+    }
+    if (hal->host_len[k] > cap || hal->host_len[k] > HAL_HOST_MSG_MAX) {
+        return HAL_ERR_RANGE;   /* it stays (an over-long one always) */
+    }
+    memcpy(buf, hal->host_msg[k], hal->host_len[k]);
+    *len = hal->host_len[k];
+    hal->host_head = (hal->host_head + 1u) % FAKE_HOST_QUEUE_MAX;
+    hal->host_count--;
+    return HAL_OK;
 }
 
 uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->payload_bits; }

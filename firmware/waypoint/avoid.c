@@ -1,0 +1,143 @@
+#include "avoid.h"
+
+#include "units.h"
+#include "repatt/odometry.h"
+
+/* IR sensors: the front pair, and each side's two (hal.h's bearings). */
+#define IR_FRONT_RIGHT 0u
+#define IR_RIGHT_50 1u
+#define IR_RIGHT_90 2u
+#define IR_LEFT_90 5u
+#define IR_LEFT_50 6u
+#define IR_FRONT_LEFT 7u
+/* A counter change larger than this in one period is not a motion (1000
+ * steps/s at most): odometry.h's bound. */
+#define MAX_STEP_DELTA ODO_MAX_STEP_DELTA
+
+void avoid_reset(avoid_t *a)
+{
+    a->target2 = 0;
+    a->done2 = 0;
+    a->last_left = 0;
+    a->last_right = 0;
+    a->turn_sign = 1;
+    a->primed = 0u;
+}
+
+/* now - last on 16-bit counters that wrap. */
+static int32_t counter_delta(int16_t now, int16_t last)
+{
+    int32_t d = (int32_t)now - (int32_t)last;
+    if (d > 32767L) {
+        d -= 65536L;
+    } else if (d < -32768L) {
+        d += 65536L;
+    }
+    if (d > MAX_STEP_DELTA) {
+        d = MAX_STEP_DELTA;
+    } else if (d < -MAX_STEP_DELTA) {
+        d = -MAX_STEP_DELTA;
+    }
+    return d;
+}
+
+void avoid_track(avoid_t *a, hal_t *hal, uint8_t phase)
+{
+    int16_t l, r;
+    int32_t dl = 0, dr = 0;
+    hal_wheel_steps(hal, &l, &r);
+    if (a->primed != 0u) {
+        dl = counter_delta(l, a->last_left);
+        dr = counter_delta(r, a->last_right);
+    }
+    a->primed = 1u;
+    a->last_left = l;
+    a->last_right = r;
+    if (phase == AVOID_TURNING) {
+        a->done2 += (int32_t)a->turn_sign * (dr - dl);
+    } else if (phase == AVOID_RUNNING) {
+        a->done2 += dl + dr;
+    }
+}
+
+uint8_t avoid_obstacle(hal_t *hal, uint16_t avoid_enter)
+{
+    uint16_t e = avoid_enter;
+    uint16_t fr = hal_ir_proximity(hal, IR_FRONT_RIGHT);
+    uint16_t fl = hal_ir_proximity(hal, IR_FRONT_LEFT);
+    uint16_t r1 = hal_ir_proximity(hal, IR_RIGHT_50), r2 = hal_ir_proximity(hal, IR_RIGHT_90);
+    uint16_t l1 = hal_ir_proximity(hal, IR_LEFT_50), l2 = hal_ir_proximity(hal, IR_LEFT_90);
+    uint16_t right = (r1 > r2) ? r1 : r2;
+    uint16_t left = (l1 > l2) ? l1 : l2;
+    if (fr > e || fl > e) {
+        return (uint8_t)AVOID_FRONT;
+    }
+    if (right > e || left > e) {
+        return (uint8_t)((right >= left) ? AVOID_RIGHT : AVOID_LEFT);
+    }
+    return (uint8_t)AVOID_NONE;
+}
+
+void avoid_start_turn(avoid_t *a, rng_t *rng, uint8_t where, uint16_t side_turn_mrad)
+{
+    int32_t mrad;
+    if (where == AVOID_FRONT) {
+        /* Greater than 90 deg, up to 180, either way. */
+        mrad = rng_range(rng, UNITS_HALF_PI_MRAD + 1, UNITS_PI_MRAD);
+        if ((rng_next(rng) & 1u) != 0u) {
+            mrad = -mrad;
+        }
+    } else {
+        /* Away from the side: to the left (CCW) for an obstacle on the right. */
+        mrad = (where == AVOID_RIGHT) ? (int32_t)side_turn_mrad : -(int32_t)side_turn_mrad;
+    }
+    mrad = odo_wrap_mrad(mrad);
+    a->turn_sign = (mrad >= 0) ? (int8_t)1 : (int8_t)-1;
+    a->target2 = 2 * units_turn_mrad_to_steps(mrad >= 0 ? mrad : -mrad);
+    a->done2 = 0;
+}
+
+void avoid_start_run(avoid_t *a, rng_t *rng, uint16_t oa_run_max_mm)
+{
+    a->target2 = 2 * units_mm_to_steps(rng_range(rng, 0, (int32_t)oa_run_max_mm));
+    a->done2 = 0;
+}
+
+/* A wheel speed that makes at most `remaining` steps in one period. */
+static int16_t capped_speed(hal_t *hal, int16_t speed, int32_t remaining)
+{
+    uint16_t period = hal_control_period_ms(hal);
+    int32_t cap;
+    if (period == 0u || remaining <= 0) {
+        return 0;
+    }
+    if (remaining > 100000L) {
+        return speed;
+    }
+    cap = (remaining * 1000L + period - 1) / period;
+    return (int16_t)((cap < speed) ? cap : speed);
+}
+
+uint8_t avoid_turn_step(avoid_t *a, hal_t *hal, int16_t turn_speed_steps_s)
+{
+    int16_t w = capped_speed(hal, turn_speed_steps_s, (a->target2 - a->done2 + 1) / 2);
+    if (a->done2 >= a->target2 || w <= 0) {
+        return 0u;
+    }
+    if (a->turn_sign > 0) {
+        hal_set_wheel_speeds(hal, (int16_t)-w, w);
+    } else {
+        hal_set_wheel_speeds(hal, w, (int16_t)-w);
+    }
+    return 1u;
+}
+
+uint8_t avoid_run_step(avoid_t *a, hal_t *hal, int16_t speed_steps_s)
+{
+    int16_t v = capped_speed(hal, speed_steps_s, (a->target2 - a->done2 + 1) / 2);
+    if (v <= 0) {
+        return 0u;
+    }
+    hal_set_wheel_speeds(hal, v, v);
+    return 1u;
+}

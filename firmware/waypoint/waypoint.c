@@ -1,0 +1,343 @@
+#include "waypoint.h"
+
+#include "units.h"
+#include "repatt/odometry.h"
+
+void waypoint_default_params(waypoint_params_t *params)
+{
+    /* RepAtt's (repatt.c): seed 002 at the plan's e-puck scale. */
+    params->speed_steps_s = 776;        /* 0.10 m/s / 0.12881 mm */
+    params->turn_speed_steps_s = 776;
+    params->steer_gain = 1000;
+    /* RepAtt's steer() turns in place beyond a quarter turn. */
+    params->turn_in_place_mrad = 1571u;
+    /* The simulator's targets task takes a target whose centre is within
+     * 35 (body) + 10 (target) + 10 (pick_reach) = 55 mm of the robot's:
+     * 30 mm leaves 25 mm for the tracker's error. */
+    params->arrive_mm = 30u;
+    params->home_radius_mm = 100u;      /* RepAtt's unloading radius */
+    /* At 0.10 m/s a fix 300 ms old is 30 mm (arrive_mm) behind the robot;
+     * it also keeps the steering loop's delay where it stays damped (about
+     * 5 rad/s of turn per rad of error: 300 ms is 1.5 rad of phase). */
+    params->pose_max_age_ms = 300u;
+    params->avoid_enter = 300u;         /* RepAtt's: about 25 mm from a sensor */
+    params->side_turn_mrad = 785u;      /* RepAtt's 45 deg */
+    params->oa_run_max_mm = 165u;       /* RepAtt's 1 m x 0.16529 */
+    params->pick_time_ms = 5000u;       /* seed 002's 5 s */
+}
+
+void waypoint_init(waypoint_t *self, const waypoint_params_t *params, uint32_t seed)
+{
+    self->params = *params;
+    self->seed = seed;
+    waypoint_reset(self);
+}
+
+void waypoint_reset(waypoint_t *self)
+{
+    uint8_t i;
+    rng_seed(&self->rng, self->seed);
+    self->route.n = 0u;
+    for (i = 0u; i < ROUTE_MAX_TARGETS; i++) {
+        self->route.target[i].x_mm = 0;
+        self->route.target[i].y_mm = 0;
+    }
+    self->route.drop.x_mm = 0;
+    self->route.drop.y_mm = 0;
+    avoid_reset(&self->avoid);
+    self->state = WAYPOINT_WAIT_ROUTE;
+    self->index = 0u;
+    self->timer = 0u;
+    self->bearing_mrad = 0;
+    self->has_pose = 0u;
+    self->routes = 0u;
+    self->picks = 0u;
+    self->deliveries = 0u;
+    self->no_pose = 0u;
+    self->bad_msgs = 0u;
+    self->oae_count = 0u;
+}
+
+/* ------------------------------------------------------------ helpers */
+
+static void stop(hal_t *hal)
+{
+    hal_set_wheel_speeds(hal, 0, 0);
+}
+
+static int16_t clamp_speed(int32_t v)
+{
+    if (v > HAL_WHEEL_SPEED_MAX) {
+        return HAL_WHEEL_SPEED_MAX;
+    }
+    if (v < -HAL_WHEEL_SPEED_MAX) {
+        return (int16_t)-HAL_WHEEL_SPEED_MAX;
+    }
+    return (int16_t)v;
+}
+
+/* Periods of `ms` at this period, rounded up (at least 1). */
+static uint16_t periods(hal_t *hal, uint16_t ms)
+{
+    uint16_t period = hal_control_period_ms(hal);
+    uint32_t n;
+    if (period == 0u) {
+        period = 1u;
+    }
+    n = ((uint32_t)ms + period - 1u) / period;
+    return (uint16_t)(n == 0u ? 1u : n);
+}
+
+/* A tracker coordinate bounded as route coordinates are, so that their
+ * differences stay within +-2 km. */
+static int32_t bound_mm(int32_t v)
+{
+    if (v > ROUTE_COORD_MAX_MM) {
+        return ROUTE_COORD_MAX_MM;
+    }
+    if (v < -ROUTE_COORD_MAX_MM) {
+        return -ROUTE_COORD_MAX_MM;
+    }
+    return v;
+}
+
+/* 1 when (dx, dy) is within `r` mm: squares compared without overflow
+ * (each at most 65535^2 < 2^32 once both are within r). */
+static uint8_t within_mm(int32_t dx, int32_t dy, uint16_t r)
+{
+    uint32_t ax = (uint32_t)(dx < 0 ? -dx : dx);
+    uint32_t ay = (uint32_t)(dy < 0 ? -dy : dy);
+    uint32_t r2 = (uint32_t)r * (uint32_t)r;
+    if (ax > r || ay > r) {
+        return 0u;
+    }
+    return (uint8_t)(ax * ax <= r2 - ay * ay);
+}
+
+/* GO while targets are left, else HOME. */
+static uint8_t travel_state(const waypoint_t *self)
+{
+    return (uint8_t)((self->index < self->route.n) ? WAYPOINT_GO : WAYPOINT_HOME);
+}
+
+/* ------------------------------------------------------------ messages */
+
+/* One host message this period: a route starts (or replaces) the route;
+ * anything malformed is counted and changes nothing. */
+static void take_message(waypoint_t *self, hal_t *hal)
+{
+    uint8_t buf[HAL_HOST_MSG_MAX];
+    uint8_t len = 0u;
+    hal_status_t s = hal_host_receive(hal, buf, (uint8_t)sizeof buf, &len);
+    if (s == HAL_ERR_RANGE) {
+        /* Longer than any host message may be: it stays in the queue and
+         * is counted each period it is met. */
+        self->bad_msgs++;
+        return;
+    }
+    if (s != HAL_OK) {
+        return;   /* none waiting, or no host link */
+    }
+    if (len > sizeof buf || route_msg_decode(buf, len, &self->route) != ROUTE_MSG_OK) {
+        self->bad_msgs++;
+        return;
+    }
+    self->routes++;
+    self->index = 0u;
+    self->timer = 0u;
+    if (self->state != WAYPOINT_AVOID && self->state != WAYPOINT_AVOID_RUN) {
+        self->state = WAYPOINT_GO;
+    }
+}
+
+/* ------------------------------------------------------------ motion */
+
+/* Toward a bearing error: in place when it is large, else forward with a
+ * proportional difference (repatt.c's steer, with the threshold a
+ * parameter and the difference kept when a wheel would saturate). */
+static void steer(const waypoint_t *self, hal_t *hal, int16_t error_mrad)
+{
+    const waypoint_params_t *p = &self->params;
+    int16_t w = p->turn_speed_steps_s;
+    int32_t d, v;
+    if (error_mrad > (int32_t)p->turn_in_place_mrad) {
+        hal_set_wheel_speeds(hal, (int16_t)-w, w);
+        return;
+    }
+    if (error_mrad < -(int32_t)p->turn_in_place_mrad) {
+        hal_set_wheel_speeds(hal, w, (int16_t)-w);
+        return;
+    }
+    d = clamp_speed((int32_t)p->steer_gain * (int32_t)error_mrad / 1000);
+    /* Slower rather than a saturated wheel: the difference, which sets
+     * the turn, is kept whole. */
+    v = (int32_t)p->speed_steps_s;
+    if (v > HAL_WHEEL_SPEED_MAX - (d < 0 ? -d : d)) {
+        v = HAL_WHEEL_SPEED_MAX - (d < 0 ? -d : d);
+    }
+    hal_set_wheel_speeds(hal, clamp_speed(v - d), clamp_speed(v + d));
+}
+
+/* The tracker's fix, if there is one and it is fresh enough. */
+static uint8_t usable_pose(const waypoint_t *self, hal_t *hal, hal_pose_t *pose)
+{
+    if (hal_pose(hal, pose) != HAL_OK) {
+        return 0u;
+    }
+    return (uint8_t)(pose->age_ms <= self->params.pose_max_age_ms);
+}
+
+static void start_avoidance(waypoint_t *self, hal_t *hal, uint8_t where)
+{
+    const waypoint_params_t *p = &self->params;
+    self->oae_count++;
+    self->state = WAYPOINT_AVOID;
+    avoid_start_turn(&self->avoid, &self->rng, where, p->side_turn_mrad);
+    if (avoid_turn_step(&self->avoid, hal, p->turn_speed_steps_s) != 0u) {
+        return;
+    }
+    /* A turn of 0 steps (side_turn_mrad 0): the run at once. */
+    self->state = WAYPOINT_AVOID_RUN;
+    avoid_start_run(&self->avoid, &self->rng, p->oa_run_max_mm);
+    if (avoid_run_step(&self->avoid, hal, p->speed_steps_s) == 0u) {
+        stop(hal);   /* a run of 0 mm: GO or HOME again next period */
+        self->state = travel_state(self);
+    }
+}
+
+/* GO and HOME: avoid, stop without a fix, arrive, or steer. */
+static void travel(waypoint_t *self, hal_t *hal)
+{
+    const waypoint_params_t *p = &self->params;
+    const route_point_t *goal;
+    hal_pose_t pose;
+    int32_t dx, dy;
+    uint8_t where = avoid_obstacle(hal, p->avoid_enter);
+    if (where != AVOID_NONE) {
+        start_avoidance(self, hal, where);
+        return;
+    }
+    if (usable_pose(self, hal, &pose) == 0u) {
+        self->has_pose = 0u;
+        self->no_pose++;
+        stop(hal);
+        return;
+    }
+    self->has_pose = 1u;
+    goal = (self->index < self->route.n) ? &self->route.target[self->index] : &self->route.drop;
+    dx = goal->x_mm - bound_mm(pose.x_mm);
+    dy = goal->y_mm - bound_mm(pose.y_mm);
+    self->bearing_mrad = (int16_t)odo_wrap_mrad((int32_t)odo_atan2_mrad(dy, dx) - pose.heading_mrad);
+    if (self->state == WAYPOINT_GO && within_mm(dx, dy, p->arrive_mm) != 0u) {
+        self->state = WAYPOINT_PICK;
+        self->timer = 1u;   /* this period is the first stood still */
+        stop(hal);
+        return;
+    }
+    if (self->state == WAYPOINT_HOME && within_mm(dx, dy, p->home_radius_mm) != 0u) {
+        self->state = WAYPOINT_DONE;
+        self->deliveries++;
+        stop(hal);
+        return;
+    }
+    steer(self, hal, self->bearing_mrad);
+}
+
+/* ------------------------------------------------------------ states */
+
+/* Wheels (0, 0) for the whole wait, then on to the next point. */
+static void pick_step(waypoint_t *self, hal_t *hal)
+{
+    if (self->timer < periods(hal, self->params.pick_time_ms)) {
+        self->timer++;
+        stop(hal);
+        return;
+    }
+    self->picks++;
+    self->index++;
+    self->timer = 0u;
+    self->state = travel_state(self);
+    travel(self, hal);
+}
+
+static void avoid_turn_state(waypoint_t *self, hal_t *hal)
+{
+    const waypoint_params_t *p = &self->params;
+    if (avoid_turn_step(&self->avoid, hal, p->turn_speed_steps_s) != 0u) {
+        return;
+    }
+    self->state = WAYPOINT_AVOID_RUN;
+    avoid_start_run(&self->avoid, &self->rng, p->oa_run_max_mm);
+    if (avoid_run_step(&self->avoid, hal, p->speed_steps_s) != 0u) {
+        return;
+    }
+    self->state = travel_state(self);   /* a run of 0 mm */
+    travel(self, hal);
+}
+
+static void avoid_run_state(waypoint_t *self, hal_t *hal)
+{
+    const waypoint_params_t *p = &self->params;
+    uint8_t where = avoid_obstacle(hal, p->avoid_enter);
+    if (where != AVOID_NONE) {
+        start_avoidance(self, hal, where);   /* another obstacle on the way */
+        return;
+    }
+    if (avoid_run_step(&self->avoid, hal, p->speed_steps_s) != 0u) {
+        return;
+    }
+    self->state = travel_state(self);   /* run done */
+    travel(self, hal);
+}
+
+void waypoint_step(waypoint_t *self, hal_t *hal)
+{
+    uint8_t phase = (uint8_t)AVOID_IDLE;
+    if (self->state == WAYPOINT_AVOID) {
+        phase = (uint8_t)AVOID_TURNING;
+    } else if (self->state == WAYPOINT_AVOID_RUN) {
+        phase = (uint8_t)AVOID_RUNNING;
+    }
+    /* What the last command did to a turn or run in progress. */
+    avoid_track(&self->avoid, hal, phase);
+    take_message(self, hal);
+
+    switch (self->state) {
+    case WAYPOINT_WAIT_ROUTE:
+    case WAYPOINT_DONE:
+        stop(hal);
+        break;
+    case WAYPOINT_GO:
+    case WAYPOINT_HOME:
+        travel(self, hal);
+        break;
+    case WAYPOINT_PICK:
+        pick_step(self, hal);
+        break;
+    case WAYPOINT_AVOID:
+        avoid_turn_state(self, hal);
+        break;
+    case WAYPOINT_AVOID_RUN:
+        avoid_run_state(self, hal);
+        break;
+    default:
+        /* Not a state (corrupted memory): still, waiting for a route. */
+        self->state = WAYPOINT_WAIT_ROUTE;
+        stop(hal);
+        break;
+    }
+}
+
+const char *waypoint_state_name(const waypoint_t *self)
+{
+    switch (self->state) {
+    case WAYPOINT_WAIT_ROUTE: return "wait_route";
+    case WAYPOINT_GO: return "go";
+    case WAYPOINT_PICK: return "pick";
+    case WAYPOINT_HOME: return "home";
+    case WAYPOINT_DONE: return "done";
+    case WAYPOINT_AVOID: return "avoid";
+    case WAYPOINT_AVOID_RUN: return "avoid_run";
+    default: return "?";
+    }
+}
