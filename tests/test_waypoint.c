@@ -3,11 +3,12 @@
  * waiting for a route, starting and replacing one, steering (wheel signs
  * for a waypoint ahead, left, right, behind), the pick-up wait of exactly
  * pick_time, homing and done, malformed messages, a lost or stale pose,
- * RepAtt's obstacle avoidance, and closed loops over five targets.
- * The fake HAL does not move the robot: step() integrates the commanded
- * wheel speeds (differential drive, hal/units.h's e-puck: 41 mm wheels,
- * 1000 steps a turn, 53 mm apart) into the step counters and a true pose
- * in the arena frame, which the fake tracker reports.  About 0.05 s.
+ * RepAtt's obstacle avoidance, closed loops over five targets, and
+ * hostile input.  The fake HAL does not move the robot: step() integrates
+ * the commanded wheel speeds (differential drive, hal/units.h's e-puck:
+ * 41 mm wheels, 1000 steps a turn, 53 mm apart) into the step counters and
+ * a true pose in the arena frame, which the fake tracker reports.  About
+ * 0.02 s (ASan/UBSan: 0.2 s).
  */
 #include <math.h>
 #include <stdarg.h>
@@ -696,6 +697,85 @@ static void test_closed_loop_with_obstacle(void **state)
     assert_int_equal(W.picks, 2u);
 }
 
+/* ------------------------------------------------------------ hostile input */
+
+/* Random host messages (routes with coordinates up to the limit, and
+ * garbage), poses anywhere in int32 with any heading and age, IR readings,
+ * counter jumps and periods: no overflow (UBSan in asan-tests), the state,
+ * the route and the wheels stay in range, and every message taken is
+ * counted once, as a route or as refused. */
+static void test_hostile(void **state)
+{
+    uint32_t x = 0x9E3779B9u, i, sent = 0;
+    (void)state;
+    start_at(0.0, 0.0, 0.0);
+    for (i = 0; i < 60000u; i++) {
+        uint8_t buf[HAL_HOST_MSG_MAX];
+        uint8_t k;
+        x ^= x << 13; x ^= x >> 17; x ^= x << 5;
+        if ((x & 0x1FFu) == 0u && H.host_count < FAKE_HOST_QUEUE_MAX) {
+            uint8_t len = (uint8_t)((x >> 8) % (HAL_HOST_MSG_MAX + 1u));
+            for (k = 0; k < sizeof buf; k++) {
+                x ^= x << 13; x ^= x >> 17; x ^= x << 5;
+                buf[k] = (uint8_t)x;
+            }
+            if (x & 1u) {   /* a well-formed route, coordinates anywhere allowed */
+                route_t r;
+                memset(&r, 0, sizeof r);
+                r.n = (uint8_t)(1u + (x >> 1) % ROUTE_MAX_TARGETS);
+                for (k = 0; k <= r.n; k++) {
+                    route_point_t *pt = (k < r.n) ? &r.target[k] : &r.drop;
+                    x ^= x << 13; x ^= x >> 17; x ^= x << 5;
+                    pt->x_mm = (int32_t)(x % 2000001u) - ROUTE_COORD_MAX_MM;
+                    pt->y_mm = (int32_t)((x >> 7) % 2000001u) - ROUTE_COORD_MAX_MM;
+                }
+                len = route_msg_encode(&r, buf, (uint8_t)sizeof buf);
+            }
+            assert_true(fake_hal_host_push(&H, buf, len));
+            sent++;
+        }
+        x ^= x << 13; x ^= x >> 17; x ^= x << 5;
+        switch (x & 7u) {
+        case 0: fake_hal_lose_pose(&H); break;
+        case 1: fake_hal_set_pose(&H, INT32_MAX, INT32_MIN, 3142, 0u); break;
+        case 2: fake_hal_set_pose(&H, INT32_MIN, INT32_MAX, -3141, (uint16_t)(x >> 16)); break;
+        case 3:
+            if (W.route.n > 0u) {   /* at the current point: picks and deliveries */
+                const route_point_t *g = W.index < W.route.n ? &W.route.target[W.index] : &W.route.drop;
+                fake_hal_set_pose(&H, g->x_mm, g->y_mm, 0, 0u);
+            }
+            break;
+        default:
+            fake_hal_set_pose(&H, (int32_t)(x >> 3) - (int32_t)0x0FFFFFFF, (int32_t)(x >> 8) - 0x007FFFFF,
+                              (int16_t)((int32_t)((x >> 4) % 6283u) - 3141), (uint16_t)((x >> 20) % 1200u));
+            break;
+        }
+        memset(H.proximity, 0, sizeof H.proximity);
+        if (((x >> 24) & 15u) == 0u) {
+            H.proximity[(x >> 5) % HAL_IR_COUNT] = (uint16_t)((x >> 9) & 0xFFFu);
+        }
+        if ((x & 0x3F00u) == 0u) {
+            H.steps_left = (int16_t)(uint16_t)(x >> 16);   /* counter jumps */
+        } else {
+            H.steps_left = (int16_t)(H.steps_left + H.left / 40);
+            H.steps_right = (int16_t)(H.steps_right + H.right / 40);
+        }
+        H.period_ms = (x & 0x7000u) == 0u ? (uint16_t)((x >> 12) % 3u * 100u) : PERIOD_MS;
+        waypoint_step(&W, &H);
+        fake_hal_end_step(&H);
+        assert_true(W.state <= WAYPOINT_AVOID_RUN);
+        assert_true(strcmp(waypoint_state_name(&W), "?") != 0);
+        assert_true(W.route.n <= ROUTE_MAX_TARGETS);
+        assert_true(W.index <= W.route.n);
+        assert_true(H.left >= -1000 && H.left <= 1000 && H.right >= -1000 && H.right <= 1000);
+        assert_true(W.bearing_mrad > -3142 && W.bearing_mrad <= 3142);
+    }
+    assert_int_equal(W.routes + W.bad_msgs, sent - H.host_count);
+    print_message("hostile: %u routes, %u refused, %u picks, %u deliveries, %u avoidances\n", (unsigned)W.routes,
+                  (unsigned)W.bad_msgs, (unsigned)W.picks, (unsigned)W.deliveries, (unsigned)W.oae_count);
+    assert_true(W.routes > 0u && W.bad_msgs > 0u && W.picks > 0u && W.deliveries > 0u && W.oae_count > 0u);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -710,6 +790,7 @@ int main(void)
         cmocka_unit_test(test_obstacle_avoidance),
         cmocka_unit_test(test_closed_loop),
         cmocka_unit_test(test_closed_loop_with_obstacle),
+        cmocka_unit_test(test_hostile),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
