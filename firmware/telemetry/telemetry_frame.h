@@ -23,9 +23,16 @@
  * boot message, line noise) so it costs at most that one frame.  A body is
  * at most 248 bytes, so a frame is at most TELEMETRY_FRAME_MAX = 251 bytes.
  *
- * Pure functions, no HAL: telemetry_tx.h sends frames through the HAL.
- * The host side is tools/swarmtools/telemetry/frames.py (decoder) and
- * bridge.py, and the simulator's sim_host/core/robot_link.c.
+ * The same frames go the other way, from a host to robots (the tracker's
+ * poses, a planner's messages: docs/host_link.md), on the channels of
+ * telemetry_host_channel_t; there the robot id addresses the robot, or
+ * every robot (TELEMETRY_BROADCAST_ID).
+ *
+ * Pure functions, no HAL: telemetry_tx.h sends frames through the HAL,
+ * telemetry_rx.h decodes them on a robot, telemetry_host.h lays out the
+ * host's payloads.  The host side is tools/swarmtools/telemetry/frames.py
+ * (decoder), bridge.py and host_link.py (the host's frames), and the
+ * simulator's sim_host/core/robot_link.c.
  */
 #ifndef FW_TELEMETRY_FRAME_H
 #define FW_TELEMETRY_FRAME_H
@@ -60,6 +67,20 @@ typedef enum telemetry_channel {
     TELEMETRY_CH_SCHEMA = 6,        /**< TELEMETRY_SCHEMA, swarmlcm.schema_t */
     TELEMETRY_CH_COUNT = 7
 } telemetry_channel_t;
+
+/** Channel ids of the frames a host sends robots.  Bit 7 set: apart from
+ *  the robots' ids above, so TELEMETRY_CH_COUNT and the name table stay
+ *  the robots' own, and a host that heard one from a robot would not
+ *  republish it (the bridge counts it as an unknown channel, the
+ *  simulator's robot_link as a bad frame).  Keep in step with frames.py's
+ *  HOST_CHANNEL_IDS (a test compares them). */
+typedef enum telemetry_host_channel {
+    TELEMETRY_CH_POSE = 128,        /**< the tracker's pose of the robot (telemetry_host.h) */
+    TELEMETRY_CH_HOST_MSG = 129     /**< 1..HAL_HOST_MSG_MAX bytes for the controller */
+} telemetry_host_channel_t;
+
+/** Robot id of a host's frame that every robot takes. */
+#define TELEMETRY_BROADCAST_ID 0xFFFFu
 
 /** The LCM channel of each id (index = id; "" for none), for the hosts that
  *  republish frames (the simulator; tools/swarmtools/telemetry/frames.py

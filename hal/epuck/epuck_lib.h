@@ -72,6 +72,12 @@ int e_poxxxx_get_orientation(void);
 void e_init_uart1(void);
 void e_send_uart1_char(const char *buff, int length);
 int e_uart1_sending(void);
+/* uart/e_uart_char.h, uart/e_uart1_rx_char.s: never blocks.  Takes the
+ * oldest unread byte of the receive interrupt's 64-byte ring into *car and
+ * returns 1, or returns 0 when none is waiting.  The interrupt does not
+ * check the ring for room: bytes not read within 64 bytes' time (5.6 ms at
+ * 115200 baud) are overwritten (hal/epuck/host_link.h). */
+int e_getchar_uart1(char *car);
 
 /* utility/utility.h: position of the 16-way selector switch, 0..15. */
 int getselector(void);

@@ -2,7 +2,8 @@
  * hal_epuck.c - hal.h on the e-puck1 over GCtronic's e-puck library: clock
  * and control loop, IR and light readings (sampled by the IR backend),
  * camera blobs, wheels, LEDs, telemetry.  IR communication is in the
- * backend (ircom_randb.c or ircom_libircom.c).  See hal_epuck.h.
+ * backend (ircom_randb.c or ircom_libircom.c), the pose and the host's
+ * messages in host_link.c.  See hal_epuck.h.
  *
  * No mutable static storage: the state is the caller's struct hal.
  */
@@ -170,10 +171,12 @@ void hal_epuck_poll(hal_t *hal)
         e_poxxxx_launch_capture((char *)(hal->frames + (size_t)hal->cam_filling * hal->frame_bytes));
     }
     hal_epuck_ir_poll(hal);
+    hal_epuck_host_drain(hal, HAL_EPUCK_RX_POLL_BYTES);
 }
 
 void hal_epuck_begin_step(hal_t *hal)
 {
+    hal_epuck_host_drain(hal, hal_epuck_host_step_bytes(hal->cfg.period_ms));
     hal_epuck_ir_sample(hal);
     hal->steps_left = (int16_t)e_get_steps_left();
     hal->steps_right = (int16_t)e_get_steps_right();
@@ -442,16 +445,6 @@ hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
     }
     hal->spk_band = band;
     return HAL_OK;
-}
-
-/* A bare e-puck knows nothing of where it is. */
-hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
-{
-    (void)hal;
-    out->x_mm = 0;
-    out->y_mm = 0;
-    out->heading_mrad = 0;
-    return HAL_ERR_UNAVAILABLE;
 }
 
 hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)

@@ -46,6 +46,10 @@
  * telemetry sender from the idle loop (hal_epuck_poll's caller) to keep
  * the link busy.
  *
+ * Poses and messages from a host (hal_pose, hal_host_receive) come over
+ * UART1 into storage an image attaches: host_link.h.  The received bytes
+ * are read by poll() and at the start of begin_step.
+ *
  * Sound (cfg.sound = 1; 0 by default: both calls HAL_ERR_UNAVAILABLE).  The
  * library's A/D interrupt keeps the last 100 samples of each microphone
  * (16384 Hz: 6.1 ms).  The first hal_mic_level call of a step for a
@@ -75,6 +79,7 @@
 
 #include "blob_detect.h"
 #include "hal.h"
+#include "host_link.h"
 #include "sound_bands.h"
 #include "units.h"
 
@@ -184,6 +189,10 @@ struct hal {
 
     /* Telemetry: the buffer the UART driver reads while it sends. */
     uint8_t tx[HAL_EPUCK_TX_BYTES];
+
+    /* Poses and messages from the host: the image's storage, or NULL
+     * (host_link.h). */
+    hal_epuck_host_t *host;
 };
 
 /** Camera states (struct hal.cam_state). */
@@ -219,11 +228,13 @@ void hal_epuck_tick(hal_t *hal);
 uint8_t hal_epuck_step_due(hal_t *hal);
 
 /** Background work between steps: swaps the camera buffers when a frame is
- *  complete, moves received IR messages into the inbox.  Never blocks for
- *  more than the IR driver's own busy-waits (a few ms on the turret). */
+ *  complete, moves received IR messages into the inbox, reads what the
+ *  host sent (host_link.h).  Never blocks for more than the IR driver's
+ *  own busy-waits (a few ms on the turret). */
 void hal_epuck_poll(hal_t *hal);
 
-/** Samples the sensors of this step. */
+/** Reads what the host sent (bounded: host_link.h), samples the sensors
+ *  of this step. */
 void hal_epuck_begin_step(hal_t *hal);
 
 /** Applies wheel speeds and LEDs, sends the queued IR message, advances the

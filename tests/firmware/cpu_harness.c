@@ -96,6 +96,9 @@ hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *leve
 hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
 { return !hal->sound ? HAL_ERR_UNAVAILABLE : band >= HAL_SOUND_BANDS ? HAL_ERR_RANGE : HAL_OK; }
 hal_status_t hal_pose(hal_t *hal, hal_pose_t *out) { (void)hal; (void)out; return HAL_ERR_UNAVAILABLE; }
+/* No host in the CPU report: its controllers take no messages. */
+hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len)
+{ (void)hal; (void)buf; (void)cap; *len = 0u; return HAL_ERR_UNAVAILABLE; }
 uint8_t hal_ircom_payload_bits(hal_t *hal) { (void)hal; return 16u; }
 
 hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)

@@ -132,7 +132,7 @@ def common_sources():
                           if f.endswith('.c') and os.path.join('firmware', d, f) not in TELEMETRY_APP_SOURCES)
     out += sorted(os.path.join('hal', f) for f in os.listdir(os.path.join(ROOT, 'hal'))
                   if f.endswith('.c'))
-    return out + ['hal/epuck/hal_epuck.c']
+    return out + ['hal/epuck/hal_epuck.c', 'hal/epuck/host_link.c']
 
 
 def obj_path(build, target, src):

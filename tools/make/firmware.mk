@@ -81,10 +81,11 @@ FW_HOST := $(FW_OUT)/host
 FW_HOST_CFLAGS := -std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes \
   -Wmissing-prototypes -g -O1 -Ihal -Ifirmware -Ihal/epuck -Itests/firmware/stubs \
   -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/blob_detect.c hal/hal_common.c hal/units.c \
-  hal/tone_detect.c hal/tone_tables.c tests/firmware/stubs/epuck_lib_stubs.c
+FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/blob_detect.c hal/hal_common.c hal/units.c \
+  hal/tone_detect.c hal/tone_tables.c tests/firmware/stubs/epuck_lib_stubs.c \
+  firmware/telemetry/telemetry_rx.c firmware/telemetry/telemetry_host.c firmware/telemetry/telemetry_frame.c
 FW_HAL_DEPS := tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) $(wildcard hal/epuck/*.h) \
-  $(wildcard hal/*.h) tests/firmware/stubs/epuck_stubs.h
+  $(wildcard hal/*.h) $(wildcard firmware/telemetry/*.h) tests/firmware/stubs/epuck_stubs.h
 
 $(FW_HOST)/test_hal_epuck_randb: $(FW_HAL_DEPS) hal/epuck/ircom_randb.c \
     tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c | $(BUILD)/config.mk
@@ -96,12 +97,19 @@ $(FW_HOST)/test_hal_epuck_libircom: $(FW_HAL_DEPS) hal/epuck/ircom_libircom.c \
 	@mkdir -p $(@D)
 	$(CC) $(FW_HOST_CFLAGS) -DTEST_LIBIRCOM -o $@ tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) \
 	  hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c
+# The host link (host_link.c) over the turret backend: it does not depend on
+# the IR backend, so it is built once.
+$(FW_HOST)/test_hal_epuck_host: tests/firmware/test_hal_epuck_host.c $(filter-out tests/firmware/test_hal_epuck.c,$(FW_HAL_DEPS)) \
+    hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(CC) $(FW_HOST_CFLAGS) -o $@ tests/firmware/test_hal_epuck_host.c $(FW_HAL_COMMON) \
+	  hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
 
 # The forager image itself (its main renamed) over the stubs: its telemetry
 # frames decoded.  --gc-sections drops the generated publish functions
 # (no liblcm here).
 FW_APP_TEST_SRC := $(FW_SRC) \
-  hal/epuck/hal_epuck.c hal/epuck/ircom_randb.c tests/firmware/stubs/epuck_lib_stubs.c \
+  hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/epuck/ircom_randb.c tests/firmware/stubs/epuck_lib_stubs.c \
   tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c firmware/apps/app_telemetry.c \
   $(FW_LCM_SRC)
 $(FW_HOST)/test_app_telemetry: tests/firmware/test_app_telemetry.c firmware/apps/forager_main.c \
@@ -112,7 +120,7 @@ $(FW_HOST)/test_app_telemetry: tests/firmware/test_app_telemetry.c firmware/apps
 	$(CC) $(FW_HOST_CFLAGS) -I$(FW_LCM_C_DIR) $(LCM_CFLAGS) -ffunction-sections -Wl,--gc-sections \
 	  -o $@ tests/firmware/test_app_telemetry.c $(FW_APP_TEST_SRC) -lm
 
-firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_libircom \
+firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_libircom $(FW_HOST)/test_hal_epuck_host \
     $(FW_HOST)/test_app_telemetry
 	@set -e; for t in $^; do ASAN_OPTIONS=detect_leaks=1 $$t; done
 
@@ -193,7 +201,7 @@ FW_APP_DEFS := -DAPP_N_ROBOTS=$(FIRMWARE_N_ROBOTS)u -DAPP_ARENA_L_MM=$(FIRMWARE_
   -DAPP_MOVE_COST=$(FIRMWARE_MOVE_COST)u -DAPP_E_A=$(FIRMWARE_E_A)u
 
 FW_OURS_SRC := $(filter-out $(FW_ROBOT_TELEMETRY_SRC),$(FW_SRC)) \
-  hal/epuck/hal_epuck.c hal/epuck/xc16/robot_id.c
+  hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/epuck/xc16/robot_id.c
 FW_EPL_COMMON := motor_led/e_init_port.c motor_led/advance_one_timer/e_agenda.c \
   motor_led/advance_one_timer/e_motors.c motor_led/advance_one_timer/e_led.c \
   camera/fast_2_timer/e_common.c camera/fast_2_timer/e_calc_po3030k.c \

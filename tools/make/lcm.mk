@@ -101,13 +101,16 @@ endif
 monitor: deps
 	$(PYTHON) -m swarmtools.telemetry.monitor $(if $(LCM_URL),--lcm '$(LCM_URL)')
 
-# The host side of the robots' framing (firmware/telemetry/telemetry_frame.c) as a
+# The robots' framing (firmware/telemetry/telemetry_frame.c, and the robot's
+# decoder of a host's frames, telemetry_rx.c and telemetry_host.c) as a
 # shared library, so the Python tests check the bridge's decoder against the
-# very encoder the robots run.
+# very encoder the robots run, and the host's frames against their decoder.
 TELEMETRY_FRAME_SO := $(BUILD)/telemetry/libtelemetry_frame.so
-$(TELEMETRY_FRAME_SO): firmware/telemetry/telemetry_frame.c firmware/telemetry/telemetry_frame.h | $(BUILD)/config.mk
+TELEMETRY_SO_SRC := firmware/telemetry/telemetry_frame.c firmware/telemetry/telemetry_rx.c \
+  firmware/telemetry/telemetry_host.c
+$(TELEMETRY_FRAME_SO): $(TELEMETRY_SO_SRC) $(TELEMETRY_SO_SRC:.c=.h) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ firmware/telemetry/telemetry_frame.c
+	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ $(TELEMETRY_SO_SRC)
 
 .PHONY: clean-lcm
 clean: clean-lcm

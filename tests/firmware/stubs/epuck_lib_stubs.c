@@ -102,6 +102,15 @@ void e_send_uart1_char(const char *buff, int length)
 
 int e_uart1_sending(void) { return epuck_stub.uart_busy; }
 
+int e_getchar_uart1(char *car)
+{
+    if (epuck_stub.rx == NULL || epuck_stub.rx_pos >= epuck_stub.rx_len) {
+        return 0;
+    }
+    *car = (char)epuck_stub.rx[epuck_stub.rx_pos++];
+    return 1;
+}
+
 void e_init_sound(void) { epuck_stub.sound_inits++; }
 
 /* Records the call only: the stub does not read the table (the images

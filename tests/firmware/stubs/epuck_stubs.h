@@ -39,6 +39,11 @@ typedef struct epuck_stub_state {
     unsigned char *uart_log;   /* when set, every byte sent is appended here */
     int uart_log_size;
     int uart_log_len;
+    /* UART1 receive: e_getchar_uart1 hands out rx[rx_pos..rx_len) one byte a
+     * call (the test's buffer; NULL: nothing received) */
+    const unsigned char *rx;
+    int rx_len;
+    int rx_pos;
     /* A/D */
     int prox[8];
     int ambient[8];

@@ -138,6 +138,8 @@ class Bridge:
 
     def handle_frame(self, dev, frame):
         """Republishes one good frame; returns (channel, data) or None."""
+        # Only a robot's channels: a host's (frames.HOST_CHANNEL_IDS: poses,
+        # messages to robots) has no LCM type and counts as unknown here.
         name = CHANNEL_IDS.get(frame.channel)
         if name is None:
             dev.unknown_channel += 1

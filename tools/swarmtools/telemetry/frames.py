@@ -5,6 +5,9 @@ On the wire:  0x00, COBS(body), 0x00, where the body is
     sequence number (2, big-endian), payload (an LCM-encoded message,
     0..240 bytes), CRC-16/CCITT-FALSE of all that (2, big-endian).
 
+The same frames go from a host to robots on the channels of
+HOST_CHANNEL_IDS (host_link.py encodes them).
+
 `FrameDecoder` turns any byte stream into frames and never raises: garbage,
 truncated frames, bad stuffing and CRC errors are counted and skipped, and
 the decoder resynchronises at the next zero byte.
@@ -30,6 +33,16 @@ CHANNEL_IDS = {
     5: "RUN_SUMMARY",
     6: "TELEMETRY_SCHEMA",
 }
+
+#: Channel ids of the frames a host sends robots (telemetry_frame.h: telemetry_host_channel_t;
+#: a test compares them).  Bit 7 set, apart from CHANNEL_IDS: the bridge never republishes
+#: them (a robot does not send them; heard from one, they count as unknown channels).
+HOST_CHANNEL_IDS = {
+    128: "POSE",
+    129: "HOST_MSG",
+}
+#: Robot id of a host's frame that every robot takes.
+BROADCAST_ID = 0xFFFF
 
 
 def crc16(data, crc=0xFFFF):

@@ -33,11 +33,16 @@ class Vectors(unittest.TestCase):
         names = re.findall(r'"(\w*)"', table)
         self.assertEqual({k: n for k, n in enumerate(names) if n}, frames.CHANNEL_IDS)
         self.assertEqual(frames.CHANNEL_IDS[6], "TELEMETRY_SCHEMA")
-        # ... and its enum of ids (all but the count) name the same channels.
-        ids = {int(v): name for name, v in re.findall(r"TELEMETRY_CH_(\w+) = (\d+)", h) if name != "COUNT"}
+        # ... and its enum of ids (all but the count) name the same channels; the
+        # host's channels (bit 7 set) are the other table, never republished.
+        all_ids = {int(v): name for name, v in re.findall(r"TELEMETRY_CH_(\w+) = (\d+)", h) if name != "COUNT"}
+        ids = {k: n for k, n in all_ids.items() if k < 128}
         self.assertEqual(set(ids), set(frames.CHANNEL_IDS))
         for k, name in ids.items():
             self.assertTrue(frames.CHANNEL_IDS[k].endswith(name), (k, name))
+        self.assertEqual({k: n for k, n in all_ids.items() if k >= 128}, frames.HOST_CHANNEL_IDS)
+        self.assertFalse(set(frames.HOST_CHANNEL_IDS.values()) & set(common.CHANNEL_TYPES))
+        self.assertEqual(int(re.search(r"TELEMETRY_BROADCAST_ID 0x(\w+)u", h).group(1), 16), frames.BROADCAST_ID)
         # Every channel a robot may send has an LCM type the bridge checks payloads against.
         self.assertLessEqual(set(frames.CHANNEL_IDS.values()), set(common.CHANNEL_TYPES))
         self.assertEqual(int(re.search(r"TELEMETRY_MAX_PAYLOAD (\d+)u", h).group(1)), frames.MAX_PAYLOAD)
