@@ -69,6 +69,10 @@ an earlier plan folder, marked ``.swarmtools-plan``):
                   (``pyvrp``: its total length and T of its routes), the
                   parameters, iterations, wall times, package versions and
                   every route.
+``scenario.yaml`` the world's scenario running the plan: its robots follow
+                  the routes (controller ``waypoint``, poses from an exact
+                  tracker), each robot's route sent as a host message at 0 s
+                  (``swarmtools.plan.routes``): ``build/swarmsim DIR/scenario.yaml``.
 
 Every file is written under a temporary name and renamed when complete, into
 a temporary folder renamed to DIR at the end: an error leaves nothing.
@@ -91,13 +95,18 @@ import time
 from pathlib import Path
 
 import numpy as np
+import yaml
 from alns import ALNS
 from alns.accept import SimulatedAnnealing
 from alns.select import RouletteWheel
 from alns.stop import MaxIterations
 
 from swarmtools.plan.problem import CAPACITY, SPEED_M_S, TIEBREAK, PlanError, Problem, load_world, problem_of_world
+from swarmtools.plan.routes import run_scenario
 from swarmtools.sweep.store import atomic_write
+
+RUN_SCENARIO_HEADER = ("# Written by swarmtools.plan.alns: the world below with its robots following the\n"
+                       "# plan's routes (host.messages: one route message per robot, firmware/waypoint/route_msg.h).\n")
 
 #: Ropke and Pisinger (2006): outcome scores, cooling, the start rule; the
 #: randomisation exponents of worst and Shaw removal.
@@ -370,7 +379,13 @@ def route_csv(problem: Problem, route: list[int]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_plan(out: Path, problem: Problem, routes: list[list[int]], summary: dict, replace: bool) -> None:
+def routes_m(problem: Problem, routes: list[list[int]]) -> list[list[tuple[float, float]]]:
+    """Each route's targets in world coordinates, m (routes hold nodes: target k is node k + 1)."""
+    return [[(float(problem.targets[v - 1][0]), float(problem.targets[v - 1][1])) for v in r] for r in routes]
+
+
+def write_plan(out: Path, problem: Problem, routes: list[list[int]], summary: dict, replace: bool,
+               scenario: dict | None = None) -> None:
     """Writes DIR whole or not at all (module docstring)."""
     if out.exists():
         if not out.is_dir():
@@ -386,6 +401,8 @@ def write_plan(out: Path, problem: Problem, routes: list[list[int]], summary: di
         for i, r in enumerate(routes):
             atomic_write(tmp / f"robot_{i:0{width}d}.csv", route_csv(problem, r))
         atomic_write(tmp / "summary.json", json.dumps(summary, indent=2) + "\n")
+        if scenario is not None:
+            atomic_write(tmp / "scenario.yaml", RUN_SCENARIO_HEADER + yaml.safe_dump(scenario, sort_keys=False))
         atomic_write(tmp / MARKER, "swarmtools.plan.alns\n")
         if out.exists():
             shutil.rmtree(out)
@@ -448,8 +465,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"swarmtools.plan.alns: {e}", file=sys.stderr)
         return 2
     try:
-        write_plan(args.out, problem, best.routes, summary, args.replace)
-    except PlanError as e:
+        scenario = run_scenario(world["doc"], routes_m(problem, best.routes), problem.nest, f"{world['name']}_alns")
+        write_plan(args.out, problem, best.routes, summary, args.replace, scenario)
+    except (PlanError, ValueError) as e:
         print(f"swarmtools.plan.alns: {e}", file=sys.stderr)
         return 2
     except OSError as e:

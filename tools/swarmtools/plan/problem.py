@@ -188,7 +188,7 @@ def load_world(scenario: Path, sim: Path | None = None, sets: list[str] | tuple[
     return {"targets": items, "nest": (float(nest.get("x", DEFAULT_NEST[0])), float(nest.get("y", DEFAULT_NEST[1]))),
             "robots": int(metrics["robots"]), "stop_count": int(metrics["stop_count"]), "pick_time": pick,
             "name": summary.get("scenario", Path(scenario).stem), "scenario_hash": summary.get("scenario_hash"),
-            "code_version": summary.get("code_version")}
+            "code_version": summary.get("code_version"), "doc": scen}
 
 
 def problem_of_world(world: dict, capacity: int = CAPACITY, speed: float = SPEED_M_S,

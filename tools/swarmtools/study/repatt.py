@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from swarmtools.study import alns_bars
 from swarmtools.study.common import INTERRUPTED, pick, read_rows, run_sweep, write_results
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
@@ -297,19 +298,25 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.repatt", description=__doc__.split("\n\n")[0])
     ap.add_argument("--figures", default="worlds,slotted,scale",
                     help="which sweeps to run: worlds (Figures 3 and 2c), slotted (the e-puck's listening "
-                         "schedule, beside Figure 3), scale (Figure 4); comma-separated")
+                         "schedule, beside Figure 3), scale (Figure 4), alns (Figure 3's ALNS bars: plans, then "
+                         "the routes followed; needs worlds); comma-separated")
     ap.add_argument("--quick", action="store_true", help="3 seeds per cell instead of the files' 30")
     ap.add_argument("--reps", type=int, default=None, help="seeds per cell (default the files' 30)")
     ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_repatt"))
     ap.add_argument("--sim", default=str(REPO_ROOT / "build" / "swarmsim"))
     ap.add_argument("--jobs", type=int, default=0)
+    ap.add_argument("--alns-iterations", type=int, default=25000, help="ALNS iterations per plan (the paper: 25,000)")
+    ap.add_argument("--alns-q", type=int, default=50, help="visits ALNS removes per iteration (the paper: 50 or 100)")
     sweep_cli.add_backend_options(ap)
     a = ap.parse_args(argv)
     command = " ".join(["python -m swarmtools.study.repatt", *(argv if argv is not None else sys.argv[1:])])
     t0 = time.monotonic()
     try:
         sweep_cli.check_args(a)
-        figs = pick(a.figures, FIGURES)
+        figs = pick(a.figures, [*FIGURES, "alns"])
+        if "alns" in figs and "worlds" not in figs:
+            raise SweepError("--figures alns needs worlds too (ALNS is normalised by its random walk): "
+                             "--figures worlds,alns (a finished worlds sweep resumes at once)")
         if a.reps is not None and a.reps < 1:
             raise SweepError("--reps must be at least 1")
         sim, out = Path(a.sim), Path(a.out)
@@ -317,6 +324,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                                        f"Command: `{command}`.", ""]
         tables: dict[str, list[dict[str, str]]] = {}
         for name in figs:
+            if name == "alns":
+                continue
             sw = load_sweep(name, sim, a.reps, a.quick)
             sweep_dir = out / name
             t1 = time.monotonic()
@@ -333,12 +342,37 @@ def main(argv: Sequence[str] | None = None) -> int:
                       f"build(s): {', '.join(builds)}.")
             results[f"{name}_runs"] = [run_entry(r) for r in rows]
         md.append("")
+        alns_res: dict[str, Any] = {}
+        if "alns" in figs:
+            t1 = time.monotonic()
+            plans = alns_bars.plan_layouts(out / "alns", sim, a.alns_iterations, a.alns_q, 1, 2000)
+            seeds = list(range(1, (a.reps or (3 if a.quick else 30)) + 1))
+            sw = sweep_spec.load(alns_bars.sweep_file(out / "alns", seeds), sweep_plan.seed_max(sim))
+            rc = run_sweep(sw, a, sim, out / "alns" / "sweep", "study_repatt")
+            if rc == INTERRUPTED:
+                return rc
+            if rc is not None:
+                rc_all = rc_all or rc
+                arows = read_rows(out / "alns" / "sweep" / "results.csv")
+                rw = {world(r): times(rr)[0] for r, rr in
+                      ((g[0], g) for g in group(tables["worlds"], lambda r: (world(r), arm(r))).values())
+                      if arm(r) == "RW"}
+                alns_res = alns_bars.bars(arows, rw, boot_ratio)
+                md.append(f"alns: 5 plans ({a.alns_iterations} iterations, q {a.alns_q}) and {len(arows)} runs, "
+                          f"{time.monotonic() - t1:.0f} s (`{out / 'alns'}`).")
+                md.append("")
+                md += alns_bars.render(alns_res, rw, plans)
+                results["alns"] = alns_res
+                results["alns_plans"] = {d: {k: p.get(k) for k in ("finishing_time_s", "lower_bound_s",
+                                                                     "total_length_m", "pyvrp", "iterations", "q")}
+                                         for d, p in plans.items()}
         if "worlds" in tables:
             # the slotted arm (its own sweep) is normalised by the worlds sweep's RW
             rows = tables["worlds"] + tables.get("slotted", [])
-            res = normalised(rows, ("RW", "N0-Q1", "N100-Q40", SLOTTED))
+            res = normalised(rows, ("RW", "N0-Q1", "N100-Q40", SLOTTED)) | alns_res
             md += render_fig3(res)
-            plot_bars(res, ("N0-Q1", "N100-Q40"), out / "fig3_normalised.png",
+            plot_bars(res, ("N0-Q1", "N100-Q40", "ALNS") if alns_res else ("N0-Q1", "N100-Q40"),
+                      out / "fig3_normalised.png",
                       "time to 90 % of the targets, normalised by random walk")
             md.append("![Figure 3](fig3_normalised.png)\n")
             queues = sorted({int(float(r[QUEUE])) for r in rows if r.get(POLICY) != "random_walk"
