@@ -318,7 +318,7 @@ static void test_pick_exactly(void **state)
  * done and still, until a new route. */
 static void test_home_and_done(void **state)
 {
-    static const int32_t xy[] = { 300, 0 };
+    static const int32_t xy[] = { 300, 0 }, other[] = { 0, 300 };
     uint32_t i;
     (void)state;
     start_at(0.0, 0.0, 0.0);
@@ -347,8 +347,12 @@ static void test_home_and_done(void **state)
         assert_int_equal(H.right, 0);
         assert_true(px == x && py == y);
     }
-    /* A new route starts again. */
+    /* The same route again is a resend: still done (a host that resends
+     * routes must not make robots run them twice); a new route starts. */
     send_route(1u, xy, 0, 0);
+    step();
+    assert_int_equal(W.state, WAYPOINT_DONE);
+    send_route(1u, other, 0, 0);
     step();
     assert_int_equal(W.state, WAYPOINT_GO);
     assert_int_equal(W.routes, 2u);
@@ -462,6 +466,51 @@ static void test_replaced_route(void **state)
     }
     assert_int_equal(W.state, WAYPOINT_GO);
     assert_int_equal(W.route.target[0].y_mm, -700);
+}
+
+/* The same route again is the host's resend: nothing changes, not the
+ * target reached nor the count; a different one replaces it. */
+static void test_resent_route(void **state)
+{
+    static const int32_t first[] = { 20, 0, 900, 0 };
+    (void)state;
+    start_at(0.0, 0.0, 0.0);
+    send_route(2u, first, 0, 0);
+    steps(PICK_PERIODS + 20u);
+    assert_int_equal(W.index, 1u);
+    send_route(2u, first, 0, 0);
+    step();
+    assert_int_equal(W.routes, 1u);
+    assert_int_equal(W.index, 1u);
+    assert_int_equal(W.state, WAYPOINT_GO);
+    send_route(2u, first, 0, 1);   /* another drop-off: another route */
+    step();
+    assert_int_equal(W.routes, 2u);
+    assert_int_equal(W.index, 0u);
+}
+
+/* Blocked within reach_mm (45) of the target (by a wall, a robot beside
+ * it): picked up from there; blocked farther away: avoided. */
+static void test_blocked_within_reach(void **state)
+{
+    static const int32_t near[] = { 40, 0 }, far[] = { 60, 0 };
+    (void)state;
+    start_at(0.0, 0.0, 0.0);
+    send_route(1u, near, 0, 0);
+    H.proximity[0] = 2000u;
+    step();
+    assert_int_equal(W.state, WAYPOINT_PICK);
+    assert_int_equal(W.oae_count, 0u);
+    assert_true(H.left == 0 && H.right == 0);
+    steps(PICK_PERIODS + 1u);
+    assert_int_equal(W.picks, 1u);
+
+    start_at(0.0, 0.0, 0.0);
+    send_route(1u, far, 0, 0);
+    H.proximity[0] = 2000u;
+    step();
+    assert_int_equal(W.state, WAYPOINT_AVOID);
+    assert_int_equal(W.oae_count, 1u);
 }
 
 /* ------------------------------------------------------------ pose */
@@ -786,6 +835,8 @@ int main(void)
         cmocka_unit_test(test_home_and_done),
         cmocka_unit_test(test_malformed_ignored),
         cmocka_unit_test(test_replaced_route),
+        cmocka_unit_test(test_resent_route),
+        cmocka_unit_test(test_blocked_within_reach),
         cmocka_unit_test(test_no_pose_stops),
         cmocka_unit_test(test_obstacle_avoidance),
         cmocka_unit_test(test_closed_loop),

@@ -15,6 +15,9 @@ void waypoint_default_params(waypoint_params_t *params)
      * 35 (body) + 10 (target) + 10 (pick_reach) = 55 mm of the robot's:
      * 30 mm leaves 25 mm for the tracker's error. */
     params->arrive_mm = 30u;
+    /* Blocked this close, the robot is still within the 55 mm the targets
+     * task reaches, with 10 mm for the tracker's error. */
+    params->reach_mm = 45u;
     params->home_radius_mm = 100u;      /* RepAtt's unloading radius */
     /* At 0.10 m/s a fix 300 ms old is 30 mm (arrive_mm) behind the robot;
      * it also keeps the steering loop's delay where it stays damped (about
@@ -122,12 +125,29 @@ static uint8_t travel_state(const waypoint_t *self)
 
 /* ------------------------------------------------------------ messages */
 
+/* 1 when two routes have the same targets and drop-off (field by field:
+ * route_t has padding). */
+static uint8_t same_route(const route_t *a, const route_t *b)
+{
+    uint8_t i;
+    if (a->n != b->n || a->drop.x_mm != b->drop.x_mm || a->drop.y_mm != b->drop.y_mm) {
+        return 0u;
+    }
+    for (i = 0u; i < a->n && i < ROUTE_MAX_TARGETS; i++) {
+        if (a->target[i].x_mm != b->target[i].x_mm || a->target[i].y_mm != b->target[i].y_mm) {
+            return 0u;
+        }
+    }
+    return 1u;
+}
+
 /* One host message this period: a route starts (or replaces) the route;
  * anything malformed is counted and changes nothing. */
 static void take_message(waypoint_t *self, hal_t *hal)
 {
     uint8_t buf[HAL_HOST_MSG_MAX];
     uint8_t len = 0u;
+    route_t next;
     hal_status_t s = hal_host_receive(hal, buf, (uint8_t)sizeof buf, &len);
     if (s == HAL_ERR_RANGE) {
         /* Longer than any host message may be: it stays in the queue and
@@ -138,10 +158,14 @@ static void take_message(waypoint_t *self, hal_t *hal)
     if (s != HAL_OK) {
         return;   /* none waiting, or no host link */
     }
-    if (len > sizeof buf || route_msg_decode(buf, len, &self->route) != ROUTE_MSG_OK) {
+    if (len > sizeof buf || route_msg_decode(buf, len, &next) != ROUTE_MSG_OK) {
         self->bad_msgs++;
         return;
     }
+    if (self->routes > 0u && same_route(&next, &self->route) != 0u) {
+        return;   /* the host's resend of the route being followed */
+    }
+    self->route = next;
     self->routes++;
     self->index = 0u;
     self->timer = 0u;
@@ -205,33 +229,46 @@ static void start_avoidance(waypoint_t *self, hal_t *hal, uint8_t where)
     }
 }
 
-/* GO and HOME: avoid, stop without a fix, arrive, or steer. */
+static void start_pick(waypoint_t *self, hal_t *hal)
+{
+    self->state = WAYPOINT_PICK;
+    self->timer = 1u;   /* this period is the first stood still */
+    stop(hal);
+}
+
+/* GO and HOME: avoid (or, blocked within reach of the target, pick it up
+ * from there), stop without a fix, arrive, or steer. */
 static void travel(waypoint_t *self, hal_t *hal)
 {
     const waypoint_params_t *p = &self->params;
-    const route_point_t *goal;
+    const route_point_t *goal = (self->index < self->route.n) ? &self->route.target[self->index]
+                                                              : &self->route.drop;
     hal_pose_t pose;
-    int32_t dx, dy;
+    int32_t dx = 0, dy = 0;
     uint8_t where = avoid_obstacle(hal, p->avoid_enter);
+    uint8_t fix = usable_pose(self, hal, &pose);
+    if (fix != 0u) {
+        dx = goal->x_mm - bound_mm(pose.x_mm);
+        dy = goal->y_mm - bound_mm(pose.y_mm);
+    }
     if (where != AVOID_NONE) {
+        if (fix != 0u && self->state == WAYPOINT_GO && within_mm(dx, dy, p->reach_mm) != 0u) {
+            start_pick(self, hal);
+            return;
+        }
         start_avoidance(self, hal, where);
         return;
     }
-    if (usable_pose(self, hal, &pose) == 0u) {
+    if (fix == 0u) {
         self->has_pose = 0u;
         self->no_pose++;
         stop(hal);
         return;
     }
     self->has_pose = 1u;
-    goal = (self->index < self->route.n) ? &self->route.target[self->index] : &self->route.drop;
-    dx = goal->x_mm - bound_mm(pose.x_mm);
-    dy = goal->y_mm - bound_mm(pose.y_mm);
     self->bearing_mrad = (int16_t)odo_wrap_mrad((int32_t)odo_atan2_mrad(dy, dx) - pose.heading_mrad);
     if (self->state == WAYPOINT_GO && within_mm(dx, dy, p->arrive_mm) != 0u) {
-        self->state = WAYPOINT_PICK;
-        self->timer = 1u;   /* this period is the first stood still */
-        stop(hal);
+        start_pick(self, hal);
         return;
     }
     if (self->state == WAYPOINT_HOME && within_mm(dx, dy, p->home_radius_mm) != 0u) {
