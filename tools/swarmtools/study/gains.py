@@ -4,6 +4,7 @@ reduced to fit one machine, and the paper's scoring for the full sweep.
     .venv/bin/python -m swarmtools.study.gains [--out DIR] [--top 20]
         [--n0q1-reps 10] [--backend slurm ...]                 (make study-gains)
     .venv/bin/python -m swarmtools.study.gains --score SWEEP_DIR   (the full sweep's ranking)
+    .venv/bin/python -m swarmtools.study.gains --estimate 120      (the full sweep's core-hours)
 
 The paper runs all 900 gain combinations (a_m, r_m in 1, 2, 4, 6, 8, 10;
 a_d, r_d in 1, 10, 50, 100, 1000) in its 10 worlds, N0-Q1 and N100-Q40,
@@ -32,6 +33,7 @@ Exit status: 0 done; 1 a run failed; 2 bad arguments; 130 interrupted.
 from __future__ import annotations
 
 import argparse
+import itertools
 import math
 import sys
 import time
@@ -49,6 +51,7 @@ from swarmtools.sweep.spec import Axis, SweepError
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 SCREEN_FILE = REPO_ROOT / "studies" / "repatt_gains_screen.yaml"
+FULL_FILE = REPO_ROOT / "studies" / "repatt_gains.yaml"
 GAIN_KEYS = tuple(f"robots.0.params.{g}" for g in ("a_m", "a_d", "r_m", "r_d"))
 QUEUE, NOISE = "robots.0.params.queue_size", "sound.noise"
 TIME = "time_capped_s"
@@ -217,6 +220,37 @@ def score_full(sweep_dir: Path) -> int:
     return 0
 
 
+def estimate(a: argparse.Namespace, sim: Path, out: Path) -> int:
+    """The full sweep's cost measured here: `a.estimate` of its 18,000
+    configurations (world x arm x gains) drawn uniformly (fixed seed), run
+    once each (seed 1) at the scenarios' own cap; mean wall time per run x
+    the sweep's 540,000 runs, with a 95 % bootstrap interval."""
+    full = sweep_spec.load(FULL_FILE, sweep_plan.seed_max(sim))
+    configs = [dict(kv for part in parts for kv in part.items())
+               for parts in itertools.product(*(ax.combos for ax in full.axes))]
+    pick_ = np.random.default_rng(16).choice(len(configs), size=min(a.estimate, len(configs)), replace=False)
+    keys = list(configs[0])
+    sw = sweep_spec.Sweep(path=full.path, name="study_repatt_gains_estimate", scenario=full.scenario,
+                          fixed=list(full.fixed), axes=[Axis("list", keys, [configs[i] for i in sorted(pick_)], 0)],
+                          seeds=[1], metrics=full.metrics, keep_timeseries=False, key_lines=dict(full.key_lines))
+    rc = run_sweep(sw, a, sim, out / "estimate", "study_gains")
+    if rc is None or rc != 0:
+        return rc or 0
+    rows = read_rows(out / "estimate" / "results.csv")
+    wall = np.array([float(r["wall_s"]) for r in rows if r["status"] == "ok"])
+    total = len(configs) * len(full.seeds)
+    boot = np.random.default_rng(0).choice(wall, size=(4000, wall.size)).mean(axis=1)
+    ch = wall.mean() * total / 3600
+    lo, hi = (float(np.percentile(boot, q)) * total / 3600 for q in (2.5, 97.5))
+    md = ["# The full gains sweep's cost, measured", "",
+          f"{wall.size} of its {len(configs)} configurations, one run each on this machine: mean {wall.mean():.2f} s "
+          f"a run (median {np.median(wall):.2f} s, max {wall.max():.1f} s); x {total} runs = **{ch:.0f} core-hours** "
+          f"[95 % CI {lo:.0f}, {hi:.0f}].", ""]
+    write_results(out / "estimate", md, {"runs": int(wall.size), "mean_wall_s": float(wall.mean()),
+                                          "core_hours": ch, "ci": [lo, hi], "total_runs": total}, "study_gains")
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.gains", description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_gains"))
@@ -225,6 +259,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--n0q1-reps", type=int, default=10,
                     help="seeds of N0-Q1 for the raced combinations (0: none; default 10)")
     ap.add_argument("--score", metavar="SWEEP_DIR", help="only rank a full sweep's results (repatt_gains.yaml)")
+    ap.add_argument("--estimate", type=int, metavar="N", default=0,
+                    help="only measure the full sweep's core-hours from N of its configurations run once")
     ap.add_argument("--sim", default=str(REPO_ROOT / "build" / "swarmsim"))
     ap.add_argument("--jobs", type=int, default=0)
     sweep_cli.add_backend_options(ap)
@@ -238,6 +274,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if a.top < 1 or a.race_reps < 2 or a.n0q1_reps < 0:
             raise SweepError("--top must be at least 1, --race-reps at least 2, --n0q1-reps at least 0")
         sim, out = Path(a.sim), Path(a.out)
+        if a.estimate:
+            return estimate(a, sim, out)
         base = sweep_spec.load(SCREEN_FILE, sweep_plan.seed_max(sim))
         md = ["# Seed 002's gains study, reduced (Figures 2a, 2b)", "", f"Command: `{command}`.", ""]
         all_rows: dict[str, list[dict[str, str]]] = {}
