@@ -15,10 +15,19 @@ study-faults: deps $(BUILD)/swarmsim
 
 # Seed 002's study (swarmtools.study.repatt): Figures 3, 2c and 4 of the paper
 # at e-puck scale (studies/repatt_*.yaml), through the sweep engine.
-# STUDY_ARGS=--quick: 3 seeds a cell; --figures fig3 for one figure.
+# STUDY_ARGS=--quick: 3 seeds a cell; --figures worlds for one sweep;
+# --figures worlds,alns adds Figure 3's ALNS bars (plans, then the routes run).
 .PHONY: study-repatt
 study-repatt: deps $(BUILD)/swarmsim
 	$(PYTHON) -m swarmtools.study.repatt --sim $(BUILD)/swarmsim $(STUDY_ARGS)
+
+# Seed 002's gains study, reduced to one machine (swarmtools.study.gains):
+# Figures 2a/2b: screen the 900 combinations, confirm 40, race 20 over 30
+# seeds, in One100m and Uniform100m.  STUDY_ARGS=--estimate 120 measures the
+# full sweep's core-hours (studies/repatt_gains.yaml; --backend slurm for it).
+.PHONY: study-gains
+study-gains: deps $(BUILD)/swarmsim
+	$(PYTHON) -m swarmtools.study.gains --sim $(BUILD)/swarmsim $(STUDY_ARGS)
 
 # Seed 003's study (swarmtools.study.eaipp): Figures 10-17 of the paper
 # (studies/eaipp_*.yaml: maze, distance, obstacles, bearing, loss, bias),
