@@ -18,6 +18,7 @@
 #include "version.h"
 #include "core/runner.h"
 #include "core/scenario.h"
+#include "core/camera_render.h"
 #include "core/sim_video.h"
 #include "core/telemetry.h"
 
@@ -109,6 +110,11 @@ static void usage(FILE *f)
 "  --frames N      write a top-down PNG every N steps, and the last frame,\n"
 "                  to DIR/run_<seed>/frames/ (default 0: none)\n"
 "  --frame-px N    width of the pictures in pixels (default 800)\n"
+"  --camera-frames ROBOT  save robot ROBOT's (id, 0-based) camera frames, its\n"
+"                  detected blobs drawn on them, to\n"
+"                  DIR/run_<seed>/camera/robot_<ROBOT>/frame_<step>.png (with\n"
+"                  camera.model geometric the frame is rendered for the picture\n"
+"                  only, and the boxes are the model's blobs)\n"
 "  --lcm URL       LCM telemetry (lcm_types/: RUN_INFO, TELEMETRY_SCHEMA,\n"
 "                  SWARM_STATE, ROBOT_STATE, SWARM_EVENT, RUN_SUMMARY, SCENE,\n"
 "                  TASK_DRAWING) to an LCM provider URL, e.g.\n"
@@ -175,7 +181,8 @@ int main(int argc, char **argv)
     const char *path = NULL, *out_dir = NULL;
     scenario_override_t sets[MAX_SETS];
     size_t nsets = 0;
-    uint64_t seed = 0, reps = 1, threads = 0, steps = 0, frames = 0, frame_px = 800;
+    uint64_t seed = 0, reps = 1, threads = 0, steps = 0, frames = 0, frame_px = 800, camera_robot = 0;
+    int have_camera_robot = 0;
     int have_seed = 0, have_steps = 0, quiet = 0, check_only = 0;
     outdir_mode_t out_mode = OUTDIR_NEW;
     telemetry_options_t telemetry;
@@ -230,6 +237,9 @@ int main(int argc, char **argv)
             have_steps = 1;
         } else if (!strcmp(a, "--frames")) {
             bad = parse_uint(a, v, 0, UINT64_C(1000000000), &frames);
+        } else if (!strcmp(a, "--camera-frames")) {
+            bad = parse_uint(a, v, 0, UINT64_C(100000), &camera_robot);
+            have_camera_robot = 1;
         } else if (!strcmp(a, "--frame-px")) {
             bad = parse_uint(a, v, 16, 8192, &frame_px);
         } else if (!strcmp(a, "--lcm")) {
@@ -292,6 +302,15 @@ int main(int argc, char **argv)
         free(sc);
         return 2;
     }
+    if (have_camera_robot && camera_robot >= scenario_robot_count(sc)) {
+        fprintf(stderr, "swarmsim: --camera-frames: robot %" PRIu64 " is not in the scenario (ids 0 to %u)\n",
+                camera_robot, scenario_robot_count(sc) - 1u);
+        free(sc);
+        return 2;
+    }
+    if (sc->camera.model == CAMERA_RENDERED || have_camera_robot) {
+        camera_render_set_threads();   /* before any OSMesa context (camera_render.h) */
+    }
     if (telemetry.realtime > 0.0 && !telemetry.enabled) {
         fprintf(stderr, "swarmsim: --realtime paces live telemetry for watching; with --lcm off there "
                 "is nothing to watch (drop one of them)\n");
@@ -337,6 +356,8 @@ int main(int argc, char **argv)
                         .override_count = nsets, .scenario_hash = summary_text_hash(text, text_len) },
         .stop = &stop_signal,
         .video = video,
+        .camera_frames = have_camera_robot,
+        .camera_robot = (uint32_t)camera_robot,
     };
     catch_stop_signals();
     int rc = runner_run(&opt, err);

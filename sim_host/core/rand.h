@@ -21,7 +21,8 @@ enum {
     RAND_FAULTS = 8,    /**< which robots fail, when, and their faults' noise */
     RAND_SOUND = 9,     /**< eq 4's per-pair noise of the sound a robot hears */
     RAND_OBSTACLES = 10, /**< the random cylinders' layout (scenario random_cylinders) */
-    RAND_WHEEL_BIAS = 11 /**< each robot's wheel biases (wheels.bias_sd): once a run, or every step (bias_per_step) */
+    RAND_WHEEL_BIAS = 11, /**< each robot's wheel biases (wheels.bias_sd): once a run, or every step (bias_per_step) */
+    RAND_CAMERA = 12    /**< its camera's frame phase and pixel noise (camera.fps > 0, camera.noise) */
 };
 
 /** Seeds a stream from the run seed, an index (robot id) and a purpose. */

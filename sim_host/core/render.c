@@ -560,6 +560,9 @@ typedef struct png_job {
     const char *path;  /**< the final path, for messages */
     char *err;
     int io_errno;      /**< errno of a failed write, else 0 */
+    const render_ctx_t *ctx;  /**< the picture: a context's buffer, or */
+    const uint8_t *rgb;       /**< an RGB image, top row first (ctx NULL) */
+    int w, h;
 } png_job_t;
 
 static void png_error_cb(png_structp png, png_const_charp msg)
@@ -613,8 +616,9 @@ static void png_row(const render_ctx_t *ctx, int y)
 }
 
 /** Encodes the picture to job->fp.  0 or -1 with job->err set. */
-static int png_encode(const render_ctx_t *ctx, png_job_t *job)
+static int png_encode(png_job_t *job)
 {
+    const render_ctx_t *ctx = job->ctx;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, job,
                                               png_error_cb, png_warning_cb);
     if (!png) {
@@ -634,24 +638,29 @@ static int png_encode(const render_ctx_t *ctx, png_job_t *job)
         return -1;
     }
     png_set_write_fn(png, job, png_write_cb, png_flush_cb);
-    png_set_IHDR(png, info, (png_uint_32)ctx->w, (png_uint_32)ctx->h, 8,
+    png_set_IHDR(png, info, (png_uint_32)job->w, (png_uint_32)job->h, 8,
                  PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     /* Flat colours compress well even at a fast level. */
     png_set_compression_level(png, 3);
     png_write_info(png, info);
-    for (int y = 0; y < ctx->h; y++) {
-        png_row(ctx, y);
-        png_write_row(png, ctx->row);
+    for (int y = 0; y < job->h; y++) {
+        if (ctx) {
+            png_row(ctx, y);
+            png_write_row(png, ctx->row);
+        } else {
+            png_write_row(png, (png_bytep)(job->rgb + (size_t)y * (size_t)job->w * 3));
+        }
     }
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     return 0;
 }
 
-/** Writes the picture to path atomically (path.tmp, then rename). */
-static int write_png_atomic(const render_ctx_t *ctx, const char *path,
-                            char *err)
+/** Writes the picture (ctx's, or rgb when ctx is NULL) to path atomically
+ *  (path.tmp, then rename). */
+static int write_png_atomic(const render_ctx_t *ctx, const uint8_t *rgb,
+                            int w, int h, const char *path, char *err)
 {
     char ebuf[128];
     size_t n = strlen(path);
@@ -671,8 +680,8 @@ static int write_png_atomic(const render_ctx_t *ctx, const char *path,
         free(tmp);
         return -1;
     }
-    png_job_t job = {fp, path, err, 0};
-    int rc = png_encode(ctx, &job);
+    png_job_t job = {fp, path, err, 0, ctx, rgb, w, h};
+    int rc = png_encode(&job);
     if (rc == 0 && (fflush(fp) != 0 || ferror(fp))) {
         int e = errno ? errno : EIO;
         set_err(err, "render: cannot write '%s': %s", path,
@@ -753,7 +762,19 @@ int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
     }
     if (render_draw(ctx, scene, png_path, err) != 0)
         return -1;
-    return write_png_atomic(ctx, png_path, err);
+    return write_png_atomic(ctx, NULL, ctx->w, ctx->h, png_path, err);
+}
+
+int render_write_rgb_png(const uint8_t *rgb, int width_px, int height_px,
+                         const char *png_path, char *err)
+{
+    if (!rgb || !png_path || !*png_path || width_px < 1 || height_px < 1 ||
+        width_px > RENDER_MAX_PX || height_px > RENDER_MAX_PX) {
+        set_err(err, "render: %s", !rgb ? "no image" : !png_path || !*png_path
+                                   ? "empty PNG path" : "image size out of range");
+        return -1;
+    }
+    return write_png_atomic(NULL, rgb, width_px, height_px, png_path, err);
 }
 
 int render_scene_rgb(render_ctx_t *ctx, const render_scene_t *scene,

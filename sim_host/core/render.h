@@ -143,6 +143,15 @@ int render_scene_png(render_ctx_t *ctx, const render_scene_t *scene,
                      const char *png_path, char *err);
 
 /**
+ * Writes `rgb` (width x height x 3 bytes, 8-bit RGB, the top row first; 1 to
+ * RENDER_MAX_PX pixels a side) to `png_path` as render_scene_png writes its
+ * pictures: atomically, through "<png_path>.tmp".  Returns 0, or -1 with a
+ * message in `err` (may be NULL).
+ */
+int render_write_rgb_png(const uint8_t *rgb, int width_px, int height_px,
+                         const char *png_path, char *err);
+
+/**
  * Draws `scene` as render_scene_png does into `rgb`: width x height x 3
  * bytes, 8-bit RGB, the top row first (a raw video frame).  Returns 0, or
  * -1 with a message in `err` (may be NULL).

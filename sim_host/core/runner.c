@@ -152,6 +152,15 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         sim_destroy(sim);
         return;
     }
+    if (opt->camera_frames) {
+        snprintf(path, sizeof path, "%s/camera/robot_%u", dir, opt->camera_robot);
+        if (outdir_mkdirs(path) != 0 || sim_camera_record(sim, opt->camera_robot, path) != 0) {
+            fail(job, "%s: cannot create: %s", path, strerror(errno));
+            sim_destroy(sim);
+            outdir_remove_tree(dir);
+            return;
+        }
+    }
     snprintf(path, sizeof path, "%s/" SUMMARY_SCENARIO_COPY, dir);
     if (write_text(path, opt->scenario_text) != 0) {
         fail(job, "%s: cannot write: %s", path, strerror(errno));
@@ -206,6 +215,10 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
             ok = 0;
         }
         sim_step(sim);
+        if (sim_camera_error(sim)) {   /* a renderer or a camera picture failed */
+            fail(job, "%s: %s", sc->path, sim_camera_error(sim));
+            ok = 0;
+        }
         telemetry_step(tel, sim);
         atomic_fetch_add(&job->steps_done, 1);
     }
@@ -343,6 +356,10 @@ static void identity(const run_options_t *opt, char *buf, size_t len)
              " frames=%ux%u telemetry=%s/%g/%g", opt->provenance.scenario_hash, opt->seed, opt->reps,
              opt->steps, opt->frames_every, opt->frame_px, !t->enabled ? "off" : t->url ? "url" : "log",
              t->robot_hz, t->swarm_hz);
+    if (opt->camera_frames) {   /* only then: earlier folders keep their identity */
+        size_t n = strlen(buf);
+        snprintf(buf + n, len - n, " camera=%u", opt->camera_robot);
+    }
 }
 
 /* --resume: the runs an earlier invocation finished, read back. */
@@ -481,8 +498,8 @@ int runner_run(const run_options_t *opt, char err[512])
         for (uint32_t r = 0; r < opt->reps; r++) steps += (double)job.results[r].steps;
         double robot_steps = steps * scenario_robot_count(opt->scenario);
         double sim_time = steps * opt->scenario->control_period_ms / 1000.0;
-        printf("outputs: %s/ (run_<seed>/summary.json, scenario.yaml, timeseries.csv%s%s)\n", opt->out_dir,
-               opt->frames_every ? ", frames/*.png" : "",
+        printf("outputs: %s/ (run_<seed>/summary.json, scenario.yaml, timeseries.csv%s%s%s)\n", opt->out_dir,
+               opt->frames_every ? ", frames/*.png" : "", opt->camera_frames ? ", camera/robot_<id>/*.png" : "",
                opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
         fprintf(stderr, "swarmsim: %u run(s), %.0f steps x %u robots in %.3f s wall on %u thread(s): "
                 "%.0f robot-steps/s, %.0fx real time\n", opt->reps, steps,

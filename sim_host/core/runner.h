@@ -11,6 +11,7 @@
  *   run_<seed>/scenario.yaml    the same effective scenario, with the run
  *   run_<seed>/timeseries.csv   one row every output.timeseries_every steps
  *   run_<seed>/frames/frame_N.png  with frames_every > 0 (and the last frame)
+ *   run_<seed>/camera/robot_<id>/frame_N.png  with camera_frames
  *   run_<seed>/telemetry.lcmlog LCM telemetry (telemetry.h), unless it goes
  *                               to an LCM URL or is off
  *   summary.json                with reps > 1, or when stopped early: mean
@@ -51,6 +52,8 @@ typedef struct run_options {
     /** Set (to the signal number) by a signal handler to stop early; NULL: never. */
     volatile sig_atomic_t *stop;
     video_options_t video;  /**< path NULL: no video; else the first repetition is filmed */
+    int camera_frames;      /**< non-zero: camera_robot's frames to run_<seed>/camera/robot_<id>/ */
+    uint32_t camera_robot;
 } run_options_t;
 
 enum {

@@ -46,6 +46,8 @@
 static const char *const shape_choices[] = { "cylinder", "box", NULL };
 static const char *const colour_choices[] = { "none", "red", "green", "blue", NULL };
 static const char *const placement_choices[] = { "rectangle", "circle", "ring", "grid", "poses", NULL };
+/* The names of camera_model_t, in its order. */
+const char *const scenario_camera_model_names[] = { "geometric", "rendered", NULL };
 
 static const param_desc_t top_params[] = {
     { .key = "name", PARAM_STRING_FIELD(SC, name),
@@ -201,6 +203,13 @@ static const param_desc_t camera_params[] = {
       .doc = "the robot's frame width, pixels" },
     { .key = "height_px", PARAM_FIELD(SC, camera.height_px, uint16_t), .min = 1, .max = 480,
       .doc = "the robot's frame height, pixels" },
+    { .key = "model", PARAM_ENUM_FIELD(SC, camera.model, scenario_camera_model_names),
+      .doc = "geometric (fast: blobs from angles) or rendered (OSMesa frame through hal/blob_detect.c)" },
+    { .key = "fps", PARAM_FIELD(SC, camera.fps, float), .min = 0, .max = 1000,
+      .doc = "frames per second; blobs are a frame old and held until the next (0: fresh every "
+             "control step; default 4.3 rendered, 0 geometric)" },
+    { .key = "noise", PARAM_FIELD(SC, camera.noise, float), .min = 0, .max = 255,
+      .doc = "rendered: Gaussian sd added to each pixel's 8-bit channels, counts" },
     PARAM_END
 };
 
@@ -488,6 +497,8 @@ void scenario_defaults(scenario_t *out)
     out->camera.range = 0.6f;
     out->camera.width_px = EPUCK_CAMERA_WIDTH_PX;
     out->camera.height_px = EPUCK_CAMERA_HEIGHT_PX;
+    out->camera.model = CAMERA_GEOMETRIC;
+    out->camera.fps = -1.0f;   /* the model's own: scenario_camera_fps */
     out->ircom.range = 0.25f;
     out->ircom.loss = 0.1f;
     out->ircom.bearing_noise = 5.0f;
@@ -1009,6 +1020,39 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
     return 0;
 }
 
+/* The rendered camera is a pinhole camera over a frame the detector takes. */
+static int check_camera(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+{
+    if (sc->camera.model != CAMERA_RENDERED) {
+        return 0;
+    }
+    const char *key = NULL;
+    if (sc->camera.fov > SCENARIO_CAMERA_PINHOLE_MAX_DEG) {
+        key = "camera.fov";
+    } else if (sc->camera.width_px > SCENARIO_CAMERA_RENDERED_MAX_PX) {
+        key = "camera.width_px";
+    } else if (sc->camera.height_px > SCENARIO_CAMERA_RENDERED_MAX_PX) {
+        key = "camera.height_px";
+    }
+    if (key == NULL) {
+        return 0;
+    }
+    const ynode_t *node = schema_find(root, key);
+    return schema_fail(ld, node != NULL ? node : root, key,
+                       "camera.model rendered needs a pinhole camera (fov <= %g deg) and a frame of at "
+                       "most %u x %u pixels (hal/blob_detect.c's limit)",
+                       (double)SCENARIO_CAMERA_PINHOLE_MAX_DEG, SCENARIO_CAMERA_RENDERED_MAX_PX,
+                       SCENARIO_CAMERA_RENDERED_MAX_PX);
+}
+
+float scenario_camera_fps(const scenario_t *sc)
+{
+    if (sc->camera.fps >= 0.0f) {
+        return sc->camera.fps;
+    }
+    return sc->camera.model == CAMERA_RENDERED ? SCENARIO_CAMERA_EPUCK_FPS : 0.0f;
+}
+
 static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
 {
     if (sc->duration * 1000.0 < sc->control_period_ms) {
@@ -1023,7 +1067,7 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
                            "%u messages a period do not fit in %u slots (ircom.slots)",
                            sc->ircom.tx_per_period, sc->ircom.slots);
     }
-    if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0
+    if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0 || check_camera(ld, root, sc) != 0
         || check_inside(ld, root, sc) != 0 || check_host_messages(ld, root, sc) != 0) {
         return -1;
     }

@@ -42,6 +42,14 @@
  *  all-round stand-in, a panoramic (cylindrical) image centred ahead with
  *  its lens on the robot's axis (sensors.c). */
 #define SCENARIO_CAMERA_PINHOLE_MAX_DEG 179.0f
+/** The rendered camera's largest frame side, pixels (hal/blob_detect.h's
+ *  BLOB_MAX_WIDTH and BLOB_MAX_HEIGHT). */
+#define SCENARIO_CAMERA_RENDERED_MAX_PX 160u
+/** Frames per second of the e-puck image's camera (40 x 20 RGB565: the
+ *  sensor's 640 x 320 window subsampled 16 x 16): 4.3 fps, the rate GCtronic's
+ *  e-puck library gives for 16 x 16 subsampling in RGB565 (camera/fast_2_timer/
+ *  e_po3030k.h, "Performances"; the PO6030K driver quotes the same). */
+#define SCENARIO_CAMERA_EPUCK_FPS 4.3f
 #define SCENARIO_SEED_MAX UINT64_C(9007199254740991)
 
 struct task_def;
@@ -130,6 +138,15 @@ typedef enum sound_silent {
 
 /** The names of sound_silent_t (NULL-terminated). */
 extern const char *const scenario_sound_silent_names[];
+
+/** How the camera's blobs are made (camera.model). */
+typedef enum camera_model {
+    CAMERA_GEOMETRIC = 0,        /**< from the objects' angles (sensors.c): fast, the default */
+    CAMERA_RENDERED = 1          /**< an OSMesa frame through hal/blob_detect.c (camera_render.c) */
+} camera_model_t;
+
+/** The names of camera_model_t (NULL-terminated). */
+extern const char *const scenario_camera_model_names[];
 
 /** A message the host (a planner, an operator's PC) sends one robot:
  *  hal_host_receive gives it from the first control step at or after `at`.
@@ -233,6 +250,10 @@ typedef struct scenario {
                                         (panoramic) stand-in, up to 360 */
         float range;               /**< objects farther away are not seen, m */
         uint16_t width_px, height_px; /**< the robot's frame, pixels (blob sizes refer to it) */
+        int model;                 /**< camera_model_t */
+        float fps;                 /**< frames per second, 0: every control step; < 0 (the
+                                        default): the model's own (scenario_camera_fps) */
+        float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
     } camera;
 
     struct {
@@ -340,6 +361,11 @@ int scenario_write_effective(const char *path, const scenario_override_t *overri
 
 /** Every robot of every group. */
 uint32_t scenario_robot_count(const scenario_t *sc);
+
+/** The camera's frame rate, fps: camera.fps, or when not given the model's
+ *  default (SCENARIO_CAMERA_EPUCK_FPS rendered; 0, every step, geometric:
+ *  the behaviour the golden hashes pin). */
+float scenario_camera_fps(const scenario_t *sc);
 
 /** Non-zero when a rectangle of half-extents hx, hy (m) centred on (x, y)
  *  lies inside the arena (to 1 um): the check of objects, lights and the

@@ -324,6 +324,7 @@ void sim_destroy(sim_t *sim)
     }
     world_destroy(sim);
     faults_destroy(sim);
+    camera_destroy(sim);
     grid_free(&sim->robot_grid);
     grid_free(&sim->obstacle_grid);
     for (uint32_t g = 0; sim->ctrl_blocks && g < sim->sc->group_count; g++) {

@@ -122,6 +122,20 @@ struct robot_link;
  *  telemetry (robot_telemetry.enabled), else NULL. */
 const struct robot_link *sim_robot_link(const sim_t *sim, uint32_t i);
 
+/* ---------------------------------------------------------------- camera */
+
+/** Saves robot `robot`'s camera frames from now on as PNG pictures with
+ *  the blobs of each drawn on them, in folder `dir` (which must exist):
+ *  frame_<step>.png, <step> the control step it was captured at.  With the
+ *  geometric model the frame is rendered for the picture only (the blobs
+ *  drawn are the model's); results are the same with and without it.
+ *  Returns 0, or -1 when `robot` is not a robot or `dir` too long. */
+int sim_camera_record(sim_t *sim, uint32_t robot, const char *dir);
+
+/** NULL, or what went wrong with the camera (a renderer that could not be
+ *  made, a picture that could not be written): the run must stop. */
+const char *sim_camera_error(const sim_t *sim);
+
 /** FNV-1a hash of every robot's pose bits and counters: equal hashes mean
  *  bit-identical runs. */
 uint64_t sim_state_hash(const sim_t *sim);

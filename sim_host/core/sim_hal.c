@@ -53,7 +53,7 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
 {
     sim_robot_t *r = robot(hal);
     if (r->camera_stamp != stamp(hal)) {
-        r->blob_count = faults_camera_blind(hal->sim, hal->index) ? 0 : sensors_camera(hal->sim, hal->index, r->blobs);
+        camera_update(hal->sim, hal->index);   /* a frame only when one is due */
         r->camera_stamp = stamp(hal);
     }
     uint8_t n = r->blob_count < max ? r->blob_count : max;

@@ -41,6 +41,14 @@ typedef struct sim_robot {
     uint16_t ambient[HAL_IR_COUNT];
     hal_blob_t blobs[HAL_MAX_BLOBS];
     uint8_t blob_count;
+    /* Camera frames (camera.c), with camera.fps > 0: `blobs` come from the
+     * last complete frame; `cam_next` from the one being captured. */
+    uint8_t cam_ready;             /**< cam_phase_s and cam_rand are drawn */
+    uint8_t cam_next_count;
+    int64_t cam_capture;           /**< index of the frame cam_next holds */
+    double cam_phase_s;            /**< when its frame 0 began, s */
+    hal_blob_t cam_next[HAL_MAX_BLOBS];
+    sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
     int8_t pose_status;            /**< of the tracker this step */
     hal_pose_t pose;
     uint32_t host_next;            /**< host.messages: where its next one may be */
@@ -185,6 +193,8 @@ struct sim {
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;
 
+    struct camera_state *camera;   /**< camera.c's renderer and recorder (NULL until used) */
+
     uint64_t sound_stamp;          /**< the sound field is this step's when == step + 1 */
     vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
@@ -218,6 +228,13 @@ void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
 void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
 uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
 
+
+/* camera.c: the camera's frames, either model */
+/** Brings robot i's blobs (robots[i].blobs, blob_count) up to this step:
+ *  a new frame when one is due (hal_camera_blobs, once a step). */
+void camera_update(struct sim *sim, uint32_t i);
+/** Frees the renderer and the recorder. */
+void camera_destroy(struct sim *sim);
 
 /* ircom.c */
 void ircom_deliver(struct sim *sim);
