@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "blob_detect.h"
+#include "blob_detect_lut.h"
+#include "blob_detect_old.h"
 
 #define FW 40u
 #define FH 40u
@@ -644,6 +646,226 @@ static void test_random_frames_match_reference(void **state)
     }
 }
 
+/* ------------------------------------------------------------------ */
+/* The lookup-table detector against the classifier and the old detector. */
+
+/* The tables (blob_detect_lut.h) hold the classes of the default
+ * thresholds: were the defaults changed without regenerating them, the
+ * robot would silently fall back to the slower classifier path. */
+static void test_lut_thresholds_are_the_defaults(void **state)
+{
+    blob_detect_params_t p = blob_detect_default_params();
+    (void)state;
+    assert_int_equal(p.min_value, BLOB_LUT_MIN_VALUE);
+    assert_int_equal(p.min_margin, BLOB_LUT_MIN_MARGIN);
+    assert_int_equal(p.min_saturation_q8, BLOB_LUT_MIN_SATURATION_Q8);
+}
+
+/* Every one of the 65,536 pixel values: the tables, and blob_detect() on a
+ * one-pixel frame in both byte orders (the table path), give
+ * blob_classify_rgb565()'s class, which is still the old classifier's. */
+static void test_lut_every_pixel(void **state)
+{
+    blob_detect_params_t p = blob_detect_default_params();
+    uint32_t v;
+    (void)state;
+    p.min_pixels = 1u;
+    for (v = 0u; v < 65536u; v++) {
+        uint16_t px = (uint16_t)v;
+        uint8_t want = blob_classify_rgb565(&p, px);
+        uint8_t order;
+        assert_int_equal(want, old_classify_rgb565(&p, px));
+        assert_int_equal(blob_lut_class[blob_lut_row[px >> 5]][px & 0x1Fu], want);
+        for (order = 0u; order < 2u; order++) {
+            hal_blob_t out[HAL_MAX_BLOBS];
+            uint8_t n;
+            p.byte_order = order;
+            frame[order] = (uint8_t)(px >> 8);
+            frame[1u - order] = (uint8_t)(px & 0xFFu);
+            n = detect(&p, 1u, 1u, out, HAL_MAX_BLOBS);
+            assert_int_equal(n, want != HAL_COLOUR_NONE);
+            if (n != 0u) {
+                assert_int_equal(out[0].colour, want);
+                assert_int_equal(out[0].pixels, 1u);
+            }
+        }
+    }
+}
+
+static uint32_t old_seed;
+
+static uint32_t rnd32(void)
+{
+    old_seed = old_seed * 1664525u + 1013904223u;
+    return old_seed;
+}
+
+static uint16_t rnd(uint32_t m)
+{
+    return (uint16_t)((rnd32() >> 8) % m);
+}
+
+/* A pixel near the classifier's thresholds: a dominant channel and two
+ * others a random amount below it, so that margin and saturation decide. */
+static uint16_t near_threshold_pixel(void)
+{
+    uint8_t ch[3];
+    uint8_t m = (uint8_t)(40u + rnd(216u));
+    uint8_t k = (uint8_t)rnd(3u);
+    uint8_t i;
+    for (i = 0u; i < 3u; i++) {
+        uint16_t below = rnd(120u);
+        ch[i] = (i == k) ? m : (uint8_t)(below >= m ? 0u : (unsigned)m - below);
+    }
+    return blob_rgb565(ch[0], ch[1], ch[2]);
+}
+
+/* Fills a w x h frame with one of several kinds of content. */
+static void random_frame(uint16_t w, uint16_t h, uint8_t kind)
+{
+    size_t i, n = (size_t)w * h;
+    uint16_t x, y;
+    uint16_t palette[6];
+    palette[0] = blob_rgb565(255u, 0u, 0u);
+    palette[1] = blob_rgb565(0u, 255u, 0u);
+    palette[2] = blob_rgb565(0u, 0u, 255u);
+    palette[3] = blob_rgb565(128u, 128u, 128u);
+    palette[4] = near_threshold_pixel();
+    palette[5] = (uint16_t)rnd32();
+    for (i = 0u; i < n; i++) {
+        uint16_t v;
+        switch (kind) {
+        case 0: v = (uint16_t)(rnd32() >> 8); break;              /* noise */
+        case 1: v = near_threshold_pixel(); break;
+        default: v = palette[3]; break;
+        }
+        frame[2u * i] = (uint8_t)(v >> 8);
+        frame[2u * i + 1u] = (uint8_t)v;
+    }
+    if (kind == 2u) {           /* rectangles of palette colours */
+        unsigned r, nr = rnd(12u);
+        for (r = 0u; r < nr; r++) {
+            uint16_t x0 = rnd(w), y0 = rnd(h);
+            uint16_t rw = (uint16_t)(1u + rnd((uint32_t)(w - x0)));
+            uint16_t rh = (uint16_t)(1u + rnd((uint32_t)(h - y0)));
+            uint16_t v = palette[rnd(6u)];
+            for (y = y0; y < y0 + rh; y++) {
+                for (x = x0; x < x0 + rw; x++) {
+                    frame[2u * ((size_t)y * w + x)] = (uint8_t)(v >> 8);
+                    frame[2u * ((size_t)y * w + x) + 1u] = (uint8_t)v;
+                }
+            }
+        }
+    } else if (kind == 3u) {    /* stripes: many runs, many equal blobs */
+        uint16_t period = (uint16_t)(1u + rnd(4u));
+        for (x = 0u; x < w; x++) {
+            uint16_t v = ((x / period) % 2u == 0u) ? palette[x % 3u] : palette[3];
+            for (y = 0u; y < h; y++) {
+                frame[2u * ((size_t)y * w + x)] = (uint8_t)(v >> 8);
+                frame[2u * ((size_t)y * w + x) + 1u] = (uint8_t)v;
+            }
+        }
+    }
+}
+
+/* blob_detect() against the copy of the detector before the tables
+ * (tests/blob_detect_old.h) over random and structured frames and
+ * parameters: the same count, the same blobs, in the same order. */
+static void test_matches_old_detector(void **state)
+{
+    static const uint16_t sizes[][2] = {
+        { 40u, 20u }, { 40u, 40u }, { 120u, 1u }, { 1u, 1u }, { 160u, 160u }, { 160u, 1u }, { 1u, 160u }
+    };
+    unsigned trial;
+    (void)state;
+    old_seed = 2024u;
+    for (trial = 0u; trial < 6000u; trial++) {
+        blob_detect_params_t p = blob_detect_default_params();
+        blob_detect_work_t w_new, w_old;
+        hal_blob_t out_new[HAL_MAX_BLOBS], out_old[HAL_MAX_BLOBS];
+        uint16_t w, h;
+        uint8_t n_new, n_old, max, i;
+        uint8_t kind = (uint8_t)(trial % 4u);
+
+        if (trial % 3u == 0u) {
+            w = sizes[(trial / 3u) % 7u][0];
+            h = sizes[(trial / 3u) % 7u][1];
+            if (w == 160u && h == 160u && trial % 5u != 0u) {
+                w = 40u;   /* the largest frame now and then only: it is slow */
+            }
+        } else {
+            w = (uint16_t)(1u + rnd(BLOB_MAX_WIDTH));
+            h = (uint16_t)(1u + rnd(48u));
+        }
+        p.fov_mrad = (trial % 2u == 0u) ? BLOB_DEFAULT_FOV_MRAD : (uint16_t)(1u + rnd(BLOB_MAX_FOV_MRAD));
+        p.byte_order = (uint8_t)rnd(2u);
+        p.min_column_pixels = rnd(5u);
+        p.min_pixels = (trial % 5u == 0u) ? rnd(400u) : rnd(12u);
+        if (trial % 4u == 1u) {   /* other thresholds: the classifier path */
+            p.min_value = (uint8_t)rnd(256u);
+            p.min_margin = (uint8_t)rnd(256u);
+            p.min_saturation_q8 = (uint8_t)rnd(256u);
+            if (rnd(2u) == 0u) {
+                p.min_margin = (uint8_t)rnd(60u);
+                p.min_saturation_q8 = (uint8_t)rnd(100u);
+            }
+        }
+        max = (uint8_t)((trial % 7u == 0u) ? rnd(HAL_MAX_BLOBS + 2u) : HAL_MAX_BLOBS);
+        random_frame(w, h, kind);
+        memset(&w_new, 0x5A, sizeof w_new);
+        memset(&w_old, 0xA5, sizeof w_old);
+        n_new = blob_detect(&p, frame, w, h, &w_new, out_new, max);
+        n_old = old_blob_detect(&p, frame, w, h, &w_old, out_old, max);
+        assert_int_equal(n_new, n_old);
+        for (i = 0u; i < n_new; i++) {
+            assert_int_equal(out_new[i].colour, out_old[i].colour);
+            assert_int_equal(out_new[i].pixels, out_old[i].pixels);
+            assert_int_equal(out_new[i].bearing_mrad, out_old[i].bearing_mrad);
+            assert_int_equal(out_new[i].width_mrad, out_old[i].width_mrad);
+        }
+    }
+}
+
+/* The per-blob arithmetic (16-bit divisions and restoring divisions now)
+ * at its extremes: every run of columns of a full-height single-colour
+ * block, in the widest and tallest frame, at the widest and the default
+ * field of view, against the old 32-bit arithmetic. */
+static void test_blob_arithmetic_extremes_match_old(void **state)
+{
+    static const uint16_t fovs[] = { 1u, 2u, 977u, 1000u, 6282u, BLOB_MAX_FOV_MRAD };
+    static const uint16_t widths[] = { 1u, 2u, 3u, 40u, 159u, BLOB_MAX_WIDTH };
+    unsigned fi, wi;
+    (void)state;
+    for (fi = 0u; fi < sizeof fovs / sizeof fovs[0]; fi++) {
+        for (wi = 0u; wi < sizeof widths / sizeof widths[0]; wi++) {
+            uint16_t w = widths[wi], h = (w == BLOB_MAX_WIDTH) ? BLOB_MAX_HEIGHT : 3u;
+            uint16_t x0, x1;
+            for (x0 = 0u; x0 < w; x0 = (uint16_t)(x0 + 1u + x0 / 4u)) {
+                for (x1 = x0; x1 < w; x1 = (uint16_t)(x1 + 1u + (x1 - x0) / 3u)) {
+                    blob_detect_params_t p = blob_detect_default_params();
+                    blob_detect_work_t wk;
+                    hal_blob_t a[HAL_MAX_BLOBS], b[HAL_MAX_BLOBS];
+                    uint8_t na, nb, i;
+                    p.fov_mrad = fovs[fi];
+                    p.min_pixels = 1u;
+                    fill(w, h, GREY);
+                    rect(w, x0, 0u, (uint16_t)(x1 - x0 + 1u), h, RED, BLOB_BYTE_ORDER_BIG);
+                    /* a sloped edge: weighted centres off the column grid */
+                    rect(w, x0, 0u, 1u, (uint16_t)(h - h / 3u), GREY, BLOB_BYTE_ORDER_BIG);
+                    na = blob_detect(&p, frame, w, h, &wk, a, HAL_MAX_BLOBS);
+                    nb = old_blob_detect(&p, frame, w, h, &wk, b, HAL_MAX_BLOBS);
+                    assert_int_equal(na, nb);
+                    for (i = 0u; i < na; i++) {
+                        assert_int_equal(a[i].pixels, b[i].pixels);
+                        assert_int_equal(a[i].bearing_mrad, b[i].bearing_mrad);
+                        assert_int_equal(a[i].width_mrad, b[i].width_mrad);
+                    }
+                }
+            }
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -667,6 +889,10 @@ int main(void)
         cmocka_unit_test(test_more_blobs_than_capacity),
         cmocka_unit_test(test_column_bearing),
         cmocka_unit_test(test_random_frames_match_reference),
+        cmocka_unit_test(test_lut_thresholds_are_the_defaults),
+        cmocka_unit_test(test_lut_every_pixel),
+        cmocka_unit_test(test_matches_old_detector),
+        cmocka_unit_test(test_blob_arithmetic_extremes_match_old),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

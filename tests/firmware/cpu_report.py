@@ -19,6 +19,13 @@ The dsPIC figure is an ESTIMATE, not a measurement.  Assumptions:
     operations (eqs 2-7 and the roulette, counted in firmware/foraging/forager.c
     and firmware/foraging/task_alloc.c), budgeted at 200 cycles each = 7,000 cycles
     on its maximum.
+  - NOT covered by k: a 32-bit division (or %), one x86-64 instruction, is a
+    call of XC16's software routine (hundreds of cycles; the dsPIC's own
+    DIV.UD/DIV.U divide 32 or 16 by 16 bits in 19 cycles, but C's 32-bit '/'
+    does not use them).  Code measured here should divide in 16 bits in its
+    per-step paths; hal/blob_detect.c does (its pixel loop, two table
+    lookups a pixel, is 18 x86-64 instructions = 54 estimated cycles, about
+    24 by a hand count in dsPIC instructions: k is cautious there).
 Camera: on the robot a step that asks for blobs also runs blob_detect on
 the 40 x 20 frame; the "forager + camera" row adds its maximum.
 Sound: a step that reads the microphones (hal_mic_level, hal/tone_detect.c)
