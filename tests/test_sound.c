@@ -2,7 +2,8 @@
  * test_sound.c - the simulator's sound field (sim_host/core/sound.h) and its
  * HAL: levels against seed 002's eq 1 at known distances, sums of sources,
  * both silent_robots rules, eq 4's noise statistics, self-masking, the
- * speaker's one-period delay, the cutoff's error, the scenario section, and
+ * speaker's one-period delay, the cutoff's error, its grid (all pairs when
+ * it reaches everyone, one aggregate term beyond it), the scenario section, and
  * the same levels whatever the thread count or the robots' step order.
  * (About 0.03 s; 0.2 s under ASan.)
  */
@@ -326,6 +327,67 @@ static void test_cutoff_error(void **state)
     free(sc);
 }
 
+/* A cutoff beyond every distance finds every robot near (on the grid, in
+ * id order): the same field as all pairs, noise draw for draw, under both
+ * rules and with or without self-masking. */
+static void test_cutoff_beyond_arena_is_all_pairs(void **state)
+{
+    (void)state;
+    for (int rule = 0; rule < 4; rule++) {
+        uint32_t level[2][30][HAL_SOUND_BANDS];
+        for (int pass = 0; pass < 2; pass++) {
+            scenario_t *sc = probe_scenario(30);
+            sc->sound.noise = 0.06;
+            sc->sound.silent_robots = (rule & 1) ? SOUND_SILENT_NONE : SOUND_SILENT_AMBIENT;
+            sc->sound.self_masking = (rule & 2) ? 1 : 0;
+            sc->sound.cutoff = pass ? 100.0 : 0.0;
+            sim_t *sim = fixture_sim(sc, 3);
+            for (uint32_t i = 0; i < 30; i++) {
+                probe(sim, i)->emit = (uint8_t)(i % 4);
+            }
+            for (int k = 0; k < 5; k++) {
+                sim_step(sim);
+            }
+            for (uint32_t i = 0; i < 30; i++) {
+                memcpy(level[pass][i], probe(sim, i)->level[0], sizeof level[pass][i]);
+            }
+            sim_destroy(sim);
+            free(sc);
+        }
+        assert_memory_equal(level[0], level[1], sizeof level[0]);
+    }
+}
+
+/* Robots beyond the cutoff are one term per band with one draw: the sum of
+ * their m ambient terms has mean m ae and sd ae noise sqrt(m), as m draws
+ * of their own would. */
+static void test_cutoff_far_field_statistics(void **state)
+{
+    (void)state;
+    scenario_t *sc = probe_scenario(25);   /* a 5 x 5 grid, 2.4 m apart */
+    sc->sound.noise = 0.06;
+    sc->sound.cutoff = 0.5;
+    sim_t *sim = fixture_sim(sc, 11);
+    double sum = 0.0, sq = 0.0;
+    int n = 0;
+    for (int k = 0; k < 400; k++) {
+        sim_step(sim);
+        for (uint32_t i = 0; i < 25; i++) {
+            double v = probe(sim, i)->level[0][1] / 1000.0;
+            sum += v;
+            sq += v * v;
+            n++;
+        }
+    }
+    double mean = sum / n, sd = sqrt(sq / n - mean * mean);
+    double want_mean = 24 * AE, want_sd = AE * 0.06 * sqrt(24.0);
+    print_message("far field of 24: mean %.3f (want %.3f), sd %.3f (want %.3f)\n", mean, want_mean, sd, want_sd);
+    assert_true(fabs(mean - want_mean) < 4 * want_sd / sqrt((double)n));
+    assert_true(fabs(sd - want_sd) < 0.05 * want_sd);
+    sim_destroy(sim);
+    free(sc);
+}
+
 /* The count scale and its ends. */
 static void test_counts(void **state)
 {
@@ -512,6 +574,8 @@ int main(void)
         cmocka_unit_test(test_self_masking_and_duplex),
         cmocka_unit_test(test_speaker_takes_effect_next_period),
         cmocka_unit_test(test_cutoff_error),
+        cmocka_unit_test(test_cutoff_beyond_arena_is_all_pairs),
+        cmocka_unit_test(test_cutoff_far_field_statistics),
         cmocka_unit_test(test_counts),
         cmocka_unit_test(test_scenario_section),
         cmocka_unit_test(test_same_levels_any_thread_count),

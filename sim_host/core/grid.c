@@ -1,5 +1,10 @@
+/*
+ * grid.c - the uniform grid of grid.h: counting-sort binning of points and
+ * boxes.
+ */
 #include "grid.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -52,12 +57,16 @@ static int32_t cell_of(const grid_t *g, float x, float y)
 int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n)
 {
     size_t cells = (size_t)g->nx * (size_t)g->ny;
+    uint32_t kept = 0;
     if (reserve(g, n) != 0) {
         return -1;
     }
     memset(g->start, 0, (cells + 1) * sizeof *g->start);
     for (uint32_t i = 0; i < n; i++) {
-        g->start[cell_of(g, x[i], y[i]) + 1]++;
+        if (!isnan(x[i]) && !isnan(y[i])) {
+            g->start[cell_of(g, x[i], y[i]) + 1]++;
+            kept++;
+        }
     }
     for (size_t c = 0; c < cells; c++) {
         g->start[c + 1] += g->start[c];
@@ -65,12 +74,14 @@ int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n)
     /* Fill back to front so each cell ends up in ascending index order
      * without a cursor array: start[c] walks down to its final value. */
     for (uint32_t k = n; k-- > 0;) {
-        int32_t c = cell_of(g, x[k], y[k]);
-        g->items[--g->start[c + 1]] = k;
+        if (!isnan(x[k]) && !isnan(y[k])) {
+            int32_t c = cell_of(g, x[k], y[k]);
+            g->items[--g->start[c + 1]] = k;
+        }
     }
     /* start[c+1] now holds the beginning of cell c: shift back by one. */
     memmove(g->start, g->start + 1, cells * sizeof *g->start);
-    g->start[cells] = n;
+    g->start[cells] = kept;
     return 0;
 }
 
@@ -106,4 +117,42 @@ int grid_build_boxes(grid_t *g, const float (*aabb)[4], uint32_t n)
     memmove(g->start, g->start + 1, cells * sizeof *g->start);
     g->start[cells] = total;
     return 0;
+}
+
+uint32_t grid_gather(const grid_t *g, float minx, float miny, float maxx, float maxy, uint32_t *out,
+                     uint32_t max)
+{
+    int32_t cx0, cy0, cx1, cy1;
+    uint32_t n = 0;
+    grid_range(g, minx, miny, maxx, maxy, &cx0, &cy0, &cx1, &cy1);
+    for (int32_t cy = cy0; cy <= cy1; cy++) {
+        for (int32_t cx = cx0; cx <= cx1; cx++) {
+            int32_t c = cy * g->nx + cx;
+            for (uint32_t k = g->start[c]; k < g->start[c + 1] && n < max; k++) {
+                out[n++] = g->items[k];
+            }
+        }
+    }
+    return n;
+}
+
+static int id_order(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+void grid_sort_ids(uint32_t *ids, uint32_t n)
+{
+    if (n > 32) {
+        qsort(ids, n, sizeof *ids, id_order);
+        return;
+    }
+    for (uint32_t i = 1; i < n; i++) {   /* a few candidates: insertion sort */
+        uint32_t v = ids[i], j = i;
+        for (; j > 0 && ids[j - 1] > v; j--) {
+            ids[j] = ids[j - 1];
+        }
+        ids[j] = v;
+    }
 }

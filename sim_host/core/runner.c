@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -50,6 +51,18 @@ static double now_s(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* CPU time of the whole process (every thread), user + system, s: beside
+ * the wall time, a rate that other load on the machine does not inflate. */
+static double cpu_s(void)
+{
+    struct rusage u;
+    if (getrusage(RUSAGE_SELF, &u) != 0) {
+        return NAN;
+    }
+    return (double)u.ru_utime.tv_sec + (double)u.ru_stime.tv_sec
+           + 1e-6 * ((double)u.ru_utime.tv_usec + (double)u.ru_stime.tv_usec);
 }
 
 static void fail(job_t *job, const char *fmt, const char *a, const char *b)
@@ -437,7 +450,7 @@ int runner_run(const run_options_t *opt, char err[512])
     uint32_t nthreads = opt->threads < todo ? opt->threads : (todo ? todo : 1);
     pthread_t *tid = calloc(nthreads, sizeof *tid);
     uint32_t started = 0;
-    double t0 = now_s();
+    double t0 = now_s(), c0 = cpu_s();
     for (; tid && todo && started < nthreads; started++) {
         if (pthread_create(&tid[started], NULL, worker, &job) != 0) break;
     }
@@ -461,6 +474,7 @@ int runner_run(const run_options_t *opt, char err[512])
         pthread_join(tid[k], NULL);
     }
     double wall = (job.t_end > t0 ? job.t_end : now_s()) - t0;
+    double cpu = cpu_s() - c0;
     free(tid);
     if (shown) {
         progress(&job, wall, 1);   /* ends the line, whatever happened */
@@ -502,8 +516,9 @@ int runner_run(const run_options_t *opt, char err[512])
                opt->frames_every ? ", frames/*.png" : "", opt->camera_frames ? ", camera/robot_<id>/*.png" : "",
                opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
         fprintf(stderr, "swarmsim: %u run(s), %.0f steps x %u robots in %.3f s wall on %u thread(s): "
-                "%.0f robot-steps/s, %.0fx real time\n", opt->reps, steps,
-                scenario_robot_count(opt->scenario), wall, nthreads, robot_steps / wall, sim_time / wall);
+                "%.0f robot-steps/s, %.0fx real time; %.3f s CPU: %.0f robot-steps/s per CPU second\n",
+                opt->reps, steps, scenario_robot_count(opt->scenario), wall, nthreads, robot_steps / wall,
+                sim_time / wall, cpu, robot_steps / cpu);
     }
     pthread_mutex_destroy(&job.err_lock);
     free(job.results);

@@ -448,7 +448,16 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         const sim_task_run_t *run = &sim->tasks[t];
         uint32_t n_items = run->def->items ? run->def->items(run->self, &items[t]) : 0;
-        for (uint32_t k = 0; k < n_items && k <= CAM_ITEM_INDEX && nocc < 2 * SIM_CAMERA_MAX_NEAR; k++) {
+        /* The index's candidates (a box a little larger than the test
+         * below, which they then pass or not) in index order, or every item. */
+        float m = sqrtf(range * range + 0.01f) + 0.01f;
+        const uint32_t *ids;
+        uint32_t n_cand = items_near(sim, t, n_items, cam.x - m, cam.y - m, cam.x + m, cam.y + m, &ids);
+        for (uint32_t c = 0; c < n_cand && nocc < 2 * SIM_CAMERA_MAX_NEAR; c++) {
+            uint32_t k = ids ? ids[c] : c;
+            if (k > CAM_ITEM_INDEX) {
+                break;
+            }
             const sim_item_t *it = &items[t][k];
             float dx = it->x - cam.x, dy = it->y - cam.y;
             if (dx * dx + dy * dy <= range * range + 0.01f

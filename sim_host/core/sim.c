@@ -325,6 +325,7 @@ void sim_destroy(sim_t *sim)
     world_destroy(sim);
     faults_destroy(sim);
     camera_destroy(sim);
+    items_index_free(sim);
     grid_free(&sim->robot_grid);
     grid_free(&sim->obstacle_grid);
     for (uint32_t g = 0; sim->ctrl_blocks && g < sim->sc->group_count; g++) {
@@ -338,6 +339,7 @@ void sim_destroy(sim_t *sim)
     free(sim->obstacles);
     free(sim->objects);
     free(sim->obstacle_mark);
+    free(sim->sound_near);
     free(sim->events);
     free(sim->robot_tx);
     free(sim->links);
@@ -358,6 +360,9 @@ void sim_step(sim_t *sim)
     }
     /* Serially, before any controller reads it (sound.h). */
     sound_update(sim);
+    /* Items stay put while the controllers step (items.h); out of memory,
+     * the camera scans every item instead, with the same result. */
+    (void)items_index_build(sim);
     for (uint32_t k = 0; k < sim->n; k++) {
         uint32_t i = sim->step_order[k];
         sim_robot_t *r = &sim->robots[i];
@@ -368,6 +373,7 @@ void sim_step(sim_t *sim)
             }
         }
     }
+    items_index_drop(sim);
     faults_transmit(sim);
     ircom_deliver(sim);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {

@@ -11,6 +11,7 @@
 #include "faults.h"
 #include "geometry.h"
 #include "grid.h"
+#include "items.h"
 #include "hal.h"
 #include "rand.h"
 #include "sim.h"
@@ -172,6 +173,7 @@ struct sim {
 
     uint32_t n_tasks;
     sim_task_run_t tasks[SCENARIO_MAX_TASKS];
+    sim_item_index_t item_index;   /**< the tasks' items for the camera (items.h) */
     int done;                      /**< a task's stop condition held */
 
     uint32_t n_counters;
@@ -196,6 +198,7 @@ struct sim {
     struct camera_state *camera;   /**< camera.c's renderer and recorder (NULL until used) */
 
     uint64_t sound_stamp;          /**< the sound field is this step's when == step + 1 */
+    uint32_t *sound_near;          /**< sound.cutoff > 0: a listener's robots near it (n) */
     vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
 };

@@ -1,10 +1,13 @@
 /*
  * sound.c - the sound field (sound.h): seed 002's eqs 1, 2 and 4, every
- * pair exact.
+ * pair exact; with a cutoff, the pairs within it exact and the rest as one
+ * aggregate term per band.
  */
 #include "sound.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "sim_internal.h"
 
@@ -53,16 +56,88 @@ static void hear(const scenario_t *sc, sim_robot_t *dst, double sum[HAL_SOUND_BA
     }
 }
 
-void sound_update(struct sim *sim)
+/* cutoff > 0: listener r's sums from the robot grid.  Robots within the
+ * cutoff, in id order, as the all-pairs loop meets them (same terms, same
+ * draws); every robot beyond it adds only ae to a band (in `none` mode only
+ * when it emits in that band), so their m terms ae (1 - noise N_j) sum to
+ * m ae - ae noise sqrt(m) N: one draw per band, the same distribution
+ * (a sum of independent Gaussians), and work per listener bounded by the
+ * robots within the cutoff, not by the swarm. */
+static void listen_near(struct sim *sim, uint32_t i, const uint32_t emitters[HAL_SOUND_BANDS])
 {
     const scenario_t *sc = sim->sc;
-    if (!sc->sound.enabled || sim->sound_stamp == sim->step + 1) {
-        return;
+    sim_robot_t *a = &sim->robots[i];
+    double cutoff = sc->sound.cutoff;
+    float box = (float)cutoff + 0.01f;   /* a little more: the test below is in double */
+    uint32_t *near = sim->sound_near;
+    uint32_t n = sim_gather_robots(sim, a->x - box, a->y - box, a->x + box, a->y + box, near, sim->n);
+    uint32_t near_emit[HAL_SOUND_BANDS] = { 0 }, n_near = 0;
+    grid_sort_ids(near, n);
+    for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
+        a->sound_acc[k] = 0.0;
     }
-    sim->sound_stamp = sim->step + 1;
+    for (uint32_t c = 0; c < n; c++) {
+        const sim_robot_t *b = &sim->robots[near[c]];
+        if (near[c] == i) {
+            continue;
+        }
+        double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
+        double d = sqrt(dx * dx + dy * dy);
+        if (d > cutoff) {
+            continue;
+        }
+        n_near++;
+        near_emit[b->speaker_played]++;
+        double loud = b->speaker_played ? sc->sound.a0 * exp(-sc->sound.alpha * d) + sc->sound.ae : 0.0;
+        hear(sc, a, a->sound_acc, b, loud);
+    }
+    int ambient = sc->sound.silent_robots == SOUND_SILENT_AMBIENT;
+    for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+        uint32_t m = ambient ? sim->n - 1 - n_near
+                             : emitters[k] - near_emit[k] - (a->speaker_played == k ? 1u : 0u);
+        if (m == 0) {
+            continue;
+        }
+        double sum = (double)m * sc->sound.ae;
+        if (sc->sound.noise > 0.0) {
+            sum -= sc->sound.ae * sc->sound.noise * sqrt((double)m) * sim_rand_normal(&a->sound_rand);
+        }
+        a->sound_acc[k] += sum;
+    }
+}
+
+static void update_with_cutoff(struct sim *sim)
+{
+    int masking = sim->sc->sound.self_masking != 0;
+    uint32_t emitters[HAL_SOUND_BANDS] = { 0 };
+    if (!sim->sound_near) {
+        sim->sound_near = malloc((sim->n ? sim->n : 1) * sizeof *sim->sound_near);
+        if (!sim->sound_near) {
+            fprintf(stderr, "swarmsim: out of memory for the sound field\n");
+            abort();
+        }
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        emitters[sim->robots[i].speaker_played]++;
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_robot_t *a = &sim->robots[i];
+        if (masking && a->speaker_played) {
+            for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
+                a->sound_acc[k] = 0.0;
+            }
+        } else {
+            listen_near(sim, i, emitters);
+        }
+    }
+}
+
+/* cutoff 0: eq 2 as written, every pair exact. */
+static void update_all_pairs(struct sim *sim)
+{
+    const scenario_t *sc = sim->sc;
     uint32_t n = sim->n;
     int masking = sc->sound.self_masking != 0;
-    double cutoff = sc->sound.cutoff;
     /* Every unordered pair once (one distance and at most one exponential
      * for both directions), listener i's sum in sound_acc.  Listener m
      * meets its sources in id order: j < m at the outer loop's earlier
@@ -82,15 +157,13 @@ void sound_update(struct sim *sim)
             if (!a_hears && !b_hears) {
                 continue;
             }
-            /* A source's loud term: eq 1 at this pair's distance (only ae
-             * beyond the cutoff).  The distance is needed only when one
-             * of the two emits. */
+            /* A source's loud term, eq 1 at this pair's distance.  The
+             * distance is needed only when one of the two emits. */
             double loud = 0.0;
             if (a->speaker_played || b->speaker_played) {
                 double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
                 double d = sqrt(dx * dx + dy * dy);
-                double e = cutoff > 0.0 && d > cutoff ? 0.0 : sc->sound.a0 * exp(-sc->sound.alpha * d);
-                loud = e + sc->sound.ae;
+                loud = sc->sound.a0 * exp(-sc->sound.alpha * d) + sc->sound.ae;
             }
             if (a_hears) {
                 hear(sc, a, a->sound_acc, b, loud);
@@ -100,7 +173,21 @@ void sound_update(struct sim *sim)
             }
         }
     }
-    for (uint32_t i = 0; i < n; i++) {
+}
+
+void sound_update(struct sim *sim)
+{
+    const scenario_t *sc = sim->sc;
+    if (!sc->sound.enabled || sim->sound_stamp == sim->step + 1) {
+        return;
+    }
+    sim->sound_stamp = sim->step + 1;
+    if (sc->sound.cutoff > 0.0) {
+        update_with_cutoff(sim);
+    } else {
+        update_all_pairs(sim);
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
         sim_robot_t *r = &sim->robots[i];
         r->sound_level[0] = 0;
         for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {

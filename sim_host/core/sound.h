@@ -20,7 +20,13 @@
  *    robot never hears itself (eq 2's j != i).
  *  - cutoff > 0: an emitter farther away than cutoff adds only its ambient
  *    term; the error is at most a0 e^(-alpha cutoff) per such emitter
- *    (before noise).  0: every pair exact.
+ *    (before noise).  The robots beyond it are one term per band, their m
+ *    ambient terms with one noise draw, m ae (1 - noise N / sqrt(m)), the
+ *    distribution of m separate draws; so a listener's work grows with the
+ *    robots within the cutoff (found on the robot grid), not with the
+ *    swarm.  A cutoff beyond every distance gives the all-pairs field
+ *    draw for draw.  0 (the default): every pair exact, eq 2 as the paper
+ *    writes it, work growing with the square of the swarm.
  *  - Levels are counts: round(1000 x the sum), clamped to [0, UINT32_MAX].
  *  - Noise comes from the listener's own stream (RAND_SOUND), one draw per
  *    term in the sum, sources in id order then bands 1..3: the field is a

@@ -10,8 +10,10 @@
 #include <string.h>
 
 #include "core/geometry.h"
+#include "core/grid.h"
 #include "core/rand.h"
 #include "foraging/forager.h"
+#include "foraging/forager_sense_all.h"
 #include "foraging/nest_beacon.h"
 #include "foraging/nest_link.h"
 #include "units.h"
@@ -49,6 +51,11 @@ typedef struct foraging {
     int32_t *carrier;        /**< per token: robot index, or -1 on the floor */
     int32_t *carried;        /**< per robot: token index or -1 */
     sim_rand_t rand;         /**< token placement */
+    /* The grasp's index: tokens on the floor binned once a step, so that a
+     * gripper looks at the tokens near it, not at every token. */
+    grid_t token_grid;
+    float *floor_x, *floor_y;   /**< per token: its centre, NaN when carried or out of play */
+    uint32_t *near;          /**< per token: grid_gather's working memory */
 
     uint64_t delivered;      /**< tokens deposited in the nest */
     uint64_t dropped;        /**< tokens let go outside the nest */
@@ -69,7 +76,7 @@ typedef struct foraging {
 static const char *const information_choices[] = { "beacon", "global", NULL };
 
 static const param_desc_t foraging_params[] = {
-    { .key = "food_count", PARAM_FIELD(FC, food_count, uint32_t), .min = 0, .max = 10000,
+    { .key = "food_count", PARAM_FIELD(FC, food_count, uint32_t), .min = 0, .max = 1000000,
       .doc = "N_f, food tokens kept in the arena (one respawns per delivery)" },
     { .key = "token_radius", PARAM_FIELD(FC, token_radius, float), .min = 0.005, .max = 0.5,
       .doc = "token radius, m" },
@@ -127,11 +134,19 @@ static void foraging_default_config(void *config)
     c->information = FORAGING_INFO_BEACON;
 }
 
+/* The full-sensing benchmark's forager is a forager to the task (its state
+ * begins with a forager_t, forager_sense_all.h). */
+static int runs_forager(const controller_def_t *def)
+{
+    return def == &forager_def || def == &forager_sense_all_def;
+}
+
 static uint32_t robots_running(const scenario_t *sc, const controller_def_t *def)
 {
     uint32_t n = 0;
     for (uint32_t g = 0; g < sc->group_count; g++) {
-        n += sc->groups[g].def == def ? sc->groups[g].count : 0;
+        const controller_def_t *d = sc->groups[g].def;
+        n += (d == def || (def == &forager_def && runs_forager(d))) ? sc->groups[g].count : 0;
     }
     return n;
 }
@@ -200,7 +215,7 @@ static void foraging_configure(const void *config, const scenario_t *sc, const r
                                void *params)
 {
     const foraging_config_t *c = config;
-    if (group->def == &forager_def) {
+    if (runs_forager(group->def)) {
         forager_params_t *p = params;
         p->f_d_tokens = c->desired_food;
         p->n_robots = (uint16_t)robots_running(sc, &forager_def);
@@ -269,6 +284,10 @@ static void foraging_destroy(void *self)
     free(f->carrier);
     free(f->carried);
     free(f->oae_window);
+    free(f->floor_x);
+    free(f->floor_y);
+    free(f->near);
+    grid_free(&f->token_grid);
     free(f);
 }
 
@@ -294,8 +313,17 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
     /* T2 in control steps. */
     f->window_len = (uint32_t)fmax(1.0, floor(t2_s(sc, c) * 1000.0 / sc->control_period_ms + 0.5));
     f->oae_window = calloc(f->window_len, sizeof *f->oae_window);
+    size_t nt = f->n_tokens ? f->n_tokens : 1;
+    f->floor_x = malloc(nt * sizeof *f->floor_x);
+    f->floor_y = malloc(nt * sizeof *f->floor_y);
+    f->near = malloc(nt * sizeof *f->near);
+    float hw, hh;
+    sim_arena_half(sim, &hw, &hh);
+    /* Cells of 0.5 m: a grasp's reach (a few cm) meets at most 4 of them,
+     * and at seed 000's density (20 tokens on 16 m^2) a cell holds ~0.3. */
+    int grid_bad = grid_init(&f->token_grid, -hw, -hh, 2 * hw, 2 * hh, 0.5f) != 0;
     if (!f->is_forager || !f->task || !f->leave_step || !f->tokens || !f->carrier || !f->carried
-        || !f->oae_window) {
+        || !f->oae_window || !f->floor_x || !f->floor_y || !f->near || grid_bad) {
         snprintf(err, 256, "out of memory for %u food tokens", f->n_tokens);
         foraging_destroy(f);
         return NULL;
@@ -304,7 +332,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
     for (uint32_t i = 0; i < n; i++) {
         f->carried[i] = -1;
         f->leave_step[i] = -1;
-        f->is_forager[i] = sim_robot_def(sim, i) == &forager_def;
+        f->is_forager[i] = (uint8_t)runs_forager(sim_robot_def(sim, i));
         if (sim_robot_def(sim, i) == &nest_beacon_def) {
             f->beacon = (int64_t)i;
         }
@@ -360,9 +388,39 @@ static void foraging_release(void *self, sim_t *sim)
     }
 }
 
+/* The first token by index (as a scan of every token would find it) on the
+ * floor within reach of the front point (fx, fy), or -1. */
+static int32_t token_in_reach(const foraging_t *f, float fx, float fy, float reach)
+{
+    /* The box is a little larger than the reach: binning and this test
+     * round differently. */
+    float m = reach + 0.01f;
+    uint32_t n = grid_gather(&f->token_grid, fx - m, fy - m, fx + m, fy + m, f->near, f->n_tokens);
+    int32_t best = -1;
+    for (uint32_t c = 0; c < n; c++) {
+        uint32_t k = f->near[c];
+        float dx = f->tokens[k].x - fx, dy = f->tokens[k].y - fy;
+        if (f->carrier[k] < 0 && dx * dx + dy * dy < reach * reach && (best < 0 || k < (uint32_t)best)) {
+            best = (int32_t)k;
+        }
+    }
+    return best;
+}
+
 static void carry_and_grasp(foraging_t *f, sim_t *sim)
 {
     float tr = f->cfg->token_radius, reach = tr + GRASP_TOLERANCE;
+    /* Tokens on the floor do not move during the loop (a token picked up
+     * is then skipped by its carrier), so one binning serves every robot. */
+    for (uint32_t k = 0; k < f->n_tokens; k++) {
+        int floor = f->carrier[k] < 0;
+        f->floor_x[k] = floor ? f->tokens[k].x : NAN;
+        f->floor_y[k] = floor ? f->tokens[k].y : NAN;
+    }
+    if (grid_build_points(&f->token_grid, f->floor_x, f->floor_y, f->n_tokens) != 0) {
+        fprintf(stderr, "swarmsim: out of memory for the foraging task's token grid\n");
+        abort();
+    }
     for (uint32_t i = 0; i < f->n_robots; i++) {
         double px, py, pt;
         if (!f->is_forager[i]) {
@@ -373,14 +431,11 @@ static void carry_and_grasp(foraging_t *f, sim_t *sim)
         float c = cosf(theta), s = sinf(theta);
         if (f->carried[i] < 0 && !backing(sim, i)) {
             float fx = x + EPUCK_BODY_RADIUS_M * c, fy = y + EPUCK_BODY_RADIUS_M * s;
-            for (uint32_t k = 0; k < f->n_tokens; k++) {
-                float dx = f->tokens[k].x - fx, dy = f->tokens[k].y - fy;
-                if (f->carrier[k] < 0 && dx * dx + dy * dy < reach * reach) {
-                    f->carrier[k] = (int32_t)i;
-                    f->carried[i] = (int32_t)k;
-                    sim_event(sim, i, "pickup", "", (int32_t)k);
-                    break;
-                }
+            int32_t k = token_in_reach(f, fx, fy, reach);
+            if (k >= 0) {
+                f->carrier[k] = (int32_t)i;
+                f->carried[i] = k;
+                sim_event(sim, i, "pickup", "", k);
             }
         }
         if (f->carried[i] >= 0) {
@@ -602,7 +657,7 @@ static uint16_t foraging_lie(const void *self, const sim_t *sim, uint32_t robot)
 }
 
 /* Robots of these controllers need the foraging world to do anything. */
-static const char *const foraging_controllers[] = { "forager", "nest_beacon", NULL };
+static const char *const foraging_controllers[] = { "forager", "forager_sense_all", "nest_beacon", NULL };
 
 const task_def_t foraging_task = {
     .name = "foraging",

@@ -1,0 +1,85 @@
+/*
+ * items.c - the index of the tasks' items (items.h).
+ */
+#include "items.h"
+
+#include <stdlib.h>
+
+#include "sim_internal.h"
+
+/* Cells of 0.5 m, as the robot grid's: a camera's range (0.6 m by
+ * default) meets about 4 x 4 of them. */
+#define ITEM_CELL_M 0.5f
+
+static int reserve(sim_item_index_t *ix, uint32_t n)
+{
+    if (n <= ix->cap) {
+        return 0;
+    }
+    float *x = realloc(ix->x, (size_t)n * sizeof *x);
+    if (x) ix->x = x;
+    float *y = realloc(ix->y, (size_t)n * sizeof *y);
+    if (y) ix->y = y;
+    uint32_t *near = realloc(ix->near, (size_t)n * sizeof *near);
+    if (near) ix->near = near;
+    if (!x || !y || !near) {
+        return -1;
+    }
+    ix->cap = n;
+    return 0;
+}
+
+int items_index_build(struct sim *sim)
+{
+    sim_item_index_t *ix = &sim->item_index;
+    ix->valid = 0;
+    for (uint32_t t = 0; t < sim->n_tasks; t++) {
+        const sim_task_run_t *run = &sim->tasks[t];
+        const sim_item_t *items = NULL;
+        uint32_t n = run->def->items ? run->def->items(run->self, &items) : 0;
+        grid_t *g = &ix->grid[t];
+        if (n == 0) {
+            continue;
+        }
+        if (reserve(ix, n) != 0
+            || (g->nx == 0 && grid_init(g, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, ITEM_CELL_M) != 0)) {
+            return -1;
+        }
+        for (uint32_t k = 0; k < n; k++) {
+            ix->x[k] = items[k].x;
+            ix->y[k] = items[k].y;
+        }
+        if (grid_build_points(g, ix->x, ix->y, n) != 0) {
+            return -1;
+        }
+    }
+    ix->valid = 1;
+    return 0;
+}
+
+void items_index_drop(struct sim *sim) { sim->item_index.valid = 0; }
+
+void items_index_free(struct sim *sim)
+{
+    sim_item_index_t *ix = &sim->item_index;
+    for (uint32_t t = 0; t < SCENARIO_MAX_TASKS; t++) {
+        grid_free(&ix->grid[t]);
+    }
+    free(ix->x);
+    free(ix->y);
+    free(ix->near);
+}
+
+uint32_t items_near(struct sim *sim, uint32_t t, uint32_t n_items, float minx, float miny, float maxx, float maxy,
+                    const uint32_t **ids)
+{
+    sim_item_index_t *ix = &sim->item_index;
+    if (!ix->valid || n_items == 0 || ix->grid[t].nx == 0) {
+        *ids = NULL;
+        return n_items;
+    }
+    uint32_t n = grid_gather(&ix->grid[t], minx, miny, maxx, maxy, ix->near, ix->cap);
+    grid_sort_ids(ix->near, n);
+    *ids = ix->near;
+    return n;
+}
