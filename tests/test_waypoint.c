@@ -489,13 +489,23 @@ static void test_resent_route(void **state)
     assert_int_equal(W.index, 0u);
 }
 
-/* Blocked within reach_mm (45) of the target (by a wall, a robot beside
- * it): picked up from there; blocked farther away: avoided. */
+/* With reach_mm 45, blocked within it of the target (by a wall): picked
+ * up from there; blocked farther away: avoided.  By default (0) blocked
+ * is avoided however near. */
 static void test_blocked_within_reach(void **state)
 {
     static const int32_t near[] = { 40, 0 }, far[] = { 60, 0 };
+    waypoint_params_t p;
     (void)state;
     start_at(0.0, 0.0, 0.0);
+    send_route(1u, near, 0, 0);
+    H.proximity[0] = 2000u;
+    step();
+    assert_int_equal(W.state, WAYPOINT_AVOID);   /* the default: never */
+
+    waypoint_default_params(&p);
+    p.reach_mm = 45u;
+    start_with(&p, 0.0, 0.0, 0.0);
     send_route(1u, near, 0, 0);
     H.proximity[0] = 2000u;
     step();
@@ -505,7 +515,7 @@ static void test_blocked_within_reach(void **state)
     steps(PICK_PERIODS + 1u);
     assert_int_equal(W.picks, 1u);
 
-    start_at(0.0, 0.0, 0.0);
+    start_with(&p, 0.0, 0.0, 0.0);
     send_route(1u, far, 0, 0);
     H.proximity[0] = 2000u;
     step();

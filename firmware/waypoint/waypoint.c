@@ -15,9 +15,13 @@ void waypoint_default_params(waypoint_params_t *params)
      * 35 (body) + 10 (target) + 10 (pick_reach) = 55 mm of the robot's:
      * 30 mm leaves 25 mm for the tracker's error. */
     params->arrive_mm = 30u;
-    /* Blocked this close, the robot is still within the 55 mm the targets
-     * task reaches, with 10 mm for the tracker's error. */
-    params->reach_mm = 45u;
+    /* Off: among clustered targets, a robot blocked by another near its
+     * target and picking up from there takes the nearest target, often a
+     * neighbour's, and a later robot then finds its own gone (7 of 30
+     * One50m runs never reached 180).  The planner moves stops off the
+     * walls instead (swarmtools.plan.routes.stop_point).  45 mm would stay
+     * within the 55 mm the targets task reaches. */
+    params->reach_mm = 0u;
     params->home_radius_mm = 100u;      /* RepAtt's unloading radius */
     /* At 0.10 m/s a fix 300 ms old is 30 mm (arrive_mm) behind the robot;
      * it also keeps the steering loop's delay where it stays damped (about
@@ -252,7 +256,7 @@ static void travel(waypoint_t *self, hal_t *hal)
         dy = goal->y_mm - bound_mm(pose.y_mm);
     }
     if (where != AVOID_NONE) {
-        if (fix != 0u && self->state == WAYPOINT_GO && within_mm(dx, dy, p->reach_mm) != 0u) {
+        if (fix != 0u && self->state == WAYPOINT_GO && p->reach_mm != 0u && within_mm(dx, dy, p->reach_mm) != 0u) {
             start_pick(self, hal);
             return;
         }

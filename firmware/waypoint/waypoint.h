@@ -12,10 +12,10 @@
  *   GO          to the current target: a turn in place while the bearing
  *               error is above turn_in_place_mrad, else forward at
  *               speed_steps_s with a wheel difference of steer_gain per
- *               rad of error.  Within arrive_mm of it: PICK; also
- *               within reach_mm when an obstacle blocks the way (a target
- *               by a wall, a robot parked beside it): it is picked up
- *               from there rather than turned away from.
+ *               rad of error.  Within arrive_mm of it: PICK; also,
+ *               when reach_mm is not 0, within reach_mm when an obstacle
+ *               blocks the way (a target by a wall): it is picked up from
+ *               there rather than turned away from.
  *   PICK        wheels (0, 0) for exactly pick_time_ms (rounded up to
  *               whole periods): the pick-up rule of seed 002's targets
  *               (the simulator's targets task takes a target in reach of a
@@ -64,7 +64,7 @@ typedef struct waypoint_params {
     int16_t steer_gain;           /**< wheel speed difference per rad of bearing error, steps/s (1000) */
     uint16_t turn_in_place_mrad;  /**< bearing error above which it turns in place, mrad (1571 = 90 deg) */
     uint16_t arrive_mm;           /**< at a target this close to it, mm (30) */
-    uint16_t reach_mm;            /**< at a target this close to it when blocked, mm (45) */
+    uint16_t reach_mm;            /**< at a target this close to it when blocked, mm (0: never) */
     uint16_t home_radius_mm;      /**< delivered this close to the drop-off point, mm (100) */
     uint16_t pose_max_age_ms;     /**< an older fix is no fix, ms (300) */
     uint16_t avoid_enter;         /**< IR proximity that means an obstacle, counts (300) */

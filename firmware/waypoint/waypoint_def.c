@@ -20,8 +20,9 @@ static const param_desc_t waypoint_params[] = {
     { .key = "arrive_mm", PARAM_FIELD(WP, arrive_mm, uint16_t), .min = 1, .max = 30000,
       .doc = "at a target when the tracker puts it this close, mm (the targets task reaches "
              "55 mm between centres by default)" },
-    { .key = "reach_mm", PARAM_FIELD(WP, reach_mm, uint16_t), .min = 1, .max = 30000,
-      .doc = "at a target this close when an obstacle blocks the way (a target by a wall), mm" },
+    { .key = "reach_mm", PARAM_FIELD(WP, reach_mm, uint16_t), .min = 0, .max = 30000,
+      .doc = "at a target this close when an obstacle blocks the way (a target by a wall), mm "
+             "(0: never; among clustered targets it picks a neighbour's)" },
     { .key = "home_radius_mm", PARAM_FIELD(WP, home_radius_mm, uint16_t), .min = 1, .max = 30000,
       .doc = "the route is delivered this close to the drop-off point, mm" },
     { .key = "pose_max_age_ms", PARAM_FIELD(WP, pose_max_age_ms, uint16_t), .min = 0, .max = 60000,

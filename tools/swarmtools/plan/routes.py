@@ -10,12 +10,20 @@ finishing time by at most the grid's half-diagonal at 0.1 m/s (3.4 s)."""
 
 from __future__ import annotations
 
+import math
 import struct
 from collections.abc import Sequence
 
 KIND = 0x52                 # 'R'
 MAX_TARGETS = 6             # ROUTE_MAX_TARGETS
 COORD_MAX_MM = 1_000_000    # ROUTE_COORD_MAX_MM
+#: Where a robot stops for a target by a wall: this far from the wall (m),
+#: the body's radius (37 mm, hal/units.h) plus the ~25 mm at which its IR
+#: reads above avoid_enter and it turns away, plus 8 mm for noise.  The
+#: targets task reaches 57 mm centre to centre (37 + target 10 + reach 10),
+#: so a stop moved up to WALL_SHIFT_MAX_M (with arrive_mm 10) still picks.
+WALL_CLEARANCE_M = 0.070
+WALL_SHIFT_MAX_M = 0.045
 
 
 def _mm(v: float) -> int:
@@ -36,13 +44,28 @@ def route_message(targets_m: Sequence[tuple[float, float]], drop_m: tuple[float,
     return out
 
 
+def stop_point(target: tuple[float, float], arena: tuple[float, float]) -> tuple[float, float]:
+    """Where the robot stops for `target` in an arena of (width, height) m
+    centred on the origin: the target itself, or, by a wall, the nearest
+    point WALL_CLEARANCE_M from it (the robot would turn away before
+    reaching the target's own spot)."""
+    (x, y), (w, h) = target, arena
+    sx = min(max(x, -w / 2 + WALL_CLEARANCE_M), w / 2 - WALL_CLEARANCE_M)
+    sy = min(max(y, -h / 2 + WALL_CLEARANCE_M), h / 2 - WALL_CLEARANCE_M)
+    if math.hypot(sx - x, sy - y) > WALL_SHIFT_MAX_M:
+        raise ValueError(f"the target at ({x:.3f}, {y:.3f}) m is too near a wall to be picked up: "
+                         f"its stop would be {math.hypot(sx - x, sy - y) * 1000:.0f} mm away")
+    return sx, sy
+
+
 def run_scenario(world_doc: dict, routes_m: Sequence[Sequence[tuple[float, float]]], drop_m: tuple[float, float],
                  name: str) -> dict:
     """The world's effective scenario (a dict, as the simulator wrote it)
     with its robots following `routes_m`: the first group kept for its
     count, placement and spacing, its controller now `waypoint` (speed and
     avoidance run as the RepAtt robots'), an exact tracker, no sound (no
-    robot listens), and each robot's route message at 0 s."""
+    robot listens), and each robot's route message at 0 s, with each
+    target's stop point (stop_point: moved off a wall)."""
     doc = {k: v for k, v in world_doc.items() if k not in ("robots", "host", "sound")}
     groups = world_doc.get("robots") or []
     if len(groups) != 1:
@@ -66,6 +89,12 @@ def run_scenario(world_doc: dict, routes_m: Sequence[Sequence[tuple[float, float
     doc["name"] = name
     doc["robots"] = [robot]
     doc["tracker"] = {"enabled": True, "noise_mm": 0, "noise_deg": 0, "dropout": 0}
-    doc["host"] = {"messages": [{"robot": i, "at": 0, "hex": route_message(r, drop_m).hex()}
+    arena = world_doc.get("arena") or {}
+    if "width" not in arena or "height" not in arena:
+        raise ValueError("the world's scenario does not give arena.width and arena.height (its stops by the walls "
+                         "need them)")
+    size = (float(arena["width"]), float(arena["height"]))
+    doc["host"] = {"messages": [{"robot": i, "at": 0,
+                                 "hex": route_message([stop_point(t, size) for t in r], drop_m).hex()}
                                 for i, r in enumerate(routes_m)]}
     return doc

@@ -49,11 +49,11 @@ class Message(unittest.TestCase):
             route_message([(1000.001, 0)], (0, 0))    # beyond +-1 km
 
     def test_run_scenario(self) -> None:
-        world = {"name": "w", "arena": {"width": 2}, "sound": {"enabled": True},
+        world = {"name": "w", "arena": {"width": 2, "height": 1}, "sound": {"enabled": True},
                  "targets": {"nest": {"x": 0, "y": 0, "radius": 0.2}},
                  "robots": [{"count": 2, "controller": "repatt", "placement": {"shape": "grid"},
                              "params": {"speed_steps_s": 776, "queue_size": 40}}]}
-        doc = run_scenario(world, [[(0.1, 0.2)], [(0.3, 0.4), (0.5, 0.6)]], (0.0, 0.0), "w_alns")
+        doc = run_scenario(world, [[(0.1, 0.2)], [(0.3, 0.4), (0.5, 0.469)]], (0.0, 0.0), "w_alns")
         g = doc["robots"][0]
         self.assertEqual((g["controller"], g["count"], g["placement"]), ("waypoint", 2, {"shape": "grid"}))
         self.assertEqual(g["params"], {"speed_steps_s": 776, "arrive_mm": 10, "home_radius_mm": 163})
@@ -61,9 +61,14 @@ class Message(unittest.TestCase):
         self.assertTrue(doc["tracker"]["enabled"])
         m = doc["host"]["messages"]
         self.assertEqual([x["robot"] for x in m], [0, 1])
-        self.assertEqual(bytes.fromhex(m[1]["hex"]), route_message([(0.3, 0.4), (0.5, 0.6)], (0, 0)))
+        # (0.5, 0.469) is 31 mm from the wall at y = 0.5: its stop 70 mm from it
+        self.assertEqual(bytes.fromhex(m[1]["hex"]), route_message([(0.3, 0.4), (0.5, 0.43)], (0, 0)))
         with self.assertRaises(ValueError):
             run_scenario(world, [[(0.1, 0.2)]], (0.0, 0.0), "x")   # 2 robots, 1 route
+        with self.assertRaisesRegex(ValueError, "too near a wall"):   # 5 mm from the wall: a stop 65 mm away
+            run_scenario(world, [[(0.1, 0.2)], [(0.995, 0.0)]], (0.0, 0.0), "x")
+        with self.assertRaisesRegex(ValueError, "arena.width"):
+            run_scenario(world | {"arena": {}}, [[(0.1, 0.2)], [(0.3, 0.4)]], (0.0, 0.0), "x")
 
 
 @unittest.skipUnless(SWARMSIM.is_file(), f"{SWARMSIM} not built (make build/swarmsim)")
