@@ -1,5 +1,6 @@
 #include "forager.h"
 
+#include "common/motion.h"
 #include "nest_link.h"
 #include "units.h"
 
@@ -162,24 +163,13 @@ static void read_inbox(forager_t *self, hal_t *hal)
 
 /* ------------------------------------------------------------ motion */
 
-static int16_t clamp_speed(int32_t v)
-{
-    if (v > HAL_WHEEL_SPEED_MAX) {
-        return HAL_WHEEL_SPEED_MAX;
-    }
-    if (v < -HAL_WHEEL_SPEED_MAX) {
-        return (int16_t)-HAL_WHEEL_SPEED_MAX;
-    }
-    return (int16_t)v;
-}
-
 /* f(x) of eq 1 with A(t) = 1: drive forward, turning toward `bearing_mrad`
  * (CCW positive: a target on the left speeds up the right wheel). */
 static void steer(const forager_t *self, hal_t *hal, int16_t bearing_mrad)
 {
     int32_t d = (int32_t)self->params.steer_gain * (int32_t)bearing_mrad / 1000;
     int32_t v = (int32_t)self->params.speed_steps_s;
-    hal_set_wheel_speeds(hal, clamp_speed(v - d), clamp_speed(v + d));
+    hal_set_wheel_speeds(hal, motion_clamp_speed(v - d), motion_clamp_speed(v + d));
 }
 
 /* Phototaxis toward (away = 0) or away from (away = 1) the brightest

@@ -2,6 +2,7 @@
 
 #include <stddef.h>
 
+#include "common/motion.h"
 #include "units.h"
 
 /* Periods after the pick-up wait in which the target's disappearance still
@@ -195,44 +196,6 @@ static uint8_t obstacle(const repatt_t *self, hal_t *hal)
 
 /* ------------------------------------------------------------ motion */
 
-static int16_t clamp_speed(int32_t v)
-{
-    if (v > HAL_WHEEL_SPEED_MAX) {
-        return HAL_WHEEL_SPEED_MAX;
-    }
-    if (v < -HAL_WHEEL_SPEED_MAX) {
-        return (int16_t)-HAL_WHEEL_SPEED_MAX;
-    }
-    return (int16_t)v;
-}
-
-/* Periods of `ms` at this period, rounded up (at least 1). */
-static uint16_t periods(hal_t *hal, uint16_t ms)
-{
-    uint16_t period = hal_control_period_ms(hal);
-    uint32_t n;
-    if (period == 0u) {
-        period = 1u;
-    }
-    n = ((uint32_t)ms + period - 1u) / period;
-    return (uint16_t)(n == 0u ? 1u : n);
-}
-
-/* A wheel speed that makes at most `remaining` steps in one period. */
-static int16_t capped_speed(hal_t *hal, int16_t speed, int32_t remaining)
-{
-    uint16_t period = hal_control_period_ms(hal);
-    int32_t cap;
-    if (period == 0u || remaining <= 0) {
-        return 0;
-    }
-    if (remaining > 100000L) {
-        return speed;
-    }
-    cap = (remaining * 1000L + period - 1) / period;
-    return (int16_t)((cap < speed) ? cap : speed);
-}
-
 /* A turn in place by `mrad` (CCW positive), counted on the step counters. */
 static void start_turn(repatt_t *self, uint8_t state, int32_t mrad)
 {
@@ -253,7 +216,7 @@ static void start_run(repatt_t *self, int32_t mm)
 /* Turning: 1 while some of the turn is left (wheels set), 0 when done. */
 static uint8_t turn_step(repatt_t *self, hal_t *hal)
 {
-    int16_t w = capped_speed(hal, self->params.turn_speed_steps_s, (self->target2 - self->done2 + 1) / 2);
+    int16_t w = motion_capped_speed(hal, self->params.turn_speed_steps_s, (self->target2 - self->done2 + 1) / 2);
     if (self->done2 >= self->target2 || w <= 0) {
         return 0u;
     }
@@ -286,7 +249,7 @@ static void steer(const repatt_t *self, hal_t *hal, int16_t bearing_mrad)
     }
     d = (int32_t)self->params.steer_gain * (int32_t)bearing_mrad / 1000;
     v = (int32_t)self->params.speed_steps_s;
-    hal_set_wheel_speeds(hal, clamp_speed(v - d), clamp_speed(v + d));
+    hal_set_wheel_speeds(hal, motion_clamp_speed(v - d), motion_clamp_speed(v + d));
 }
 
 /* A tumble angle from N(mu, sigma^2), mrad. */
@@ -342,7 +305,7 @@ static void home_step(repatt_t *self, hal_t *hal)
  * decide its motion this period). */
 static uint8_t pick_step(repatt_t *self, hal_t *hal)
 {
-    uint16_t wait = periods(hal, self->params.pick_time_ms);
+    uint16_t wait = motion_periods(hal, self->params.pick_time_ms);
     uint8_t there = target_still_there(self, hal);
     if (there == 0u) {
         if (self->timer >= wait) {
@@ -356,7 +319,7 @@ static uint8_t pick_step(repatt_t *self, hal_t *hal)
         return 0u;
     }
     if (self->timer >= (uint16_t)(wait + PICK_GRACE_PERIODS)) {
-        self->ignore = periods(hal, self->params.give_up_ms);   /* out of reach: give up */
+        self->ignore = motion_periods(hal, self->params.give_up_ms);   /* out of reach: give up */
         self->state = REPATT_SEARCH;
         return 0u;
     }
@@ -482,7 +445,7 @@ void repatt_step(repatt_t *self, hal_t *hal)
         start_run(self, rng_range(&self->rng, 0, (int32_t)self->params.oa_run_max_mm));
     }
     if (self->state == REPATT_AVOID_RUN) {
-        int16_t v = capped_speed(hal, self->params.speed_steps_s, (self->target2 - self->done2 + 1) / 2);
+        int16_t v = motion_capped_speed(hal, self->params.speed_steps_s, (self->target2 - self->done2 + 1) / 2);
         if (v > 0) {
             hal_set_wheel_speeds(hal, v, v);
             set_speaker(self, hal);

@@ -1,5 +1,6 @@
 #include "avoid.h"
 
+#include "common/motion.h"
 #include "units.h"
 #include "repatt/odometry.h"
 
@@ -103,24 +104,9 @@ void avoid_start_run(avoid_t *a, rng_t *rng, uint16_t oa_run_max_mm)
     a->done2 = 0;
 }
 
-/* A wheel speed that makes at most `remaining` steps in one period. */
-static int16_t capped_speed(hal_t *hal, int16_t speed, int32_t remaining)
-{
-    uint16_t period = hal_control_period_ms(hal);
-    int32_t cap;
-    if (period == 0u || remaining <= 0) {
-        return 0;
-    }
-    if (remaining > 100000L) {
-        return speed;
-    }
-    cap = (remaining * 1000L + period - 1) / period;
-    return (int16_t)((cap < speed) ? cap : speed);
-}
-
 uint8_t avoid_turn_step(avoid_t *a, hal_t *hal, int16_t turn_speed_steps_s)
 {
-    int16_t w = capped_speed(hal, turn_speed_steps_s, (a->target2 - a->done2 + 1) / 2);
+    int16_t w = motion_capped_speed(hal, turn_speed_steps_s, (a->target2 - a->done2 + 1) / 2);
     if (a->done2 >= a->target2 || w <= 0) {
         return 0u;
     }
@@ -134,7 +120,7 @@ uint8_t avoid_turn_step(avoid_t *a, hal_t *hal, int16_t turn_speed_steps_s)
 
 uint8_t avoid_run_step(avoid_t *a, hal_t *hal, int16_t speed_steps_s)
 {
-    int16_t v = capped_speed(hal, speed_steps_s, (a->target2 - a->done2 + 1) / 2);
+    int16_t v = motion_capped_speed(hal, speed_steps_s, (a->target2 - a->done2 + 1) / 2);
     if (v <= 0) {
         return 0u;
     }

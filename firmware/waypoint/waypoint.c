@@ -1,5 +1,6 @@
 #include "waypoint.h"
 
+#include "common/motion.h"
 #include "units.h"
 #include "repatt/odometry.h"
 
@@ -70,29 +71,6 @@ void waypoint_reset(waypoint_t *self)
 static void stop(hal_t *hal)
 {
     hal_set_wheel_speeds(hal, 0, 0);
-}
-
-static int16_t clamp_speed(int32_t v)
-{
-    if (v > HAL_WHEEL_SPEED_MAX) {
-        return HAL_WHEEL_SPEED_MAX;
-    }
-    if (v < -HAL_WHEEL_SPEED_MAX) {
-        return (int16_t)-HAL_WHEEL_SPEED_MAX;
-    }
-    return (int16_t)v;
-}
-
-/* Periods of `ms` at this period, rounded up (at least 1). */
-static uint16_t periods(hal_t *hal, uint16_t ms)
-{
-    uint16_t period = hal_control_period_ms(hal);
-    uint32_t n;
-    if (period == 0u) {
-        period = 1u;
-    }
-    n = ((uint32_t)ms + period - 1u) / period;
-    return (uint16_t)(n == 0u ? 1u : n);
 }
 
 /* A tracker coordinate bounded as route coordinates are, so that their
@@ -196,14 +174,14 @@ static void steer(const waypoint_t *self, hal_t *hal, int16_t error_mrad)
         hal_set_wheel_speeds(hal, w, (int16_t)-w);
         return;
     }
-    d = clamp_speed((int32_t)p->steer_gain * (int32_t)error_mrad / 1000);
+    d = motion_clamp_speed((int32_t)p->steer_gain * (int32_t)error_mrad / 1000);
     /* Slower rather than a saturated wheel: the difference, which sets
      * the turn, is kept whole. */
     v = (int32_t)p->speed_steps_s;
     if (v > HAL_WHEEL_SPEED_MAX - (d < 0 ? -d : d)) {
         v = HAL_WHEEL_SPEED_MAX - (d < 0 ? -d : d);
     }
-    hal_set_wheel_speeds(hal, clamp_speed(v - d), clamp_speed(v + d));
+    hal_set_wheel_speeds(hal, motion_clamp_speed(v - d), motion_clamp_speed(v + d));
 }
 
 /* The tracker's fix, if there is one and it is fresh enough. */
@@ -289,7 +267,7 @@ static void travel(waypoint_t *self, hal_t *hal)
 /* Wheels (0, 0) for the whole wait, then on to the next point. */
 static void pick_step(waypoint_t *self, hal_t *hal)
 {
-    if (self->timer < periods(hal, self->params.pick_time_ms)) {
+    if (self->timer < motion_periods(hal, self->params.pick_time_ms)) {
         self->timer++;
         stop(hal);
         return;
