@@ -99,6 +99,16 @@ def cells(rows: Iterable[dict[str, str]]) -> dict[tuple[str, str, Combo], np.nda
     return {k: np.array(v) for k, v in out.items()}
 
 
+def with_fixed(rows: list[dict[str, str]], sw: sweep_spec.Sweep) -> list[dict[str, str]]:
+    """Rows of a sweep's results.csv with its fixed `set` values filled in:
+    the table has columns for the axes only, and a row's arm (its noise)
+    may be fixed (the screen's N100-Q40)."""
+    for r in rows:
+        for k, v in sw.fixed:
+            r.setdefault(k, sweep_spec.set_text(v))
+    return rows
+
+
 def rank_sums(times: dict[tuple[str, str, Combo], np.ndarray], arm_name: str) -> list[tuple[int, Combo, dict]]:
     """The paper's score: in each world, the combinations ranked by mean time
     (1 = fastest; ties share the lower rank's order by combination), ranks
@@ -310,7 +320,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             rc = run_sweep(sw, a, sim, out / st, "study_gains")
             if rc is None or rc == INTERRUPTED:
                 return rc if rc is not None else -1
-            all_rows[st] = read_rows(out / st / "results.csv")
+            all_rows[st] = with_fixed(read_rows(out / st / "results.csv"), sw)
             md.append(f"{st}: {len(all_rows[st])} runs, {len(sw.seeds)} seed(s) a cell, "
                       f"{time.monotonic() - t1:.0f} s (sweep `{out / st}`); "
                       f"{sum(float(r.get('wall_s') or 0) for r in all_rows[st]) / 3600:.2f} core-hours of runs.")

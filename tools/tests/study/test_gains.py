@@ -52,6 +52,13 @@ class Stages(unittest.TestCase):
         self.assertEqual(len(self.base.axes[-1].combos), 900)
         self.assertIn(("duration", 3600), self.base.fixed)
 
+    def test_fixed_values_fill_the_rows(self) -> None:
+        r = row("one100", A, 10)
+        del r[G.NOISE]                       # results.csv has columns for the axes only
+        self.assertEqual(G.arm(r), "N0-Q1")
+        G.with_fixed([r], self.base)         # the screen fixes sound.noise 0.06
+        self.assertEqual(G.arm(r), "N100-Q40")
+
     def test_race_sweep(self) -> None:
         sw = G.stage_sweep(self.base, "race", [A, B], range(1, 31), [{G.QUEUE: 40, G.NOISE: 0.06}], uncap=True)
         keys = [k for k, _ in sw.fixed]
