@@ -126,7 +126,8 @@ firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_li
 
 # ------------------------------------------------ CPU report
 FW_CPU_SRC := firmware/foraging/forager.c firmware/foraging/nest_beacon.c firmware/foraging/nest_link.c \
-  firmware/common/random_walk.c firmware/common/rng.c firmware/foraging/task_alloc.c hal/blob_detect.c \
+  firmware/common/motion.c firmware/common/random_walk.c firmware/common/rng.c firmware/foraging/task_alloc.c \
+  hal/blob_detect.c \
   hal/hal_common.c hal/units.c hal/tone_detect.c hal/tone_tables.c \
   firmware/repatt/repatt.c firmware/repatt/chemotaxis.c firmware/repatt/odometry.c
 FW_CPU_STEPS ?= 2000
