@@ -18,9 +18,9 @@ KIND = 0x52                 # 'R'
 MAX_TARGETS = 6             # ROUTE_MAX_TARGETS
 COORD_MAX_MM = 1_000_000    # ROUTE_COORD_MAX_MM
 #: Where a robot stops for a target by a wall: this far from the wall (m),
-#: the body's radius (37 mm, hal/units.h) plus the ~25 mm at which its IR
-#: reads above avoid_enter and it turns away, plus 8 mm for noise.  The
-#: targets task reaches 57 mm centre to centre (37 + target 10 + reach 10),
+#: the body's radius (35 mm, hal/units.h) plus the ~25 mm at which its IR
+#: reads above avoid_enter and it turns away, plus 10 mm for noise.  The
+#: targets task reaches 55 mm centre to centre (35 + target 10 + reach 10),
 #: so a stop moved up to WALL_SHIFT_MAX_M (with arrive_mm 10) still picks.
 WALL_CLEARANCE_M = 0.070
 WALL_SHIFT_MAX_M = 0.045
