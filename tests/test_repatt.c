@@ -629,7 +629,7 @@ static void test_tumble(void **state)
     assert_true(H.left == -H.right);
     for (i = 0; i < 2000u; i++) {
         step();
-        tumbles += (R.state == REPATT_TUMBLE && R.done2 == 0);   /* a turn started */
+        tumbles += (R.state == REPATT_TUMBLE && R.turn.done2 == 0);   /* a turn started */
     }
     assert_true(tumbles > 50u);   /* a turn takes up to 0.8 s */
 }

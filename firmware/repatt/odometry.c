@@ -114,9 +114,7 @@ void odometry_reset(odometry_t *o)
     o->primed = 0u;
 }
 
-/* now - last on 16-bit counters that wrap, in [-32768, 32767], then
- * limited to what a wheel can do in a period. */
-static int16_t counter_delta(int16_t now, int16_t last)
+int16_t odo_counter_delta(int16_t now, int16_t last)
 {
     int32_t d = (int32_t)now - (int32_t)last;
     if (d > 32767L) {
@@ -148,8 +146,8 @@ void odometry_update(odometry_t *o, int16_t left, int16_t right, int16_t *d_left
     int16_t dl = 0, dr = 0;
     int32_t dtheta, mid_mrad, ds_um;
     if (o->primed != 0u) {
-        dl = counter_delta(left, o->last_left);
-        dr = counter_delta(right, o->last_right);
+        dl = odo_counter_delta(left, o->last_left);
+        dr = odo_counter_delta(right, o->last_right);
     }
     o->primed = 1u;
     o->last_left = left;

@@ -61,4 +61,8 @@ int16_t odo_atan2_mrad(int32_t y, int32_t x);
 /** An angle in mrad wrapped to (-3142, 3142]. */
 int32_t odo_wrap_mrad(int32_t mrad);
 
+/** now - last on 16-bit step counters that wrap, in [-32768, 32767], then
+ *  limited to what a wheel can do in a period (+-ODO_MAX_STEP_DELTA). */
+int16_t odo_counter_delta(int16_t now, int16_t last);
+
 #endif

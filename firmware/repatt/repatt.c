@@ -21,13 +21,6 @@
 #define GAUSS_TERMS 12
 #define GAUSS_MEAN 24570L
 #define GAUSS_SD 4096L
-/* IR sensors: the front pair, and each side's two. */
-#define IR_FRONT_RIGHT 0u
-#define IR_RIGHT_50 1u
-#define IR_RIGHT_90 2u
-#define IR_LEFT_90 5u
-#define IR_LEFT_50 6u
-#define IR_FRONT_LEFT 7u
 
 void repatt_apply_policy(repatt_params_t *params, uint8_t policy)
 {
@@ -114,9 +107,7 @@ void repatt_reset(repatt_t *self)
     self->band = 0u;
     self->speaker = 255u;
     odometry_reset(&self->odo);
-    self->turn_sign = 1;
-    self->target2 = 0;
-    self->done2 = 0;
+    avoid_reset(&self->turn);
     self->timer = 0u;
     self->ignore = 0u;
     self->pick_bearing_mrad = 0;
@@ -175,57 +166,19 @@ static void listen(repatt_t *self, hal_t *hal)
     self->d_a = chemo_filter_sign(&self->filter[1]);
 }
 
-/* 1 front, 2 on the right, 3 on the left, 0 none. */
-static uint8_t obstacle(const repatt_t *self, hal_t *hal)
-{
-    uint16_t e = self->params.avoid_enter;
-    uint16_t fr = hal_ir_proximity(hal, IR_FRONT_RIGHT);
-    uint16_t fl = hal_ir_proximity(hal, IR_FRONT_LEFT);
-    uint16_t r1 = hal_ir_proximity(hal, IR_RIGHT_50), r2 = hal_ir_proximity(hal, IR_RIGHT_90);
-    uint16_t l1 = hal_ir_proximity(hal, IR_LEFT_50), l2 = hal_ir_proximity(hal, IR_LEFT_90);
-    uint16_t right = (r1 > r2) ? r1 : r2;
-    uint16_t left = (l1 > l2) ? l1 : l2;
-    if (fr > e || fl > e) {
-        return 1u;
-    }
-    if (right > e || left > e) {
-        return (right >= left) ? 2u : 3u;
-    }
-    return 0u;
-}
-
 /* ------------------------------------------------------------ motion */
 
 /* A turn in place by `mrad` (CCW positive), counted on the step counters. */
 static void start_turn(repatt_t *self, uint8_t state, int32_t mrad)
 {
-    mrad = odo_wrap_mrad(mrad);
     self->state = state;
-    self->turn_sign = (mrad >= 0) ? (int8_t)1 : (int8_t)-1;
-    self->target2 = 2 * units_turn_mrad_to_steps(mrad >= 0 ? mrad : -mrad);
-    self->done2 = 0;
-}
-
-static void start_run(repatt_t *self, int32_t mm)
-{
-    self->state = REPATT_AVOID_RUN;
-    self->target2 = 2 * units_mm_to_steps(mm);
-    self->done2 = 0;
+    avoid_turn_by(&self->turn, mrad);
 }
 
 /* Turning: 1 while some of the turn is left (wheels set), 0 when done. */
 static uint8_t turn_step(repatt_t *self, hal_t *hal)
 {
-    int16_t w = motion_capped_speed(hal, self->params.turn_speed_steps_s, (self->target2 - self->done2 + 1) / 2);
-    if (self->done2 >= self->target2 || w <= 0) {
-        return 0u;
-    }
-    if (self->turn_sign > 0) {
-        hal_set_wheel_speeds(hal, (int16_t)-w, w);
-    } else {
-        hal_set_wheel_speeds(hal, w, (int16_t)-w);
-    }
-    return 1u;
+    return avoid_turn_step(&self->turn, hal, self->params.turn_speed_steps_s);
 }
 
 static void forward(repatt_t *self, hal_t *hal)
@@ -267,19 +220,9 @@ static int32_t tumble_angle(repatt_t *self)
 /* Lines 3-4: the turn of an obstacle avoidance. */
 static void start_avoidance(repatt_t *self, uint8_t where)
 {
-    int32_t a;
     self->oae_count++;
-    if (where == 1u) {
-        /* Front: greater than 90 deg, up to 180, either way. */
-        a = rng_range(&self->rng, UNITS_HALF_PI_MRAD + 1, UNITS_PI_MRAD);
-        if ((rng_next(&self->rng) & 1u) != 0u) {
-            a = -a;
-        }
-    } else {
-        /* 45 deg to the left (CCW) for an obstacle on the right. */
-        a = (where == 2u) ? (int32_t)self->params.side_turn_mrad : -(int32_t)self->params.side_turn_mrad;
-    }
-    start_turn(self, REPATT_AVOID, a);
+    self->state = REPATT_AVOID;
+    avoid_start_turn(&self->turn, &self->rng, where, self->params.side_turn_mrad);
 }
 
 /* ------------------------------------------------------------ states */
@@ -414,11 +357,8 @@ void repatt_step(repatt_t *self, hal_t *hal)
     hal_wheel_steps(hal, &l, &r);
     odometry_update(&self->odo, l, r, &dl, &dr);
     /* What the last command did to the current turn or run. */
-    if (self->state == REPATT_TUMBLE || self->state == REPATT_AVOID) {
-        self->done2 += (int32_t)self->turn_sign * ((int32_t)dr - (int32_t)dl);
-    } else if (self->state == REPATT_AVOID_RUN) {
-        self->done2 += (int32_t)dl + (int32_t)dr;
-    }
+    avoid_count(&self->turn, (self->state == REPATT_TUMBLE || self->state == REPATT_AVOID) ? AVOID_TURNING
+                             : (self->state == REPATT_AVOID_RUN) ? AVOID_RUNNING : AVOID_IDLE, dl, dr);
     if (self->ignore > 0u) {
         self->ignore--;
     }
@@ -433,7 +373,8 @@ void repatt_step(repatt_t *self, hal_t *hal)
     }
 
     /* Lines 3-4: obstacle avoidance, its turn then its run. */
-    where = (self->state == REPATT_PICK || self->state == REPATT_AVOID) ? 0u : obstacle(self, hal);
+    where = (self->state == REPATT_PICK || self->state == REPATT_AVOID) ? 0u
+            : avoid_obstacle(hal, self->params.avoid_enter);
     if (where != 0u) {
         start_avoidance(self, where);
     }
@@ -442,12 +383,11 @@ void repatt_step(repatt_t *self, hal_t *hal)
             set_speaker(self, hal);
             return;
         }
-        start_run(self, rng_range(&self->rng, 0, (int32_t)self->params.oa_run_max_mm));
+        self->state = REPATT_AVOID_RUN;
+        avoid_start_run(&self->turn, &self->rng, self->params.oa_run_max_mm);
     }
     if (self->state == REPATT_AVOID_RUN) {
-        int16_t v = motion_capped_speed(hal, self->params.speed_steps_s, (self->target2 - self->done2 + 1) / 2);
-        if (v > 0) {
-            hal_set_wheel_speeds(hal, v, v);
+        if (avoid_run_step(&self->turn, hal, self->params.speed_steps_s) != 0u) {
             set_speaker(self, hal);
             return;
         }

@@ -59,6 +59,7 @@
 #include "hal.h"
 #include "common/controller.h"
 #include "common/rng.h"
+#include "avoid.h"
 #include "chemotaxis.h"
 #include "odometry.h"
 
@@ -138,9 +139,7 @@ typedef struct repatt {
 
     /* Motion. */
     odometry_t odo;
-    int8_t turn_sign;       /**< +1 CCW, -1 CW */
-    int32_t target2;        /**< turn or run length x 2, wheel steps */
-    int32_t done2;          /**< progress x 2, wheel steps */
+    avoid_t turn;           /**< the tumble, avoidance turn or run in progress */
     uint16_t timer;         /**< PICK: periods stopped */
     uint16_t ignore;        /**< periods left in which targets are ignored */
     int16_t pick_bearing_mrad;   /**< PICK: where the target is */

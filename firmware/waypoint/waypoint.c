@@ -53,6 +53,9 @@ void waypoint_reset(waypoint_t *self)
     self->route.drop.x_mm = 0;
     self->route.drop.y_mm = 0;
     avoid_reset(&self->avoid);
+    self->last_left = 0;
+    self->last_right = 0;
+    self->primed = 0u;
     self->state = WAYPOINT_WAIT_ROUTE;
     self->index = 0u;
     self->timer = 0u;
@@ -309,16 +312,30 @@ static void avoid_run_state(waypoint_t *self, hal_t *hal)
     travel(self, hal);
 }
 
-void waypoint_step(waypoint_t *self, hal_t *hal)
+/* What the last command did to a turn or run in progress: the counters
+ * are read every period, so that a manoeuvre starts from the right count. */
+static void count_wheels(waypoint_t *self, hal_t *hal)
 {
+    int16_t l, r;
     uint8_t phase = (uint8_t)AVOID_IDLE;
+    hal_wheel_steps(hal, &l, &r);
     if (self->state == WAYPOINT_AVOID) {
         phase = (uint8_t)AVOID_TURNING;
     } else if (self->state == WAYPOINT_AVOID_RUN) {
         phase = (uint8_t)AVOID_RUNNING;
     }
-    /* What the last command did to a turn or run in progress. */
-    avoid_track(&self->avoid, hal, phase);
+    if (self->primed != 0u) {
+        avoid_count(&self->avoid, phase, odo_counter_delta(l, self->last_left),
+                    odo_counter_delta(r, self->last_right));
+    }
+    self->primed = 1u;
+    self->last_left = l;
+    self->last_right = r;
+}
+
+void waypoint_step(waypoint_t *self, hal_t *hal)
+{
+    count_wheels(self, hal);
     take_message(self, hal);
 
     switch (self->state) {

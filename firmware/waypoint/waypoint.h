@@ -24,7 +24,7 @@
  *   HOME        to the drop-off point as GO; within home_radius_mm: DONE.
  *   DONE        still, the route delivered.
  *   AVOID       an obstacle met in GO, HOME or AVOID_RUN (IR proximity
- *               above avoid_enter): RepAtt's turn away from it (avoid.h);
+ *               above avoid_enter): RepAtt's turn away from it (repatt/avoid.h);
  *   AVOID_RUN   then its straight run; then GO or HOME again, whichever
  *               the route is at.  A robot that stands still (WAIT_ROUTE,
  *               PICK, DONE) does not avoid, as RepAtt's PICK.
@@ -55,7 +55,7 @@
 #include "hal.h"
 #include "common/controller.h"
 #include "common/rng.h"
-#include "avoid.h"
+#include "repatt/avoid.h"
 #include "route_msg.h"
 
 typedef struct waypoint_params {
@@ -89,6 +89,9 @@ typedef struct waypoint {
     uint32_t seed;
     route_t route;
     avoid_t avoid;
+    int16_t last_left;      /**< wheel counters at the last step */
+    int16_t last_right;
+    uint8_t primed;         /**< the counters have been read once */
     uint8_t state;          /**< waypoint_state_t */
     uint8_t index;          /**< the route's current point: targets 0..n-1, n the drop-off */
     uint16_t timer;         /**< PICK: periods stood still so far */

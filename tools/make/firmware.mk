@@ -129,7 +129,7 @@ FW_CPU_SRC := firmware/foraging/forager.c firmware/foraging/nest_beacon.c firmwa
   firmware/common/motion.c firmware/common/random_walk.c firmware/common/rng.c firmware/foraging/task_alloc.c \
   hal/blob_detect.c \
   hal/hal_common.c hal/units.c hal/tone_detect.c hal/tone_tables.c \
-  firmware/repatt/repatt.c firmware/repatt/chemotaxis.c firmware/repatt/odometry.c
+  firmware/repatt/repatt.c firmware/repatt/avoid.c firmware/repatt/chemotaxis.c firmware/repatt/odometry.c
 FW_CPU_STEPS ?= 2000
 
 $(FW_HOST)/cpu_harness: tests/firmware/cpu_harness.c $(FW_CPU_SRC) $(wildcard firmware/*/*.h hal/*.h) | $(BUILD)/config.mk

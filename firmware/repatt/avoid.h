@@ -1,11 +1,8 @@
 /*
  * avoid.h - seed 002's obstacle avoidance (Obute et al. 2020, Algorithm 1
- * lines 3-4) for the waypoint controller: RepAtt's rule, re-implemented.
- *
- * RepAtt (firmware/repatt/repatt.c) keeps this rule in static functions of
- * its own file, and its behaviour is pinned by golden hashes; sharing the
- * code would mean changing repatt.c, so the rule is written out again here
- * with the same parameter names, defaults and random draws:
+ * lines 3-4) and the counted turns and runs it is made of, shared by RepAtt
+ * (firmware/repatt/repatt.c, whose tumbles are such turns too) and the ALNS
+ * route follower (firmware/waypoint/):
  *   - an obstacle is an IR proximity above avoid_enter: in front (IR0,
  *     IR7), else on the right (IR1, IR2) or the left (IR5, IR6), the side
  *     with the larger reading (the right on a tie);
@@ -13,11 +10,12 @@
  *     direction drawn at random; on a side: a turn of side_turn_mrad away
  *     from it;
  *   - then a straight run of a length uniform in [0, oa_run_max_mm].
- * Turns and runs are measured on the wheel step counters (no pose needed),
- * and the last period's speed is cut so as not to overshoot them.
+ * Turns and runs are measured on the wheel step counters (no pose needed):
+ * the caller gives each period's counter changes (avoid_count), and the
+ * last period's speed is cut so as not to overshoot.
  */
-#ifndef FW_WAYPOINT_AVOID_H
-#define FW_WAYPOINT_AVOID_H
+#ifndef FW_REPATT_AVOID_H
+#define FW_REPATT_AVOID_H
 
 #include <stdint.h>
 
@@ -39,24 +37,25 @@ typedef enum avoid_phase {
     AVOID_RUNNING = 2
 } avoid_phase_t;
 
+/** A turn in place or a straight run, counted on the wheel steps. */
 typedef struct avoid {
     int32_t target2;        /**< turn or run length x 2, wheel steps */
     int32_t done2;          /**< progress x 2, wheel steps */
-    int16_t last_left;      /**< counters at the last avoid_track */
-    int16_t last_right;
     int8_t turn_sign;       /**< +1 CCW, -1 CW */
-    uint8_t primed;         /**< the counters have been read once */
 } avoid_t;
 
-/** Nothing measured; the next avoid_track only reads the counters. */
+/** Nothing to measure. */
 void avoid_reset(avoid_t *a);
 
-/** Reads the wheel counters (every period, so that a manoeuvre starts from
- *  the right count) and adds their change to a turn or a run in progress. */
-void avoid_track(avoid_t *a, hal_t *hal, uint8_t phase);
+/** Adds one period's counter changes (steps, odo_counter_delta's) to the
+ *  turn (AVOID_TURNING) or run (AVOID_RUNNING) in progress. */
+void avoid_count(avoid_t *a, uint8_t phase, int32_t d_left, int32_t d_right);
 
 /** Where an obstacle is this period (avoid_where_t). */
 uint8_t avoid_obstacle(hal_t *hal, uint16_t avoid_enter);
+
+/** Starts a turn in place by `mrad` (CCW positive, wrapped). */
+void avoid_turn_by(avoid_t *a, int32_t mrad);
 
 /** Starts the turn away from an obstacle at `where` (not AVOID_NONE). */
 void avoid_start_turn(avoid_t *a, rng_t *rng, uint8_t where, uint16_t side_turn_mrad);

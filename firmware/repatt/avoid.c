@@ -2,7 +2,7 @@
 
 #include "common/motion.h"
 #include "units.h"
-#include "repatt/odometry.h"
+#include "odometry.h"
 
 /* IR sensors: the front pair, and each side's two (hal.h's bearings). */
 #define IR_FRONT_RIGHT 0u
@@ -11,53 +11,20 @@
 #define IR_LEFT_90 5u
 #define IR_LEFT_50 6u
 #define IR_FRONT_LEFT 7u
-/* A counter change larger than this in one period is not a motion (1000
- * steps/s at most): odometry.h's bound. */
-#define MAX_STEP_DELTA ODO_MAX_STEP_DELTA
 
 void avoid_reset(avoid_t *a)
 {
     a->target2 = 0;
     a->done2 = 0;
-    a->last_left = 0;
-    a->last_right = 0;
     a->turn_sign = 1;
-    a->primed = 0u;
 }
 
-/* now - last on 16-bit counters that wrap. */
-static int32_t counter_delta(int16_t now, int16_t last)
+void avoid_count(avoid_t *a, uint8_t phase, int32_t d_left, int32_t d_right)
 {
-    int32_t d = (int32_t)now - (int32_t)last;
-    if (d > 32767L) {
-        d -= 65536L;
-    } else if (d < -32768L) {
-        d += 65536L;
-    }
-    if (d > MAX_STEP_DELTA) {
-        d = MAX_STEP_DELTA;
-    } else if (d < -MAX_STEP_DELTA) {
-        d = -MAX_STEP_DELTA;
-    }
-    return d;
-}
-
-void avoid_track(avoid_t *a, hal_t *hal, uint8_t phase)
-{
-    int16_t l, r;
-    int32_t dl = 0, dr = 0;
-    hal_wheel_steps(hal, &l, &r);
-    if (a->primed != 0u) {
-        dl = counter_delta(l, a->last_left);
-        dr = counter_delta(r, a->last_right);
-    }
-    a->primed = 1u;
-    a->last_left = l;
-    a->last_right = r;
     if (phase == AVOID_TURNING) {
-        a->done2 += (int32_t)a->turn_sign * (dr - dl);
+        a->done2 += (int32_t)a->turn_sign * (d_right - d_left);
     } else if (phase == AVOID_RUNNING) {
-        a->done2 += dl + dr;
+        a->done2 += d_left + d_right;
     }
 }
 
@@ -79,6 +46,14 @@ uint8_t avoid_obstacle(hal_t *hal, uint16_t avoid_enter)
     return (uint8_t)AVOID_NONE;
 }
 
+void avoid_turn_by(avoid_t *a, int32_t mrad)
+{
+    mrad = odo_wrap_mrad(mrad);
+    a->turn_sign = (mrad >= 0) ? (int8_t)1 : (int8_t)-1;
+    a->target2 = 2 * units_turn_mrad_to_steps(mrad >= 0 ? mrad : -mrad);
+    a->done2 = 0;
+}
+
 void avoid_start_turn(avoid_t *a, rng_t *rng, uint8_t where, uint16_t side_turn_mrad)
 {
     int32_t mrad;
@@ -92,10 +67,7 @@ void avoid_start_turn(avoid_t *a, rng_t *rng, uint8_t where, uint16_t side_turn_
         /* Away from the side: to the left (CCW) for an obstacle on the right. */
         mrad = (where == AVOID_RIGHT) ? (int32_t)side_turn_mrad : -(int32_t)side_turn_mrad;
     }
-    mrad = odo_wrap_mrad(mrad);
-    a->turn_sign = (mrad >= 0) ? (int8_t)1 : (int8_t)-1;
-    a->target2 = 2 * units_turn_mrad_to_steps(mrad >= 0 ? mrad : -mrad);
-    a->done2 = 0;
+    avoid_turn_by(a, mrad);
 }
 
 void avoid_start_run(avoid_t *a, rng_t *rng, uint16_t oa_run_max_mm)
