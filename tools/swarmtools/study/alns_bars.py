@@ -25,6 +25,7 @@ import yaml
 from swarmtools.plan import alns as planner
 from swarmtools.plan.problem import load_world
 from swarmtools.plan.routes import run_scenario
+from swarmtools.study.common import boot_ratio
 from swarmtools.sweep.store import atomic_write
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
@@ -80,7 +81,7 @@ def sweep_file(out: Path, seeds: Sequence[int]) -> Path:
     return path
 
 
-def bars(alns_rows: Sequence[dict[str, str]], rw: dict[tuple[str, int], np.ndarray], boot) -> dict[str, Any]:
+def bars(alns_rows: Sequence[dict[str, str]], rw: dict[tuple[str, int], np.ndarray]) -> dict[str, Any]:
     """Per world: ALNS's mean time, its ratio to RW's with a 95 % interval."""
     res: dict[str, Any] = {}
     for d in DISTS:
@@ -89,7 +90,7 @@ def bars(alns_rows: Sequence[dict[str, str]], rw: dict[tuple[str, int], np.ndarr
             t = np.array([float(r["time_capped_s"]) for r in rows])
             w = f"{d.capitalize()}{size}m"
             base = rw.get((d, size), np.array([]))
-            m, lo, hi = boot(t, base) if t.size and base.size else (math.nan,) * 3
+            m, lo, hi = boot_ratio(t, base) if t.size and base.size else (math.nan,) * 3
             res[f"{w}/ALNS"] = {"world": w, "arm": "ALNS", "runs": len(rows), "ok": int(t.size),
                                 "unfinished": sum(1 for r in rows if float(r.get("finished") or 0) < 0.5),
                                 "mean_s": float(t.mean()) if t.size else math.nan,

@@ -13,6 +13,8 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep.spec import Sweep, SweepError
 from swarmtools.sweep.store import atomic_write
@@ -41,6 +43,17 @@ def run_sweep(sw: Sweep, args: argparse.Namespace, sim: Path, sweep_dir: Path, t
     if args.backend == "slurm" and args.no_wait:
         return None
     return rc
+
+
+def boot_ratio(num: np.ndarray, den: np.ndarray, scale: float = 1.0, n: int = 4000) -> tuple[float, float, float]:
+    """mean(num) / mean(den) / scale and its 95 % bootstrap interval."""
+    if num.size == 0 or den.size == 0:
+        return math.nan, math.nan, math.nan
+    rng = np.random.default_rng(0)
+    a = rng.choice(num, size=(n, num.size)).mean(axis=1)
+    b = rng.choice(den, size=(n, den.size)).mean(axis=1)
+    r = a / b / scale
+    return float(num.mean() / den.mean() / scale), float(np.percentile(r, 2.5)), float(np.percentile(r, 97.5))
 
 
 def read_rows(path: Path) -> list[dict[str, str]]:

@@ -47,7 +47,8 @@ from typing import Any
 
 import numpy as np
 
-from swarmtools.study.common import INTERRUPTED, read_rows, run_sweep, write_results
+from swarmtools.study.common import INTERRUPTED, boot_ratio, read_rows, run_sweep, write_results
+from swarmtools.study.repatt import world as repatt_world
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
@@ -81,9 +82,8 @@ def combo(row: dict[str, str]) -> Combo:
 
 def world(row: dict[str, str]) -> str:
     """"One100m" from the row's scenario (repatt_one100.yaml)."""
-    stem = Path(row["scenario"]).stem.removeprefix("repatt_")
-    size = "100" if stem.endswith("100") else "50"
-    return stem.removesuffix(size).capitalize() + size + "m"
+    dist, size = repatt_world(row)
+    return f"{dist.capitalize()}{size}m"
 
 
 def arm(row: dict[str, str]) -> str:
@@ -124,15 +124,6 @@ def rank_sums(times: dict[tuple[str, str, Combo], np.ndarray], arm_name: str) ->
             ranks[c][w] = i + 1
     scored = [(sum(ranks[c].values()), c, ranks[c]) for c in combos]
     return sorted(scored, key=lambda s: (s[0], s[1]))
-
-
-def boot_ratio(num: np.ndarray, den: np.ndarray, n: int = 4000) -> tuple[float, float, float]:
-    """mean(num) / mean(den) and its 95 % bootstrap interval (both resampled)."""
-    if num.size == 0 or den.size == 0:
-        return math.nan, math.nan, math.nan
-    rng = np.random.default_rng(0)
-    r = rng.choice(num, size=(n, num.size)).mean(axis=1) / rng.choice(den, size=(n, den.size)).mean(axis=1)
-    return float(num.mean() / den.mean()), float(np.percentile(r, 2.5)), float(np.percentile(r, 97.5))
 
 
 def stage_sweep(base: sweep_spec.Sweep, name_: str, combos: Sequence[Combo], seeds: Sequence[int],

@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 
 from swarmtools.study import alns_bars
-from swarmtools.study.common import INTERRUPTED, pick, read_rows, run_sweep, write_results
+from swarmtools.study.common import INTERRUPTED, boot_ratio, pick, read_rows, run_sweep, write_results
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
@@ -93,17 +93,6 @@ def times(rows: Sequence[dict[str, str]]) -> tuple[np.ndarray, int]:
     t = np.array([float(r[TIME]) for r in ok], dtype=float)
     unfinished = sum(1 for r in ok if float(r.get(FINISHED) or 0) < 0.5)
     return t, unfinished
-
-
-def boot_ratio(num: np.ndarray, den: np.ndarray, scale: float = 1.0, n: int = 4000) -> tuple[float, float, float]:
-    """mean(num) / mean(den) / scale and its 95 % bootstrap interval."""
-    if num.size == 0 or den.size == 0:
-        return math.nan, math.nan, math.nan
-    rng = np.random.default_rng(0)
-    a = rng.choice(num, size=(n, num.size)).mean(axis=1)
-    b = rng.choice(den, size=(n, den.size)).mean(axis=1)
-    r = a / b / scale
-    return float(num.mean() / den.mean() / scale), float(np.percentile(r, 2.5)), float(np.percentile(r, 97.5))
 
 
 def group(rows: Sequence[dict[str, str]], key) -> dict[Any, list[dict[str, str]]]:
@@ -357,7 +346,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 rw = {world(r): times(rr)[0] for r, rr in
                       ((g[0], g) for g in group(tables["worlds"], lambda r: (world(r), arm(r))).values())
                       if arm(r) == "RW"}
-                alns_res = alns_bars.bars(arows, rw, boot_ratio)
+                alns_res = alns_bars.bars(arows, rw)
                 md.append(f"alns: 5 plans ({a.alns_iterations} iterations, q {a.alns_q}) and {len(arows)} runs, "
                           f"{time.monotonic() - t1:.0f} s (`{out / 'alns'}`).")
                 md.append("")
