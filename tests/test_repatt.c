@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "fake_hal.h"
+#include "fake_drive.h"
 #include "repatt/repatt.h"
 #include "units.h"
 
@@ -29,8 +30,7 @@ static hal_t H;
 static repatt_t R;
 static uint32_t Q[REPATT_QUEUE_WORDS(REPATT_QUEUE_MAX)];
 /* The robot as the world sees it (start frame), and the wheels' exact steps. */
-static double px, py, pth;
-static double acc_l, acc_r;
+static fake_drive_t D;
 /* 1: the robot hears while it emits (sound.self_masking false). */
 static int no_masking;
 
@@ -41,8 +41,7 @@ static void start_with(const repatt_params_t *p, uint32_t seed)
     memset(&R, 0, sizeof R);
     repatt_attach_queue(&R, Q, (uint16_t)REPATT_QUEUE_MAX);
     repatt_init(&R, p, seed);
-    px = py = pth = 0.0;
-    acc_l = acc_r = 0.0;
+    fake_drive_start(&D, 0.0, 0.0, 0.0);
     no_masking = 0;
 }
 
@@ -55,31 +54,14 @@ static void start(uint8_t policy, uint8_t listening)
     start_with(&p, 42u);
 }
 
-static int16_t wrap16(double steps)
-{
-    long v = (long)floor(steps);
-    return (int16_t)(uint16_t)((unsigned long)v & 0xFFFFu);
-}
-
 /* One control period: the controller, then the wheels move as commanded. */
 static void step(void)
 {
-    double dl, dr, ds, dth;
     if (no_masking) {
         H.speaker_played = 0u;
     }
     repatt_step(&R, &H);
-    dl = (double)H.left * PERIOD_MS / 1000.0;
-    dr = (double)H.right * PERIOD_MS / 1000.0;
-    acc_l += dl;
-    acc_r += dr;
-    H.steps_left = wrap16(acc_l);
-    H.steps_right = wrap16(acc_r);
-    ds = (dl + dr) / 2.0 * EPUCK_STEP_M * 1000.0;            /* mm */
-    dth = (dr - dl) * EPUCK_STEP_M / EPUCK_AXLE_M;
-    px += ds * cos(pth + dth / 2.0);
-    py += ds * sin(pth + dth / 2.0);
-    pth += dth;
+    fake_drive_move(&D, &H, PERIOD_MS);
     fake_hal_end_step(&H);
 }
 
@@ -110,13 +92,6 @@ static void show_red(uint8_t n, int16_t bearing_mrad, uint16_t width_mrad)
         H.blobs[i].width_mrad = (uint16_t)(i == 0 ? width_mrad : width_mrad / 2u);
         H.blobs[i].pixels = 10u;
     }
-}
-
-static double wrap_pi(double a)
-{
-    while (a > M_PI) a -= 2.0 * M_PI;
-    while (a <= -M_PI) a += 2.0 * M_PI;
-    return a;
 }
 
 /* ------------------------------------------------------------ eqs 5-6 */
@@ -247,7 +222,7 @@ static void test_trig_and_odometry(void **state)
         for (y = -3000000; y <= 3000000; y += 98765) {
             double want = atan2((double)y, (double)x) * 1000.0;
             double got = odo_atan2_mrad(y, x);
-            assert_true(fabs(wrap_pi((got - want) / 1000.0)) < 0.006);
+            assert_true(fabs(fake_drive_wrap_pi((got - want) / 1000.0)) < 0.006);
         }
     }
     assert_int_equal(odo_atan2_mrad(0, 0), 0);
@@ -436,7 +411,7 @@ static void test_homing_by_odometry(void **state)
     assert_int_equal(R.state, REPATT_PICK);
     steps(199u);
     fake_hal_clear_blobs(&H);
-    assert_true(sqrt(px * px + py * py) > 900.0);
+    assert_true(sqrt(D.x * D.x + D.y * D.y) > 900.0);
     step();
     assert_int_equal(R.cap, 0u);
     assert_int_equal(R.state, REPATT_HOME);
@@ -451,7 +426,7 @@ static void test_homing_by_odometry(void **state)
     }
     assert_int_equal(R.unloads, 1u);
     assert_int_equal(R.readings, readings);   /* ignored the signals */
-    assert_true(sqrt(px * px + py * py) < 110.0);
+    assert_true(sqrt(D.x * D.x + D.y * D.y) < 110.0);
     assert_int_equal(R.cap, 1u);
     assert_int_equal(R.state, REPATT_SEARCH);
     step();
@@ -470,7 +445,7 @@ static double avoidance_turn(uint8_t ir, uint32_t seed)
     p.p_b = 0.0f;
     start_with(&p, seed);
     step();
-    th0 = pth;
+    th0 = D.th;
     H.proximity[ir] = 2000u;
     step();
     assert_int_equal(R.state, REPATT_AVOID);
@@ -483,15 +458,15 @@ static double avoidance_turn(uint8_t ir, uint32_t seed)
     assert_true(R.state == REPATT_AVOID_RUN || R.state == REPATT_SEARCH);
     /* The run: straight, at most 165 mm, then the other states. */
     {
-        double x0 = px, y0 = py, th1 = pth;
+        double x0 = D.x, y0 = D.y, th1 = D.th;
         for (i = 0; i < 400u && R.state == REPATT_AVOID_RUN; i++) {
             assert_true(H.left == H.right && H.left > 0);
             step();
         }
         assert_int_equal(R.state, REPATT_SEARCH);
-        assert_true(sqrt((px - x0) * (px - x0) + (py - y0) * (py - y0)) <= 165.0 + 3.0);
-        assert_true(fabs(pth - th1) < 1e-9);
-        return wrap_pi(th1 - th0);
+        assert_true(sqrt((D.x - x0) * (D.x - x0) + (D.y - y0) * (D.y - y0)) <= 165.0 + 3.0);
+        assert_true(fabs(D.th - th1) < 1e-9);
+        return fake_drive_wrap_pi(th1 - th0);
     }
 }
 
@@ -660,7 +635,7 @@ static void test_hostile_input(void **state)
             }
             H.proximity[(x >> 5) % HAL_IR_COUNT] = (uint16_t)((x >> 9) & 0xFFFu);
             if ((x & 0x3F00u) == 0u) {
-                acc_l += (double)(int16_t)(x >> 16) * 4.0;   /* counter jumps */
+                D.acc_l += (double)(int16_t)(x >> 16) * 4.0;   /* counter jumps */
             }
             step();
             assert_true(R.state <= REPATT_AVOID_RUN);

@@ -20,6 +20,7 @@
 #include <cmocka.h>
 
 #include "fake_hal.h"
+#include "fake_drive.h"
 #include "waypoint/waypoint.h"
 #include "units.h"
 
@@ -32,20 +33,12 @@ static hal_t H;
 static waypoint_t W;
 /* The robot as the tracker sees it (arena frame, mm, rad), the wheels'
  * exact steps, and whether the tracker reports it. */
-static double px, py, pth;
-static double acc_l, acc_r;
+static fake_drive_t D;
 static int tracking;
 /* The tracker's fix period in control periods (1: every period, age 0). */
 static uint32_t fix_every;
 static uint32_t steps_done;
 static hal_pose_t last_fix;
-
-static double wrap_pi(double a)
-{
-    while (a > M_PI) a -= 2.0 * M_PI;
-    while (a <= -M_PI) a += 2.0 * M_PI;
-    return a;
-}
 
 static void start_with(const waypoint_params_t *p, double x, double y, double th)
 {
@@ -53,10 +46,7 @@ static void start_with(const waypoint_params_t *p, double x, double y, double th
     H.period_ms = PERIOD_MS;
     memset(&W, 0, sizeof W);
     waypoint_init(&W, p, 42u);
-    px = x;
-    py = y;
-    pth = th;
-    acc_l = acc_r = 0.0;
+    fake_drive_start(&D, x, y, th);
     tracking = 1;
     fix_every = 1u;
     steps_done = 0u;
@@ -69,12 +59,6 @@ static void start_at(double x, double y, double th)
     start_with(&p, x, y, th);
 }
 
-static int16_t wrap16(double steps)
-{
-    long v = (long)floor(steps);
-    return (int16_t)(uint16_t)((unsigned long)v & 0xFFFFu);
-}
-
 /* The tracker's view of the true pose now: a fix every fix_every periods,
  * aged by the periods since. */
 static void update_tracker(void)
@@ -84,9 +68,9 @@ static void update_tracker(void)
         return;
     }
     if (steps_done % fix_every == 0u) {
-        last_fix.x_mm = (int32_t)lround(px);
-        last_fix.y_mm = (int32_t)lround(py);
-        last_fix.heading_mrad = (int16_t)lround(wrap_pi(pth) * 1000.0);
+        last_fix.x_mm = (int32_t)lround(D.x);
+        last_fix.y_mm = (int32_t)lround(D.y);
+        last_fix.heading_mrad = (int16_t)lround(fake_drive_wrap_pi(D.th) * 1000.0);
         if (last_fix.heading_mrad <= -3142) {
             last_fix.heading_mrad = 3142;
         }
@@ -99,20 +83,9 @@ static void update_tracker(void)
  * commanded. */
 static void step(void)
 {
-    double dl, dr, ds, dth;
     update_tracker();
     waypoint_step(&W, &H);
-    dl = (double)H.left * PERIOD_MS / 1000.0;
-    dr = (double)H.right * PERIOD_MS / 1000.0;
-    acc_l += dl;
-    acc_r += dr;
-    H.steps_left = wrap16(acc_l);
-    H.steps_right = wrap16(acc_r);
-    ds = (dl + dr) / 2.0 * EPUCK_STEP_M * 1000.0;            /* mm */
-    dth = (dr - dl) * EPUCK_STEP_M / EPUCK_AXLE_M;
-    px += ds * cos(pth + dth / 2.0);
-    py += ds * sin(pth + dth / 2.0);
-    pth += dth;
+    fake_drive_move(&D, &H, PERIOD_MS);
     fake_hal_end_step(&H);
     steps_done++;
 }
@@ -151,7 +124,7 @@ static void send_bytes(const uint8_t *bytes, uint8_t len)
 
 static double dist_to(double x, double y)
 {
-    return sqrt((px - x) * (px - x) + (py - y) * (py - y));
+    return sqrt((D.x - x) * (D.x - x) + (D.y - y) * (D.y - y));
 }
 
 /* ------------------------------------------------------------ waiting */
@@ -170,7 +143,7 @@ static void test_waits_without_route(void **state)
     assert_int_equal(H.left, 0);
     assert_int_equal(H.right, 0);
     assert_int_equal(H.host_polls, 400u);
-    assert_true(px == 0.0 && py == 0.0);
+    assert_true(D.x == 0.0 && D.y == 0.0);
     assert_int_equal(W.routes, 0u);
     assert_int_equal(W.no_pose, 0u);   /* waiting needs no fix */
 
@@ -218,7 +191,7 @@ static void test_route_starts(void **state)
     assert_int_equal(H.left, 776);   /* straight ahead */
     assert_int_equal(H.right, 776);
     steps(40u);
-    assert_true(px > 90.0 && fabs(py) < 1.0);
+    assert_true(D.x > 90.0 && fabs(D.y) < 1.0);
 }
 
 /* ------------------------------------------------------------ steering */
@@ -340,12 +313,12 @@ static void test_home_and_done(void **state)
     assert_true(dist_to(0.0, 0.0) <= 100.0 && dist_to(0.0, 0.0) > 90.0);
     assert_int_equal(W.deliveries, 1u);
     {
-        double x = px, y = py;
+        double x = D.x, y = D.y;
         steps(500u);
         assert_int_equal(W.state, WAYPOINT_DONE);
         assert_int_equal(H.left, 0);
         assert_int_equal(H.right, 0);
-        assert_true(px == x && py == y);
+        assert_true(D.x == x && D.y == y);
     }
     /* The same route again is a resend: still done (a host that resends
      * routes must not make robots run them twice); a new route starts. */
@@ -540,12 +513,12 @@ static void test_no_pose_stops(void **state)
     step();
     assert_int_equal(H.left, 0);
     assert_int_equal(H.right, 0);
-    x = px;
+    x = D.x;
     steps(39u);
     assert_int_equal(W.no_pose, 40u);
     assert_int_equal(W.state, WAYPOINT_GO);
     assert_int_equal(W.has_pose, 0u);
-    assert_true(px == x);
+    assert_true(D.x == x);
     tracking = 1;
     step();
     assert_int_equal(H.left, 776);
@@ -553,14 +526,14 @@ static void test_no_pose_stops(void **state)
     assert_int_equal(W.no_pose, 40u);
 
     /* Stale: 300 ms is still a fix, 301 ms is not, nor 1001 (the HAL's). */
-    fake_hal_set_pose(&H, (int32_t)px, 0, 0, 300u);
+    fake_hal_set_pose(&H, (int32_t)D.x, 0, 0, 300u);
     waypoint_step(&W, &H);
     assert_int_equal(H.left, 776);
-    fake_hal_set_pose(&H, (int32_t)px, 0, 0, 301u);
+    fake_hal_set_pose(&H, (int32_t)D.x, 0, 0, 301u);
     waypoint_step(&W, &H);
     assert_int_equal(H.left, 0);
     assert_int_equal(W.no_pose, 41u);
-    fake_hal_set_pose(&H, (int32_t)px, 0, 0, 1001u);
+    fake_hal_set_pose(&H, (int32_t)D.x, 0, 0, 1001u);
     waypoint_step(&W, &H);
     assert_int_equal(H.left, 0);
     assert_int_equal(W.no_pose, 42u);
@@ -579,7 +552,7 @@ static double avoid_turn(uint8_t ir)
     start_at(0.0, 0.0, 0.0);
     send_route(1u, xy, 0, 0);
     step();
-    th0 = pth;
+    th0 = D.th;
     H.proximity[ir] = 2000u;
     step();
     assert_int_equal(W.state, WAYPOINT_AVOID);
@@ -591,17 +564,17 @@ static double avoid_turn(uint8_t ir)
         step();
     }
     assert_true(W.state == WAYPOINT_AVOID_RUN || W.state == WAYPOINT_GO);
-    x0 = px;
-    y0 = py;
-    th1 = pth;
+    x0 = D.x;
+    y0 = D.y;
+    th1 = D.th;
     for (i = 0; i < 400u && W.state == WAYPOINT_AVOID_RUN; i++) {
         assert_string_equal(waypoint_state_name(&W), "avoid_run");
         assert_true(H.left == H.right && H.left > 0);
         step();
     }
     assert_int_equal(W.state, WAYPOINT_GO);
-    assert_true(sqrt((px - x0) * (px - x0) + (py - y0) * (py - y0)) <= 165.0 + 3.0);
-    return wrap_pi(th1 - th0);
+    assert_true(sqrt((D.x - x0) * (D.x - x0) + (D.y - y0) * (D.y - y0)) <= 165.0 + 3.0);
+    return fake_drive_wrap_pi(th1 - th0);
 }
 
 static void test_obstacle_avoidance(void **state)
@@ -745,7 +718,7 @@ static void test_closed_loop_with_obstacle(void **state)
     start_at(0.0, 0.0, 0.0);
     send_route(2u, xy, 0, 0);
     for (i = 0; i < 6000u && W.state != WAYPOINT_DONE; i++) {
-        double ox = px + 40.0 * cos(pth), oy = py + 40.0 * sin(pth);
+        double ox = D.x + 40.0 * cos(D.th), oy = D.y + 40.0 * sin(D.th);
         /* A post at (300, 10): seen by the front sensors when near ahead. */
         H.proximity[0] = H.proximity[7] =
             (uint16_t)(((ox - 300.0) * (ox - 300.0) + (oy - 10.0) * (oy - 10.0) < 30.0 * 30.0) ? 2000u : 0u);
