@@ -328,6 +328,47 @@ static void test_colour_classes_under_scenario_lighting(void **state)
     free(base);
 }
 
+/* How far the robot's detector sees a food token: the rendered model, a
+ * token straight ahead under seed 000's lamp, from its lit side and its
+ * shaded side, at growing distances in 5 cm steps.  The detector keeps blobs
+ * of at least min_pixels (3) pixels; a 3.5 x 4.2 cm token covers about
+ * 1.6 x 1.7 pixels of the 40 x 20 frame at 0.9 m.  The geometric model's
+ * default camera.range (to the token's nearest point) stands for that
+ * reach: they agree within one step. */
+static void test_detector_reach_is_the_geometric_range(void **state)
+{
+    (void)state;
+    scenario_t *base = calloc(1, sizeof *base);
+    char err[SCENARIO_ERROR_MAX];
+    assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", NULL, 0, base, err), 0);
+    scenario_t *sc = camera_scenario(CAMERA_RENDERED, 2);
+    sc->arena = base->arena;
+    sc->light_count = base->light_count;
+    memcpy(sc->lights, base->lights, sizeof sc->lights);
+    float tx = 0.3f;
+    add_cylinder(sc, tx, 0.0f, TOKEN_R, TOKEN_H, HAL_COLOUR_RED);
+    sim_t *sim = fixture_sim(sc, 3);
+    sim_set_robot_pose(sim, 1, -1.8, -1.8, 0.0);
+    for (int side = 0; side < 2; side++) {   /* 0: from the lamp's side, 1: from beyond */
+        double last_seen = 0.0;
+        for (int cm = 40; cm <= 160; cm += 5) {
+            double lens = cm / 100.0;   /* lens to the token's centre */
+            double x = side == 0 ? tx - lens - EPUCK_BODY_RADIUS_M : tx + lens + EPUCK_BODY_RADIUS_M;
+            sim_set_robot_pose(sim, 0, x, 0.0, side == 0 ? 0.0 : PI);
+            hal_blob_t b[HAL_MAX_BLOBS];
+            uint8_t n = blobs_of(sim, 0, b);
+            if (count_colour(b, n, HAL_COLOUR_RED) > 0) last_seen = lens;
+        }
+        double reach = last_seen - TOKEN_R;   /* to the token's nearest point, as camera.range */
+        print_message("reach %s: %.3f m (default camera.range %.2f m)\n", side ? "shaded" : "lit", reach,
+                      (double)base->camera.range);
+        assert_true(fabs(reach - base->camera.range) <= 0.05 + 1e-6);
+    }
+    sim_destroy(sim);
+    free(sc);
+    free(base);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -338,6 +379,7 @@ int main(void)
         cmocka_unit_test(test_frames_at_their_rate_and_age),
         cmocka_unit_test(test_rendered_runs_are_deterministic),
         cmocka_unit_test(test_colour_classes_under_scenario_lighting),
+        cmocka_unit_test(test_detector_reach_is_the_geometric_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

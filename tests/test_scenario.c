@@ -189,7 +189,8 @@ static void test_defaults(void **state)
     assert_float_equal(sc->ambient.half, 1.0, 1e-6);
     assert_float_equal(sc->ambient.noise_rel, 0.01, 1e-6);
     assert_float_equal(sc->camera.fov, 56.0, 1e-6);
-    assert_float_equal(sc->camera.range, 0.6, 1e-6);
+    assert_float_equal(sc->camera.range, 0.9, 1e-6);   /* the detector's reach (test_camera_render) */
+    assert_float_equal(sc->camera.fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
     assert_int_equal(sc->camera.width_px, 40);
     assert_int_equal(sc->camera.height_px, 20);   /* the e-puck image's frame */
     assert_float_equal(sc->ircom.range, 0.25, 1e-6);

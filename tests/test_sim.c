@@ -161,6 +161,7 @@ static void test_camera_field_of_view_and_occlusion(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(2, 3.0f);
+    sc->camera.fps = 0.0f;   /* blobs of each step's poses: the geometry under test */
     sc->object_count = 1;
     sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f, .radius = 0.03f,
                                      .height = 0.05f, .colour = HAL_COLOUR_RED };
@@ -190,9 +191,12 @@ static void test_camera_field_of_view_and_occlusion(void **state)
     sim_set_robot_pose(sim, 1, 0.2, 0.0, 0.0);
     assert_int_equal(blobs_of(sim, 0, b), 0);
 
-    /* Beyond the camera range (0.6 m). */
+    /* Within the camera range (0.9 m to its nearest point: 0.885 m), then
+     * beyond it (1.335 m). */
     sim_set_robot_pose(sim, 1, -1.0, -1.0, 0.0);
-    sim_set_robot_pose(sim, 0, -0.4, 0.0, 0.0);
+    sim_set_robot_pose(sim, 0, -0.55, 0.0, 0.0);
+    assert_int_equal(blobs_of(sim, 0, b), 1);
+    sim_set_robot_pose(sim, 0, -1.0, 0.0, 0.0);
     assert_int_equal(blobs_of(sim, 0, b), 0);
     sim_destroy(sim);
     free(sc);

@@ -36,7 +36,8 @@
 #define SCENARIOS "../sim_host/scenarios/"
 
 /* `robots` idle robots in a square arena of side `arena`, 25 ms steps, the
- * targets task with its defaults (seed 002's One world at e-puck scale). */
+ * targets task with its defaults (seed 002's One world at e-puck scale),
+ * blobs fresh every step as in seed 002's scenarios. */
 static scenario_t *world(uint32_t robots, float arena)
 {
     scenario_t *sc = calloc(1, sizeof *sc);
@@ -50,6 +51,7 @@ static scenario_t *world(uint32_t robots, float arena)
     sc->groups[0].placement.width = sc->groups[0].placement.height = 0.3f;
     sc->arena.width = sc->arena.height = arena;
     sc->control_period_ms = 25;
+    sc->camera.fps = 0.0f;
     sc->ir.noise_rel = sc->ir.noise_abs = 0.0f;
     sc->wheels.speed_noise_rel = 0.0f;
     sc->task_count = 1;

@@ -18,9 +18,9 @@
  * capture before it was never made): the only case in which a frame is
  * younger than on the robot.
  *
- * camera.fps 0: blobs of the current state every control step, as the
- * geometric model always had (the golden hashes pin it; the default for
- * geometric).  A `camera_fail` fault hides the blobs either way.
+ * camera.fps 0: blobs of the current state every control step (an
+ * idealised sensor: RepAtt's scenarios, whose paper detects targets every
+ * simulation step).  A `camera_fail` fault hides the blobs either way.
  */
 #include <errno.h>
 #include <math.h>
@@ -172,7 +172,7 @@ static uint8_t capture(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
 void camera_update(struct sim *sim, uint32_t i)
 {
     sim_robot_t *r = &sim->robots[i];
-    float fps = scenario_camera_fps(sim->sc);
+    float fps = sim->sc->camera.fps;
     if (fps <= 0.0f) {
         /* Every step, fresh: the behaviour the golden hashes pin. */
         r->blob_count = faults_camera_blind(sim, i) ? 0 : capture(sim, i, r->blobs);

@@ -198,7 +198,8 @@ static const param_desc_t camera_params[] = {
       .doc = "horizontal field of view, deg (up to 179 the e-puck's pinhole camera; wider: an "
              "all-round panoramic stand-in, lens on the robot's axis)" },
     { .key = "range", PARAM_FIELD(SC, camera.range, float), .min = 0.01, .max = 100,
-      .doc = "objects farther away are not seen, m" },
+      .doc = "objects farther away are not seen (their nearest point), m; the default is the "
+             "e-puck detector's reach for a 3.5 x 4.2 cm cylinder (geometric; rendered draws to 5 m)" },
     { .key = "width_px", PARAM_FIELD(SC, camera.width_px, uint16_t), .min = 1, .max = 640,
       .doc = "the robot's frame width, pixels" },
     { .key = "height_px", PARAM_FIELD(SC, camera.height_px, uint16_t), .min = 1, .max = 480,
@@ -206,8 +207,8 @@ static const param_desc_t camera_params[] = {
     { .key = "model", PARAM_ENUM_FIELD(SC, camera.model, scenario_camera_model_names),
       .doc = "geometric (fast: blobs from angles) or rendered (OSMesa frame through hal/blob_detect.c)" },
     { .key = "fps", PARAM_FIELD(SC, camera.fps, float), .min = 0, .max = 1000,
-      .doc = "frames per second; blobs are a frame old and held until the next (0: fresh every "
-             "control step; default 4.3 rendered, 0 geometric)" },
+      .doc = "frames per second, both models; blobs are a frame old and held until the next "
+             "(the e-puck image's 4.3 by default; 0: fresh every control step)" },
     { .key = "noise", PARAM_FIELD(SC, camera.noise, float), .min = 0, .max = 255,
       .doc = "rendered: Gaussian sd added to each pixel's 8-bit channels, counts" },
     PARAM_END
@@ -494,11 +495,11 @@ void scenario_defaults(scenario_t *out)
     out->ambient.half = 1.0f;
     out->ambient.noise_rel = 0.01f;
     out->camera.fov = 56.0f;
-    out->camera.range = 0.6f;
+    out->camera.range = SCENARIO_CAMERA_EPUCK_REACH_M;
     out->camera.width_px = EPUCK_CAMERA_WIDTH_PX;
     out->camera.height_px = EPUCK_CAMERA_HEIGHT_PX;
     out->camera.model = CAMERA_GEOMETRIC;
-    out->camera.fps = -1.0f;   /* the model's own: scenario_camera_fps */
+    out->camera.fps = SCENARIO_CAMERA_EPUCK_FPS;
     out->ircom.range = 0.25f;
     out->ircom.loss = 0.1f;
     out->ircom.bearing_noise = 5.0f;
@@ -1043,14 +1044,6 @@ static int check_camera(const loader_t *ld, const ynode_t *root, const scenario_
                        "most %u x %u pixels (hal/blob_detect.c's limit)",
                        (double)SCENARIO_CAMERA_PINHOLE_MAX_DEG, SCENARIO_CAMERA_RENDERED_MAX_PX,
                        SCENARIO_CAMERA_RENDERED_MAX_PX);
-}
-
-float scenario_camera_fps(const scenario_t *sc)
-{
-    if (sc->camera.fps >= 0.0f) {
-        return sc->camera.fps;
-    }
-    return sc->camera.model == CAMERA_RENDERED ? SCENARIO_CAMERA_EPUCK_FPS : 0.0f;
 }
 
 static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)

@@ -50,6 +50,12 @@
  *  e-puck library gives for 16 x 16 subsampling in RGB565 (camera/fast_2_timer/
  *  e_po3030k.h, "Performances"; the PO6030K driver quotes the same). */
 #define SCENARIO_CAMERA_EPUCK_FPS 4.3f
+/** How far the e-puck image's detector sees a red cylinder 3.5 cm wide and
+ *  4.2 cm high (seed 000's food), m: the rendered model sees it straight
+ *  ahead to 0.88 m, lit or shaded (test_camera_render), where it covers
+ *  about 3 pixels, the detector's min_pixels.  The geometric model's
+ *  default camera.range. */
+#define SCENARIO_CAMERA_EPUCK_REACH_M 0.9f
 #define SCENARIO_SEED_MAX UINT64_C(9007199254740991)
 
 struct task_def;
@@ -251,8 +257,8 @@ typedef struct scenario {
         float range;               /**< objects farther away are not seen, m */
         uint16_t width_px, height_px; /**< the robot's frame, pixels (blob sizes refer to it) */
         int model;                 /**< camera_model_t */
-        float fps;                 /**< frames per second, 0: every control step; < 0 (the
-                                        default): the model's own (scenario_camera_fps) */
+        float fps;                 /**< frames per second (SCENARIO_CAMERA_EPUCK_FPS), 0:
+                                        fresh every control step */
         float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
     } camera;
 
@@ -361,11 +367,6 @@ int scenario_write_effective(const char *path, const scenario_override_t *overri
 
 /** Every robot of every group. */
 uint32_t scenario_robot_count(const scenario_t *sc);
-
-/** The camera's frame rate, fps: camera.fps, or when not given the model's
- *  default (SCENARIO_CAMERA_EPUCK_FPS rendered; 0, every step, geometric:
- *  the behaviour the golden hashes pin). */
-float scenario_camera_fps(const scenario_t *sc);
 
 /** Non-zero when a rectangle of half-extents hx, hy (m) centred on (x, y)
  *  lies inside the arena (to 1 um): the check of objects, lights and the

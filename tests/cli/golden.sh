@@ -23,11 +23,11 @@ trap 'rm -rf "$tmp"' EXIT
 # scenario (sim_host/scenarios/)  state hash after its full duration
 pins=(
     "random_walk     8f5ca44c91abbef0"
-    "foraging_base   f730d9d89a232939"
-    "foraging_nf25   0a1003d45db40de5"
-    "foraging_ea20   18ba0915329cd2a2"
-    "foraging_nr30   b2f928fb9267ff77"
-    "foraging_l3     c9fcbc8a1ca1d477"
+    "foraging_base   b8e767ffdb74ec44"
+    "foraging_nf25   2a76c8d12c26450a"
+    "foraging_ea20   f3419c08359699b8"
+    "foraging_nr30   4b08d66c5e212824"
+    "foraging_l3     a791c3465f7b9f49"
     "phototaxis_gather f8ae7bdce4060218"
     "repatt_quick    94a07694c9647671"
     "repatt_one50    a8cc8989d1efc480"
