@@ -98,8 +98,12 @@ static void usage(FILE *f)
 "                  repetition r uses seed N + r\n"
 "  --reps N        repetitions (default 1); with N > 1 an aggregate\n"
 "                  OUT/summary.json holds mean, sd, min, max of each metric\n"
-"  --threads N     worker threads for the repetitions (default: CPUs online);\n"
-"                  results for a seed are bit-identical for any N\n"
+"  --threads N     worker threads (default: CPUs online): repetitions run side\n"
+"                  by side, and with fewer repetitions than threads the spare\n"
+"                  ones go inside each run of 500 robots or more; results for\n"
+"                  a seed are bit-identical for any N\n"
+"  --run-threads N threads inside each run (1 to 64), whatever its size:\n"
+"                  controllers and sensors, IR delivery, sound, Box2D's solver\n"
 "  --steps N       control steps per run (default: duration / control period)\n"
 "  --out DIR       output folder (default out/<scenario name>); each run\n"
 "                  writes DIR/run_<seed>/{summary.json,timeseries.csv,\n"
@@ -181,7 +185,7 @@ int main(int argc, char **argv)
     const char *path = NULL, *out_dir = NULL;
     scenario_override_t sets[MAX_SETS];
     size_t nsets = 0;
-    uint64_t seed = 0, reps = 1, threads = 0, steps = 0, frames = 0, frame_px = 800, camera_robot = 0;
+    uint64_t seed = 0, reps = 1, threads = 0, run_threads = 0, steps = 0, frames = 0, frame_px = 800, camera_robot = 0;
     int have_camera_robot = 0;
     int have_seed = 0, have_steps = 0, quiet = 0, check_only = 0;
     outdir_mode_t out_mode = OUTDIR_NEW;
@@ -232,6 +236,8 @@ int main(int argc, char **argv)
             bad = parse_uint(a, v, 1, 1000000, &reps);
         } else if (!strcmp(a, "--threads")) {
             bad = parse_uint(a, v, 1, 1024, &threads);
+        } else if (!strcmp(a, "--run-threads")) {
+            bad = parse_uint(a, v, 1, 64, &run_threads);
         } else if (!strcmp(a, "--steps")) {
             bad = parse_uint(a, v, 0, UINT64_C(10000000000), &steps);
             have_steps = 1;
@@ -343,6 +349,7 @@ int main(int argc, char **argv)
         .seed = first_seed,
         .reps = (uint32_t)reps,
         .threads = (uint32_t)threads,
+        .run_threads = (uint32_t)run_threads,
         .steps = have_steps ? steps : (uint64_t)(sc->duration * 1000.0 / sc->control_period_ms + 0.5),
         .out_dir = out_dir,
         .frames_every = (uint32_t)frames,

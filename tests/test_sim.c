@@ -659,6 +659,68 @@ static void test_step_order_does_not_matter(void **state)
     }
 }
 
+/* FNV-1a over bytes, continuing from h. */
+static uint64_t fnv_more(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t k = 0; k < n; k++) h = (h ^ b[k]) * UINT64_C(0x100000001b3);
+    return h;
+}
+
+/* A run is the same on 1, 2 or 3 threads (sim_create_threads): 800 robots
+ * of the full-sensing benchmark world (every sensor, an IR frame and a tone
+ * every step, the sound field with a cutoff, 800 food tokens), so that every
+ * parallel phase splits into several chunks.  Compared: the state hash, and
+ * what each robot then holds: its IR inbox (value, sensor, bearing, range),
+ * its microphones' levels and its blobs. */
+static void test_thread_count_does_not_matter(void **state)
+{
+    (void)state;
+    static const scenario_override_t sets[] = { { "robots.0.count=800" }, { "arena.width=25.3" },
+                                                { "arena.height=25.3" }, { "foraging.food_count=800" } };
+    scenario_t *sc = malloc(sizeof *sc);
+    char err[SCENARIO_ERROR_MAX];
+    assert_non_null(sc);
+    if (scenario_load("../tools/bench/bench_full_sensing.yaml", sets, 4, sc, err) != 0) fail_msg("%s", err);
+    uint64_t hash[3], held[3];
+    for (uint32_t t = 1; t <= 3; t++) {
+        sim_t *sim = sim_create_threads(sc, 7, t, err);
+        if (!sim) fail_msg("sim_create_threads: %s", err);
+        for (int k = 0; k < 40; k++) sim_step(sim);
+        hash[t - 1] = sim_state_hash(sim);
+        uint64_t h = UINT64_C(0xcbf29ce484222325);
+        uint32_t messages = 0;
+        for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+            hal_t *hal = sim_robot_hal(sim, i);
+            hal_ircom_msg_t m;
+            while (hal_ircom_receive(hal, &m) == HAL_OK) {
+                h = fnv_more(h, &m.value, sizeof m.value);
+                h = fnv_more(h, &m.sensor, sizeof m.sensor);
+                h = fnv_more(h, &m.bearing_mrad, sizeof m.bearing_mrad);
+                h = fnv_more(h, &m.range_mm, sizeof m.range_mm);
+                messages++;
+            }
+            for (uint8_t band = 1; band < HAL_SOUND_BANDS; band++) {
+                uint32_t level = 0;
+                hal_status_t st = hal_mic_level(hal, 0, band, &level);
+                h = fnv_more(h, &st, sizeof st);
+                h = fnv_more(h, &level, sizeof level);
+            }
+            hal_blob_t b[HAL_MAX_BLOBS];
+            uint8_t nb = hal_camera_blobs(hal, b, HAL_MAX_BLOBS);
+            h = fnv_more(h, b, nb * sizeof b[0]);
+        }
+        held[t - 1] = h;
+        print_message("%u thread(s): state %016llx, held %016llx (%u IR messages)\n", t,
+                      (unsigned long long)hash[t - 1], (unsigned long long)h, messages);
+        assert_true(messages > 800);   /* delivery did happen */
+        sim_destroy(sim);
+    }
+    assert_true(hash[0] == hash[1] && hash[0] == hash[2]);
+    assert_true(held[0] == held[1] && held[0] == held[2]);
+    free(sc);
+}
+
 /* ---------------------------------------------------------- HAL channels */
 
 /* The overhead tracker: unavailable unless the scenario has one; ground
@@ -814,6 +876,7 @@ int main(void)
         cmocka_unit_test(test_placement_shapes),
         cmocka_unit_test(test_bad_pose_is_reported),
         cmocka_unit_test(test_step_order_does_not_matter),
+        cmocka_unit_test(test_thread_count_does_not_matter),
         cmocka_unit_test(test_tracker_pose),
         cmocka_unit_test(test_host_messages),
         cmocka_unit_test(test_hal_status),

@@ -67,6 +67,11 @@ void camera_destroy(struct sim *sim)
     }
 }
 
+int camera_parallel(const struct sim *sim)
+{
+    return sim->sc->camera.model == CAMERA_GEOMETRIC && (!sim->camera || sim->camera->record_robot < 0);
+}
+
 int sim_camera_record(sim_t *sim, uint32_t robot, const char *dir)
 {
     struct camera_state *cs = state(sim);

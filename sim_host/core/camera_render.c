@@ -316,7 +316,8 @@ static void draw_scene(struct sim *sim, uint32_t i, vec2_t eye, vec2_t dir)
 
     /* What may be in view: near enough and not wholly behind the lens. */
     uint32_t idx[NEAR_MAX];
-    uint32_t no = sim_gather_obstacles(sim, eye.x - FAR_M, eye.y - FAR_M, eye.x + FAR_M, eye.y + FAR_M, idx, NEAR_MAX);
+    uint32_t no = sim_gather_obstacles(sim, &sim->scratch[0], eye.x - FAR_M, eye.y - FAR_M, eye.x + FAR_M,
+                                       eye.y + FAR_M, idx, NEAR_MAX);
     for (uint32_t k = 0; k < no; k++) {
         const obstacle_t *o = &sim->obstacles[idx[k]];
         colour(class_rgb(o->colour));

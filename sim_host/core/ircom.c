@@ -34,22 +34,30 @@
  *    capture), nor while it sends one itself (half duplex).  Line of sight
  *    and range decide "within reach", as for delivery; loss is drawn after.
  *  - `queue`: the receiver's inbox size (libIrcom: 20).
+ *
+ * Delivery runs receiver by receiver, side by side on the run's threads
+ * (pool.h): each receiver takes the frames that reach it in the senders'
+ * turn order and draws its loss and noise from its own stream, so that what
+ * it holds is what one loop over senders would have given it, at any
+ * thread count.  (That loop kept at most 256 robots around a sender; this
+ * one has no such cap.)  The collision model (`slots`) stays one loop.
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "pool.h"
 #include "sim_internal.h"
 #include "units.h"
 
 #define IRCOM_MAX_NEAR 256
 
-static int blocked(struct sim *sim, uint32_t from, uint32_t to)
+static int blocked(struct sim *sim, sim_scratch_t *ws, uint32_t from, uint32_t to)
 {
     const sim_robot_t *a = &sim->robots[from], *b = &sim->robots[to];
     vec2_t p = v2(a->x, a->y), q = v2(b->x, b->y);
     uint32_t near[IRCOM_MAX_NEAR];
-    uint32_t n = sim_gather_obstacles(sim, fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x),
+    uint32_t n = sim_gather_obstacles(sim, ws, fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x),
                                       fmaxf(p.y, q.y), near, IRCOM_MAX_NEAR);
     for (uint32_t k = 0; k < n; k++) {
         const obstacle_t *o = &sim->obstacles[near[k]];
@@ -121,11 +129,11 @@ static void receive(struct sim *sim, uint32_t to, uint32_t from, uint16_t value)
 }
 
 /* Whether robot j hears robot i's frames (range, radios, line of sight). */
-static int reaches(struct sim *sim, uint32_t i, uint32_t j, float reach)
+static int reaches(struct sim *sim, sim_scratch_t *ws, uint32_t i, uint32_t j, float reach)
 {
     const sim_robot_t *s = &sim->robots[i], *r = &sim->robots[j];
     float dx = r->x - s->x, dy = r->y - s->y;
-    return j != i && dx * dx + dy * dy <= reach * reach && !faults_radio_out(sim, j) && !blocked(sim, i, j);
+    return j != i && dx * dx + dy * dy <= reach * reach && !faults_radio_out(sim, j) && !blocked(sim, ws, i, j);
 }
 
 /* The collision model (`slots`): every frame gets a slot; frames in a slot
@@ -165,7 +173,7 @@ static void deliver_slotted(struct sim *sim, uint32_t first)
         uint32_t n = sim_gather_robots(sim, s->x - reach, s->y - reach, s->x + reach, s->y + reach, near,
                                        IRCOM_MAX_NEAR);
         for (uint32_t k = 0; k < n; k++) {
-            if (!reaches(sim, i, near[k], reach)) continue;
+            if (!reaches(sim, &sim->scratch[0], i, near[k], reach)) continue;
             for (uint8_t f = 0; f < s->ircom_tx_n; f++) {
                 uint8_t *h = &hits[(size_t)near[k] * slots + slot_of[i][f]];
                 if (*h < 255) (*h)++;
@@ -183,7 +191,7 @@ static void deliver_slotted(struct sim *sim, uint32_t first)
         for (uint8_t f = 0; f < n_tx; f++) {
             for (uint32_t k = 0; k < n; k++) {
                 uint32_t j = near[k];
-                if (reaches(sim, i, j, reach) && hits[(size_t)j * slots + slot_of[i][f]] == 1) {
+                if (reaches(sim, &sim->scratch[0], i, j, reach) && hits[(size_t)j * slots + slot_of[i][f]] == 1) {
                     receive(sim, j, i, s->ircom_tx[f]);
                 }
             }
@@ -193,36 +201,73 @@ static void deliver_slotted(struct sim *sim, uint32_t first)
     free(slot_of);
 }
 
+typedef struct delivery {
+    struct sim *sim;
+    uint32_t first;   /**< the sender whose turn comes first this step */
+} delivery_t;
+
+/* pool_fn: receivers [begin, end).  Receiver j hears sender i when j lies
+ * in the box of half-side `reach` around i (as a query around the sender
+ * would find it) and reaches() holds; senders in turn order from `first`,
+ * each one's frames in sending order. */
+static void receive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
+{
+    const delivery_t *d = ctx;
+    struct sim *sim = d->sim;
+    sim_scratch_t *ws = &sim->scratch[worker];
+    float reach = sim->sc->ircom.range, m = reach * 1.001f + 1e-4f;
+    for (uint32_t j = begin; j < end; j++) {
+        const sim_robot_t *r = &sim->robots[j];
+        uint32_t *from = ws->robots;
+        uint32_t n = sim_gather_robots(sim, r->x - m, r->y - m, r->x + m, r->y + m, from, sim->n), kept = 0;
+        for (uint32_t c = 0; c < n; c++) {
+            uint32_t i = from[c];
+            const sim_robot_t *s = &sim->robots[i];
+            if (s->ircom_tx_n == 0 || faults_radio_out(sim, i) || r->x < s->x - reach || r->x > s->x + reach
+                || r->y < s->y - reach || r->y > s->y + reach) {
+                continue;
+            }
+            /* Insert by turn: (i - first) mod n. */
+            uint32_t turn = i >= d->first ? i - d->first : i + sim->n - d->first, at = kept++;
+            while (at > 0) {
+                uint32_t p = from[at - 1], pt = p >= d->first ? p - d->first : p + sim->n - d->first;
+                if (pt < turn) break;
+                from[at] = p;
+                at--;
+            }
+            from[at] = i;
+        }
+        for (uint32_t c = 0; c < kept; c++) {
+            uint32_t i = from[c];
+            const sim_robot_t *s = &sim->robots[i];
+            if (reaches(sim, ws, i, j, reach)) {
+                for (uint8_t f = 0; f < s->ircom_tx_n; f++) {
+                    receive(sim, j, i, s->ircom_tx[f]);
+                }
+            }
+        }
+    }
+}
+
+/* Receivers take a microsecond or so each. */
+#define RECEIVE_CHUNK 128u
+
 void ircom_deliver(struct sim *sim)
 {
-    float reach = sim->sc->ircom.range;
-    uint32_t near[IRCOM_MAX_NEAR];
     uint32_t first = sim->n ? (uint32_t)(sim->step % sim->n) : 0;
     if (sim->sc->ircom.slots > 0) {
         deliver_slotted(sim, first);
         return;
     }
-    for (uint32_t turn = 0; turn < sim->n; turn++) {
-        uint32_t i = first + turn < sim->n ? first + turn : first + turn - sim->n;
-        sim_robot_t *s = &sim->robots[i];
-        uint8_t n_tx = s->ircom_tx_n;
-        s->ircom_tx_n = 0;
-        if (n_tx == 0) {
-            continue;
-        }
-        if (faults_radio_out(sim, i)) {
-            continue;           /* a dead radio: the message never leaves */
-        }
-        uint32_t n = sim_gather_robots(sim, s->x - reach, s->y - reach, s->x + reach, s->y + reach, near,
-                                       IRCOM_MAX_NEAR);
-        /* Frame by frame, so that a receiver's queue fills in sending order. */
-        for (uint8_t f = 0; f < n_tx; f++) {
-            for (uint32_t k = 0; k < n; k++) {
-                uint32_t j = near[k];
-                if (reaches(sim, i, j, reach)) {
-                    receive(sim, j, i, s->ircom_tx[f]);
-                }
-            }
-        }
+    uint32_t senders = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        senders += sim->robots[i].ircom_tx_n != 0;
+    }
+    if (senders > 0) {
+        delivery_t d = { sim, first };
+        pool_for(sim->pool, sim->n, RECEIVE_CHUNK, receive_range, &d);
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim->robots[i].ircom_tx_n = 0;
     }
 }

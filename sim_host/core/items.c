@@ -5,14 +5,18 @@
 
 #include <stdlib.h>
 
+#include "pool.h"
 #include "sim_internal.h"
 
 /* Cells of 0.5 m, as the robot grid's: a camera's range (0.6 m by
  * default) meets about 4 x 4 of them. */
 #define ITEM_CELL_M 0.5f
 
-static int reserve(sim_item_index_t *ix, uint32_t n)
+/* Room for n items: the binning's copy, and every worker's query buffer
+ * (sim_scratch_t.items). */
+static int reserve(struct sim *sim, uint32_t n)
 {
+    sim_item_index_t *ix = &sim->item_index;
     if (n <= ix->cap) {
         return 0;
     }
@@ -20,9 +24,13 @@ static int reserve(sim_item_index_t *ix, uint32_t n)
     if (x) ix->x = x;
     float *y = realloc(ix->y, (size_t)n * sizeof *y);
     if (y) ix->y = y;
-    uint32_t *near = realloc(ix->near, (size_t)n * sizeof *near);
-    if (near) ix->near = near;
-    if (!x || !y || !near) {
+    int bad = !x || !y;
+    for (uint32_t w = 0; w < pool_threads(sim->pool); w++) {
+        uint32_t *near = realloc(sim->scratch[w].items, (size_t)n * sizeof *near);
+        if (near) sim->scratch[w].items = near;
+        bad |= !near;
+    }
+    if (bad) {
         return -1;
     }
     ix->cap = n;
@@ -41,7 +49,7 @@ int items_index_build(struct sim *sim)
         if (n == 0) {
             continue;
         }
-        if (reserve(ix, n) != 0
+        if (reserve(sim, n) != 0
             || (g->nx == 0 && grid_init(g, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, ITEM_CELL_M) != 0)) {
             return -1;
         }
@@ -67,19 +75,18 @@ void items_index_free(struct sim *sim)
     }
     free(ix->x);
     free(ix->y);
-    free(ix->near);
 }
 
-uint32_t items_near(struct sim *sim, uint32_t t, uint32_t n_items, float minx, float miny, float maxx, float maxy,
-                    const uint32_t **ids)
+uint32_t items_near(const struct sim *sim, struct sim_scratch *ws, uint32_t t, uint32_t n_items, float minx,
+                    float miny, float maxx, float maxy, const uint32_t **ids)
 {
-    sim_item_index_t *ix = &sim->item_index;
+    const sim_item_index_t *ix = &sim->item_index;
     if (!ix->valid || n_items == 0 || ix->grid[t].nx == 0) {
         *ids = NULL;
         return n_items;
     }
-    uint32_t n = grid_gather(&ix->grid[t], minx, miny, maxx, maxy, ix->near, ix->cap);
-    grid_sort_ids(ix->near, n);
-    *ids = ix->near;
+    uint32_t n = grid_gather(&ix->grid[t], minx, miny, maxx, maxy, ws->items, ix->cap);
+    grid_sort_ids(ws->items, n);
+    *ids = ws->items;
     return n;
 }

@@ -19,13 +19,13 @@
 #include "scenario.h"
 
 struct sim;
+struct sim_scratch;
 
 typedef struct sim_item_index {
     int valid;                         /**< 1 during the control phase */
     grid_t grid[SCENARIO_MAX_TASKS];   /**< per task; nx == 0 until first used */
     float *x, *y;                      /**< binning's copy of the centres */
-    uint32_t *near;                    /**< a query's candidates */
-    uint32_t cap;                      /**< of x, y and near */
+    uint32_t cap;                      /**< of x, y and every worker's sim_scratch_t.items */
 } sim_item_index_t;
 
 /** Bins every task's items (the control phase begins).  Returns 0, or -1
@@ -38,9 +38,10 @@ void items_index_drop(struct sim *sim);
 void items_index_free(struct sim *sim);
 
 /** Task t's items (n_items of them) that may lie in the box: their indices
- *  in ascending order in *ids, and how many; or *ids = NULL and n_items,
- *  meaning every item in index order (no index now). */
-uint32_t items_near(struct sim *sim, uint32_t t, uint32_t n_items, float minx, float miny, float maxx, float maxy,
-                    const uint32_t **ids);
+ *  in ascending order in *ids (in the worker's scratch `ws`), and how many;
+ *  or *ids = NULL and n_items, meaning every item in index order (no index
+ *  now). */
+uint32_t items_near(const struct sim *sim, struct sim_scratch *ws, uint32_t t, uint32_t n_items, float minx,
+                    float miny, float maxx, float maxy, const uint32_t **ids);
 
 #endif

@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "metrics.h"
+#include "pool.h"
 #include "sim.h"
 #include "sim_render.h"
 #include "task.h"
@@ -37,6 +38,8 @@ typedef struct rep_result {
 
 typedef struct job {
     const run_options_t *opt;
+    uint32_t run_threads;          /**< threads inside each run */
+    const metric_list_t *names;    /**< the probe's metrics, their strings kept (check_setup) */
     rep_result_t *results;
     atomic_uint next_rep;
     atomic_ullong steps_done;
@@ -154,7 +157,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     snprintf(final_dir, sizeof final_dir, "%s/run_%" PRIu64, opt->out_dir, seed);
     snprintf(dir, sizeof dir, "%s.partial", final_dir);
     outdir_remove_tree(dir);      /* a run stopped by an earlier invocation */
-    sim_t *sim = sim_create(sc, seed, err);
+    sim_t *sim = sim_create_threads(sc, seed, job->run_threads, err);
     if (!sim) {
         fail(job, "%s: %s", sc->path, err);
         return;
@@ -283,6 +286,19 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         if (ok) fail(job, "%s%s", "", err);
         ok = 0;
     }
+    /* The metrics' names, units and docs are partly the sim's own strings:
+     * point them at the kept copies (the same metrics, in the same order)
+     * before it goes, for the aggregate summary. */
+    for (unsigned k = 0; ok && k < res->metrics.count; k++) {
+        if (k >= job->names->count || strcmp(res->metrics.name[k], job->names->name[k]) != 0) {
+            fail(job, "%s: %s: metrics differ from the first run's", sc->path, final_dir);
+            ok = 0;
+            break;
+        }
+        res->metrics.name[k] = job->names->name[k];
+        res->metrics.unit[k] = job->names->unit[k];
+        res->metrics.doc[k] = job->names->doc[k];
+    }
     sim_destroy(sim);
     /* The run's last check: a sibling failing or a signal during its final
      * writes still leaves it unfinished, never half-named. */
@@ -395,10 +411,16 @@ static uint32_t load_finished(const run_options_t *opt, const metric_list_t *nam
     return n;
 }
 
+/* A metric's name, unit and doc, copied out of the probe. */
+#define METRIC_TEXT_MAX 256
+typedef char metric_text_t[3][METRIC_TEXT_MAX];
+
 /* Before anything is written: can the runs start at all?  A scenario whose
  * robots cannot be placed, or an LCM URL no provider takes, is a setup
- * error (exit 2, no folder).  Fills `names` with the run's metrics. */
-static int check_setup(const run_options_t *opt, metric_list_t *names, char err[512])
+ * error (exit 2, no folder).  Fills `names` with the run's metrics, their
+ * strings in `text` (some are the probe's own, its counters' keys, which
+ * die with it; --resume reads finished runs by these names). */
+static int check_setup(const run_options_t *opt, metric_list_t *names, metric_text_t *text, char err[512])
 {
     char e[256];
     sim_t *probe = sim_create(opt->scenario, opt->seed, e);
@@ -407,6 +429,14 @@ static int check_setup(const run_options_t *opt, metric_list_t *names, char err[
         return -1;
     }
     metrics_final(probe, names);
+    for (unsigned k = 0; k < names->count; k++) {
+        snprintf(text[k][0], METRIC_TEXT_MAX, "%s", names->name[k]);
+        snprintf(text[k][1], METRIC_TEXT_MAX, "%s", names->unit[k] ? names->unit[k] : "");
+        snprintf(text[k][2], METRIC_TEXT_MAX, "%s", names->doc[k] ? names->doc[k] : "");
+        names->name[k] = text[k][0];
+        names->unit[k] = text[k][1];
+        names->doc[k] = text[k][2];
+    }
     sim_destroy(probe);
     if (opt->telemetry.enabled && opt->telemetry.url && telemetry_check_url(opt->telemetry.url, e) != 0) {
         snprintf(err, 512, "%s", e);
@@ -415,16 +445,17 @@ static int check_setup(const run_options_t *opt, metric_list_t *names, char err[
     return 0;
 }
 
-int runner_run(const run_options_t *opt, char err[512])
+static int run_with(const run_options_t *opt, metric_text_t *text, char err[512])
 {
     job_t job;
     metric_list_t names;
     char ident[OUTDIR_ERR_MAX], path[PATH_MAX_LEN];
     memset(&job, 0, sizeof job);
     job.opt = opt;
-    if (check_setup(opt, &names, err) != 0) {
+    if (check_setup(opt, &names, text, err) != 0) {
         return RUNNER_SETUP_ERROR;
     }
+    job.names = &names;
     identity(opt, ident, sizeof ident);
     if (outdir_prepare(opt->out_dir, opt->out_mode, ident, err) != 0) {
         return RUNNER_SETUP_ERROR;
@@ -448,6 +479,13 @@ int runner_run(const run_options_t *opt, char err[512])
 
     uint32_t todo = opt->reps - kept;
     uint32_t nthreads = opt->threads < todo ? opt->threads : (todo ? todo : 1);
+    job.run_threads = opt->run_threads;
+    if (job.run_threads == 0) {
+        uint32_t spare = opt->threads / nthreads;
+        job.run_threads = scenario_robot_count(opt->scenario) < RUNNER_SPLIT_MIN_ROBOTS ? 1
+                          : spare > POOL_MAX_THREADS                                 ? POOL_MAX_THREADS
+                                                                                     : spare;
+    }
     pthread_t *tid = calloc(nthreads, sizeof *tid);
     uint32_t started = 0;
     double t0 = now_s(), c0 = cpu_s();
@@ -515,12 +553,25 @@ int runner_run(const run_options_t *opt, char err[512])
         printf("outputs: %s/ (run_<seed>/summary.json, scenario.yaml, timeseries.csv%s%s%s)\n", opt->out_dir,
                opt->frames_every ? ", frames/*.png" : "", opt->camera_frames ? ", camera/robot_<id>/*.png" : "",
                opt->telemetry.enabled && !opt->telemetry.url ? ", " TELEMETRY_LOG_NAME : "");
-        fprintf(stderr, "swarmsim: %u run(s), %.0f steps x %u robots in %.3f s wall on %u thread(s): "
+        fprintf(stderr, "swarmsim: %u run(s), %.0f steps x %u robots in %.3f s wall on %u thread(s) x %u in a run: "
                 "%.0f robot-steps/s, %.0fx real time; %.3f s CPU: %.0f robot-steps/s per CPU second\n",
-                opt->reps, steps, scenario_robot_count(opt->scenario), wall, nthreads, robot_steps / wall,
+                opt->reps, steps, scenario_robot_count(opt->scenario), wall, nthreads, job.run_threads,
+                robot_steps / wall,
                 sim_time / wall, cpu, robot_steps / cpu);
     }
     pthread_mutex_destroy(&job.err_lock);
     free(job.results);
+    return rc;
+}
+
+int runner_run(const run_options_t *opt, char err[512])
+{
+    metric_text_t *text = calloc(METRICS_MAX, sizeof *text);
+    if (!text) {
+        snprintf(err, 512, "out of memory");
+        return RUNNER_SETUP_ERROR;
+    }
+    int rc = run_with(opt, text, err);
+    free(text);
     return rc;
 }

@@ -38,7 +38,9 @@ typedef struct run_options {
     const scenario_t *scenario;
     uint64_t seed;          /**< seed of the first repetition */
     uint32_t reps;          /**< >= 1 */
-    uint32_t threads;       /**< >= 1 */
+    uint32_t threads;       /**< >= 1: runs side by side, the spare ones inside each run */
+    uint32_t run_threads;   /**< threads inside each run (1 .. 64); 0: the spare ones, for
+                                 swarms of RUNNER_SPLIT_MIN_ROBOTS or more */
     uint64_t steps;         /**< control steps per run */
     const char *out_dir;
     outdir_mode_t out_mode; /**< new, replace or resume */
@@ -55,6 +57,10 @@ typedef struct run_options {
     int camera_frames;      /**< non-zero: camera_robot's frames to run_<seed>/camera/robot_<id>/ */
     uint32_t camera_robot;
 } run_options_t;
+
+/** Below this many robots a run keeps to one thread unless run_threads
+ *  says otherwise: a step is then too short to share (tools/bench/scale.py). */
+#define RUNNER_SPLIT_MIN_ROBOTS 500u
 
 enum {
     RUNNER_OK = 0,

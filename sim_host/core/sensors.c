@@ -84,8 +84,8 @@ void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
     uint32_t near_robot[IR_MAX_NEAR], near_obst[IR_MAX_NEAR];
     float R = reach + EPUCK_BODY_RADIUS_M;
     uint32_t nr = sim_gather_robots(sim, r->x - R, r->y - R, r->x + R, r->y + R, near_robot, IR_MAX_NEAR);
-    uint32_t no = sim_gather_obstacles(sim, r->x - reach, r->y - reach, r->x + reach, r->y + reach,
-                                       near_obst, IR_MAX_NEAR);
+    uint32_t no = sim_gather_obstacles(sim, sim_robot_scratch(sim, i), r->x - reach, r->y - reach, r->x + reach,
+                                       r->y + reach, near_obst, IR_MAX_NEAR);
     /* Inner faces of the walls within reach. */
     vec2_t wall[4][2];
     int nw = 0;
@@ -417,10 +417,11 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
     }
     view_t vw = { cam, heading, dir, range, all_round };
 
-    uint32_t *obst = sim->cam_scratch.obstacles, *rob = sim->cam_scratch.robots;
-    uint32_t *occ_obj = sim->cam_scratch.occluder_object;
-    interval_t *occ = (interval_t *)sim->cam_scratch.intervals;
-    uint32_t no = sim_gather_obstacles(sim, cam.x - range, cam.y - range, cam.x + range, cam.y + range,
+    sim_scratch_t *ws = sim_robot_scratch(sim, i);
+    uint32_t *obst = ws->cam.obstacles, *rob = ws->cam.robots;
+    uint32_t *occ_obj = ws->cam.occluder_object;
+    interval_t *occ = (interval_t *)ws->cam.intervals;
+    uint32_t no = sim_gather_obstacles(sim, ws, cam.x - range, cam.y - range, cam.x + range, cam.y + range,
                                        obst, SIM_CAMERA_MAX_NEAR);
     uint32_t nr = sim_gather_robots(sim, cam.x - range - EPUCK_BODY_RADIUS_M, cam.y - range - EPUCK_BODY_RADIUS_M,
                                     cam.x + range + EPUCK_BODY_RADIUS_M, cam.y + range + EPUCK_BODY_RADIUS_M,
@@ -452,7 +453,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
          * below, which they then pass or not) in index order, or every item. */
         float m = sqrtf(range * range + 0.01f) + 0.01f;
         const uint32_t *ids;
-        uint32_t n_cand = items_near(sim, t, n_items, cam.x - m, cam.y - m, cam.x + m, cam.y + m, &ids);
+        uint32_t n_cand = items_near(sim, ws, t, n_items, cam.x - m, cam.y - m, cam.x + m, cam.y + m, &ids);
         for (uint32_t c = 0; c < n_cand && nocc < 2 * SIM_CAMERA_MAX_NEAR; c++) {
             uint32_t k = ids ? ids[c] : c;
             if (k > CAM_ITEM_INDEX) {
@@ -483,7 +484,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
          * they could show (their whole interval), stopping once HAL_MAX_BLOBS
          * blobs are larger than anything left can be (the robot gets only
          * those).  The result is the one the full scan gives. */
-        sim_cam_candidate_t *cand = sim->cam_scratch.candidates;
+        sim_cam_candidate_t *cand = ws->cam.candidates;
         uint32_t m = 0;
         for (uint32_t t = first_obstacle; t < nocc; t++) {
             float bd = pixel_bound(sim, &fr, t);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "pool.h"
 #include "sim_internal.h"
 #include "sound.h"
 #include "units.h"
@@ -217,6 +218,29 @@ static void robot_telemetry_of(struct sim *sim, uint32_t i)
     robot_telemetry_step(tx, &r->hal, &src, due);
 }
 
+/* Robots take a few microseconds each: chunks of 64 keep the pool's
+ * locking small beside the work. */
+#define CONTROL_CHUNK 64u
+
+/* pool_fn: robots step_order[begin .. end) run their controllers on
+ * `worker`, their sensors in its scratch. */
+static void step_robots(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
+{
+    struct sim *sim = ctx;
+    for (uint32_t k = begin; k < end; k++) {
+        uint32_t i = sim->step_order[k];
+        sim_robot_t *r = &sim->robots[i];
+        if (r->ctrl && !faults_stopped(sim, i)) {
+            r->hal.worker = worker;
+            r->def->step(r->ctrl, &r->hal);
+            if (sim->robot_tx) {
+                robot_telemetry_of(sim, i);
+            }
+            r->hal.worker = 0;
+        }
+    }
+}
+
 static int create_tasks(struct sim *sim, char err[256])
 {
     const scenario_t *sc = sim->sc;
@@ -233,8 +257,40 @@ static int create_tasks(struct sim *sim, char err[256])
     return 0;
 }
 
+/* The pool and one scratch per worker (sim_internal.h). */
+static int create_workers(struct sim *sim, uint32_t threads)
+{
+    size_t n = sim->n ? sim->n : 1, no = sim->n_obstacles ? sim->n_obstacles : 1;
+    sim->pool = pool_create(threads);
+    if (!sim->pool) {
+        return -1;
+    }
+    uint32_t workers = pool_threads(sim->pool);
+    sim->scratch = calloc(workers, sizeof *sim->scratch);
+    if (!sim->scratch) {
+        return -1;
+    }
+    for (uint32_t w = 0; w < workers; w++) {
+        sim->scratch[w].obstacle_mark = calloc(no, sizeof *sim->scratch[w].obstacle_mark);
+        sim->scratch[w].robots = malloc(n * sizeof *sim->scratch[w].robots);
+        if (!sim->scratch[w].obstacle_mark || !sim->scratch[w].robots) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
 sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
 {
+    return sim_create_threads(sc, seed, 1, err);
+}
+
+sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[256])
+{
+    if (threads < 1 || threads > POOL_MAX_THREADS) {
+        snprintf(err, 256, "threads in a run: %u is not in [1, %u]", threads, POOL_MAX_THREADS);
+        return NULL;
+    }
     struct sim *sim = calloc(1, sizeof *sim);
     if (!sim) {
         snprintf(err, 256, "out of memory");
@@ -257,15 +313,19 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
     sim->objects = calloc(no, sizeof *sim->objects);
-    sim->obstacle_mark = calloc(no, sizeof *sim->obstacle_mark);
     /* Cells a little larger than the IR reach: an IR query touches at
      * most 3 x 3 cells. */
     float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
     if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
-        || !sim->py || !sim->obstacles || !sim->objects || !sim->obstacle_mark
+        || !sim->py || !sim->obstacles || !sim->objects
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
         snprintf(err, 256, "out of memory for %u robots", sim->n);
+        sim_destroy(sim);
+        return NULL;
+    }
+    if (create_workers(sim, threads) != 0) {
+        snprintf(err, 256, "cannot start %u threads for the run (or out of memory)", threads);
         sim_destroy(sim);
         return NULL;
     }
@@ -323,6 +383,13 @@ void sim_destroy(sim_t *sim)
         }
     }
     world_destroy(sim);
+    for (uint32_t w = 0; sim->scratch && w < pool_threads(sim->pool); w++) {
+        free(sim->scratch[w].obstacle_mark);
+        free(sim->scratch[w].robots);
+        free(sim->scratch[w].items);
+    }
+    free(sim->scratch);
+    pool_destroy(sim->pool);
     faults_destroy(sim);
     camera_destroy(sim);
     items_index_free(sim);
@@ -338,8 +405,6 @@ void sim_destroy(sim_t *sim)
     free(sim->py);
     free(sim->obstacles);
     free(sim->objects);
-    free(sim->obstacle_mark);
-    free(sim->sound_near);
     free(sim->events);
     free(sim->robot_tx);
     free(sim->links);
@@ -363,15 +428,13 @@ void sim_step(sim_t *sim)
     /* Items stay put while the controllers step (items.h); out of memory,
      * the camera scans every item instead, with the same result. */
     (void)items_index_build(sim);
-    for (uint32_t k = 0; k < sim->n; k++) {
-        uint32_t i = sim->step_order[k];
-        sim_robot_t *r = &sim->robots[i];
-        if (r->ctrl && !faults_stopped(sim, i)) {
-            r->def->step(r->ctrl, &r->hal);
-            if (sim->robot_tx) {
-                robot_telemetry_of(sim, i);
-            }
-        }
+    /* Side by side when every sensor can be (not the rendered camera: one
+     * GL context); each robot reads the start of the step, so the order
+     * and the threads do not matter (test_sim: step order, thread count). */
+    if (camera_parallel(sim)) {
+        pool_for(sim->pool, sim->n, CONTROL_CHUNK, step_robots, sim);
+    } else {
+        step_robots(0, sim->n, 0, sim);
     }
     items_index_drop(sim);
     faults_transmit(sim);
@@ -401,18 +464,18 @@ void sim_step(sim_t *sim)
 
 int sim_done(const sim_t *sim) { return sim->done; }
 
-uint32_t sim_gather_obstacles(struct sim *sim, float minx, float miny, float maxx, float maxy,
-                              uint32_t *out, uint32_t max)
+uint32_t sim_gather_obstacles(const struct sim *sim, sim_scratch_t *ws, float minx, float miny, float maxx,
+                              float maxy, uint32_t *out, uint32_t max)
 {
     if (sim->n_obstacles == 0) {
         return 0;
     }
     const grid_t *g = &sim->obstacle_grid;
     int32_t cx0, cy0, cx1, cy1;
-    uint32_t n = 0, stamp = ++sim->mark_stamp;
+    uint32_t n = 0, stamp = ++ws->mark_stamp;
     if (stamp == 0) {   /* wrapped: clear the marks once every 2^32 queries */
-        memset(sim->obstacle_mark, 0, sim->n_obstacles * sizeof *sim->obstacle_mark);
-        stamp = sim->mark_stamp = 1;
+        memset(ws->obstacle_mark, 0, sim->n_obstacles * sizeof *ws->obstacle_mark);
+        stamp = ws->mark_stamp = 1;
     }
     grid_range(g, minx, miny, maxx, maxy, &cx0, &cy0, &cx1, &cy1);
     for (int32_t cy = cy0; cy <= cy1; cy++) {
@@ -421,10 +484,10 @@ uint32_t sim_gather_obstacles(struct sim *sim, float minx, float miny, float max
             for (uint32_t k = g->start[c]; k < g->start[c + 1]; k++) {
                 uint32_t o = g->items[k];
                 const float *b = sim->obstacles[o].aabb;
-                if (sim->obstacle_mark[o] == stamp || b[0] > maxx || b[2] < minx || b[1] > maxy || b[3] < miny) {
+                if (ws->obstacle_mark[o] == stamp || b[0] > maxx || b[2] < minx || b[1] > maxy || b[3] < miny) {
                     continue;
                 }
-                sim->obstacle_mark[o] = stamp;
+                ws->obstacle_mark[o] = stamp;
                 if (n < max) {
                     out[n++] = o;
                 }
@@ -432,6 +495,11 @@ uint32_t sim_gather_obstacles(struct sim *sim, float minx, float miny, float max
         }
     }
     return n;
+}
+
+sim_scratch_t *sim_robot_scratch(const struct sim *sim, uint32_t i)
+{
+    return &sim->scratch[sim->robots[i].hal.worker];
 }
 
 uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float maxx, float maxy,
@@ -534,8 +602,8 @@ int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
 {
     vec2_t p = v2((float)x0, (float)y0), q = v2((float)x1, (float)y1);
     uint32_t near[256];
-    uint32_t n = sim_gather_obstacles(sim, fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x), fmaxf(p.y, q.y),
-                                      near, 256);
+    uint32_t n = sim_gather_obstacles(sim, &sim->scratch[0], fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x),
+                                      fmaxf(p.y, q.y), near, 256);
     for (uint32_t k = 0; k < n; k++) {
         const obstacle_t *o = &sim->obstacles[near[k]];
         if (o->shape == SHAPE_CYLINDER) {

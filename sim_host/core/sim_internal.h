@@ -26,6 +26,7 @@
 struct hal {
     struct sim *sim;
     uint32_t index;
+    uint32_t worker;   /**< the pool worker stepping this robot now (its scratch); 0 outside */
 };
 
 typedef struct sim_robot {
@@ -118,6 +119,24 @@ typedef struct sim_cam_candidate { float bound; uint32_t index; } sim_cam_candid
 /** Most robots or obstacles the camera considers within its range. */
 #define SIM_CAMERA_MAX_NEAR 1024u
 
+/** One pool worker's working memory (pool.h): what a sensor query, a
+ *  delivery or a listener's sum needs while it runs, so that robots are
+ *  sensed side by side.  Worker 0 is the thread that steps the run, and
+ *  the only one outside the parallel phases (tasks' hooks, tests). */
+typedef struct sim_scratch {
+    uint32_t *obstacle_mark;       /**< n_obstacles: de-duplicates grid hits per query */
+    uint32_t mark_stamp;
+    uint32_t *robots;              /**< n: a query's robots (sound, IR delivery) */
+    uint32_t *items;               /**< item_index.cap: a query's items (items.h) */
+    struct {                       /**< sensors_camera's */
+        uint32_t obstacles[SIM_CAMERA_MAX_NEAR];
+        uint32_t robots[SIM_CAMERA_MAX_NEAR];
+        uint32_t occluder_object[2 * SIM_CAMERA_MAX_NEAR];
+        sim_interval_t intervals[2 * SIM_CAMERA_MAX_NEAR];
+        sim_cam_candidate_t candidates[2 * SIM_CAMERA_MAX_NEAR];   /**< the all-round camera's */
+    } cam;
+} sim_scratch_t;
+
 /** A counter the run's controllers declare (observable.h), and its keys in
  *  the summary and time series. */
 #define SIM_MAX_COUNTERS 16
@@ -160,16 +179,9 @@ struct sim {
     object_def_t *objects;         /**< n_obstacles: what each obstacle is (placement_cylinders) */
     obstacle_t *obstacles;
     grid_t obstacle_grid;
-    uint32_t *obstacle_mark;       /**< de-duplicates grid hits per query */
-    uint32_t mark_stamp;
 
-    struct {                       /**< working memory of sensors_camera */
-        uint32_t obstacles[SIM_CAMERA_MAX_NEAR];
-        uint32_t robots[SIM_CAMERA_MAX_NEAR];
-        uint32_t occluder_object[2 * SIM_CAMERA_MAX_NEAR];
-        sim_interval_t intervals[2 * SIM_CAMERA_MAX_NEAR];
-        sim_cam_candidate_t candidates[2 * SIM_CAMERA_MAX_NEAR];   /**< the all-round camera's */
-    } cam_scratch;
+    struct pool *pool;             /**< the run's worker threads (pool.h) */
+    sim_scratch_t *scratch;        /**< one per pool worker */
 
     uint32_t n_tasks;
     sim_task_run_t tasks[SCENARIO_MAX_TASKS];
@@ -198,7 +210,6 @@ struct sim {
     struct camera_state *camera;   /**< camera.c's renderer and recorder (NULL until used) */
 
     uint64_t sound_stamp;          /**< the sound field is this step's when == step + 1 */
-    uint32_t *sound_near;          /**< sound.cutoff > 0: a listener's robots near it (n) */
     vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
 };
@@ -238,15 +249,21 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
 void camera_update(struct sim *sim, uint32_t i);
 /** Frees the renderer and the recorder. */
 void camera_destroy(struct sim *sim);
+/** Non-zero when robots' frames may be taken side by side: the geometric
+ *  model and no recorder (the renderer has one GL context per run). */
+int camera_parallel(const struct sim *sim);
 
 /* ircom.c */
 void ircom_deliver(struct sim *sim);
 
 /** Writes to `out` (at most `max`) the indices of obstacles whose bounding
  *  boxes meet [minx,maxx] x [miny,maxy], each once, in ascending order of
- *  first grid hit; returns how many. */
-uint32_t sim_gather_obstacles(struct sim *sim, float minx, float miny, float maxx, float maxy,
-                              uint32_t *out, uint32_t max);
+ *  first grid hit; returns how many.  `ws`: the calling worker's scratch. */
+uint32_t sim_gather_obstacles(const struct sim *sim, sim_scratch_t *ws, float minx, float miny, float maxx,
+                              float maxy, uint32_t *out, uint32_t max);
+/** The scratch of the worker stepping robot i now (worker 0's outside the
+ *  control phase). */
+sim_scratch_t *sim_robot_scratch(const struct sim *sim, uint32_t i);
 /** Same for robots whose centres lie in the box. */
 uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float maxx, float maxy,
                            uint32_t *out, uint32_t max);

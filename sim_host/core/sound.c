@@ -6,9 +6,8 @@
 #include "sound.h"
 
 #include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
 
+#include "pool.h"
 #include "sim_internal.h"
 
 double sound_term(const scenario_t *sc, double d_m, int emits)
@@ -63,13 +62,13 @@ static void hear(const scenario_t *sc, sim_robot_t *dst, double sum[HAL_SOUND_BA
  * m ae - ae noise sqrt(m) N: one draw per band, the same distribution
  * (a sum of independent Gaussians), and work per listener bounded by the
  * robots within the cutoff, not by the swarm. */
-static void listen_near(struct sim *sim, uint32_t i, const uint32_t emitters[HAL_SOUND_BANDS])
+static void listen_near(struct sim *sim, sim_scratch_t *ws, uint32_t i, const uint32_t emitters[HAL_SOUND_BANDS])
 {
     const scenario_t *sc = sim->sc;
     sim_robot_t *a = &sim->robots[i];
     double cutoff = sc->sound.cutoff;
     float box = (float)cutoff + 0.01f;   /* a little more: the test below is in double */
-    uint32_t *near = sim->sound_near;
+    uint32_t *near = ws->robots;
     uint32_t n = sim_gather_robots(sim, a->x - box, a->y - box, a->x + box, a->y + box, near, sim->n);
     uint32_t near_emit[HAL_SOUND_BANDS] = { 0 }, n_near = 0;
     grid_sort_ids(near, n);
@@ -106,30 +105,40 @@ static void listen_near(struct sim *sim, uint32_t i, const uint32_t emitters[HAL
     }
 }
 
-static void update_with_cutoff(struct sim *sim)
+typedef struct listeners {
+    struct sim *sim;
+    uint32_t emitters[HAL_SOUND_BANDS];   /**< robots that played in each band */
+} listeners_t;
+
+/* pool_fn: listeners [begin, end), each its own sums and noise stream, so
+ * that they are summed side by side. */
+static void listen_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
 {
+    listeners_t *l = ctx;
+    struct sim *sim = l->sim;
     int masking = sim->sc->sound.self_masking != 0;
-    uint32_t emitters[HAL_SOUND_BANDS] = { 0 };
-    if (!sim->sound_near) {
-        sim->sound_near = malloc((sim->n ? sim->n : 1) * sizeof *sim->sound_near);
-        if (!sim->sound_near) {
-            fprintf(stderr, "swarmsim: out of memory for the sound field\n");
-            abort();
-        }
-    }
-    for (uint32_t i = 0; i < sim->n; i++) {
-        emitters[sim->robots[i].speaker_played]++;
-    }
-    for (uint32_t i = 0; i < sim->n; i++) {
+    for (uint32_t i = begin; i < end; i++) {
         sim_robot_t *a = &sim->robots[i];
         if (masking && a->speaker_played) {
             for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
                 a->sound_acc[k] = 0.0;
             }
         } else {
-            listen_near(sim, i, emitters);
+            listen_near(sim, &sim->scratch[worker], i, l->emitters);
         }
     }
+}
+
+/* Listeners take a few microseconds each within a 2 m cutoff. */
+#define LISTEN_CHUNK 64u
+
+static void update_with_cutoff(struct sim *sim)
+{
+    listeners_t l = { .sim = sim };
+    for (uint32_t i = 0; i < sim->n; i++) {
+        l.emitters[sim->robots[i].speaker_played]++;
+    }
+    pool_for(sim->pool, sim->n, LISTEN_CHUNK, listen_range, &l);
 }
 
 /* cutoff 0: eq 2 as written, every pair exact. */

@@ -12,6 +12,7 @@
 #include <pthread.h>
 #include <stdio.h>
 
+#include "pool.h"
 #include "sim_internal.h"
 #include "units.h"
 
@@ -66,6 +67,14 @@ int world_create(struct sim *sim, char err[256])
     wd.gravity = (b2Vec2){ 0.0f, 0.0f };
     /* Robots are always driven; sleeping would only cost checks. */
     wd.enableSleep = false;
+    /* The run's threads for the solver (Box2D's results do not depend on
+     * the worker count: its determinism test, and ours in test_sim). */
+    if (pool_threads(sim->pool) > 1) {
+        wd.workerCount = (int)pool_threads(sim->pool);
+        wd.enqueueTask = pool_box2d_enqueue;
+        wd.finishTask = pool_box2d_finish;
+        wd.userTaskContext = sim->pool;
+    }
     pthread_mutex_lock(&world_table_lock);
     sim->world = b2CreateWorld(&wd);
     pthread_mutex_unlock(&world_table_lock);

@@ -2,8 +2,10 @@
 # golden.sh - regression pins in the style of Box2D's determinism test: every
 # shipped scenario, run for its full duration with its own seed, must end in
 # exactly the state hash pinned below, and its summary metrics must equal the
-# pinned tests/golden/<scenario>.metrics line for line.  (About 7 s; the
-# three RepAtt worlds, seed 002 with sound on, about 4 s of it.)
+# pinned tests/golden/<scenario>.metrics line for line, and again with each
+# run stepped on 2 threads (--run-threads 2: controllers, sensors, IR, sound
+# and Box2D's solver side by side) to the same hash.  (About 15 s; the three
+# RepAtt worlds, seed 002 with sound on, about 8 s of it.)
 #
 # Reference platform: x86-64 Linux, gcc 12.2 -O2 -ffp-contract=off (no fused
 # multiply-add, set in the Makefile), glibc 2.36's libm (sinf, cosf, atan2f
@@ -60,6 +62,18 @@ for pin in "${pins[@]}"; do
     if ! diff -u "tests/golden/$name.metrics" "$out/metrics" > "$out/diff"; then
         echo "FAIL: $name: summary metrics differ from tests/golden/$name.metrics:"
         sed 's/^/    /' "$out/diff"
+        fail=$((fail + 1))
+    else
+        pass=$((pass + 1))
+    fi
+    if ! "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --run-threads 2 --out "$out.2"; then
+        echo "FAIL: $name on 2 threads: swarmsim exited with status $?"
+        fail=$((fail + 1))
+        continue
+    fi
+    got2=$(sed -n 's/.*"state_hash": "\([0-9a-f]*\)".*/\1/p' "$out.2/run_1/summary.json")
+    if [ "$got2" != "$want" ]; then
+        echo "FAIL: $name on 2 threads: state hash $got2, pinned $want"
         fail=$((fail + 1))
     else
         pass=$((pass + 1))

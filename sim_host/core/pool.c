@@ -1,0 +1,231 @@
+/*
+ * pool.c - the worker threads of one run (pool.h).
+ *
+ * One mutex guards the queue of tasks with chunks left to take; a chunk is
+ * taken under it and run outside it.  Chunks are a few hundred robots or
+ * Box2D's own ranges, so the lock is taken a few times per phase, not per
+ * item.  Task slots are a fixed array: Box2D has at most workerCount + 3
+ * tasks in flight (solver workers, island split, tree rebuild, one
+ * parallel-for), our phases one.
+ */
+#include "pool.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+
+#define POOL_SLOTS (2u * POOL_MAX_THREADS + 8u)
+
+typedef void box2d_fn(int start, int end, uint32_t worker, void *ctx);
+
+typedef struct task {
+    pool_fn *fn;            /**< ours, or */
+    box2d_fn *b2;           /**< Box2D's */
+    void *ctx;
+    uint32_t n, chunk;      /**< items, items per chunk */
+    uint32_t chunks, next, done;
+    int used;
+    struct task *queued;    /**< the next task with chunks left (FIFO) */
+} task_t;
+
+typedef struct worker_arg {
+    pool_t *pool;
+    uint32_t index;
+} worker_arg_t;
+
+struct pool {
+    uint32_t threads;
+    pthread_t tid[POOL_MAX_THREADS];
+    worker_arg_t arg[POOL_MAX_THREADS];
+    pthread_mutex_t lock;
+    pthread_cond_t work;      /**< a chunk was queued, or stop */
+    pthread_cond_t finished;  /**< a task's last chunk completed */
+    task_t slot[POOL_SLOTS];
+    task_t *head, *tail;      /**< tasks with chunks left to take */
+    int stop;
+};
+
+/* Under the lock: the next chunk of the first queued task, or NULL. */
+static task_t *take(pool_t *p, uint32_t *chunk)
+{
+    task_t *t = p->head;
+    if (!t) {
+        return NULL;
+    }
+    *chunk = t->next++;
+    if (t->next == t->chunks) {
+        p->head = t->queued;
+        if (!p->head) {
+            p->tail = NULL;
+        }
+    }
+    return t;
+}
+
+/* Runs chunk c of t (outside the lock), then counts it (under it). */
+static void run(pool_t *p, task_t *t, uint32_t c, uint32_t worker)
+{
+    pthread_mutex_unlock(&p->lock);
+    uint32_t begin = c * t->chunk, end = begin + t->chunk < t->n ? begin + t->chunk : t->n;
+    if (t->fn) {
+        t->fn(begin, end, worker, t->ctx);
+    } else {
+        t->b2((int)begin, (int)end, worker, t->ctx);
+    }
+    pthread_mutex_lock(&p->lock);
+    if (++t->done == t->chunks) {
+        pthread_cond_broadcast(&p->finished);
+    }
+}
+
+static void *worker_main(void *a)
+{
+    worker_arg_t *arg = a;
+    pool_t *p = arg->pool;
+    pthread_mutex_lock(&p->lock);
+    while (!p->stop) {
+        uint32_t c;
+        task_t *t = take(p, &c);
+        if (t) {
+            run(p, t, c, arg->index);
+        } else {
+            pthread_cond_wait(&p->work, &p->lock);
+        }
+    }
+    pthread_mutex_unlock(&p->lock);
+    return NULL;
+}
+
+pool_t *pool_create(uint32_t threads)
+{
+    if (threads < 1 || threads > POOL_MAX_THREADS) {
+        return NULL;
+    }
+    pool_t *p = calloc(1, sizeof *p);
+    if (!p) {
+        return NULL;
+    }
+    p->threads = 1;
+    pthread_mutex_init(&p->lock, NULL);
+    pthread_cond_init(&p->work, NULL);
+    pthread_cond_init(&p->finished, NULL);
+    for (uint32_t k = 1; k < threads; k++) {
+        p->arg[k] = (worker_arg_t){ p, k };
+        if (pthread_create(&p->tid[k], NULL, worker_main, &p->arg[k]) != 0) {
+            pool_destroy(p);
+            return NULL;
+        }
+        p->threads = k + 1;
+    }
+    return p;
+}
+
+void pool_destroy(pool_t *p)
+{
+    if (!p) {
+        return;
+    }
+    pthread_mutex_lock(&p->lock);
+    p->stop = 1;
+    pthread_cond_broadcast(&p->work);
+    pthread_mutex_unlock(&p->lock);
+    for (uint32_t k = 1; k < p->threads; k++) {
+        pthread_join(p->tid[k], NULL);
+    }
+    pthread_mutex_destroy(&p->lock);
+    pthread_cond_destroy(&p->work);
+    pthread_cond_destroy(&p->finished);
+    free(p);
+}
+
+uint32_t pool_threads(const pool_t *p) { return p->threads; }
+
+/* Under the lock: a free slot holding the task, queued.  Slots cannot run
+ * out (see the file comment); if they did, NULL. */
+static task_t *submit(pool_t *p, pool_fn *fn, box2d_fn *b2, void *ctx, uint32_t n, uint32_t chunk)
+{
+    for (uint32_t s = 0; s < POOL_SLOTS; s++) {
+        task_t *t = &p->slot[s];
+        if (!t->used) {
+            *t = (task_t){ .fn = fn, .b2 = b2, .ctx = ctx, .n = n, .chunk = chunk,
+                           .chunks = (n + chunk - 1) / chunk, .used = 1 };
+            if (p->tail) {
+                p->tail->queued = t;
+            } else {
+                p->head = t;
+            }
+            p->tail = t;
+            pthread_cond_broadcast(&p->work);
+            return t;
+        }
+    }
+    return NULL;
+}
+
+/* Under the lock: helps with any queued chunk until t is done, then frees
+ * its slot. */
+static void help_until(pool_t *p, task_t *t)
+{
+    while (t->done < t->chunks) {
+        uint32_t c;
+        task_t *any = take(p, &c);
+        if (any) {
+            run(p, any, c, 0);
+        } else {
+            pthread_cond_wait(&p->finished, &p->lock);
+        }
+    }
+    t->used = 0;
+}
+
+/* Items per chunk: about four chunks per worker, so that a slow chunk
+ * does not leave the others idle, and never fewer than min_chunk items. */
+static uint32_t chunk_size(const pool_t *p, uint32_t n, uint32_t min_chunk)
+{
+    uint32_t parts = 4u * p->threads;
+    uint32_t c = (n + parts - 1) / parts;
+    return c < min_chunk ? (min_chunk ? min_chunk : 1) : c;
+}
+
+void pool_for(pool_t *p, uint32_t n, uint32_t min_chunk, pool_fn *fn, void *ctx)
+{
+    if (n == 0) {
+        return;
+    }
+    if (p->threads == 1 || n <= min_chunk) {
+        fn(0, n, 0, ctx);
+        return;
+    }
+    pthread_mutex_lock(&p->lock);
+    task_t *t = submit(p, fn, NULL, ctx, n, chunk_size(p, n, min_chunk));
+    if (t) {
+        help_until(p, t);
+    }
+    pthread_mutex_unlock(&p->lock);
+    if (!t) {
+        fn(0, n, 0, ctx);
+    }
+}
+
+void *pool_box2d_enqueue(box2d_fn *task, int count, int min_range, void *task_ctx, void *user)
+{
+    pool_t *p = user;
+    if (count <= 0) {
+        return NULL;
+    }
+    uint32_t n = (uint32_t)count, min_chunk = min_range > 0 ? (uint32_t)min_range : 1u;
+    pthread_mutex_lock(&p->lock);
+    task_t *t = submit(p, NULL, task, task_ctx, n, chunk_size(p, n, min_chunk));
+    pthread_mutex_unlock(&p->lock);
+    if (!t) {
+        task(0, count, 0, task_ctx);   /* cannot happen (slots); Box2D accepts NULL: done here */
+    }
+    return t;
+}
+
+void pool_box2d_finish(void *task, void *user)
+{
+    pool_t *p = user;
+    pthread_mutex_lock(&p->lock);
+    help_until(p, task);
+    pthread_mutex_unlock(&p->lock);
+}

@@ -1,0 +1,52 @@
+/*
+ * pool.h - the worker threads of one run: a blocking parallel-for for the
+ * simulator's own phases (pool_for) and the task interface Box2D v3 asks
+ * its user for (pool_box2d_enqueue / pool_box2d_finish, b2WorldDef).
+ *
+ * A pool of `threads` is the thread that calls it (worker 0) and threads - 1
+ * threads of its own (workers 1 .. threads - 1).  Work is split into chunks
+ * that any worker may take; a callback learns which worker runs it, so that
+ * it can use that worker's scratch memory, and nothing else about the
+ * schedule.  Results that must not depend on the thread count therefore
+ * come from callbacks whose items are independent of each other.
+ *
+ * The caller of pool_for and pool_box2d_finish helps: while it waits it runs
+ * pending chunks of any task.  Box2D's solver needs that: its workerCount
+ * tasks wait for each other, so all of them must be able to run at once.
+ */
+#ifndef SIM_POOL_H
+#define SIM_POOL_H
+
+#include <stdint.h>
+
+/** The most workers of a pool (Box2D's B2_MAX_WORKERS). */
+#define POOL_MAX_THREADS 64u
+
+typedef struct pool pool_t;
+
+/** Items [begin, end) of a parallel-for, run by `worker` (< pool_threads). */
+typedef void pool_fn(uint32_t begin, uint32_t end, uint32_t worker, void *ctx);
+
+/** A pool of `threads` workers (1 .. POOL_MAX_THREADS; 1: everything runs
+ *  on the caller, no thread is started).  NULL when threads cannot start. */
+pool_t *pool_create(uint32_t threads);
+
+/** Stops and joins the threads.  NULL is a no-op. */
+void pool_destroy(pool_t *p);
+
+uint32_t pool_threads(const pool_t *p);
+
+/** Runs fn over [0, n) in chunks of at least `min_chunk` items, on every
+ *  worker, and returns when all are done.  Called by the pool's owner
+ *  thread only, never from inside a callback. */
+void pool_for(pool_t *p, uint32_t n, uint32_t min_chunk, pool_fn *fn, void *ctx);
+
+/** b2EnqueueTaskCallback: `user` is the pool.  Returns the task to finish,
+ *  or NULL when it ran here already. */
+void *pool_box2d_enqueue(void (*task)(int start, int end, uint32_t worker, void *ctx), int count, int min_range,
+                         void *task_ctx, void *user);
+
+/** b2FinishTaskCallback. */
+void pool_box2d_finish(void *task, void *user);
+
+#endif
