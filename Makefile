@@ -153,6 +153,6 @@ bench: $(BUILD)/swarmsim
 	bash tools/bench/bench.sh $(BUILD)/swarmsim
 
 clean:
-	rm -rf $(BUILD)/obj $(BUILD)/asan $(BUILD)/fw $(BUILD)/tests $(BUILD)/gen $(BUILD)/*.a $(BUILD)/swarmsim
+	rm -rf $(BUILD)/obj $(BUILD)/asan $(BUILD)/tsan $(BUILD)/fw $(BUILD)/tests $(BUILD)/gen $(BUILD)/*.a $(BUILD)/swarmsim
 
 -include $(shell find $(BUILD)/obj $(BUILD)/asan $(BUILD)/tests -name '*.d' 2>/dev/null)
