@@ -120,7 +120,7 @@ static void receive(struct sim *sim, uint32_t to, uint32_t from, uint16_t value)
         r->rx_dropped++;
         return;
     }
-    hal_ircom_msg_t *m = &r->rx[(r->rx_head + r->rx_count) % SIM_IRCOM_QUEUE];
+    hal_ircom_msg_t *m = &r->rx[(r->rx_head + r->rx_count) % sc->ircom.queue];
     m->value = value;
     m->sensor = sensor;
     m->bearing_mrad = (int16_t)lroundf(est * 1000.0f);

@@ -79,6 +79,7 @@ static int build_robots(struct sim *sim, char err[256])
             sim_robot_t *r = &sim->robots[i];
             r->hal.sim = sim;
             r->hal.index = i;
+            r->rx = sim->rx_store + (size_t)i * sc->ircom.queue;
             r->ircom_tx_n = 0;
             r->group = g;
             r->def = def;
@@ -309,6 +310,7 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     sim->robots = calloc(n, sizeof *sim->robots);
     sim->ctrl_blocks = calloc(ng, sizeof *sim->ctrl_blocks);
     sim->step_order = calloc(n, sizeof *sim->step_order);
+    sim->rx_store = calloc(n * (sc->ircom.queue ? sc->ircom.queue : 1u), sizeof *sim->rx_store);
     sim->px = calloc(n, sizeof *sim->px);
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
@@ -316,7 +318,7 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     /* Cells a little larger than the IR reach: an IR query touches at
      * most 3 x 3 cells. */
     float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
-    if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
+    if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->rx_store || !sim->px
         || !sim->py || !sim->obstacles || !sim->objects
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
@@ -401,6 +403,7 @@ void sim_destroy(sim_t *sim)
     free(sim->ctrl_blocks);
     free(sim->robots);
     free(sim->step_order);
+    free(sim->rx_store);
     free(sim->px);
     free(sim->py);
     free(sim->obstacles);
@@ -582,7 +585,7 @@ int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg)
     if (r->rx_count >= sim->sc->ircom.queue) {
         return -1;
     }
-    r->rx[(r->rx_head + r->rx_count) % SIM_IRCOM_QUEUE] = *msg;
+    r->rx[(r->rx_head + r->rx_count) % sim->sc->ircom.queue] = *msg;
     r->rx_count++;
     return 0;
 }

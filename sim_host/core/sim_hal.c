@@ -124,7 +124,7 @@ hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
         return HAL_ERR_EMPTY;
     }
     *out = r->rx[r->rx_head];
-    r->rx_head = (uint8_t)((r->rx_head + 1) % SIM_IRCOM_QUEUE);
+    r->rx_head = (uint8_t)((r->rx_head + 1) % hal->sim->sc->ircom.queue);
     r->rx_count--;
     return HAL_OK;
 }

@@ -19,9 +19,6 @@
 #include "task.h"
 #include "telemetry/robot_telemetry.h"
 
-/** The receive queue's storage: ircom.queue (default 20, libIrcom's) of it is used. */
-#define SIM_IRCOM_QUEUE SIM_IRCOM_QUEUE_MAX
-
 /** What a controller's `hal_t *` points to in the simulator. */
 struct hal {
     struct sim *sim;
@@ -57,7 +54,7 @@ typedef struct sim_robot {
 
     uint16_t ircom_tx[SIM_IRCOM_TX_MAX]; /**< messages to send this step */
     uint8_t ircom_tx_n;            /**< how many (ircom.tx_per_period at most) */
-    hal_ircom_msg_t rx[SIM_IRCOM_QUEUE];
+    hal_ircom_msg_t *rx;           /**< its receive queue: ircom.queue slots of sim->rx_store */
     uint8_t rx_head, rx_count;
     uint32_t rx_dropped;
 
@@ -174,6 +171,7 @@ struct sim {
     float *px, *py;                /**< robot centres, for the grid */
     grid_t robot_grid;
     uint32_t *step_order;          /**< robots in the order they step (phase 2) */
+    hal_ircom_msg_t *rx_store;     /**< every robot's receive queue, ircom.queue each (libIrcom: 20) */
 
     uint32_t n_obstacles;          /**< the scenario's objects, then its random cylinders */
     object_def_t *objects;         /**< n_obstacles: what each obstacle is (placement_cylinders) */

@@ -1,4 +1,4 @@
-"""Cost per robot-step from 20 to 100,000 robots, one thread (issue 18).
+"""Cost per robot-step from 20 to 100,000 robots, on 1 and 2 threads (issue 18).
 
 Two worlds at constant density (1.25 robots per m^2, the default
 scenario's; the arena's side sqrt(n / 1.25) m, 282.8 m at 100,000):
@@ -11,7 +11,9 @@ scenario's; the arena's side sqrt(n / 1.25) m, 282.8 m at 100,000):
   fs+tel  the same with telemetry at its default (an LCM log: SWARM_STATE
       at the control rate, 10 Hz, every robot's ROBOT_STATE at 1 Hz).
 
-Each run is a separate process.  The rates divide robot-steps by the
+Each world runs on each of --run-threads (swarmsim --run-threads: that
+many threads inside the one run; 1 and 2 by default).  Each run is a
+separate process.  The rates divide robot-steps by the
 simulation's own span (creating the world to the last output, as
 swarmsim's last line reports it) in wall time and in CPU time (user +
 system, every thread): on a loaded machine the wall rate drops with the
@@ -21,6 +23,7 @@ load, the CPU rate much less.  Peak memory is the process's max RSS
 
     python3 tools/bench/scale.py [--sim build/swarmsim] [--runs 5] [--runs-big 1]
         [--counts 20:3000,200:1500,2000:500,10000:300,100000:100] [--modes rw,fs,fs+tel]
+        [--run-threads 1,2]
 """
 import argparse
 import os
@@ -41,11 +44,12 @@ WORLDS = {
 }
 
 
-def one_run(sim, mode, n, steps, out):
-    """(wall s, CPU s, max RSS bytes) of one run."""
+def one_run(sim, mode, n, steps, threads, out):
+    """(wall s, CPU s, max RSS bytes) of one run on `threads` threads."""
     scenario, tokens, telemetry = WORLDS[mode]
     side = f"{(n / DENSITY) ** 0.5:.3f}"
-    cmd = [sim, str(ROOT / scenario), "--threads", "1", "--steps", str(steps), "--out", out, "--replace",
+    cmd = [sim, str(ROOT / scenario), "--threads", "1", "--run-threads", str(threads), "--steps", str(steps),
+           "--out", out, "--replace",
            "--set", f"robots.0.count={n}", "--set", f"arena.width={side}", "--set", f"arena.height={side}"]
     if tokens:
         cmd += ["--set", f"foraging.food_count={n}"]
@@ -69,9 +73,10 @@ def main():
     ap.add_argument("--counts", default="20:3000,200:1500,2000:500,10000:300,100000:100",
                     help="robots:steps,...")
     ap.add_argument("--modes", default="rw,fs,fs+tel")
+    ap.add_argument("--run-threads", default="1,2", help="threads inside a run, each in turn")
     a = ap.parse_args()
-    modes = a.modes.split(",")
-    print(f"{'robots':>7} {'arena_m':>8} {'steps':>6} {'world':>7} {'runs':>4} {'wall_s':>8} {'cpu_s':>8} "
+    modes = [(m, int(t)) for m in a.modes.split(",") for t in a.run_threads.split(",")]
+    print(f"{'robots':>7} {'arena_m':>8} {'steps':>6} {'world':>7} {'thr':>3} {'runs':>4} {'wall_s':>8} {'cpu_s':>8} "
           f"{'Mrs/s_wall':>10} {'Mrs/s_cpu':>9} {'us/rs_cpu':>9} {'rtf_cpu':>8} {'maxrss_MB':>9} {'B/robot':>8}",
           flush=True)
     with tempfile.TemporaryDirectory() as tmp:
@@ -81,13 +86,14 @@ def main():
             got = {m: [] for m in modes}
             for r in range(runs):
                 for m in modes:   # in turn: a load change hits every world alike
-                    got[m].append(one_run(a.sim, m, n, steps, os.path.join(tmp, f"{m}_{n}_{r}")))
+                    got[m].append(one_run(a.sim, m[0], n, steps, m[1], os.path.join(tmp, f"{m[0]}_{m[1]}_{n}_{r}")))
             for m in modes:
                 wall = statistics.median(g[0] for g in got[m])
                 cpu = statistics.median(g[1] for g in got[m])
                 rss = statistics.median(g[2] for g in got[m])
                 rs = n * steps
-                print(f"{n:>7} {(n / DENSITY) ** 0.5:>8.1f} {steps:>6} {m:>7} {runs:>4} {wall:>8.3f} {cpu:>8.3f} "
+                print(f"{n:>7} {(n / DENSITY) ** 0.5:>8.1f} {steps:>6} {m[0]:>7} {m[1]:>3} {runs:>4} {wall:>8.3f} "
+                      f"{cpu:>8.3f} "
                       f"{rs / wall / 1e6:>10.3f} {rs / cpu / 1e6:>9.3f} {cpu / rs * 1e6:>9.3f} "
                       f"{steps * 0.1 / cpu:>8.1f} {rss / 2**20:>9.1f} {rss / n:>8.0f}", flush=True)
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at the end")
