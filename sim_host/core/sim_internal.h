@@ -86,6 +86,14 @@ typedef struct sim_robot {
     sim_rand_t fault_rand;         /**< babble bits, ir_noise, bursts */
 } sim_robot_t;
 
+/** A robot's body velocity for Box2D this step (world_drive), and how far
+ *  it moved in it (world_read_poses), m/s, rad/s, m. */
+typedef struct world_velocity {
+    b2Vec2 v;
+    float w;
+    double moved;
+} world_velocity_t;
+
 /** One fault of one robot, as drawn for this run. */
 typedef struct fault_run {
     uint32_t robot;
@@ -164,6 +172,7 @@ struct sim {
     float dt;                      /**< control period, s */
     float hw, hh;                  /**< half width and height of the arena, m */
     b2WorldId world;
+    world_velocity_t *drive;       /**< n: world.c's per-robot results */
 
     uint32_t n;                    /**< robots */
     sim_robot_t *robots;

@@ -11,6 +11,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "pool.h"
 #include "sim_internal.h"
@@ -78,8 +79,9 @@ int world_create(struct sim *sim, char err[256])
     pthread_mutex_lock(&world_table_lock);
     sim->world = b2CreateWorld(&wd);
     pthread_mutex_unlock(&world_table_lock);
-    if (!b2World_IsValid(sim->world)) {
-        snprintf(err, 256, "cannot create the Box2D world");
+    sim->drive = calloc(sim->n ? sim->n : 1, sizeof *sim->drive);
+    if (!b2World_IsValid(sim->world) || !sim->drive) {
+        snprintf(err, 256, "cannot create the Box2D world (or out of memory)");
         return -1;
     }
     create_static(sim);
@@ -107,6 +109,8 @@ int world_create(struct sim *sim, char err[256])
 
 void world_destroy(struct sim *sim)
 {
+    free(sim->drive);
+    sim->drive = NULL;
     pthread_mutex_lock(&world_table_lock);
     if (b2World_IsValid(sim->world)) {
         b2DestroyWorld(sim->world);
@@ -114,11 +118,16 @@ void world_destroy(struct sim *sim)
     pthread_mutex_unlock(&world_table_lock);
 }
 
-void world_drive(struct sim *sim)
+/* pool_fn: robots [begin, end) turn their wheel commands into body
+ * velocities (sim->drive), each with its own noise streams, side by side;
+ * world_drive hands them to Box2D in one loop. */
+static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
 {
+    struct sim *sim = ctx;
     const double noise = sim->sc->wheels.speed_noise_rel;
     const int bias = sim->sc->wheels.bias_sd > 0.0f;
-    for (uint32_t i = 0; i < sim->n; i++) {
+    (void)worker;
+    for (uint32_t i = begin; i < end; i++) {
         sim_robot_t *r = &sim->robots[i];
         double l = r->cmd_left, rr = r->cmd_right;
         if (faults_stopped(sim, i)) {
@@ -165,8 +174,24 @@ void world_drive(struct sim *sim)
         faults_wheels(sim, i, &l, &rr);
         double v = 0.5 * (l + rr) * EPUCK_STEP_M;
         double w = (rr - l) * EPUCK_STEP_M / EPUCK_AXLE_M;
-        b2Body_SetLinearVelocity(r->body, (b2Vec2){ (float)(v * cos(r->theta)), (float)(v * sin(r->theta)) });
-        b2Body_SetAngularVelocity(r->body, (float)w);
+        sim->drive[i].v = (b2Vec2){ (float)(v * cos(r->theta)), (float)(v * sin(r->theta)) };
+        sim->drive[i].w = (float)w;
+    }
+}
+
+/* Bodies' velocities are set in one loop on the stepping thread: Box2D's
+ * API is not promised to be safe from several threads at once. */
+#define DRIVE_CHUNK 256u
+
+void world_drive(struct sim *sim)
+{
+    pool_for(sim->pool, sim->n, DRIVE_CHUNK, drive_range, sim);
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_robot_t *r = &sim->robots[i];
+        if (r->moves) {
+            b2Body_SetLinearVelocity(r->body, sim->drive[i].v);
+            b2Body_SetAngularVelocity(r->body, sim->drive[i].w);
+        }
     }
 }
 
@@ -186,24 +211,37 @@ void world_advance(struct sim *sim)
     }
 }
 
-void world_read_poses(struct sim *sim)
+/* pool_fn: robots [begin, end) take their poses from Box2D (reads only)
+ * and how far they moved (sim->drive[i].moved, summed in id order after). */
+static void read_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
 {
-    double moved = 0.0, clearance = sim->metrics.min_wall_clearance_m;
-    for (uint32_t i = 0; i < sim->n; i++) {
+    struct sim *sim = ctx;
+    (void)worker;
+    for (uint32_t i = begin; i < end; i++) {
         sim_robot_t *r = &sim->robots[i];
         b2Vec2 p = b2Body_GetPosition(r->body);
         float dx = p.x - r->x, dy = p.y - r->y;
-        moved += sqrt((double)dx * dx + (double)dy * dy);
+        sim->drive[i].moved = sqrt((double)dx * dx + (double)dy * dy);
         r->x = p.x;
         r->y = p.y;
         r->theta = b2Rot_GetAngle(b2Body_GetRotation(r->body));
         sim->px[i] = p.x;
         sim->py[i] = p.y;
-        double gap = fmin(sim->hw - fabs(p.x), sim->hh - fabs(p.y)) - EPUCK_BODY_RADIUS_M;
+    }
+}
+
+void world_read_poses(struct sim *sim)
+{
+    pool_for(sim->pool, sim->n, DRIVE_CHUNK, read_range, sim);
+    double moved = 0.0, clearance = sim->metrics.min_wall_clearance_m;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_robot_t *r = &sim->robots[i];
+        moved += sim->drive[i].moved;
+        double gap = fmin(sim->hw - fabs(r->x), sim->hh - fabs(r->y)) - EPUCK_BODY_RADIUS_M;
         if (gap < clearance) {
             clearance = gap;
         }
-        if (!r->escaped && (fabsf(p.x) > sim->hw || fabsf(p.y) > sim->hh)) {
+        if (!r->escaped && (fabsf(r->x) > sim->hw || fabsf(r->y) > sim->hh)) {
             r->escaped = 1;
             sim->metrics.escaped++;
         }
