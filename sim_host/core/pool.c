@@ -34,6 +34,7 @@ typedef struct worker_arg {
 
 struct pool {
     uint32_t threads;
+    uint32_t forced_chunk;    /**< POOL_CHUNK_ENV, 0: none */
     pthread_t tid[POOL_MAX_THREADS];
     worker_arg_t arg[POOL_MAX_THREADS];
     pthread_mutex_t lock;
@@ -105,6 +106,12 @@ pool_t *pool_create(uint32_t threads)
         return NULL;
     }
     p->threads = 1;
+    const char *forced = getenv(POOL_CHUNK_ENV);
+    if (forced) {
+        char *end;
+        unsigned long v = strtoul(forced, &end, 10);
+        p->forced_chunk = (*forced && !*end && v >= 1 && v <= UINT32_MAX) ? (uint32_t)v : 0;
+    }
     pthread_mutex_init(&p->lock, NULL);
     pthread_cond_init(&p->work, NULL);
     pthread_cond_init(&p->finished, NULL);
@@ -190,6 +197,9 @@ void pool_for(pool_t *p, uint32_t n, uint32_t min_chunk, pool_fn *fn, void *ctx)
 {
     if (n == 0) {
         return;
+    }
+    if (p->forced_chunk) {
+        min_chunk = p->forced_chunk;
     }
     if (p->threads == 1 || n <= min_chunk) {
         fn(0, n, 0, ctx);

@@ -22,6 +22,13 @@
 /** The most workers of a pool (Box2D's B2_MAX_WORKERS). */
 #define POOL_MAX_THREADS 64u
 
+/** Test hook: when this environment variable holds N >= 1 as a pool is
+ *  created, its pool_for takes N as every caller's minimum chunk (about four
+ *  chunks per worker, at least N items each), so that a small scenario's
+ *  robots, too, are stepped on several threads at once
+ *  (tests/cli/golden.sh, determinism.sh). */
+#define POOL_CHUNK_ENV "SWARMSIM_POOL_CHUNK"
+
 typedef struct pool pool_t;
 
 /** Items [begin, end) of a parallel-for, run by `worker` (< pool_threads). */

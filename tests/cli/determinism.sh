@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# determinism.sh - same seed, identical output bytes, whatever --threads.
+# determinism.sh - same seed, identical output bytes, whatever --threads
+# (runs side by side) or --run-threads (threads inside a run).
 # Runs 4 repetitions of a short default-scenario run with 1 and with 2
 # threads and compares every summary.json (but its command line) and
 # timeseries.csv byte for byte;
@@ -32,9 +33,13 @@ check "--seed 2 run_2 differs from --seed 1 run_2" "same '$tmp/t1/run_2/summary.
 fargs=(sim_host/scenarios/foraging_base.yaml --steps 2000 --reps 3 --quiet)
 "$sim" "${fargs[@]}" --threads 1 --out "$tmp/f1"
 "$sim" "${fargs[@]}" --threads 2 --out "$tmp/f2"
+# Inside a run: chunks of a few robots (pool.h's test hook), so that 21
+# robots are stepped on 3 threads at once.
+SWARMSIM_POOL_CHUNK=1 "$sim" "${fargs[@]}" --threads 1 --run-threads 3 --out "$tmp/f3"
 for seed in 1 2 3; do
     for f in summary.json timeseries.csv; do
         check "foraging run_$seed/$f differs between 1 and 2 threads" "same '$tmp/f1/run_$seed/$f' '$tmp/f2/run_$seed/$f'"
+        check "foraging run_$seed/$f differs with 3 threads inside the run" "same '$tmp/f1/run_$seed/$f' '$tmp/f3/run_$seed/$f'"
     done
 done
 # RepAtt with sound on (seed 002): eq 4's noise drawn per listener, in both
@@ -57,9 +62,11 @@ eargs=(sim_host/scenarios/eaipp_square.yaml --steps 3000 --reps 3 --quiet --set 
        --set ircom.loss=0.2 --set ircom.bearing_noise_vec=0.05 --set wheels.bias_sd=0.01)
 "$sim" "${eargs[@]}" --threads 1 --out "$tmp/e1"
 "$sim" "${eargs[@]}" --threads 2 --out "$tmp/e2"
+SWARMSIM_POOL_CHUNK=1 "$sim" "${eargs[@]}" --threads 1 --run-threads 2 --out "$tmp/e3"
 for seed in 1 2 3; do
     for f in summary.json timeseries.csv; do
         check "eaipp run_$seed/$f differs between 1 and 2 threads" "same '$tmp/e1/run_$seed/$f' '$tmp/e2/run_$seed/$f'"
+        check "eaipp run_$seed/$f differs with 2 threads inside the run" "same '$tmp/e1/run_$seed/$f' '$tmp/e3/run_$seed/$f'"
     done
 done
 check "eaipp: seeds 1 and 2 gave the same run" "! same '$tmp/e1/run_1/timeseries.csv' '$tmp/e1/run_2/timeseries.csv'"

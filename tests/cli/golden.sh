@@ -4,7 +4,8 @@
 # exactly the state hash pinned below, and its summary metrics must equal the
 # pinned tests/golden/<scenario>.metrics line for line, and again with each
 # run stepped on 2 threads (--run-threads 2: controllers, sensors, IR, sound
-# and Box2D's solver side by side) to the same hash.  (About 15 s; the three
+# and Box2D's solver side by side, in chunks of a few robots however small
+# the swarm: SWARMSIM_POOL_CHUNK=1, pool.h) to the same hash.  (About 15 s; the three
 # RepAtt worlds, seed 002 with sound on, about 8 s of it.)
 #
 # Reference platform: x86-64 Linux, gcc 12.2 -O2 -ffp-contract=off (no fused
@@ -66,7 +67,8 @@ for pin in "${pins[@]}"; do
     else
         pass=$((pass + 1))
     fi
-    if ! "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --run-threads 2 --out "$out.2"; then
+    if ! SWARMSIM_POOL_CHUNK=1 "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --run-threads 2 \
+        --out "$out.2"; then
         echo "FAIL: $name on 2 threads: swarmsim exited with status $?"
         fail=$((fail + 1))
         continue

@@ -1,10 +1,13 @@
 # tsan.mk - one run's worker threads under ThreadSanitizer (issue 18): the
-# library built with -fsanitize=thread and test_sim run with it; its
+# library built with -fsanitize=thread; test_sim run with it (its
 # test_thread_count_does_not_matter steps 800 full-sensing robots on 1, 2
-# and 3 threads (controllers and sensors, IR delivery, the sound field,
-# Box2D's solver through our pool).  A data race fails the group
-# (halt_on_error).  About 20 s.  Box2D and the generated LCM code are not
+# and 3 threads: controllers and sensors, IR delivery, the sound field,
+# Box2D's solver through our pool), then swarmsim built with it runs one
+# scenario of each seed whole on 3 threads in chunks of a few robots
+# (SWARMSIM_POOL_CHUNK=1, pool.h).  A data race fails the group
+# (halt_on_error).  About 40 s.  Box2D and the generated LCM code are not
 # instrumented: a race inside them would not be seen.
+TSAN_SCENARIOS := foraging_base repatt_quick eaipp_square
 TSAN := -fsanitize=thread -fno-omit-frame-pointer
 FW_OBJ_TSAN := $(call objs,tsan,$(FW_SRC))
 SIM_OBJ_TSAN := $(call objs,tsan,$(SIM_SRC))
@@ -36,9 +39,18 @@ $(BUILD)/tests/tsan/%: tests/%.c $(BUILD)/libswarm-tsan.a
 	$(CC) $(SIM_CFLAGS) $(TSAN) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm-tsan.a \
 	  $(CMOCKA_LIBS) $(LDLIBS_SIM)
 
+$(BUILD)/tsan/sim_host/main.o: $(VERSION_H)
+$(BUILD)/tsan/sim_host/main.o: SIM_CFLAGS += -I$(BUILD)/gen
+$(BUILD)/tsan/swarmsim: $(BUILD)/tsan/sim_host/main.o $(BUILD)/libswarm-tsan.a
+	$(CC) $(TSAN) -o $@ $^ $(LDLIBS_SIM)
+
 .PHONY: tsan-tests
-tsan-tests: $(BUILD)/tests/tsan/test_sim
+tsan-tests: $(BUILD)/tests/tsan/test_sim $(BUILD)/tsan/swarmsim
 	@echo "== $< (ThreadSanitizer)"
 	@cd tests && TSAN_OPTIONS=halt_on_error=1 ../$<
+	@set -e; out=$$(mktemp -d); trap 'rm -rf "$$out"' EXIT; for s in $(TSAN_SCENARIOS); do \
+	  echo "== sim_host/scenarios/$$s.yaml on 3 threads (ThreadSanitizer)"; \
+	  SWARMSIM_POOL_CHUNK=1 TSAN_OPTIONS=halt_on_error=1 $(BUILD)/tsan/swarmsim sim_host/scenarios/$$s.yaml \
+	    --lcm off --quiet --threads 1 --run-threads 3 --out "$$out/$$s"; done
 
 -include $(shell find $(BUILD)/tsan -name '*.d' 2>/dev/null)
