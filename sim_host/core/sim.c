@@ -426,7 +426,7 @@ void sim_step(sim_t *sim)
     for (uint32_t i = 0; sim->links && i < sim->n; i++) {
         robot_link_begin_step(&sim->links[i], sim->link_budget);
     }
-    /* Serially, before any controller reads it (sound.h). */
+    /* Whole, before any controller reads it (sound.h). */
     sound_update(sim);
     /* Items stay put while the controllers step (items.h); out of memory,
      * the camera scans every item instead, with the same result. */

@@ -32,8 +32,9 @@
  *    term in the sum, sources in id order then bands 1..3: the field is a
  *    function of (seed, poses, speakers), whatever the thread count or the
  *    order in which robots step.
- * When: sim_step computes the field serially, once per step, after the
- * tasks' before_control and before the controllers step, from the poses at
+ * When: sim_step computes the field once per step, after the tasks'
+ * before_control and before the controllers step (with a cutoff, listener
+ * by listener on the run's threads; all pairs in one loop), from the poses at
  * that moment and the speakers as they played during the last period (what
  * each robot set in the step before).  Read between steps (tests), the
  * field is the one the next step's controllers will see.

@@ -16,10 +16,11 @@
  *   1. before_control of every task, in registry order (serial);
  *   2. every robot's controller steps.  Sensing and stepping read only the
  *      state at the start of the step (poses, items, messages delivered
- *      last step) and write only the robot's own outputs, so robots may
- *      step in any order, or in parallel, with the same result (tested);
- *   3. IR messages sent in step 2 are delivered, sender by sender in id
- *      order (they are readable in the next step);
+ *      last step) and write only the robot's own outputs, so robots step
+ *      in any order, and side by side on the run's threads (pool.h), with
+ *      the same result (tested);
+ *   3. IR messages sent in step 2 are delivered, each receiver taking the
+ *      senders in turn order (they are readable in the next step);
  *   4. after_control of every task (serial): it may read the commanded
  *      wheel speeds;
  *   5. physics: wheels drive the bodies, Box2D resolves contacts;
@@ -88,7 +89,9 @@ typedef struct task_def {
     void (*after_physics)(void *self, sim_t *sim);
 
     /** What the camera sees of the task now: *items points to `return`
-     *  entries that stay valid until the next hook. */
+     *  entries that stay valid until the next hook.  Called by robots'
+     *  cameras on several threads at once while the controllers step: it
+     *  must only read. */
     uint32_t (*items)(const void *self, const sim_item_t **items);
 
     /** Time-series columns (metric_desc_t, {NULL}-terminated) and the
