@@ -305,12 +305,14 @@ int main(int argc, char **argv)
     if (reps - 1 > SCENARIO_SEED_MAX - first_seed) {
         fprintf(stderr, "swarmsim: seeds %" PRIu64 " + %" PRIu64 " repetitions pass the seed range "
                 "[0, %" PRIu64 "]\n", first_seed, reps, SCENARIO_SEED_MAX);
+        scenario_free(sc);
         free(sc);
         return 2;
     }
     if (have_camera_robot && camera_robot >= scenario_robot_count(sc)) {
         fprintf(stderr, "swarmsim: --camera-frames: robot %" PRIu64 " is not in the scenario (ids 0 to %u)\n",
                 camera_robot, scenario_robot_count(sc) - 1u);
+        scenario_free(sc);
         free(sc);
         return 2;
     }
@@ -320,6 +322,7 @@ int main(int argc, char **argv)
     if (telemetry.realtime > 0.0 && !telemetry.enabled) {
         fprintf(stderr, "swarmsim: --realtime paces live telemetry for watching; with --lcm off there "
                 "is nothing to watch (drop one of them)\n");
+        scenario_free(sc);
         free(sc);
         return 2;
     }
@@ -327,6 +330,7 @@ int main(int argc, char **argv)
         if (!quiet) {
             printf("swarmsim: %s: ok\n", path);
         }
+        scenario_free(sc);
         free(sc);
         return 0;
     }
@@ -339,6 +343,7 @@ int main(int argc, char **argv)
     char *text = effective_scenario(path, sets, nsets, &text_len, err);
     if (!text) {
         fprintf(stderr, "swarmsim: %s\n", err);
+        scenario_free(sc);
         free(sc);
         return 2;
     }
@@ -369,6 +374,7 @@ int main(int argc, char **argv)
     catch_stop_signals();
     int rc = runner_run(&opt, err);
     free(text);
+    scenario_free(sc);
     free(sc);
     switch (rc) {
     case RUNNER_OK:

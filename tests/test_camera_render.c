@@ -49,8 +49,8 @@ static scenario_t *camera_scenario(int model, uint32_t robots)
 
 static void add_cylinder(scenario_t *sc, float x, float y, float r, float h, int colour)
 {
-    sc->objects[sc->object_count++] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = x, .y = y, .radius = r,
-                                                      .height = h, .colour = colour };
+    assert_int_equal(scenario_add_object(sc, &(object_def_t){ .shape = SHAPE_CYLINDER, .x = x, .y = y,
+                                                             .radius = r, .height = h, .colour = colour }), 0);
 }
 
 static uint8_t blobs_of(sim_t *sim, uint32_t i, hal_blob_t *b)
@@ -101,6 +101,7 @@ static void test_token_ahead_both_models(void **state)
         assert_true(fabs(t->width_mrad - expect) <= tol_w);
         assert_true(fabs((double)t->bearing_mrad) <= tol_b);
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -131,6 +132,7 @@ static void test_side_by_side_merge_when_rendered(void **state)
             assert_true(abs(b[0].bearing_mrad) <= COLUMN_MRAD / 2);
         }
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -152,6 +154,7 @@ static void test_occluded_token_not_seen(void **state)
         n = blobs_of(sim, 0, b);
         assert_int_equal(count_colour(b, n, HAL_COLOUR_RED), 1);
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -196,7 +199,9 @@ static void test_models_agree_on_bearing(void **state)
     assert_true(compared >= 40);
     sim_destroy(g);
     sim_destroy(r);
+    scenario_free(sg);
     free(sg);
+    scenario_free(sr);
     free(sr);
 }
 
@@ -230,6 +235,7 @@ static void test_frames_at_their_rate_and_age(void **state)
                       scenario_camera_model_names[model], first + 1, gone + 1);
         assert_true(gone >= 1 && gone <= 4);
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -270,6 +276,7 @@ static void test_rendered_runs_are_deterministic(void **state)
         seen += count[0][i];
     }
     assert_true(seen > 0);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -304,6 +311,7 @@ static void test_colour_classes_under_scenario_lighting(void **state)
             assert_int_equal(n, 1);   /* and nothing else: floor, walls, robots are no class */
         }
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
     /* A robot's LEDs at 8 cm: the green body LED, the red ring LEDs. */
@@ -324,7 +332,9 @@ static void test_colour_classes_under_scenario_lighting(void **state)
     n = blobs_of(sim, 0, b);
     assert_true(count_colour(b, n, HAL_COLOUR_RED) >= 1);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
+    scenario_free(base);
     free(base);
 }
 
@@ -365,7 +375,9 @@ static void test_detector_reach_is_the_geometric_range(void **state)
         assert_true(fabs(reach - base->camera.range) <= 0.05 + 1e-6);
     }
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
+    scenario_free(base);
     free(base);
 }
 

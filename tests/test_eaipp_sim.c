@@ -67,6 +67,7 @@ static void test_square_path_forms(void **state)
     assert_int_equal(nodes, truth.nodes);
     assert_true(truth.chain_nodes >= 2u && truth.chain_nodes <= nodes);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

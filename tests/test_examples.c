@@ -76,6 +76,7 @@ static void test_walkthrough_scenario_gathers(void **state)
     assert_true(arrivals >= 1 && arrived >= 1);
     assert_true(metric(&m, "arrivals_total") == (double)arrivals);   /* its counter, totalled */
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -95,6 +96,7 @@ static void test_no_stop_condition(void **state)
     assert_true(metric(&m, "completed") == 0.0);
     assert_true(isnan(metric(&m, "completion_time_s")));
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -107,6 +109,7 @@ static void test_task_check(void **state)
     scenario_override_t o[1] = { { "gather.goal.x=9" } };
     assert_int_equal(scenario_load(SCENARIO, o, 1, sc, err), -1);
     assert_non_null(strstr(err, "--set gather.goal.x=9: gather.goal.x: the goal's centre is outside the arena (x in [-1.5, 1.5]"));
+    scenario_free(sc);
     free(sc);
 }
 

@@ -101,6 +101,7 @@ static void test_fraction_onset_and_seed(void **state)
         }
         assert_true(found);
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
     assert_memory_equal(picked[0], picked[1], sizeof picked[0]);
@@ -135,6 +136,7 @@ static void test_stop_halts_and_recovers(void **state)
     sim_robot_pose(sim, 0, &x1, &y1, &t1);
     assert_true(hypot(x1 - x0, y1 - y0) > 0.05);   /* 64 mm/s for 1 s */
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -160,6 +162,7 @@ static void test_wheel_stall_and_drift(void **state)
         sim_robot_pose(sim, 0, &x, &y, &t1);
         turned[k] = t1 - t0;
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
     assert_true(turned[0] > 0.5);                 /* left wheel still: turns left (CCW) */
@@ -191,6 +194,7 @@ static void test_sensor_faults(void **state)
         }
         spread[k] = (uint32_t)(hi - lo);
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
     assert_true(sum[0] > 20u * 300u);          /* a wall 1.5 cm ahead */
@@ -209,6 +213,7 @@ static void test_sensor_faults(void **state)
         uint8_t n = hal_camera_blobs(sim_robot_hal(sim, 0), b, HAL_MAX_BLOBS);
         assert_int_equal(n, k ? 0 : 1);
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -238,6 +243,7 @@ static void test_radio_faults(void **state)
             while (hal_ircom_receive(sim_robot_hal(sim, 1), &m) == HAL_OK) heard[k]++;
         }
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
     assert_true(heard[0] >= 9);
@@ -261,6 +267,7 @@ static void test_radio_faults(void **state)
     assert_true(got >= 18);
     assert_true(distinct >= 15);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -289,6 +296,7 @@ static void test_liar_is_bounded_by_the_beacon(void **state)
     assert_true(b->last_deposits[liar] >= 148u && b->last_deposits[liar] <= 150u);
     assert_true(b->ledger_units <= NB_LEDGER_LIMIT_TOKENS * 1500);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -302,6 +310,7 @@ static void expect_error(const char *set, const char *want)
         fail_msg("loaded: %s", set);
     }
     if (!strstr(err, want)) fail_msg("error '%s' lacks '%s'", err, want);
+    scenario_free(sc);
     free(sc);
 }
 

@@ -120,6 +120,7 @@ static void test_base_run_collects_and_balances(void **state)
     double beacon_food = nest_beacon_food_q4(b) / 16.0;
     assert_true(fabs(beacon_food - f.food) < 4.0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -142,6 +143,7 @@ static void test_beacon_tracks_the_truth_and_robots_leave_the_nest(void **state)
                      exit_s, err_mean, err_max);
         }
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -173,6 +175,7 @@ static void test_lost_token_goes_back_to_search(void **state)
     assert_int_equal(fg->state, FORAGER_SEARCH);
     assert_int_equal(truth(sim).dropped, 1);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -190,6 +193,7 @@ static void test_everyone_leaves_at_first_decision(void **state)
     for (int k = 0; k < 3; k++) sim_step(sim);
     assert_int_equal(truth(sim).waiting, 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -209,6 +213,7 @@ static void test_full_nest_keeps_everyone_home(void **state)
             assert_int_equal(truth(sim).waiting, 20);
         }
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }

@@ -73,6 +73,7 @@ static void test_several_per_period(void **state)
     /* The quota is per period. */
     assert_int_equal(hal_ircom_send(sim_robot_hal(sim, 1), 5), HAL_OK);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -94,6 +95,7 @@ static void test_loss_is_per_message(void **state)
     double lost = 1.0 - (double)got / sent;
     assert_true(lost > 0.28 && lost < 0.32);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -140,6 +142,7 @@ static void test_bearing_noise_vector(void **state)
     assert_int_equal(m.bearing_mrad, 1571);
     assert_int_equal(m.range_mm, 400);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -188,6 +191,7 @@ static void test_collisions(void **state)
     double collided = 1.0 - got / 4000.0;
     assert_true(collided > 0.08 && collided < 0.12);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -205,6 +209,7 @@ static void test_queue_size(void **state)
     sim_step(sim);
     assert_int_equal(drain(sim, 0), 2);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

@@ -144,6 +144,7 @@ static void test_chain_detection(void **state)
     assert_float_equal(fixture_metric(sim, "distance_m"), 2.0, 1e-6);
     assert_float_equal(fixture_metric(sim, "completed"), 1.0, 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -153,9 +154,8 @@ static void test_links_need_range_and_sight(void **state)
     scenario_t *sc = world(3);
     config(sc)->hold = 0.0f;
     /* A cylinder on the line y = 0 between the second and the third node. */
-    sc->object_count = 1;
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.25f, .y = 0.0f, .radius = 0.05f,
-                                     .height = 0.1f };
+    assert_int_equal(scenario_add_object(sc, &(object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.25f, .y = 0.0f,
+                                                             .radius = 0.05f, .height = 0.1f }), 0);
     sim_t *sim = fixture_sim(sc, 1);
     /* Links of 0.61 m: one centimetre too long (above the cylinder). */
     pose(sim, 0, -0.39, 0.2);
@@ -179,6 +179,7 @@ static void test_links_need_range_and_sight(void **state)
     sim_step(sim);
     assert_true(truth(sim).linked);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -210,6 +211,7 @@ static void test_hold(void **state)
     assert_int_equal(sim_done(sim), 1);
     assert_float_equal(fixture_metric(sim, "merge_time_s"), 0.7, 1e-9);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -237,6 +239,7 @@ static void test_food_perceived(void **state)
     assert_float_equal(fixture_metric(sim, "food_perceived"), 1.0, 0);
     assert_float_equal(fixture_metric(sim, "success"), 0.0, 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -263,6 +266,7 @@ static void test_failure_at_budget(void **state)
     assert_float_equal(fixture_metric(sim, "food_time_capped_s"), 2.0, 0);
     assert_true(isnan(fixture_metric(sim, "chain_nodes")));
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
     /* Seed 003's budget: a failure is recorded at 10,000 steps. */
     sc = world(0);
@@ -271,6 +275,7 @@ static void test_failure_at_budget(void **state)
     assert_float_equal(fixture_metric(sim, "merge_steps_capped"), 10000.0, 0);
     assert_float_equal(fixture_metric(sim, "budget_s"), 1000.0, 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -292,6 +297,7 @@ static void test_checks(void **state)
     sc->duration = 999.0;
     assert_int_equal(paths_task.check(config(sc), sc, key, msg), -1);
     assert_string_equal(key, "budget");
+    scenario_free(sc);
     free(sc);
 }
 
@@ -315,9 +321,9 @@ static void test_random_cylinders(void **state)
     scenario_t *sc = world(0);
     sc->groups[2].count = 15;   /* 15 robots anywhere, placed after the cylinders */
     sc->groups[2].placement.shape = PLACE_RECTANGLE;
-    sc->object_count = 1;       /* one box of the scenario's own */
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_BOX, .x = 0.0f, .y = 1.5f, .width = 2.0f, .depth = 0.1f,
-                                     .height = 0.1f };
+    /* One box of the scenario's own. */
+    assert_int_equal(scenario_add_object(sc, &(object_def_t){ .shape = SHAPE_BOX, .x = 0.0f, .y = 1.5f,
+                                                             .width = 2.0f, .depth = 0.1f, .height = 0.1f }), 0);
     sc->random_cylinders.count = COUNT;
     sc->random_cylinders.radius_min = 0.05f;
     sc->random_cylinders.radius_max = 0.15f;
@@ -374,6 +380,7 @@ static void test_random_cylinders(void **state)
     char err[256] = "";
     assert_null(sim_create(sc, 1, err));
     assert_non_null(strstr(err, "random_cylinders"));
+    scenario_free(sc);
     free(sc);
 }
 
@@ -404,6 +411,7 @@ static void test_square_scenario(void **state)
     assert_float_equal(fixture_metric(sim, "distance_m"), 3.0, 1e-6);
     assert_float_equal(fixture_metric(sim, "budget_s"), 1000.0, 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -425,6 +433,7 @@ static void test_maze_scenario(void **state)
     sim_step(sim);
     assert_float_equal(fixture_metric(sim, "distance_m"), 2.5 * sqrt(2.0), 1e-6);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

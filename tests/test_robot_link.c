@@ -94,6 +94,7 @@ static void test_frames_carry_the_controllers_values(void **state)
     assert_int_equal(states, 21 * 40);    /* once a second, 40 s */
     assert_int_equal(schemas, 21 * 40);   /* halfway between */
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -113,6 +114,7 @@ static void test_same_run_and_a_slow_uart(void **state)
         if (pass) good[pass] = sim_robot_link(sim, 0)->good;
         else assert_null(sim_robot_link(sim, 0));
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
     assert_true(hash[0] == hash[1] && hash[0] == hash[2]);

@@ -57,7 +57,7 @@ static int setup(void **state)
     if (fx == NULL) {
         return -1;
     }
-    fx->sc = malloc(sizeof *fx->sc);
+    fx->sc = calloc(1, sizeof *fx->sc);   /* holds nothing on the heap yet */
     if (fx->sc == NULL) {
         free(fx);
         return -1;
@@ -69,6 +69,7 @@ static int setup(void **state)
 static int teardown(void **state)
 {
     fixture_t *fx = *state;
+    scenario_free(fx->sc);
     free(fx->sc);
     free(fx);
     return 0;
@@ -97,6 +98,7 @@ static int load_sets(fixture_t *fx, const char *name, const char *yaml, const ch
     snprintf(fx->path, sizeof fx->path, "%s/%s", tmpdir, name);
     write_file(fx->path, yaml);
     fx->err[0] = '\0';
+    scenario_free(fx->sc);   /* what an earlier load of this fixture held */
     rc = scenario_load(fx->path, overrides, n, fx->sc, fx->err);
     assert_int_equal(unlink(fx->path), 0);
     return rc;
@@ -225,6 +227,7 @@ static void test_empty_documents_give_defaults(void **state)
         assert_string_equal(fx->sc->name, "empty");
         assert_memory_equal(fx->sc, want, sizeof *want);
     }
+    scenario_free(want);
     free(want);
 }
 
@@ -905,6 +908,7 @@ static void test_effective_scenario_of_a_multiline_value(void **state)
     assert_string_equal(again->name, fx->sc->name);
     assert_int_equal(unlink(out), 0);
     assert_int_equal(unlink(fx->path), 0);
+    scenario_free(again);
     free(again);
 }
 

@@ -76,6 +76,7 @@ static void test_ir_follows_calibration_table(void **state)
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     assert_true(mean_ir(sim, 0, 0, 100) < 10.0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -83,9 +84,9 @@ static void test_ir_bearing_left_is_ir5(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(1, 2.0f);
-    sc->object_count = 1;
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.035f + 0.01f + 0.05f,
-                                     .radius = 0.05f, .height = 0.05f };
+    const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.035f + 0.01f + 0.05f, .radius = 0.05f,
+                               .height = 0.05f };
+    assert_int_equal(scenario_add_object(sc, &obj), 0);
     sc->groups[0].placement.shape = PLACE_RECTANGLE;
     sim_t *sim = fixture_sim(sc, 2);
     /* Robot at the origin heading +x: the cylinder is at +90 deg (left). */
@@ -102,6 +103,7 @@ static void test_ir_bearing_left_is_ir5(void **state)
     assert_true(hal_ir_proximity(sim_robot_hal(sim, 0), 2) > 1000);
     assert_true(hal_ir_proximity(sim_robot_hal(sim, 0), 5) < 50);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -118,6 +120,7 @@ static void test_ir_sees_other_robot(void **state)
     assert_true(front > 300);
     assert_true(back < 50);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -146,6 +149,7 @@ static void test_light_falls_with_distance(void **state)
     }
     assert_true(prev < sc->ambient.dark);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -162,9 +166,9 @@ static void test_camera_field_of_view_and_occlusion(void **state)
     (void)state;
     scenario_t *sc = idle_scenario(2, 3.0f);
     sc->camera.fps = 0.0f;   /* blobs of each step's poses: the geometry under test */
-    sc->object_count = 1;
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f, .radius = 0.03f,
-                                     .height = 0.05f, .colour = HAL_COLOUR_RED };
+    assert_int_equal(scenario_add_object(sc, &(object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f,
+                                                             .radius = 0.03f, .height = 0.05f,
+                                                             .colour = HAL_COLOUR_RED }), 0);
     sim_t *sim = fixture_sim(sc, 5);
     hal_blob_t b[HAL_MAX_BLOBS];
     sim_set_robot_pose(sim, 1, -1.0, -1.0, 0.0);   /* out of the way */
@@ -199,6 +203,7 @@ static void test_camera_field_of_view_and_occlusion(void **state)
     sim_set_robot_pose(sim, 0, -1.0, 0.0, 0.0);
     assert_int_equal(blobs_of(sim, 0, b), 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -223,6 +228,7 @@ static void test_motion_straight_500_steps(void **state)
     assert_int_equal(l, 5000);
     assert_int_equal(r, 5000);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -246,6 +252,7 @@ static void test_motion_rotation_in_place(void **state)
     assert_true(fabs(turned - expect) < 0.02 * expect);
     assert_true(hypot(x, y) < 1e-3);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -264,6 +271,7 @@ static void test_speed_is_clamped_and_counters_wrap(void **state)
     sim_robot_pose(sim, 0, &x, &y, &t);
     assert_true(fabs((x + 9.0) - 40 * 1000 * EPUCK_STEP_M) < 0.02 * 40 * 1000 * EPUCK_STEP_M);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -288,6 +296,7 @@ static void test_robot_cannot_pass_wall_and_pushes_robot(void **state)
     assert_true(sim_metrics(sim)->robot_contacts >= 1);
     assert_true(sim_metrics(sim)->static_contacts >= 1);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -298,9 +307,9 @@ static void test_twenty_robots_100k_steps_stay_inside(void **state)
     (void)state;
     scenario_t *sc = calloc(1, sizeof *sc);
     scenario_defaults(sc);      /* random walk, 20 robots, 4 x 4 m */
-    sc->object_count = 1;
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_BOX, .x = 0.5f, .y = 0.5f, .width = 0.5f,
-                                     .depth = 0.1f, .angle = 30.0f, .height = 0.05f };
+    const object_def_t obj = { .shape = SHAPE_BOX, .x = 0.5f, .y = 0.5f, .width = 0.5f, .depth = 0.1f,
+                               .angle = 30.0f, .height = 0.05f };
+    assert_int_equal(scenario_add_object(sc, &obj), 0);
     sim_t *sim = fixture_sim(sc, 10);
     for (int k = 0; k < 100000; k++) {
         sim_step(sim);
@@ -317,6 +326,7 @@ static void test_twenty_robots_100k_steps_stay_inside(void **state)
     assert_true(oaes > 0);
     assert_true(m->distance_m > 20 * 100.0);   /* they really moved */
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -331,6 +341,7 @@ static uint64_t run_hash(uint64_t seed, int steps)
     for (int k = 0; k < steps; k++) sim_step(sim);
     uint64_t h = sim_state_hash(sim);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
     return h;
 }
@@ -376,6 +387,7 @@ static void test_wheel_bias_draws(void **state)
     sim_destroy(sim);
     sim_destroy(same);
     sim_destroy(other);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -420,6 +432,7 @@ static void test_wheel_bias_moves_and_saturates(void **state)
         fail_msg("saturated robot moved %.4f m in 1 s, the motors' top speed is %.4f m/s", x - 2.0, top);
     }
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -453,6 +466,7 @@ static void test_wheel_bias_per_step(void **state)
     if (fabs(sd - expect) > 0.10 * expect) fail_msg("per-step bias sd %.1f steps/s, expected %.1f", sd, expect);
     sim_destroy(sim);
     sim_destroy(same);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -463,9 +477,8 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     (void)state;
     scenario_t *sc = idle_scenario(2, 2.0f);
     sc->ircom.loss = 0.0f;
-    sc->object_count = 1;
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.03f,
-                                     .height = 0.05f };
+    const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.03f, .height = 0.05f };
+    assert_int_equal(scenario_add_object(sc, &obj), 0);
     sim_t *sim = fixture_sim(sc, 11);
     hal_ircom_msg_t m;
     /* Sender 0.15 m to the left of the receiver (heading +x): IR5. */
@@ -524,6 +537,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sim_step(sim);
     assert_int_equal(hal_ircom_receive(sim_robot_hal(sim, 0), &m), HAL_ERR_EMPTY);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -536,6 +550,7 @@ static void test_placement_failure_is_reported(void **state)
     sim_t *sim = sim_create(sc, 1, err);
     assert_null(sim);
     assert_non_null(strstr(err, "cannot place robot"));
+    scenario_free(sc);
     free(sc);
 }
 
@@ -580,6 +595,7 @@ static void test_static_group_is_not_pushed(void **state)
         sim_robot_pose(sim, 0, &x0, &y0, &t0);
         assert_true(hypot(x0 - x, y0 - y) >= 0.07 - 0.006);   /* no overlap either way */
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -616,6 +632,7 @@ static void test_placement_shapes(void **state)
             }
         }
         sim_destroy(sim);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -625,12 +642,12 @@ static void test_bad_pose_is_reported(void **state)
 {
     (void)state;
     scenario_t *sc = two_groups(2, 0);
-    sc->object_count = 1;
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.1f,
-                                     .height = 0.05f };
+    const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.1f, .height = 0.05f };
+    assert_int_equal(scenario_add_object(sc, &obj), 0);
     char err[256] = "";
     assert_null(sim_create(sc, 1, err));
     assert_non_null(strstr(err, "robots[1] (post): pose 0 at (0.5, 0.5) m is not free"));
+    scenario_free(sc);
     free(sc);
 }
 
@@ -655,6 +672,7 @@ static void test_step_order_does_not_matter(void **state)
             sim_destroy(sim);
         }
         assert_true(hash[0] == hash[1] && hash[0] == hash[2]);
+        scenario_free(sc);
         free(sc);
     }
 }
@@ -723,6 +741,7 @@ static void test_thread_count_does_not_matter(void **state)
     }
     assert_true(hash[0] == hash[1] && hash[0] == hash[2]);
     assert_true(held[0] == held[1] && held[0] == held[2]);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -767,6 +786,7 @@ static void test_tracker_pose(void **state)
     sim = fixture_sim(sc, 4);
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -811,6 +831,7 @@ static void test_host_messages(void **state)
     assert_int_equal(len, 1);
     assert_int_equal(buf[0], 0x22);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -858,6 +879,7 @@ static void test_hal_status(void **state)
     sim_step(sim);
     assert_int_equal(hal_mic_level(hal, 0, 1, &level), HAL_OK);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

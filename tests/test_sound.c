@@ -137,6 +137,7 @@ static void test_one_emitter_at_known_distances(void **state)
     /* The numbers by hand: 313.529 units at 1 m, 212.373 at 5 m. */
     assert_int_equal(counts(loud(1.0)), 313529u);
     assert_int_equal(counts(loud(5.0)), 212373u);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -172,6 +173,7 @@ static void test_sources_sum_under_both_rules(void **state)
         assert_level(q->level[2][2], loud(7.0) + 3 * amb);
         sim_destroy(sim);
     }
+    scenario_free(sc);
     free(sc);
 }
 
@@ -215,6 +217,7 @@ static void test_noise_statistics(void **state)
     assert_true(fabs(sd - 0.06) < 0.003);
     assert_true(fabs(corr) < 0.08);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -256,6 +259,7 @@ static void test_self_masking_and_duplex(void **state)
         assert_int_equal(probe(sim, 1)->level[0][1], duplex ? counts(AE) : 0u);
         sim_destroy(sim);
     }
+    scenario_free(sc);
     free(sc);
 }
 
@@ -295,6 +299,7 @@ static void test_speaker_takes_effect_next_period(void **state)
     assert_int_equal(hal_mic_level(h1, 0, 3, &level), HAL_OK);
     assert_int_equal(level, counts(loud(1.0)));
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -324,6 +329,7 @@ static void test_cutoff_error(void **state)
     assert_true(sound_term(sc, 3.0, 1) == AE);
     assert_true(sound_term(sc, 1.0, 1) == loud(1.0));
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -352,6 +358,7 @@ static void test_cutoff_beyond_arena_is_all_pairs(void **state)
                 memcpy(level[pass][i], probe(sim, i)->level[0], sizeof level[pass][i]);
             }
             sim_destroy(sim);
+            scenario_free(sc);
             free(sc);
         }
         assert_memory_equal(level[0], level[1], sizeof level[0]);
@@ -385,6 +392,7 @@ static void test_cutoff_far_field_statistics(void **state)
     assert_true(fabs(mean - want_mean) < 4 * want_sd / sqrt((double)n));
     assert_true(fabs(sd - want_sd) < 0.05 * want_sd);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -402,6 +410,7 @@ static void test_counts(void **state)
     assert_true(sound_term(sc, 2.0, 0) == AE);
     sc->sound.silent_robots = SOUND_SILENT_NONE;
     assert_true(sound_term(sc, 2.0, 0) == 0.0);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -437,6 +446,7 @@ static void test_scenario_section(void **state)
 
     scenario_defaults(sc);
     assert_int_equal(sc->sound.enabled, 0);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -562,6 +572,7 @@ static void test_same_levels_any_thread_count(void **state)
         assert_true(many[t].state_hash == one.state_hash);
     }
     assert_true(many[3].hash != one.hash);
+    scenario_free(sc);
     free(sc);
 }
 

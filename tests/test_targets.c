@@ -150,6 +150,7 @@ static void test_layouts(void **state)
     c->cluster_radius = 0.05f;
     assert_int_equal(targets_layout(c, x, y, err), -1);
     assert_non_null(strstr(err, "cannot place target"));
+    scenario_free(sc);
     free(sc);
 }
 
@@ -264,6 +265,7 @@ static void test_pickup_after_pick_time_not_before(void **state)
     /* The camera no longer sees it: it is out of the world. */
     for (uint32_t k = 1; k < 20; k++) assert_true(isfinite(targets_item(sim, k)->x));
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -299,6 +301,7 @@ static void test_pickup_needs_reach_and_stillness(void **state)
     assert_int_equal(truth(sim).picked, 1);
     assert_true(isnan(targets_item(sim, 0)->x));
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -333,6 +336,7 @@ static void test_two_robots_first_to_finish_wins(void **state)
         assert_int_equal(truth(sim).picked, 1);
         sim_destroy(sim);
     }
+    scenario_free(sc);
     free(sc);
 }
 
@@ -388,6 +392,7 @@ static void test_done_at_ninety_percent(void **state)
     assert_int_equal(fixture_metric(sim, "robots"), 1);
     assert_true(fabs(fixture_metric(sim, "efficiency") - 9.0 / (1 * t)) < 1e-9);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -401,9 +406,9 @@ static scenario_t *camera_world(float fov)
     sc->camera.range = 0.5f;
     sc->camera.width_px = 640;
     sc->camera.height_px = 60;
-    sc->object_count = 1;
-    sc->objects[0] = (object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.0f, .radius = 0.02f,
-                                     .height = 0.05f, .colour = HAL_COLOUR_RED };
+    const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.0f, .radius = 0.02f, .height = 0.05f,
+                               .colour = HAL_COLOUR_RED };
+    assert_int_equal(scenario_add_object(sc, &obj), 0);
     return sc;
 }
 
@@ -453,6 +458,7 @@ static void test_all_round_camera_bearings(void **state)
     sim_set_robot_pose(sim, 0, 0.0, 0.6, 0.0);
     assert_int_equal(blobs_of(sim, 0, b), 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -473,6 +479,7 @@ static void test_all_round_camera_blind_sector(void **state)
     sim_set_robot_pose(sim, 0, 0.3, -0.3 * tan(PI / 6), 0.0);   /* 150 deg: blind */
     assert_int_equal(blobs_of(sim, 0, b), 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -528,6 +535,7 @@ static void test_all_round_camera_in_a_crowd(void **state)
     assert_true(found >= 0);
     assert_int_equal(b[found].pixels, b[0].pixels);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -548,6 +556,7 @@ static void test_pinhole_unchanged(void **state)
     /* From the lens 35 mm ahead of the centre: 2 asin(0.02 / 0.265). */
     assert_true(fabs(b[0].width_mrad - 2000 * asin(0.02 / 0.265)) <= 2);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

@@ -379,6 +379,7 @@ static void test_memq_foraging_run(void **state)
     close_memq(t, s);
     sim_destroy(sim);
     free(s);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -416,6 +417,7 @@ static void test_memq_rates(void **state)
         sim_destroy(sim);
         free(s);
     }
+    scenario_free(sc);
     free(sc);
 }
 
@@ -439,6 +441,7 @@ static void test_telemetry_does_not_change_a_run(void **state)
     sim_destroy(a);
     sim_destroy(b);
     free(s);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -478,6 +481,7 @@ static void test_disabled(void **state)
     run(sim, NULL, NULL, 10);
     assert_int_equal(telemetry_message_count(NULL), 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -572,6 +576,7 @@ static void test_log_file(void **state)
     assert_non_null(strstr(err, "cannot write"));
     rmdir(dir);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -590,6 +595,7 @@ static void test_bad_url(void **state)
     assert_null(t);
     assert_non_null(strstr(err, "nosuchprovider://x"));
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

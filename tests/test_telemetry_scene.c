@@ -255,6 +255,7 @@ static void test_gather_scene_and_drawing(void **state)
     assert_true(s->lights[0].x == 0.5f && s->lights[0].y == 0.5f && s->lights[0].height == 0.3f);
     close_bus(&b);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -290,6 +291,7 @@ static void test_foraging_items(void **state)
     assert_int_equal(b.seen.repeated, 0);
     close_bus(&b);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 
@@ -315,6 +317,7 @@ static void test_no_task_draws_nothing(void **state)
     assert_int_equal(b.seen.drawing_utime, 300 * 100000);
     close_bus(&b);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

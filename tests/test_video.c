@@ -220,6 +220,7 @@ static void test_recorder(void **state)
     remove(path);
     assert_int_equal(sim_video_close(NULL, sim, 1, err), 0);
     sim_destroy(sim);
+    scenario_free(sc);
     free(sc);
 }
 

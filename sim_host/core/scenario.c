@@ -377,7 +377,7 @@ MAPPING_SCHEMA(host_message);
 
 static const seq_desc_t poses_seq = {
     "poses", SCENARIO_MAX_POSES, sizeof(pose_def_t), &pose_default, &pose_schema,
-    offsetof(robot_group_t, placement.poses), offsetof(robot_group_t, placement.pose_count), NULL
+    offsetof(robot_group_t, placement.poses), offsetof(robot_group_t, placement.pose_count), NULL, 0
 };
 static const child_t placement_children[] = {
     { "poses", CHILD_SEQUENCE, NULL, &poses_seq, "poses: one {x, y, heading} per robot" },
@@ -388,7 +388,7 @@ static const schema_t placement_schema = { placement_params, placement_children,
 static int check_fault(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
 static const seq_desc_t faults_seq = {
     "faults", SCENARIO_MAX_FAULTS, sizeof(fault_def_t), &fault_default, &fault_schema,
-    offsetof(robot_group_t, faults), offsetof(robot_group_t, fault_count), check_fault
+    offsetof(robot_group_t, faults), offsetof(robot_group_t, fault_count), check_fault, 0
 };
 
 static const child_t group_children[] = {
@@ -401,22 +401,24 @@ static const schema_t group_schema = { group_params, group_children, NULL, NULL 
 
 static const seq_desc_t groups_seq = {
     "groups", SCENARIO_MAX_GROUPS, sizeof(robot_group_t), &group_default, &group_schema,
-    offsetof(scenario_t, groups), offsetof(scenario_t, group_count), check_group
+    offsetof(scenario_t, groups), offsetof(scenario_t, group_count), check_group, 0
 };
+/* On the heap: a scenario holds the objects its file lists, not room for
+ * SCENARIO_MAX_OBJECTS of them. */
 static const seq_desc_t objects_seq = {
     "objects", SCENARIO_MAX_OBJECTS, sizeof(object_def_t), &object_default, &object_schema,
-    offsetof(scenario_t, objects), offsetof(scenario_t, object_count), check_object
+    offsetof(scenario_t, objects), offsetof(scenario_t, object_count), check_object, 1
 };
 static const seq_desc_t lights_seq = {
     "lights", SCENARIO_MAX_LIGHTS, sizeof(light_def_t), &light_default, &light_schema,
-    offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL
+    offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL, 0
 };
 
 static int check_host_message(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
 static const seq_desc_t host_messages_seq = {
     "messages", SCENARIO_MAX_HOST_MESSAGES, sizeof(host_message_def_t), &host_message_default,
     &host_message_schema, offsetof(scenario_t, host.messages), offsetof(scenario_t, host.message_count),
-    check_host_message
+    check_host_message, 0
 };
 static const child_t host_children[] = {
     { "messages", CHILD_SEQUENCE, NULL, &host_messages_seq, "one {robot, at, hex} per message" },
@@ -1166,7 +1168,33 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
         rc = cross_check(&ld, root, out);
     }
     ytree_free(root);
+    if (rc != 0) {
+        scenario_free(out);   /* a refused scenario holds nothing */
+    }
     return rc == 0 ? 0 : -1;
+}
+
+void scenario_free(scenario_t *sc)
+{
+    if (sc != NULL) {
+        free(sc->objects);
+        sc->objects = NULL;
+        sc->object_count = 0;
+    }
+}
+
+int scenario_add_object(scenario_t *sc, const object_def_t *o)
+{
+    if (sc->object_count >= SCENARIO_MAX_OBJECTS) {
+        return -1;
+    }
+    object_def_t *grown = realloc(sc->objects, (sc->object_count + 1u) * sizeof *grown);
+    if (grown == NULL) {
+        return -1;
+    }
+    sc->objects = grown;
+    grown[sc->object_count++] = *o;
+    return 0;
 }
 
 int scenario_write_effective(const char *path, const scenario_override_t *overrides,

@@ -217,7 +217,8 @@ typedef struct scenario {
     robot_group_t groups[SCENARIO_MAX_GROUPS];
 
     uint32_t object_count;
-    object_def_t objects[SCENARIO_MAX_OBJECTS];
+    object_def_t *objects;         /**< object_count of them, on the heap (NULL: none);
+                                        scenario_free frees them */
 
     /** Cylinders drawn at random when a run is built (placement.c), after
      *  `objects` and before the robots: each clears every obstacle, the
@@ -340,6 +341,15 @@ typedef struct scenario {
 typedef struct scenario_override {
     const char *text;              /**< "key.path=value" as given */
 } scenario_override_t;
+
+/** Frees what a scenario holds on the heap (its objects), not the struct:
+ *  after a successful scenario_load, or scenario_add_object.  NULL is a
+ *  no-op. */
+void scenario_free(scenario_t *sc);
+
+/** Appends an object (code that builds a scenario without a file).
+ *  Returns 0, or -1 past SCENARIO_MAX_OBJECTS or out of memory. */
+int scenario_add_object(scenario_t *sc, const object_def_t *o);
 
 /** Fills `out` with every default (no file): one group of 20 random
  *  walkers anywhere in a 4 x 4 m arena, no task. */

@@ -498,6 +498,18 @@ int schema_fill_sequence(const loader_t *ld, const ynode_t *node, const char *pa
         return schema_wrong_type(ld, node, path, "a sequence");
     }
     n = node->count;
+    if (seq->on_heap) {
+        /* Sized by the file, not by the worst case; entries past max are
+         * refused below before anything is written to them. */
+        size_t cap = n < seq->max ? n : seq->max;
+        void **slot = (void **)(void *)array;
+        void *grown = realloc(*slot, (cap ? cap : 1) * seq->elem_size);
+        if (grown == NULL) {
+            return schema_fail(ld, node, path, "out of memory for %zu %s", cap, seq->noun);
+        }
+        *slot = grown;
+        array = grown;
+    }
     for (; count < n; count++) {
         const ynode_t *item = node->items[count];
         void *elem = array + (size_t)count * seq->elem_size;

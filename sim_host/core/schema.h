@@ -77,9 +77,11 @@ struct seq_desc {
     size_t elem_size;
     const void *defaults;  /**< one element with every default */
     const schema_t *schema;
-    size_t array_offset;   /**< of the array in the base */
+    size_t array_offset;   /**< of the array in the base (or of a pointer to it: on_heap) */
     size_t count_offset;   /**< of its uint32_t count in the base */
     elem_check_fn check;   /**< after an entry is filled (or NULL) */
+    int on_heap;           /**< the base holds a pointer, reallocated to the sequence's
+                                length (the owner frees it) */
 };
 
 /** "FILE:LINE: path: message" (or "--set TEXT: path: message" for a value

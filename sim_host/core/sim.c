@@ -335,7 +335,9 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         sim->step_order[i] = i;
     }
     sensors_init(sim);
-    memcpy(sim->objects, sc->objects, sc->object_count * sizeof *sim->objects);
+    if (sc->object_count > 0) {
+        memcpy(sim->objects, sc->objects, sc->object_count * sizeof *sim->objects);
+    }
     if (placement_cylinders(sim, err) != 0) {
         sim_destroy(sim);
         return NULL;

@@ -110,5 +110,6 @@ int main(int argc, char **argv)
     free(rgb);
     free(f565);
     sim_destroy(sim);
+    scenario_free(&sc);
     return 0;
 }
