@@ -352,15 +352,18 @@ void scenario_free(scenario_t *sc);
 int scenario_add_object(scenario_t *sc, const object_def_t *o);
 
 /** Fills `out` with every default (no file): one group of 20 random
- *  walkers anywhere in a 4 x 4 m arena, no task. */
+ *  walkers anywhere in a 4 x 4 m arena, no task, no objects (it overwrites
+ *  `out` without freeing it). */
 void scenario_defaults(scenario_t *out);
 
 /**
  * Reads `path`, applies `overrides` in order, validates, and fills `out`.
  * Returns 0, or -1 with a message in `err` that names the file, the line
  * and the key ("x.yaml:12: robots[0].count: expected an integer, got '2.5'").
- * On error `out` is unspecified.  The caller owns `out` (it is large:
- * allocate it on the heap).
+ * On error `out` is unspecified but holds nothing on the heap.  The caller
+ * owns `out` (allocate it on the heap: about 94 kB) and, after a success,
+ * frees what it holds with scenario_free (also before loading into it
+ * again: `out` is overwritten, not freed).
  */
 int scenario_load(const char *path, const scenario_override_t *overrides,
                   size_t override_count, scenario_t *out,
