@@ -280,6 +280,23 @@ static void test_rendered_runs_are_deterministic(void **state)
     free(sc);
 }
 
+/* Seed 000's lighting in sc: its nest lamp, and with `arena` its 4 x 4 m
+ * arena too. */
+static void under_nest_lamp(scenario_t *sc, int arena)
+{
+    scenario_t *base = calloc(1, sizeof *base);
+    char err[SCENARIO_ERROR_MAX];
+    assert_non_null(base);
+    assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", NULL, 0, base, err), 0);
+    if (arena) {
+        sc->arena = base->arena;
+    }
+    sc->light_count = base->light_count;
+    memcpy(sc->lights, base->lights, sizeof sc->lights);
+    scenario_free(base);
+    free(base);
+}
+
 /* Every colour class of a scenario's objects is detected under seed 000's
  * lighting (its nest lamp, 0.1 m up at the centre): red, green and blue
  * cylinders on the lamp's side and in the shade of their own body, and a
@@ -287,15 +304,10 @@ static void test_rendered_runs_are_deterministic(void **state)
 static void test_colour_classes_under_scenario_lighting(void **state)
 {
     (void)state;
-    scenario_t *base = calloc(1, sizeof *base);
-    char err[SCENARIO_ERROR_MAX];
-    assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", NULL, 0, base, err), 0);
     static const uint8_t classes[] = { HAL_COLOUR_RED, HAL_COLOUR_GREEN, HAL_COLOUR_BLUE };
     for (int c = 0; c < 3; c++) {
         scenario_t *sc = camera_scenario(CAMERA_RENDERED, 2);
-        sc->arena = base->arena;
-        sc->light_count = base->light_count;
-        memcpy(sc->lights, base->lights, sizeof sc->lights);
+        under_nest_lamp(sc, 1);
         add_cylinder(sc, 1.0f, 0.0f, TOKEN_R, TOKEN_H, classes[c]);
         sim_t *sim = fixture_sim(sc, 3);
         sim_set_robot_pose(sim, 1, -1.8, -1.8, 0.0);
@@ -316,8 +328,7 @@ static void test_colour_classes_under_scenario_lighting(void **state)
     }
     /* A robot's LEDs at 8 cm: the green body LED, the red ring LEDs. */
     scenario_t *sc = camera_scenario(CAMERA_RENDERED, 2);
-    sc->light_count = base->light_count;
-    memcpy(sc->lights, base->lights, sizeof sc->lights);
+    under_nest_lamp(sc, 0);
     sim_t *sim = fixture_sim(sc, 3);
     sim_set_robot_pose(sim, 0, 0.5, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.5 + 0.08 + 2 * EPUCK_BODY_RADIUS_M, 0.0, PI);
@@ -334,8 +345,6 @@ static void test_colour_classes_under_scenario_lighting(void **state)
     sim_destroy(sim);
     scenario_free(sc);
     free(sc);
-    scenario_free(base);
-    free(base);
 }
 
 /* How far the robot's detector sees a food token: the rendered model, a
@@ -348,13 +357,8 @@ static void test_colour_classes_under_scenario_lighting(void **state)
 static void test_detector_reach_is_the_geometric_range(void **state)
 {
     (void)state;
-    scenario_t *base = calloc(1, sizeof *base);
-    char err[SCENARIO_ERROR_MAX];
-    assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", NULL, 0, base, err), 0);
-    scenario_t *sc = camera_scenario(CAMERA_RENDERED, 2);
-    sc->arena = base->arena;
-    sc->light_count = base->light_count;
-    memcpy(sc->lights, base->lights, sizeof sc->lights);
+    scenario_t *sc = camera_scenario(CAMERA_RENDERED, 2);   /* the default camera.range */
+    under_nest_lamp(sc, 1);
     float tx = 0.3f;
     add_cylinder(sc, tx, 0.0f, TOKEN_R, TOKEN_H, HAL_COLOUR_RED);
     sim_t *sim = fixture_sim(sc, 3);
@@ -371,14 +375,12 @@ static void test_detector_reach_is_the_geometric_range(void **state)
         }
         double reach = last_seen - TOKEN_R;   /* to the token's nearest point, as camera.range */
         print_message("reach %s: %.3f m (default camera.range %.2f m)\n", side ? "shaded" : "lit", reach,
-                      (double)base->camera.range);
-        assert_true(fabs(reach - base->camera.range) <= 0.05 + 1e-6);
+                      (double)sc->camera.range);
+        assert_true(fabs(reach - sc->camera.range) <= 0.05 + 1e-6);
     }
     sim_destroy(sim);
     scenario_free(sc);
     free(sc);
-    scenario_free(base);
-    free(base);
 }
 
 int main(void)
