@@ -177,4 +177,8 @@ extern const observable_t forager_observables[];
 /** Its description for the simulator (forager_def.c). */
 extern const controller_def_t forager_def;
 
+/** controller_def_t.set_policy of a forager's params (forager_def.c): the
+ *  policy of ta_policy_names' entry `index`. */
+void forager_set_policy(void *params, uint8_t index);
+
 #endif

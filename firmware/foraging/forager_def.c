@@ -86,7 +86,7 @@ const observable_t forager_observables[] = {
     OBS_END
 };
 
-static void forager_set_policy(void *params, uint8_t index)
+void forager_set_policy(void *params, uint8_t index)
 {
     ((forager_params_t *)params)->policy = (ta_policy_t)index;
 }

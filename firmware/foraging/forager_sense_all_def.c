@@ -8,11 +8,6 @@
  * tells every forager (a benchmark sets no behaviour). */
 static const param_desc_t forager_sense_all_params[] = { PARAM_END };
 
-static void forager_sense_all_set_policy(void *params, uint8_t index)
-{
-    ((forager_params_t *)params)->policy = (ta_policy_t)index;
-}
-
 CONTROLLER_ADAPTERS(forager_sense_all)
 
 const controller_def_t forager_sense_all_def = {
@@ -21,7 +16,7 @@ const controller_def_t forager_sense_all_def = {
     CONTROLLER_FUNCS(forager_sense_all),
     .params = forager_sense_all_params,
     .policies = ta_policy_names,
-    .set_policy = forager_sense_all_set_policy,
+    .set_policy = forager_set_policy,   /* its params are the forager's */
     .observables = forager_observables,
     .ircom_bits = 16,
 };
