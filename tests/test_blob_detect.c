@@ -768,6 +768,19 @@ static void random_frame(uint16_t w, uint16_t h, uint8_t kind)
     }
 }
 
+/* The new detector's blobs are the old one's, field by field, in order. */
+static void assert_same_blobs(const hal_blob_t *a, uint8_t na, const hal_blob_t *b, uint8_t nb)
+{
+    uint8_t i;
+    assert_int_equal(na, nb);
+    for (i = 0u; i < na; i++) {
+        assert_int_equal(a[i].colour, b[i].colour);
+        assert_int_equal(a[i].pixels, b[i].pixels);
+        assert_int_equal(a[i].bearing_mrad, b[i].bearing_mrad);
+        assert_int_equal(a[i].width_mrad, b[i].width_mrad);
+    }
+}
+
 /* blob_detect() against the copy of the detector before the tables
  * (tests/blob_detect_old.h) over random and structured frames and
  * parameters: the same count, the same blobs, in the same order. */
@@ -784,7 +797,7 @@ static void test_matches_old_detector(void **state)
         blob_detect_work_t w_new, w_old;
         hal_blob_t out_new[HAL_MAX_BLOBS], out_old[HAL_MAX_BLOBS];
         uint16_t w, h;
-        uint8_t n_new, n_old, max, i;
+        uint8_t n_new, n_old, max;
         uint8_t kind = (uint8_t)(trial % 4u);
 
         if (trial % 3u == 0u) {
@@ -816,13 +829,7 @@ static void test_matches_old_detector(void **state)
         memset(&w_old, 0xA5, sizeof w_old);
         n_new = blob_detect(&p, frame, w, h, &w_new, out_new, max);
         n_old = old_blob_detect(&p, frame, w, h, &w_old, out_old, max);
-        assert_int_equal(n_new, n_old);
-        for (i = 0u; i < n_new; i++) {
-            assert_int_equal(out_new[i].colour, out_old[i].colour);
-            assert_int_equal(out_new[i].pixels, out_old[i].pixels);
-            assert_int_equal(out_new[i].bearing_mrad, out_old[i].bearing_mrad);
-            assert_int_equal(out_new[i].width_mrad, out_old[i].width_mrad);
-        }
+        assert_same_blobs(out_new, n_new, out_old, n_old);
     }
 }
 
@@ -845,7 +852,7 @@ static void test_blob_arithmetic_extremes_match_old(void **state)
                     blob_detect_params_t p = blob_detect_default_params();
                     blob_detect_work_t wk;
                     hal_blob_t a[HAL_MAX_BLOBS], b[HAL_MAX_BLOBS];
-                    uint8_t na, nb, i;
+                    uint8_t na, nb;
                     p.fov_mrad = fovs[fi];
                     p.min_pixels = 1u;
                     fill(w, h, GREY);
@@ -854,12 +861,7 @@ static void test_blob_arithmetic_extremes_match_old(void **state)
                     rect(w, x0, 0u, 1u, (uint16_t)(h - h / 3u), GREY, BLOB_BYTE_ORDER_BIG);
                     na = blob_detect(&p, frame, w, h, &wk, a, HAL_MAX_BLOBS);
                     nb = old_blob_detect(&p, frame, w, h, &wk, b, HAL_MAX_BLOBS);
-                    assert_int_equal(na, nb);
-                    for (i = 0u; i < na; i++) {
-                        assert_int_equal(a[i].pixels, b[i].pixels);
-                        assert_int_equal(a[i].bearing_mrad, b[i].bearing_mrad);
-                        assert_int_equal(a[i].width_mrad, b[i].width_mrad);
-                    }
+                    assert_same_blobs(a, na, b, nb);
                 }
             }
         }
