@@ -8,11 +8,30 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/metrics.h"
 #include "core/scenario.h"
 #include "core/sim.h"
+#include "registry.h"
+
+/** A scenario (on the heap: scenario_free, free) of `robots` idle robots
+ *  on a grid in a square arena of side `arena` (m), every other key its
+ *  default: tests drive the robots through their hal_t. */
+static inline scenario_t *fixture_idle_scenario(uint32_t robots, float arena)
+{
+    scenario_t *sc = calloc(1, sizeof *sc);
+    assert_non_null(sc);
+    scenario_defaults(sc);
+    strcpy(sc->groups[0].controller, "idle");
+    strcpy(sc->groups[0].name, "idle");
+    sc->groups[0].def = &idle_def;
+    sc->groups[0].count = robots;
+    sc->groups[0].placement.shape = PLACE_GRID;
+    sc->arena.width = sc->arena.height = arena;
+    return sc;
+}
 
 /** A run of `sc` with `seed`; fails the test when sim_create refuses it. */
 static inline sim_t *fixture_sim(const scenario_t *sc, uint64_t seed)

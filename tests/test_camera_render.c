@@ -16,7 +16,6 @@
 #include "sim_fixture.h"
 
 #include "hal.h"
-#include "registry.h"
 #include "units.h"
 #include "core/scenario.h"
 #include "core/sim.h"
@@ -32,16 +31,8 @@
  * step (fps 0) unless a test says otherwise. */
 static scenario_t *camera_scenario(int model, uint32_t robots)
 {
-    scenario_t *sc = calloc(1, sizeof *sc);
-    assert_non_null(sc);
-    scenario_defaults(sc);
-    strcpy(sc->groups[0].controller, "idle");
-    strcpy(sc->groups[0].name, "idle");
-    sc->groups[0].def = registry_controller("idle");
-    assert_non_null(sc->groups[0].def);
-    sc->groups[0].count = robots;
+    scenario_t *sc = fixture_idle_scenario(robots, 3.0f);
     sc->groups[0].placement.shape = PLACE_RECTANGLE;   /* spots clear of the objects */
-    sc->arena.width = sc->arena.height = 3.0f;
     sc->camera.model = model;
     sc->camera.fps = 0.0f;
     return sc;

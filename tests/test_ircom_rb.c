@@ -25,15 +25,7 @@
 
 static scenario_t *idle_scenario(uint32_t robots)
 {
-    scenario_t *sc = calloc(1, sizeof *sc);
-    assert_non_null(sc);
-    scenario_defaults(sc);
-    strcpy(sc->groups[0].controller, "idle");
-    strcpy(sc->groups[0].name, "idle");
-    sc->groups[0].def = &idle_def;
-    sc->groups[0].count = robots;
-    sc->groups[0].placement.shape = PLACE_GRID;
-    sc->arena.width = sc->arena.height = 3.0f;
+    scenario_t *sc = fixture_idle_scenario(robots, 3.0f);
     sc->ircom.payload_bits = 16;
     sc->ircom.range = 0.8f;
     sc->ircom.loss = 0.0f;

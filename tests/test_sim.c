@@ -25,20 +25,6 @@
 
 #define PI 3.14159265358979
 
-/* A scenario with idle robots (tests drive them through their hal_t). */
-static scenario_t *idle_scenario(uint32_t robots, float arena)
-{
-    scenario_t *sc = calloc(1, sizeof *sc);
-    assert_non_null(sc);
-    scenario_defaults(sc);
-    strcpy(sc->groups[0].controller, "idle");
-    strcpy(sc->groups[0].name, "idle");
-    sc->groups[0].def = &idle_def;
-    sc->groups[0].count = robots;
-    sc->groups[0].placement.shape = PLACE_GRID;
-    sc->arena.width = sc->arena.height = arena;
-    return sc;
-}
 
 /* Mean of `n` readings of IR sensor `s`, one per control step. */
 static double mean_ir(sim_t *sim, uint32_t robot, uint8_t s, int n)
@@ -58,7 +44,7 @@ static void test_ir_follows_calibration_table(void **state)
     (void)state;
     static const double d_m[] = { 0.005, 0.010, 0.015, 0.020, 0.030, 0.040, 0.050, 0.060, 0.070 };
     static const double raw[] = { 2133, 1466, 601, 384, 235, 158, 120, 104, 67 };
-    scenario_t *sc = idle_scenario(1, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 2.0f);
     sim_t *sim = fixture_sim(sc, 1);
     for (size_t k = 0; k < sizeof d_m / sizeof d_m[0]; k++) {
         /* Heading +17 deg puts IR0's axis (-17 deg) square onto the +x wall. */
@@ -83,7 +69,7 @@ static void test_ir_follows_calibration_table(void **state)
 static void test_ir_bearing_left_is_ir5(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 2.0f);
     const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.035f + 0.01f + 0.05f, .radius = 0.05f,
                                .height = 0.05f };
     assert_int_equal(scenario_add_object(sc, &obj), 0);
@@ -110,7 +96,7 @@ static void test_ir_bearing_left_is_ir5(void **state)
 static void test_ir_sees_other_robot(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(2, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(2, 2.0f);
     sim_t *sim = fixture_sim(sc, 3);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     /* Robot 1 just ahead: body surfaces 15 mm apart. */
@@ -129,7 +115,7 @@ static void test_ir_sees_other_robot(void **state)
 static void test_light_falls_with_distance(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 6.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 6.0f);
     sc->light_count = 1;
     sc->lights[0] = (light_def_t){ .x = 0.0f, .y = 0.0f, .height = 0.1f, .intensity = 1.0f };
     sc->ambient.noise_rel = 0.0f;
@@ -164,7 +150,7 @@ static uint8_t blobs_of(sim_t *sim, uint32_t i, hal_blob_t *b)
 static void test_camera_field_of_view_and_occlusion(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(2, 3.0f);
+    scenario_t *sc = fixture_idle_scenario(2, 3.0f);
     sc->camera.fps = 0.0f;   /* blobs of each step's poses: the geometry under test */
     assert_int_equal(scenario_add_object(sc, &(object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f,
                                                              .radius = 0.03f, .height = 0.05f,
@@ -212,7 +198,7 @@ static void test_camera_field_of_view_and_occlusion(void **state)
 static void test_motion_straight_500_steps(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 4.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 4.0f);
     sim_t *sim = fixture_sim(sc, 6);
     sim_set_robot_pose(sim, 0, -1.0, 0.0, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 500, 500);
@@ -235,7 +221,7 @@ static void test_motion_straight_500_steps(void **state)
 static void test_motion_rotation_in_place(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 4.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 4.0f);
     sim_t *sim = fixture_sim(sc, 7);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), -300, 300);
@@ -259,7 +245,7 @@ static void test_motion_rotation_in_place(void **state)
 static void test_speed_is_clamped_and_counters_wrap(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 20.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 20.0f);
     sim_t *sim = fixture_sim(sc, 8);
     sim_set_robot_pose(sim, 0, -9.0, 0.0, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 3000, 3000);   /* clamps to 1000 */
@@ -278,7 +264,7 @@ static void test_speed_is_clamped_and_counters_wrap(void **state)
 static void test_robot_cannot_pass_wall_and_pushes_robot(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(2, 1.0f);
+    scenario_t *sc = fixture_idle_scenario(2, 1.0f);
     sim_t *sim = fixture_sim(sc, 9);
     sim_set_robot_pose(sim, 0, 0.3, 0.2, 0.0);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 1000, 1000);
@@ -360,7 +346,7 @@ static void test_same_seed_same_state(void **state)
 static void test_wheel_bias_draws(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(400, 20.0f);
+    scenario_t *sc = fixture_idle_scenario(400, 20.0f);
     sim_t *sim = fixture_sim(sc, 5);
     for (uint32_t i = 0; i < sim->n; i++) {
         assert_true(sim->robots[i].bias_left == 0.0 && sim->robots[i].bias_right == 0.0);
@@ -397,7 +383,7 @@ static void test_wheel_bias_draws(void **state)
 static void test_wheel_bias_moves_and_saturates(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(2, 8.0f);
+    scenario_t *sc = fixture_idle_scenario(2, 8.0f);
     sc->wheels.bias_sd = 0.02f;
     sim_t *sim = fixture_sim(sc, 9);
     sim_set_robot_pose(sim, 0, -2.0, 0.0, 0.0);
@@ -441,7 +427,7 @@ static void test_wheel_bias_moves_and_saturates(void **state)
 static void test_wheel_bias_per_step(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 8.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 8.0f);
     sc->wheels.bias_sd = 0.02f;
     sc->wheels.bias_per_step = 1;
     sim_t *sim = fixture_sim(sc, 9), *same = fixture_sim(sc, 9);
@@ -475,7 +461,7 @@ static void test_wheel_bias_per_step(void **state)
 static void test_ircom_range_bearing_and_blocking(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(2, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(2, 2.0f);
     sc->ircom.loss = 0.0f;
     const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.03f, .height = 0.05f };
     assert_int_equal(scenario_add_object(sc, &obj), 0);
@@ -544,7 +530,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
 static void test_placement_failure_is_reported(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(500, 0.5f);
+    scenario_t *sc = fixture_idle_scenario(500, 0.5f);
     sc->groups[0].placement.shape = PLACE_RECTANGLE;
     char err[256] = "";
     sim_t *sim = sim_create(sc, 1, err);
@@ -560,7 +546,7 @@ static void test_placement_failure_is_reported(void **state)
 /* Two idle groups: `first` robots then one more, which moves or not. */
 static scenario_t *two_groups(uint32_t first, uint8_t second_moves)
 {
-    scenario_t *sc = idle_scenario(first, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(first, 2.0f);
     sc->group_count = 2;
     sc->groups[1] = sc->groups[0];
     strcpy(sc->groups[1].name, "post");
@@ -606,7 +592,7 @@ static void test_placement_shapes(void **state)
 {
     (void)state;
     for (int shape = PLACE_RECTANGLE; shape <= PLACE_GRID; shape++) {
-        scenario_t *sc = idle_scenario(30, 4.0f);
+        scenario_t *sc = fixture_idle_scenario(30, 4.0f);
         robot_group_t *g = &sc->groups[0];
         g->placement = (placement_def_t){ .shape = shape, .x = 0.5f, .y = -0.5f, .width = 1.2f,
                                           .height = 0.8f, .radius = 0.6f, .inner = 0.4f, .outer = 0.9f };
@@ -752,7 +738,7 @@ static void test_thread_count_does_not_matter(void **state)
 static void test_tracker_pose(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 2.0f);
     sim_t *sim = fixture_sim(sc, 4);
     hal_pose_t p;
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
@@ -795,7 +781,7 @@ static void test_tracker_pose(void **state)
 static void test_host_messages(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(2, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(2, 2.0f);
     sim_t *sim = fixture_sim(sc, 4);
     uint8_t buf[HAL_HOST_MSG_MAX], len = 9;
     assert_int_equal(hal_host_receive(sim_robot_hal(sim, 0), buf, sizeof buf, &len), HAL_ERR_UNAVAILABLE);
@@ -841,7 +827,7 @@ static void test_host_messages(void **state)
 static void test_hal_status(void **state)
 {
     (void)state;
-    scenario_t *sc = idle_scenario(1, 2.0f);
+    scenario_t *sc = fixture_idle_scenario(1, 2.0f);
     sc->camera.width_px = 40;
     sc->camera.height_px = 20;
     sim_t *sim = fixture_sim(sc, 4);

@@ -40,16 +40,8 @@
  * blobs fresh every step as in seed 002's scenarios. */
 static scenario_t *world(uint32_t robots, float arena)
 {
-    scenario_t *sc = calloc(1, sizeof *sc);
-    assert_non_null(sc);
-    scenario_defaults(sc);
-    strcpy(sc->groups[0].controller, "idle");
-    strcpy(sc->groups[0].name, "idle");
-    sc->groups[0].def = &idle_def;
-    sc->groups[0].count = robots;
-    sc->groups[0].placement.shape = PLACE_GRID;
+    scenario_t *sc = fixture_idle_scenario(robots, arena);
     sc->groups[0].placement.width = sc->groups[0].placement.height = 0.3f;
-    sc->arena.width = sc->arena.height = arena;
     sc->control_period_ms = 25;
     sc->camera.fps = 0.0f;
     sc->ir.noise_rel = sc->ir.noise_abs = 0.0f;
