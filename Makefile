@@ -20,9 +20,9 @@ $(BUILD)/config.mk: tools/deps.sh tools/requirements.txt
 	tools/deps.sh > $@.tmp && mv $@.tmp $@
 
 WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-# Layering: firmware sees only hal/ and firmware/ (tests/firmware/hygiene.sh
-# also checks its #include lines); the simulator sees everything.
-FW_INC := -Ihal -Ifirmware
+# Layering: firmware sees only hal/, wire/ and firmware/ (tests/firmware/hygiene.sh
+# compiles each layer with only what it may include); the simulator sees everything.
+FW_INC := -Ihal -Iwire -Ifirmware
 SIM_INC := $(FW_INC) -Isim_host
 CFLAGS_COMMON := $(WARN) -g -O2 -fno-strict-aliasing -ffp-contract=off
 # Firmware and HAL helpers are C99; the simulator may use C11.
@@ -33,7 +33,9 @@ LDLIBS_SIM := $(BOX2D_LIBS) $(YAML_LIBS) $(PNG_LIBS) $(GL_LIBS) -lpthread -lm
 # Controllers: firmware/<folder>/*.c (common/ and one folder per seed);
 # firmware/apps/ holds the robot images' mains, built by firmware.mk.
 FW_DIRS := $(filter-out firmware/apps,$(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c)))))
-FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c))
+# The wire protocols (wire/<protocol>/*.c: telemetry framing, the host
+# link's messages) are linked with them.
+FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c)) $(sort $(wildcard wire/*/*.c))
 SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/tasks/*/*.c)))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 
@@ -78,11 +80,14 @@ all: $(BUILD)/swarmsim
 
 deps: $(BUILD)/config.mk
 
-$(BUILD)/obj/firmware/%.o $(BUILD)/obj/hal/%.o: | $(BUILD)/config.mk
+$(BUILD)/obj/firmware/%.o $(BUILD)/obj/hal/%.o $(BUILD)/obj/wire/%.o: | $(BUILD)/config.mk
 $(BUILD)/obj/firmware/%.o: firmware/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
 $(BUILD)/obj/hal/%.o: hal/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/obj/wire/%.o: wire/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
 $(BUILD)/obj/sim_host/%.o: sim_host/%.c
@@ -92,6 +97,9 @@ $(BUILD)/asan/firmware/%.o: firmware/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
 $(BUILD)/asan/hal/%.o: hal/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+$(BUILD)/asan/wire/%.o: wire/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
 $(BUILD)/asan/sim_host/%.o: sim_host/%.c

@@ -2,7 +2,7 @@
  * host_link.h - what a host PC sends an e-puck over its Bluetooth serial
  * link (UART1, 115200 8N1, the link its telemetry goes out on): the
  * overhead tracker's pose (hal_pose) and messages for the controller
- * (hal_host_receive).  Frames: firmware/telemetry/telemetry_frame.h with
+ * (hal_host_receive).  Frames: wire/telemetry/telemetry_frame.h with
  * the payloads of telemetry_host.h; the host's side and the rates:
  * docs/host_link.md.
  *

@@ -27,10 +27,10 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
-srcs=$(ls firmware/*/*.c hal/*.c hal/epuck/*.c | grep -v '^firmware/apps/')
+srcs=$(ls firmware/*/*.c hal/*.c wire/*/*.c hal/epuck/*.c | grep -v '^firmware/apps/')
 # Firmware sees hal/, firmware/ and lcm-gen's headers (for the robot's own
 # telemetry) only.  -fno-pie: const tables of pointers stay in .rodata.
-flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Ifirmware -Ihal/epuck -I${LCM_C_DIR:-build/lcm_c} ${LCM_CFLAGS:-}"
+flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Iwire -Ifirmware -Ihal/epuck -I${LCM_C_DIR:-build/lcm_c} ${LCM_CFLAGS:-}"
 
 # Writable static data in one object: prints what it finds.
 writable() {
@@ -83,10 +83,10 @@ done
 # platform-neutral helpers), firmware/ and lcm-gen's headers only; never on
 # the simulator or a platform (hal/epuck).  `cc -M` lists every header a
 # source really reads, relative includes too.
-ctrl_flags="-std=c99 -Ihal -Ifirmware -I${LCM_C_DIR:-build/lcm_c} ${LCM_CFLAGS:-}"
+ctrl_flags="-std=c99 -Ihal -Iwire -Ifirmware -I${LCM_C_DIR:-build/lcm_c} ${LCM_CFLAGS:-}"
 lcm_dirs=$(echo "${LCM_CFLAGS:-}" | awk '{ for (i = 1; i <= NF; i++) { if ($i == "-isystem" || $i == "-I") print $(i + 1); else if ($i ~ /^-I./) print substr($i, 3) } }')
 layering() {
-    local allowed='^/usr/|^(hal/[^/]+\.h|firmware/|build/lcm_c/)' d
+    local allowed='^/usr/|^(hal/[^/]+\.h|wire/|firmware/|build/lcm_c/)' d
     for d in $lcm_dirs; do allowed="$allowed|^$(realpath -m "$d")/"; done
     cc $ctrl_flags -M "$1" 2>&1 | tr ' \\' '\n\n' | grep -E '\.h$' \
         | while read -r h; do case $h in /*) realpath -m "$h" ;; *) realpath -m --relative-to=. "$h" ;; esac; done \

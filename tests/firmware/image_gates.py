@@ -60,7 +60,7 @@ RAM_GATE = 2048
 
 WARN = ('-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes '
         '-Wmissing-prototypes')
-INC = '-Ihal -Ifirmware -Ihal/epuck -Itests/firmware/stubs'
+INC = '-Ihal -Iwire -Ifirmware -Ihal/epuck -Itests/firmware/stubs'
 COMMON = '-Os -ffunction-sections -fdata-sections -fstack-usage'
 
 TARGETS = {
@@ -132,6 +132,10 @@ def common_sources():
                           if f.endswith('.c') and os.path.join('firmware', d, f) not in TELEMETRY_APP_SOURCES)
     out += sorted(os.path.join('hal', f) for f in os.listdir(os.path.join(ROOT, 'hal'))
                   if f.endswith('.c'))
+    wire = os.path.join(ROOT, 'wire')
+    for d in sorted(os.listdir(wire)):
+        if os.path.isdir(os.path.join(wire, d)):
+            out += sorted(os.path.join('wire', d, f) for f in os.listdir(os.path.join(wire, d)) if f.endswith('.c'))
     return out + ['hal/epuck/hal_epuck.c', 'hal/epuck/host_link.c']
 
 

@@ -79,13 +79,13 @@ firmware-flash-tests: deps
 # ------------------------------------------------ host tests of hal/epuck
 FW_HOST := $(FW_OUT)/host
 FW_HOST_CFLAGS := -std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes \
-  -Wmissing-prototypes -g -O1 -Ihal -Ifirmware -Ihal/epuck -Itests/firmware/stubs \
+  -Wmissing-prototypes -g -O1 -Ihal -Iwire -Ifirmware -Ihal/epuck -Itests/firmware/stubs \
   -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/blob_detect.c hal/hal_common.c hal/units.c \
   hal/tone_detect.c hal/tone_tables.c tests/firmware/stubs/epuck_lib_stubs.c \
-  firmware/telemetry/telemetry_rx.c firmware/telemetry/telemetry_host.c firmware/telemetry/telemetry_frame.c
+  wire/telemetry/telemetry_rx.c wire/telemetry/telemetry_host.c wire/telemetry/telemetry_frame.c
 FW_HAL_DEPS := tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) $(wildcard hal/epuck/*.h) \
-  $(wildcard hal/*.h) $(wildcard firmware/telemetry/*.h) tests/firmware/stubs/epuck_stubs.h
+  $(wildcard hal/*.h) $(wildcard wire/*/*.h) tests/firmware/stubs/epuck_stubs.h
 
 $(FW_HOST)/test_hal_epuck_randb: $(FW_HAL_DEPS) hal/epuck/ircom_randb.c \
     tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c | $(BUILD)/config.mk
@@ -134,7 +134,7 @@ FW_CPU_STEPS ?= 2000
 
 $(FW_HOST)/cpu_harness: tests/firmware/cpu_harness.c $(FW_CPU_SRC) $(wildcard firmware/*/*.h hal/*.h) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) -std=c99 -Wall -Wextra -Werror -g -O2 -Ihal -Ifirmware -o $@ tests/firmware/cpu_harness.c $(FW_CPU_SRC)
+	$(CC) -std=c99 -Wall -Wextra -Werror -g -O2 -Ihal -Iwire -Ifirmware -o $@ tests/firmware/cpu_harness.c $(FW_CPU_SRC)
 
 firmware-cpu: $(FW_HOST)/cpu_harness
 	@$< 50 > /dev/null
@@ -175,7 +175,7 @@ XC16_CC := $(XC16_BIN)/xc16-gcc
 FWX := $(FW_OUT)/xc16
 XC16_ARCH := -mcpu=30F6014A -omf=elf -mlarge-code -mlarge-data
 XC16_OURS := $(XC16_ARCH) -std=gnu99 -O1 -Wall -ffunction-sections -fdata-sections \
-  -Ihal -Ifirmware -Ihal/epuck -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
+  -Ihal -Iwire -Ifirmware -Ihal/epuck -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
 # The speaker (hal_speaker_set): the library's codec module WITHOUT its
 # sound table codec/e_const_sound.s (five recorded voices, 19,044 words):
 # e_play_sound plays only from the table named e_sound_sample, so the link

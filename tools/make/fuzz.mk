@@ -45,6 +45,9 @@ $(FUZZ_DIR)/obj/firmware/%.o: firmware/%.c | $(FUZZ_GEN)
 $(FUZZ_DIR)/obj/hal/%.o: hal/%.c | $(FUZZ_GEN)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
+$(FUZZ_DIR)/obj/wire/%.o: wire/%.c | $(FUZZ_GEN)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
 $(FUZZ_DIR)/obj/sim_host/%.o: sim_host/%.c | $(FUZZ_GEN)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(SIM_CFLAGS) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
@@ -66,12 +69,12 @@ $(FUZZ_DIR)/bin/%: tests/fuzz/%.c $(FUZZ_DIR)/libswarm.a
 # on the robot, with one IR backend each.
 FUZZ_EPUCK_SRC := tests/fuzz/epuck_ir.c hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/blob_detect.c \
   hal/hal_common.c hal/units.c hal/tone_detect.c hal/tone_tables.c \
-  firmware/telemetry/telemetry_rx.c firmware/telemetry/telemetry_host.c firmware/telemetry/telemetry_frame.c \
+  wire/telemetry/telemetry_rx.c wire/telemetry/telemetry_host.c wire/telemetry/telemetry_frame.c \
   tests/firmware/stubs/epuck_lib_stubs.c
 FUZZ_EPUCK_RANDB := hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
 FUZZ_EPUCK_IRCOM := hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c
 FUZZ_EPUCK_H := tests/fuzz/fuzz.h $(wildcard hal/*.h hal/epuck/*.h tests/firmware/stubs/*.h)
-FUZZ_EPUCK = $(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer -Ihal/epuck -Ifirmware -Itests/firmware/stubs -o $@
+FUZZ_EPUCK = $(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer -Ihal/epuck -Itests/firmware/stubs -o $@
 $(FUZZ_DIR)/bin/epuck_ir_randb: $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_RANDB) $(FUZZ_EPUCK_H) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(FUZZ_EPUCK) $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_RANDB) -lm

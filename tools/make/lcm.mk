@@ -101,13 +101,13 @@ endif
 monitor: deps
 	$(PYTHON) -m swarmtools.telemetry.monitor $(if $(LCM_URL),--lcm '$(LCM_URL)')
 
-# The robots' framing (firmware/telemetry/telemetry_frame.c, and the robot's
+# The robots' framing (wire/telemetry/telemetry_frame.c, and the robot's
 # decoder of a host's frames, telemetry_rx.c and telemetry_host.c) as a
 # shared library, so the Python tests check the bridge's decoder against the
 # very encoder the robots run, and the host's frames against their decoder.
 TELEMETRY_FRAME_SO := $(BUILD)/telemetry/libtelemetry_frame.so
-TELEMETRY_SO_SRC := firmware/telemetry/telemetry_frame.c firmware/telemetry/telemetry_rx.c \
-  firmware/telemetry/telemetry_host.c
+TELEMETRY_SO_SRC := wire/telemetry/telemetry_frame.c wire/telemetry/telemetry_rx.c \
+  wire/telemetry/telemetry_host.c
 $(TELEMETRY_FRAME_SO): $(TELEMETRY_SO_SRC) $(TELEMETRY_SO_SRC:.c=.h) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ $(TELEMETRY_SO_SRC)
