@@ -3,9 +3,10 @@
  *
  * Controllers include this header (and firmware headers) only.  Every call
  * takes the robot as an opaque `hal_t *`; a platform defines `struct hal` and
- * every function below, and is bound at link time:
- *   - hal/epuck/   the e-puck1 (dsPIC30F6014A) over GCtronic's e-puck library;
- *   - sim_host/    the simulator, one hal_t per simulated robot.
+ * every function below, and is bound at link time.  The platforms are the
+ * folders of platforms/ (platforms/platforms.list):
+ *   - epuck1/   the e-puck1 (dsPIC30F6014A) over GCtronic's e-puck library;
+ *   - host/     the simulator (sim_host/), one hal_t per simulated robot.
  *
  * Units are integers at the boundary (the dsPIC has no FPU) and are named on
  * every channel.  Angles are in milliradians, counter-clockwise positive, zero
@@ -140,7 +141,7 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
  *  (0..2) over the last control period, in level counts >= 0, into *level.
  *  Scale: in the simulator 1 count = 0.001 of the sound model's unit (seed
  *  002's eq 1: a source gives A0 = 299.18 units at 0 m); on the e-puck the
- *  tone detector's amplitude (see hal/epuck).  Only changes of a level are
+ *  tone detector's amplitude (see platforms/epuck1/hal).  Only changes of a level are
  *  meant to be compared, never levels across platforms.
  *  Returns HAL_OK; HAL_ERR_BUSY when this robot's own speaker played during
  *  that period (its tone drowns the microphones: a controller that listens
@@ -247,7 +248,7 @@ hal_status_t hal_pose(hal_t *hal, hal_pose_t *out);
  *  when none is waiting; HAL_ERR_RANGE when it is longer than `cap` (it
  *  stays); HAL_ERR_UNAVAILABLE on a platform with no host link.  What the
  *  bytes mean is the controller's (a route: firmware/waypoint/route_msg.h).
- *  On the e-puck they arrive over Bluetooth (hal/epuck/host_link.h), in the
+ *  On the e-puck they arrive over Bluetooth (platforms/epuck1/hal/host_link.h), in the
  *  simulator from the scenario's `host.messages` file. */
 hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len);
 

@@ -27,7 +27,7 @@
  * statics.
  *
  * The loop body is app_loop_once and the set-up app_setup, so that
- * tests/firmware/test_app_telemetry.c can run the image against the stubs.
+ * platforms/epuck1/tests/test_app_telemetry.c can run the image against the stubs.
  */
 #include <stdint.h>
 

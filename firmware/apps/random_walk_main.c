@@ -3,7 +3,7 @@
  * (run-and-tumble with IR obstacle avoidance, counting obstacle-avoidance
  * events) on a bare e-puck1 with libIrcom, no turret needed.  A first
  * image to try the robot, the flasher and the telemetry link with; it also
- * keeps the libIrcom backend of hal/epuck built and gated.  No camera.
+ * keeps the libIrcom backend of platforms/epuck1/hal built and gated.  No camera.
  *
  * Static storage: the robot's struct hal and the controller (see
  * forager_main.c).

@@ -13,7 +13,7 @@
  * microphones.  Queue: APP_QUEUE_MAX readings per average (40, the paper's
  * Q40), 2 x 40 readings per band: 640 bytes, within the 2 KB RAM gate.
  * Both are build constants (-DAPP_QUEUE_MAX=..., -DAPP_REPATT_POLICY=...).
- * Sound is on (cfg.sound): hal/epuck measures the bands with the tone
+ * Sound is on (cfg.sound): platforms/epuck1/hal measures the bands with the tone
  * detector (hal/tone_detect.c) and plays the bands' tables.
  *
  * Telemetry: the controller's observables (repatt_def.c) through the

@@ -3,7 +3,7 @@
  * baseline): firmware/waypoint/waypoint.c on a bare e-puck1 (libIrcom
  * backend: no turret, no IR messages; the IR sensors for obstacle
  * avoidance), no camera, no sound.  Its pose and its route come from the
- * host PC over the Bluetooth serial link (hal/epuck/host_link.h: the
+ * host PC over the Bluetooth serial link (platforms/epuck1/hal/host_link.h: the
  * overhead tracker's POSE frames, the planner's route as a host message,
  * firmware/waypoint/route_msg.h); its telemetry goes out on the same link
  * (the controller's observables, waypoint_observables.c), as the other

@@ -8,10 +8,10 @@
 #  3. nothing calls malloc/calloc/realloc/free;
 #  4. no conditional compilation in controllers except include guards;
 #  5. layering: controllers read only hal/*.h, firmware/ and lcm-gen's
-#     headers (not the simulator, not hal/epuck);
+#     headers (not the simulator, not platforms/epuck1/hal);
 #  6. parameter descriptors whose type does not match their field do not
 #     compile.
-# hal/epuck (the e-puck1 HAL) obeys rules 1-3 too: its state is the
+# platforms/epuck1/hal (the e-puck1 HAL) obeys rules 1-3 too: its state is the
 # caller's struct hal.  The images' mains (firmware/apps) compile under rule
 # 1 and call no allocator; their static variables are the one documented
 # exception (no heap on the robot, main never returns): only the robot's
@@ -27,10 +27,10 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
-srcs=$(ls firmware/*/*.c hal/*.c wire/*/*.c hal/epuck/*.c | grep -v '^firmware/apps/')
+srcs=$(ls firmware/*/*.c hal/*.c wire/*/*.c platforms/epuck1/hal/*.c | grep -v '^firmware/apps/')
 # Firmware sees hal/, firmware/ and lcm-gen's headers (for the robot's own
 # telemetry) only.  -fno-pie: const tables of pointers stay in .rodata.
-flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Iwire -Ifirmware -Ihal/epuck -I${LCM_C_DIR:-build/lcm_c} ${LCM_CFLAGS:-}"
+flags="-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Ihal -Iwire -Ifirmware -Iplatforms/epuck1/hal -I${LCM_C_DIR:-build/lcm_c} ${LCM_CFLAGS:-}"
 
 # Writable static data in one object: prints what it finds.
 writable() {
@@ -81,7 +81,7 @@ done
 
 # Layering: a controller depends on hal/*.h (the contract and its
 # platform-neutral helpers), firmware/ and lcm-gen's headers only; never on
-# the simulator or a platform (hal/epuck).  `cc -M` lists every header a
+# the simulator or a platform (platforms/epuck1/hal).  `cc -M` lists every header a
 # source really reads, relative includes too.
 ctrl_flags="-std=c99 -Ihal -Iwire -Ifirmware -I${LCM_C_DIR:-build/lcm_c} ${LCM_CFLAGS:-}"
 lcm_dirs=$(echo "${LCM_CFLAGS:-}" | awk '{ for (i = 1; i <= NF; i++) { if ($i == "-isystem" || $i == "-I") print $(i + 1); else if ($i ~ /^-I./) print substr($i, 3) } }')
@@ -116,7 +116,7 @@ cc -std=c99 -O0 -c "$probe" -o "$out/probe.o"
 if [ -n "$(writable "$out/probe.o")" ]; then ok; else bad "checker missed a mutable static"; fi
 if [ -n "$(allocates "$out/probe.o")" ]; then ok; else bad "checker missed malloc"; fi
 mkdir -p "$out/firmware_probe"
-printf '#include "../../hal/epuck/hal_epuck.h"\nint probe2(void);\nint probe2(void) { return 0; }\n' > "$out/firmware_probe/probe.c"
+printf '#include "../../platforms/epuck1/hal/hal_epuck.h"\nint probe2(void);\nint probe2(void) { return 0; }\n' > "$out/firmware_probe/probe.c"
 if [ -n "$(layering "$out/firmware_probe/probe.c")" ]; then ok; else bad "checker missed a controller including an e-puck header"; fi
 
 echo "firmware hygiene: $(echo $srcs | wc -w) sources and $(echo $apps | wc -w) images, host and avr-gcc"

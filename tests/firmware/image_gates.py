@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """image_gates.py - the portable gates of the e-puck firmware images.
 
-For every image (firmware/apps/*_main.c with hal/epuck and its IR backend)
+For every image (firmware/apps/*_main.c with platforms/epuck1/hal and its IR backend)
 and every target:
 
   avr  avr-gcc -mmcu=atmega2560: 16-bit int and pointers, 32-bit double, the
@@ -10,7 +10,7 @@ and every target:
 
 it compiles every source warning-free (-std=c99 -pedantic -Wall -Wextra
 -Werror ...) with -fstack-usage, links the image against the stubs of the
-e-puck library functions (tests/firmware/stubs/) and measures:
+e-puck library functions (platforms/epuck1/tests/stubs/) and measures:
 
 The images that publish telemetry (telemetry_images) also link lcm-gen's C
 code of robot_state_t (--lcm-c-dir, from `make lcm-types`; headers of LCM
@@ -60,7 +60,7 @@ RAM_GATE = 2048
 
 WARN = ('-std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes '
         '-Wmissing-prototypes')
-INC = '-Ihal -Iwire -Ifirmware -Ihal/epuck -Itests/firmware/stubs'
+INC = '-Ihal -Iwire -Ifirmware -Iplatforms/epuck1/hal -Iplatforms/epuck1/tests/stubs'
 COMMON = '-Os -ffunction-sections -fdata-sections -fstack-usage'
 
 TARGETS = {
@@ -84,9 +84,9 @@ TARGETS = {
 }
 
 BACKEND_SOURCES = {
-    'randb': (['hal/epuck/ircom_randb.c'],
-              ['tests/firmware/stubs/adscan_stubs.c', 'tests/firmware/stubs/randb_stubs.c']),
-    'libircom': (['hal/epuck/ircom_libircom.c'], ['tests/firmware/stubs/ircom_stubs.c']),
+    'randb': (['platforms/epuck1/hal/ircom_randb.c'],
+              ['platforms/epuck1/tests/stubs/adscan_stubs.c', 'platforms/epuck1/tests/stubs/randb_stubs.c']),
+    'libircom': (['platforms/epuck1/hal/ircom_libircom.c'], ['platforms/epuck1/tests/stubs/ircom_stubs.c']),
 }
 
 
@@ -136,7 +136,7 @@ def common_sources():
     for d in sorted(os.listdir(wire)):
         if os.path.isdir(os.path.join(wire, d)):
             out += sorted(os.path.join('wire', d, f) for f in os.listdir(os.path.join(wire, d)) if f.endswith('.c'))
-    return out + ['hal/epuck/hal_epuck.c', 'hal/epuck/host_link.c']
+    return out + ['platforms/epuck1/hal/hal_epuck.c', 'platforms/epuck1/hal/host_link.c']
 
 
 def obj_path(build, target, src):
@@ -202,8 +202,9 @@ def classify(section):
 
 
 def is_ours(file, build, target):
+    """An object of ours: not a stub (a tests/ folder's), which stands for a library."""
     prefix = os.path.join(build, target, 'obj') + os.sep
-    return file.startswith(prefix) and not file.startswith(prefix + 'tests' + os.sep)
+    return file.startswith(prefix) and 'tests' not in file[len(prefix):].split(os.sep)
 
 
 # ------------------------------------------------------------------ stack
@@ -423,7 +424,7 @@ def main():
             if not os.path.exists(os.path.join(ROOT, s)):
                 sys.exit(f'image_gates: {s} not found: run make lcm-types')
     common = common_sources()
-    stubs = ['tests/firmware/stubs/epuck_lib_stubs.c']
+    stubs = ['platforms/epuck1/tests/stubs/epuck_lib_stubs.c']
     srcs = set(common + stubs)
     for image, backend in images:
         srcs.add(f'firmware/apps/{image}_main.c')

@@ -1,11 +1,11 @@
 # firmware.mk - the real e-puck1 target: firmware images, their portable
 # gates, the CPU report, and the XC16 build of .hex files.
 #
-#   make firmware-check   every image with hal/epuck compiles warning-free and
+#   make firmware-check   every image with platforms/epuck1/hal compiles warning-free and
 #                         links (against stubs of the e-puck library) with
 #                         avr-gcc (XC16's data model) and arm-none-eabi-gcc
 #                         (Cortex-M4F); footprint table and the 2 KB static
-#                         RAM gate; host tests of hal/epuck; flasher tests
+#                         RAM gate; host tests of platforms/epuck1/hal; flasher tests
 #                         against a simulated bootloader; the CPU report;
 #                         the forager image run against the stubs, its
 #                         telemetry frames decoded (robot_state_t).  Needs
@@ -32,7 +32,7 @@
 #                         (1), FIRMWARE_E_A (10).
 #   make flash HEX=build/firmware/xc16/forager.hex DEVICE=/dev/rfcomm0 ROBOT_ID=7
 #
-# Images, their IR backend (hal/epuck/ircom_*.c) and whether they send
+# Images, their IR backend (platforms/epuck1/hal/ircom_*.c) and whether they send
 # telemetry: one line each in firmware/apps/images.list.
 FW_IMAGE_LIST := firmware/apps/images.list
 FW_IMAGE_ROWS := $(shell sed -e 's/\#.*//' $(FW_IMAGE_LIST) | awk 'NF == 3 { print $$1 ":" $$2 ":" $$3 }')
@@ -76,49 +76,49 @@ readme-footprint: lcm-types | $(BUILD)/config.mk
 firmware-flash-tests: deps
 	@$(PYTHON) tools/tests/flash/test_epuck.py
 
-# ------------------------------------------------ host tests of hal/epuck
+# ------------------------------------------------ host tests of platforms/epuck1/hal
 FW_HOST := $(FW_OUT)/host
 FW_HOST_CFLAGS := -std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes \
-  -Wmissing-prototypes -g -O1 -Ihal -Iwire -Ifirmware -Ihal/epuck -Itests/firmware/stubs \
+  -Wmissing-prototypes -g -O1 -Ihal -Iwire -Ifirmware -Iplatforms/epuck1/hal -Iplatforms/epuck1/tests/stubs \
   -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FW_HAL_COMMON := hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/blob_detect.c hal/hal_common.c hal/units.c \
-  hal/tone_detect.c hal/tone_tables.c tests/firmware/stubs/epuck_lib_stubs.c \
+FW_HAL_COMMON := platforms/epuck1/hal/hal_epuck.c platforms/epuck1/hal/host_link.c hal/blob_detect.c hal/hal_common.c hal/units.c \
+  hal/tone_detect.c hal/tone_tables.c platforms/epuck1/tests/stubs/epuck_lib_stubs.c \
   wire/telemetry/telemetry_rx.c wire/telemetry/telemetry_host.c wire/telemetry/telemetry_frame.c
-FW_HAL_DEPS := tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) $(wildcard hal/epuck/*.h) \
-  $(wildcard hal/*.h) $(wildcard wire/*/*.h) tests/firmware/stubs/epuck_stubs.h
+FW_HAL_DEPS := platforms/epuck1/tests/test_hal_epuck.c $(FW_HAL_COMMON) $(wildcard platforms/epuck1/hal/*.h) \
+  $(wildcard hal/*.h) $(wildcard wire/*/*.h) platforms/epuck1/tests/stubs/epuck_stubs.h
 
-$(FW_HOST)/test_hal_epuck_randb: $(FW_HAL_DEPS) hal/epuck/ircom_randb.c \
-    tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c | $(BUILD)/config.mk
+$(FW_HOST)/test_hal_epuck_randb: $(FW_HAL_DEPS) platforms/epuck1/hal/ircom_randb.c \
+    platforms/epuck1/tests/stubs/adscan_stubs.c platforms/epuck1/tests/stubs/randb_stubs.c | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) $(FW_HOST_CFLAGS) -o $@ tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) \
-	  hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
-$(FW_HOST)/test_hal_epuck_libircom: $(FW_HAL_DEPS) hal/epuck/ircom_libircom.c \
-    tests/firmware/stubs/ircom_stubs.c | $(BUILD)/config.mk
+	$(CC) $(FW_HOST_CFLAGS) -o $@ platforms/epuck1/tests/test_hal_epuck.c $(FW_HAL_COMMON) \
+	  platforms/epuck1/hal/ircom_randb.c platforms/epuck1/tests/stubs/adscan_stubs.c platforms/epuck1/tests/stubs/randb_stubs.c
+$(FW_HOST)/test_hal_epuck_libircom: $(FW_HAL_DEPS) platforms/epuck1/hal/ircom_libircom.c \
+    platforms/epuck1/tests/stubs/ircom_stubs.c | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) $(FW_HOST_CFLAGS) -DTEST_LIBIRCOM -o $@ tests/firmware/test_hal_epuck.c $(FW_HAL_COMMON) \
-	  hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c
+	$(CC) $(FW_HOST_CFLAGS) -DTEST_LIBIRCOM -o $@ platforms/epuck1/tests/test_hal_epuck.c $(FW_HAL_COMMON) \
+	  platforms/epuck1/hal/ircom_libircom.c platforms/epuck1/tests/stubs/ircom_stubs.c
 # The host link (host_link.c) over the turret backend: it does not depend on
 # the IR backend, so it is built once.
-$(FW_HOST)/test_hal_epuck_host: tests/firmware/test_hal_epuck_host.c $(filter-out tests/firmware/test_hal_epuck.c,$(FW_HAL_DEPS)) \
-    hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c | $(BUILD)/config.mk
+$(FW_HOST)/test_hal_epuck_host: platforms/epuck1/tests/test_hal_epuck_host.c $(filter-out platforms/epuck1/tests/test_hal_epuck.c,$(FW_HAL_DEPS)) \
+    platforms/epuck1/hal/ircom_randb.c platforms/epuck1/tests/stubs/adscan_stubs.c platforms/epuck1/tests/stubs/randb_stubs.c | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) $(FW_HOST_CFLAGS) -o $@ tests/firmware/test_hal_epuck_host.c $(FW_HAL_COMMON) \
-	  hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
+	$(CC) $(FW_HOST_CFLAGS) -o $@ platforms/epuck1/tests/test_hal_epuck_host.c $(FW_HAL_COMMON) \
+	  platforms/epuck1/hal/ircom_randb.c platforms/epuck1/tests/stubs/adscan_stubs.c platforms/epuck1/tests/stubs/randb_stubs.c
 
 # The forager image itself (its main renamed) over the stubs: its telemetry
 # frames decoded.  --gc-sections drops the generated publish functions
 # (no liblcm here).
 FW_APP_TEST_SRC := $(FW_SRC) \
-  hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/epuck/ircom_randb.c tests/firmware/stubs/epuck_lib_stubs.c \
-  tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c firmware/apps/app_telemetry.c \
+  platforms/epuck1/hal/hal_epuck.c platforms/epuck1/hal/host_link.c platforms/epuck1/hal/ircom_randb.c platforms/epuck1/tests/stubs/epuck_lib_stubs.c \
+  platforms/epuck1/tests/stubs/adscan_stubs.c platforms/epuck1/tests/stubs/randb_stubs.c firmware/apps/app_telemetry.c \
   $(FW_LCM_SRC)
-$(FW_HOST)/test_app_telemetry: tests/firmware/test_app_telemetry.c firmware/apps/forager_main.c \
+$(FW_HOST)/test_app_telemetry: platforms/epuck1/tests/test_app_telemetry.c firmware/apps/forager_main.c \
     firmware/apps/app_telemetry.h firmware/apps/app_telemetry.c \
-    $(filter-out $(FW_LCM_SRC),$(FW_APP_TEST_SRC)) $(FW_LCM_STAMP) $(wildcard firmware/*/*.h hal/*.h hal/epuck/*.h) \
-    tests/firmware/stubs/epuck_stubs.h | $(BUILD)/config.mk
+    $(filter-out $(FW_LCM_SRC),$(FW_APP_TEST_SRC)) $(FW_LCM_STAMP) $(wildcard firmware/*/*.h hal/*.h platforms/epuck1/hal/*.h) \
+    platforms/epuck1/tests/stubs/epuck_stubs.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(CC) $(FW_HOST_CFLAGS) -I$(FW_LCM_C_DIR) $(LCM_CFLAGS) -ffunction-sections -Wl,--gc-sections \
-	  -o $@ tests/firmware/test_app_telemetry.c $(FW_APP_TEST_SRC) -lm
+	  -o $@ platforms/epuck1/tests/test_app_telemetry.c $(FW_APP_TEST_SRC) -lm
 
 firmware-hal-tests: $(FW_HOST)/test_hal_epuck_randb $(FW_HOST)/test_hal_epuck_libircom $(FW_HOST)/test_hal_epuck_host \
     $(FW_HOST)/test_app_telemetry
@@ -175,7 +175,7 @@ XC16_CC := $(XC16_BIN)/xc16-gcc
 FWX := $(FW_OUT)/xc16
 XC16_ARCH := -mcpu=30F6014A -omf=elf -mlarge-code -mlarge-data
 XC16_OURS := $(XC16_ARCH) -std=gnu99 -O1 -Wall -ffunction-sections -fdata-sections \
-  -Ihal -Iwire -Ifirmware -Ihal/epuck -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
+  -Ihal -Iwire -Ifirmware -Iplatforms/epuck1/hal -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
 # The speaker (hal_speaker_set): the library's codec module WITHOUT its
 # sound table codec/e_const_sound.s (five recorded voices, 19,044 words):
 # e_play_sound plays only from the table named e_sound_sample, so the link
@@ -202,7 +202,7 @@ FW_APP_DEFS := -DAPP_N_ROBOTS=$(FIRMWARE_N_ROBOTS)u -DAPP_ARENA_L_MM=$(FIRMWARE_
   -DAPP_MOVE_COST=$(FIRMWARE_MOVE_COST)u -DAPP_E_A=$(FIRMWARE_E_A)u
 
 FW_OURS_SRC := $(filter-out $(FW_ROBOT_TELEMETRY_SRC),$(FW_SRC)) \
-  hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/epuck/xc16/robot_id.c
+  platforms/epuck1/hal/hal_epuck.c platforms/epuck1/hal/host_link.c platforms/epuck1/hal/xc16/robot_id.c
 FW_EPL_COMMON := motor_led/e_init_port.c motor_led/advance_one_timer/e_agenda.c \
   motor_led/advance_one_timer/e_motors.c motor_led/advance_one_timer/e_led.c \
   camera/fast_2_timer/e_common.c camera/fast_2_timer/e_calc_po3030k.c \
@@ -224,8 +224,8 @@ FW_RANDB_OBJ := $(FWX)/randb/e_randb.o
 FW_IRCOM_SRC := $(notdir $(wildcard $(IRCOM_DIR)/*.c))
 FW_IRCOM_OBJ := $(patsubst %.c,$(FWX)/ircom/%.o,$(FW_IRCOM_SRC))
 
-FW_BACKEND_OBJ_randb := $(call fw_obj,hal/epuck/ircom_randb.c) $(FW_EPL_ADSCAN_OBJ) $(FW_RANDB_OBJ)
-FW_BACKEND_OBJ_libircom := $(call fw_obj,hal/epuck/ircom_libircom.c) $(FW_IRCOM_OBJ)
+FW_BACKEND_OBJ_randb := $(call fw_obj,platforms/epuck1/hal/ircom_randb.c) $(FW_EPL_ADSCAN_OBJ) $(FW_RANDB_OBJ)
+FW_BACKEND_OBJ_libircom := $(call fw_obj,platforms/epuck1/hal/ircom_libircom.c) $(FW_IRCOM_OBJ)
 fw_backend = $(patsubst $(1):%,%,$(filter $(1):%,$(FW_IMAGE_SPECS)))
 FW_HEX := $(patsubst %,$(FWX)/%.hex,$(FIRMWARE_IMAGES))
 # lcm-gen's C, for the images that send telemetry (robot_state_t and

@@ -29,7 +29,7 @@ int e_get_ambient_light(unsigned int sensor_number);
  * it writes next (the oldest sample).  e_ad_conv.h documents that the
  * module's files share them as extern globals; the module's own reader
  * (e_get_micro_last_values) re-reads the index for every sample, so a copy
- * during which the interrupt fires slips by a sample: hal/epuck copies with
+ * during which the interrupt fires slips by a sample: platforms/epuck1/hal copies with
  * one snapshot of the index instead (ircom_randb.c). */
 #define EPL_MIC_SAMP_NB 100
 extern int e_mic_scan[3][EPL_MIC_SAMP_NB];

@@ -1,7 +1,7 @@
 /*
- * test_hal_epuck_host.c - host tests of hal/epuck's host link
+ * test_hal_epuck_host.c - host tests of platforms/epuck1/hal's host link
  * (host_link.c): poses and messages a host sends over UART1, scripted as
- * received bytes in the library stub (tests/firmware/stubs/).  Built by
+ * received bytes in the library stub (platforms/epuck1/tests/stubs/).  Built by
  * tools/make/firmware.mk over the turret backend (the link does not
  * depend on it).  Prints "N passed, M failed".
  */

@@ -1,4 +1,4 @@
-/* Stubs of hal/epuck/epuck_lib_randb.h (see epuck_stubs.h). */
+/* Stubs of platforms/epuck1/hal/epuck_lib_randb.h (see epuck_stubs.h). */
 #include "epuck_lib_randb.h"
 #include "epuck_stubs.h"
 

@@ -10,7 +10,7 @@
  * take them as cm: [?] check against a tape measure, the factor is
  * hal_epuck_config_t.randb_range_mm_per_unit) and the turret sensor (0..11)
  * with the strongest signal.  Several calls busy-wait inside the driver
- * (I2C transfers and nop loops of a few ms): hal/epuck makes them outside
+ * (I2C transfers and nop loops of a few ms): platforms/epuck1/hal makes them outside
  * the controller's step.
  */
 #ifndef EPUCK_LIB_RANDB_H

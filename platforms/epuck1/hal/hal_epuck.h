@@ -69,7 +69,7 @@
  * advance A/D module (turret images); on libIrcom images they are
  * HAL_ERR_UNAVAILABLE.
  *
- * The sources of hal/epuck have no mutable static storage (hygiene.sh
+ * The sources of platforms/epuck1/hal have no mutable static storage (hygiene.sh
  * checks it): all state is in this struct.
  */
 #ifndef HAL_EPUCK_H
@@ -132,7 +132,7 @@ typedef struct hal_epuck_config {
                                         The simulator's ircom.tx_per_period */
 } hal_epuck_config_t;
 
-/** The robot.  Fields are private to hal/epuck; an image only defines one
+/** The robot.  Fields are private to platforms/epuck1/hal; an image only defines one
  *  (static storage) and passes its address. */
 struct hal {
     hal_epuck_config_t cfg;
@@ -269,7 +269,7 @@ uint16_t hal_epuck_overruns(const hal_t *hal);
 
 /** The robot id the flasher wrote into program memory (word 0x17F36; see
  *  tools/flash/epuck_flash.py --robot-id), HAL_EPUCK_NO_ID if none.
- *  Defined in hal/epuck/xc16/robot_id.c (XC16 only: it reads program
+ *  Defined in platforms/epuck1/hal/xc16/robot_id.c (XC16 only: it reads program
  *  memory); the portable link gates use a stub. */
 uint16_t hal_epuck_flash_robot_id(void);
 

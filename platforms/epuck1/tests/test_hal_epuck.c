@@ -1,6 +1,6 @@
 /*
- * test_hal_epuck.c - host tests of hal/epuck over the scripted stubs of the
- * e-puck library (tests/firmware/stubs/).  Built twice by
+ * test_hal_epuck.c - host tests of platforms/epuck1/hal over the scripted stubs of the
+ * e-puck library (platforms/epuck1/tests/stubs/).  Built twice by
  * tools/make/firmware.mk: with the turret backend (ircom_randb.c, the
  * default) and, with -DTEST_LIBIRCOM, with the libIrcom backend.
  * Prints "N passed, M failed".
@@ -609,10 +609,10 @@ int main(void)
     test_microphones();
 #ifndef TEST_LIBIRCOM
     test_ircom_randb();
-    printf("hal/epuck (turret backend): %d passed, %d failed\n", passed, failed);
+    printf("platforms/epuck1/hal (turret backend): %d passed, %d failed\n", passed, failed);
 #else
     test_ircom_libircom();
-    printf("hal/epuck (libIrcom backend): %d passed, %d failed\n", passed, failed);
+    printf("platforms/epuck1/hal (libIrcom backend): %d passed, %d failed\n", passed, failed);
 #endif
     return failed == 0 ? 0 : 1;
 }

@@ -63,7 +63,7 @@
 /** Bytes one hal_epuck_poll reads at most: the library's receive ring. */
 #define HAL_EPUCK_RX_POLL_BYTES 64u
 
-/** The host link's state: given by the image, private to hal/epuck (tests
+/** The host link's state: given by the image, private to platforms/epuck1/hal (tests
  *  read the counters). */
 typedef struct hal_epuck_host {
     telemetry_rx_t rx;                           /**< the frame decoder */

@@ -1,8 +1,8 @@
 /*
- * epuck_stubs.h - stand-ins for the e-puck library functions hal/epuck
- * declares (hal/epuck/epuck_lib*.h), for the link gates of
+ * epuck_stubs.h - stand-ins for the e-puck library functions platforms/epuck1/hal
+ * declares (platforms/epuck1/hal/epuck_lib*.h), for the link gates of
  * `make firmware-check` (avr-gcc, arm-none-eabi-gcc) and the host tests of
- * hal/epuck.  They do no I/O: each records what it is asked in
+ * platforms/epuck1/hal.  They do no I/O: each records what it is asked in
  * `epuck_stub` and returns what a test put there.  Test code, not
  * firmware: the mutable state is allowed here and is not counted as the
  * firmware's RAM by the footprint report.

@@ -19,7 +19,7 @@
 
 int forager_image_main(void);
 #define main forager_image_main
-#include "../../firmware/apps/forager_main.c"
+#include "../../../firmware/apps/forager_main.c"
 #undef main
 
 static int passed, failed;

@@ -1,4 +1,4 @@
-/* Stubs of hal/epuck/epuck_lib.h (see epuck_stubs.h) and of the XC16-only
+/* Stubs of platforms/epuck1/hal/epuck_lib.h (see epuck_stubs.h) and of the XC16-only
  * hal_epuck_flash_robot_id. */
 #include <string.h>
 

@@ -1,6 +1,6 @@
 /*
  * epuck_lib.h - the functions of GCtronic's e-puck library (e-puck1,
- * dsPIC30F6014A) that hal/epuck calls, declared here with their documented
+ * dsPIC30F6014A) that platforms/epuck1/hal calls, declared here with their documented
  * signatures so that our code compiles without the library's headers.
  *
  * The library itself is user-supplied (EPUCK_LIB_DIR, see
@@ -76,7 +76,7 @@ int e_uart1_sending(void);
  * oldest unread byte of the receive interrupt's 64-byte ring into *car and
  * returns 1, or returns 0 when none is waiting.  The interrupt does not
  * check the ring for room: bytes not read within 64 bytes' time (5.6 ms at
- * 115200 baud) are overwritten (hal/epuck/host_link.h). */
+ * 115200 baud) are overwritten (platforms/epuck1/hal/host_link.h). */
 int e_getchar_uart1(char *car);
 
 /* utility/utility.h: position of the 16-way selector switch, 0..15. */
