@@ -30,9 +30,10 @@ FW_CFLAGS := -std=c99 -pedantic $(FW_INC) $(CFLAGS_COMMON)
 SIM_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(SIM_INC) $(CFLAGS_COMMON) $(BOX2D_CFLAGS) $(PNG_CFLAGS)
 LDLIBS_SIM := $(BOX2D_LIBS) $(YAML_LIBS) $(PNG_LIBS) $(GL_LIBS) -lpthread -lm
 
-# Controllers: firmware/<folder>/*.c (common/ and one folder per seed);
-# firmware/apps/ holds the robot images' mains, built by firmware.mk.
-FW_DIRS := $(filter-out firmware/apps,$(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c)))))
+# Controllers: firmware/<folder>/*.c (common/ and one folder per seed); the
+# robot images are declared by the platforms (platforms/<p>/images.list,
+# tools/make/firmware.mk).
+FW_DIRS := $(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c))))
 # The wire protocols (wire/<protocol>/*.c: telemetry framing, the host
 # link's messages) are linked with them.
 FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c)) $(sort $(wildcard wire/*/*.c))
@@ -146,8 +147,8 @@ asan-tests: $(TESTS_ASAN)
 cli-tests: $(BUILD)/swarmsim
 	@set -e; for t in $(sort $(wildcard tests/cli/*.sh)); do echo "== $$t"; bash $$t $(BUILD)/swarmsim; done
 
-firmware-hygiene: $(BUILD)/config.mk lcm-types
-	@LCM_CFLAGS='$(LCM_CFLAGS)' LCM_C_DIR='$(BUILD)/lcm_c' bash tests/firmware/hygiene.sh
+firmware-hygiene: $(BUILD)/config.mk lcm-types firmware-images
+	@LCM_CFLAGS='$(LCM_CFLAGS)' LCM_C_DIR='$(BUILD)/lcm_c' FW_GEN='$(FW_GEN)' bash tests/firmware/hygiene.sh
 
 # Every group, one after the other, each saying how long it took.
 TEST_GROUPS = unit-tests asan-tests cli-tests firmware-hygiene $(EXTRA_TESTS)

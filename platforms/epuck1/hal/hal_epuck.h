@@ -2,7 +2,8 @@
  * hal_epuck.h - hal.h on a real e-puck1 (dsPIC30F6014A) over GCtronic's
  * e-puck library.
  *
- * An image (firmware/apps/) defines the one `struct hal` of the robot and
+ * An image (its main generated from platforms/epuck1/images.list over the
+ * run loop run/image_main.h) defines the one `struct hal` of the robot and
  * the controller's state as static storage (on bare metal there is nowhere
  * else to keep them: no heap, and main never returns), and runs:
  *
@@ -10,13 +11,14 @@
  *     hal_epuck_start(&robot, app_tick);                      hardware on
  *     ...controller_init(&ctl, &params, hal_epuck_seed(&robot));
  *     for (;;) {
- *         HAL_EPUCK_LOOP_ONCE(&robot, app_step());
+ *         if (hal_epuck_step_due(&robot)) {
+ *             hal_epuck_begin_step(&robot);   sample the sensors once
+ *             ...the controller's step and the image's telemetry
+ *             hal_epuck_end_step(&robot);     actuators, IR send, clock
+ *         } else {
+ *             hal_epuck_poll(&robot);         background work
+ *         }
  *     }
- *
- * where app_step runs the controller's step (and the image's telemetry);
- * HAL_EPUCK_LOOP_ONCE calls it between hal_epuck_begin_step (sample the
- * sensors once) and hal_epuck_end_step (actuators, IR send, clock) when a
- * period is due, and otherwise does the background work (hal_epuck_poll).
  *
  * with `static void app_tick(void) { hal_epuck_tick(&robot); }` registered
  * as a timer-2 agenda of the control period.  The agenda runs in the timer
@@ -240,22 +242,6 @@ void hal_epuck_begin_step(hal_t *hal);
 /** Applies wheel speeds and LEDs, sends the queued IR message, advances the
  *  clock by one period. */
 void hal_epuck_end_step(hal_t *hal);
-
-/** One pass of an image's main loop: when a control period is due,
- *  begin_step, the statement STEP (the controller's step and the image's
- *  telemetry), end_step; otherwise the background work (poll).  A macro,
- *  not a function taking a pointer: the images' stack gate follows direct
- *  calls only (tests/firmware/image_gates.py). */
-#define HAL_EPUCK_LOOP_ONCE(hal, STEP)            \
-    do {                                          \
-        if (hal_epuck_step_due(hal) != 0u) {      \
-            hal_epuck_begin_step(hal);            \
-            STEP;                                 \
-            hal_epuck_end_step(hal);              \
-        } else {                                  \
-            hal_epuck_poll(hal);                  \
-        }                                         \
-    } while (0)
 
 /** 32 bits for a controller's seed: the robot id mixed with the noise of
  *  the ambient light readings (call after begin_step). */

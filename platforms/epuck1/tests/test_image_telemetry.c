@@ -1,13 +1,14 @@
 /*
- * test_app_telemetry.c - runs the forager image (firmware/apps/forager_main.c,
- * included here with its main renamed) against the stubs of the e-puck
- * library for 25 control steps, collects every byte the UART stub was given,
- * and checks that the stream is telemetry frames (telemetry_frame.h: COBS,
- * CRC, header): robot_state_t on TELEMETRY_CH_ROBOT_STATE carrying the
- * controller's observables at the step each was sent, and schema_t chunks
- * on TELEMETRY_CH_SCHEMA naming them in the table's order (lcm-gen's
- * decoders).  Built by tools/make/firmware.mk
- * (firmware-hal-tests).  Prints "N passed, M failed".
+ * test_image_telemetry.c - runs the forager image (its main generated from
+ * platforms/epuck1/images.list over run/image_main.h, included here with its
+ * main renamed) against the stubs of the e-puck library for 25 control
+ * steps, collects every byte the UART stub was given, and checks that the
+ * stream is telemetry frames (telemetry_frame.h: COBS, CRC, header):
+ * robot_state_t on TELEMETRY_CH_ROBOT_STATE carrying the controller's
+ * observables at the step each was sent, and schema_t chunks on
+ * TELEMETRY_CH_SCHEMA naming them in the table's order (lcm-gen's
+ * decoders).  Built by platforms/epuck1/platform.mk (epuck1-hal-tests).
+ * Prints "N passed, M failed".
  */
 #include <math.h>
 #include <stdio.h>
@@ -19,7 +20,7 @@
 
 int forager_image_main(void);
 #define main forager_image_main
-#include "../../../firmware/apps/forager_main.c"
+#include "forager_main.c"
 #undef main
 
 static int passed, failed;
@@ -94,8 +95,8 @@ int main(void)
     for (i = 0; i < STEPS; i++) {
         uint32_t before;
         if (i == 5) {   /* values the frames must show */
-            app_forager.walk.oae_count = 1234u;
-            app_forager.deposits = 3u;
+            app_ctrl.walk.oae_count = 1234u;
+            app_ctrl.deposits = 3u;
         }
         before = hal_time_ms(&app_hal);
         epuck_stub.agenda();
@@ -105,9 +106,9 @@ int main(void)
             queued = app_telemetry.tx.frames_queued;
             /* States at steps 0, 10, 20; schema chunks halfway (5, 15). */
             want[sent].channel = (i % 10 == 0) ? TELEMETRY_CH_ROBOT_STATE : TELEMETRY_CH_SCHEMA;
-            want[sent].state = forager_state_name(&app_forager);
+            want[sent].state = forager_state_name(&app_ctrl);
             for (k = 0; forager_observables[k].name != 0; k++) {
-                want[sent].values[k] = observable_read(&forager_observables[k], &app_forager);
+                want[sent].values[k] = observable_read(&forager_observables[k], &app_ctrl);
             }
             want[sent].time_lo = before;
             want[sent].time_hi = hal_time_ms(&app_hal);
@@ -179,7 +180,7 @@ int main(void)
         for (k = 0; k < m.n_values; k++) {
             CHECK(m.values[k] == want[frames].values[k]);
         }
-        CHECK(m.values[value_index("n")] == (float)app_forager.n);
+        CHECK(m.values[value_index("n")] == (float)app_ctrl.n);
         CHECK(m.ir_max >= 0 && m.ir_max_index >= 0 && m.ir_max_index < 8);
         CHECK(m.pose_known == 0 && isnan(m.x) && isnan(m.y) && isnan(m.theta));
         swarmlcm_robot_state_t_decode_cleanup(&m);
@@ -190,6 +191,6 @@ int main(void)
     CHECK(want[2].values[value_index("oae")] == 1234.0f);
     CHECK(want[2].values[value_index("deposits")] == 3.0f);
 
-    printf("app telemetry (forager image, %d frames): %d passed, %d failed\n", frames, passed, failed);
+    printf("image telemetry (forager image, %d frames): %d passed, %d failed\n", frames, passed, failed);
     return failed != 0;
 }

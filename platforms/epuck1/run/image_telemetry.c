@@ -1,4 +1,5 @@
-#include "app_telemetry.h"
+/* image_telemetry.c - image_telemetry.h. */
+#include "image_telemetry.h"
 
 static void platform_of(struct hal *hal, uint8_t reads_sensors, robot_telemetry_platform_t *out)
 {
@@ -29,8 +30,8 @@ static void platform_of(struct hal *hal, uint8_t reads_sensors, robot_telemetry_
     out->ambient_min = (int16_t)amb_low;
 }
 
-void app_telemetry_step(robot_telemetry_t *t, struct hal *hal, const robot_telemetry_source_t *src,
-                        uint8_t reads_sensors)
+void image_telemetry_step(robot_telemetry_t *t, struct hal *hal, const robot_telemetry_source_t *src,
+                          uint8_t reads_sensors)
 {
     robot_telemetry_platform_t platform;
     const robot_telemetry_platform_t *p = 0;
