@@ -29,8 +29,9 @@
 #   make flash HEX=build/firmware/xc16/forager.hex DEVICE=/dev/rfcomm0 ROBOT_ID=7
 EPUCK1 := platforms/epuck1
 EPUCK1_STUBS := $(EPUCK1)/tests/stubs
-# Images: NAME:IR:TELEMETRY, from the declarations.
-EPUCK1_IMAGES := $(call fw_images,epuck1,ir telemetry)
+# Images: NAME:IR:TELEMETRY, from the declarations (read when used: only the
+# XC16 build needs them at parse time).
+EPUCK1_IMAGES = $(call fw_images,epuck1,ir telemetry)
 EPUCK1_GEN := $(FW_GEN)/epuck1
 # The run loop and the HAL: the include folders of this platform.
 EPUCK1_INC := -I$(EPUCK1)/hal -I$(EPUCK1)/run
@@ -197,7 +198,11 @@ $(FWX)/ircom/%.o: $(IRCOM_DIR)/%.c
 	@mkdir -p $(@D)
 	$(XC16_CC) $(XC16_LIBFLAGS) -I$(IRCOM_DIR) -c $< -o $@
 
-# One image: its generated main, our code, the common library modules, its backend.
+# One image: its generated main, our code, the common library modules, its
+# backend.  Defined for the goals that build .hex files (make firmware runs
+# them in a sub-make), so other goals do not read the declarations.
+ifneq ($(filter firmware $(FWX)/%,$(MAKECMDGOALS)),)
+EPUCK1_IMAGES := $(EPUCK1_IMAGES)
 define FW_IMAGE_RULES
 $(FWX)/$(1).elf: $(call fw_obj,$(EPUCK1_GEN)/$(1)_main.c) $(FW_OURS_OBJ) $(FW_EPL_COMMON_OBJ) \
     $$(FW_BACKEND_OBJ_$(call fw_backend,$(1))) $(call fw_lcm_objs,$(1))
@@ -207,6 +212,7 @@ $(FWX)/$(1).hex: $(FWX)/$(1).elf
 	@echo "firmware: $$@ (flash it: make flash HEX=$$@ DEVICE=/dev/rfcommN ROBOT_ID=N)"
 endef
 $(foreach r,$(EPUCK1_IMAGES),$(eval $(call FW_IMAGE_RULES,$(call fw_field,$(r),1))))
+endif
 
 # The asked images by IR backend.
 fw_images_with = $(foreach i,$(FIRMWARE_IMAGES),$(if $(filter $(i):$(1):%,$(EPUCK1_IMAGES)),$(i)))

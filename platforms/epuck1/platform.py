@@ -26,6 +26,12 @@ IMAGE_KEYS = {
 
 STUBS = HERE + '/tests/stubs'
 
+# The compilers tests/firmware/hygiene.sh builds this platform's HAL, run
+# loop and images with (warning-free, each layer on its own include path);
+# the first one's objects are checked for writable statics and allocators.
+# The e-puck1's: the host's, and avr-gcc for the dsPIC's 16-bit int.
+HYGIENE_COMPILERS = ['cc -fno-pie -O2', 'avr-gcc -mmcu=atmega128 -Os']
+
 GATES = {
     # Include folders of the platform (besides hal/, wire/, firmware/ and
     # lcm-gen's), for its sources and its images' mains.

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # hygiene.sh - checks the firmware rules on the compiled objects:
-#  1. every source of the robot's layers compiles warning-free as C99 on the
-#     host and with avr-gcc (16-bit int and pointers, 32-bit double: the
-#     data model of XC16 on the dsPIC), each with only the include folders
-#     its layer may use (below), so an include that points up the layers is
-#     a build error;
+#  1. every source of the robot's layers compiles warning-free as C99, each
+#     with only the include folders its layer may use (below), so an
+#     include that points up the layers is a build error: the portable
+#     layers on the host and with avr-gcc (16-bit int and pointers, 32-bit
+#     double: the data model of XC16 on the dsPIC), a platform's with the
+#     compilers its platform.py names (HYGIENE_COMPILERS);
 #  2. no object has writable static data (.data/.bss non-empty or data
 #     symbols): controllers keep all state in their structs;
 #  3. nothing calls malloc/calloc/realloc/free;
@@ -34,7 +35,7 @@ cd "$(dirname "$0")/../.."
 out=build/fw
 gen=${FW_GEN:-build/firmware/gen}
 lcm_c=${LCM_C_DIR:-build/lcm_c}
-mkdir -p "$out/host" "$out/avr"
+mkdir -p "$out"
 pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
@@ -81,8 +82,11 @@ layering() {
         echo "$deps" | grep -m1 -E 'fatal error|error:' || echo "does not preprocess"
         return
     fi
-    echo "$deps" | tr ' \\' '\n\n' | grep -E '\.h$' \
-        | while read -r h; do case $h in /*) realpath -m "$h" ;; *) realpath -m --relative-to=. "$h" ;; esac; done \
+    local hs abs rel
+    hs=$(echo "$deps" | tr ' \\' '\n\n' | grep -E '\.h$' | sort -u)
+    abs=$(echo "$hs" | grep '^/' | grep -v '^/usr/')
+    rel=$(echo "$hs" | grep -v '^/')
+    { [ -z "$abs" ] || realpath -m $abs; [ -z "$rel" ] || realpath -m --relative-to=. $rel; } \
         | grep -vE "$(layer_allowed "$1")" | sort -u
 }
 
@@ -109,6 +113,45 @@ units() {
 # Rules 1-3 on the sources; rule 5 on sources and headers.  A run loop's
 # image_main.h is the body of its images' mains (it stops without their
 # declaration): it is checked through them.
+# compilers LAYER - the compilers a layer's sources must build with, one a
+# line: the host's and avr-gcc (16-bit int) for the portable layers; a
+# platform's own (platform.py's HYGIENE_COMPILERS) for its HAL, run loop and
+# images.  The first one's objects are checked for statics and allocators.
+declare -A platform_cc
+portable_cc=$'cc -fno-pie -O2\navr-gcc -mmcu=atmega128 -Os'
+for p in $platforms; do
+    [ -f "platforms/$p/platform.py" ] || continue
+    platform_cc[$p]=$(python3 tools/make/images.py platform-value "platforms/$p" HYGIENE_COMPILERS) \
+        || bad "platforms/$p/platform.py: no HYGIENE_COMPILERS"
+done
+compilers() {
+    case $1 in
+        hal|wire|firmware) echo "$portable_cc" ;;
+        *) echo "${platform_cc[${1%%-*}]:-}" ;;
+    esac
+}
+# build LAYER SRC NAME - compiles SRC with each of its layer's compilers
+# (rule 1); sets `built` to the first object's path, or to nothing when one
+# failed.
+build() {
+    local k=0 c first="" obj
+    built=
+    while read -r c; do
+        [ -n "$c" ] || continue
+        k=$((k + 1))
+        obj="$out/cc$k/$3.o"
+        mkdir -p "$out/cc$k"
+        if ! $c $warn $(layer_inc "$1") -c "$2" -o "$obj"; then
+            bad "$2 does not compile warning-free with $c"
+            return
+        fi
+        ok
+        [ -n "$first" ] || first=$obj
+    done < <(compilers "$1")
+    if [ -z "$first" ]; then bad "$2: no compilers for the $1 layer"; return; fi
+    built=$first
+}
+
 nsrc=0
 while read -r layer src; do
     case $src in */run/image_main.h) continue ;; esac
@@ -116,38 +159,30 @@ while read -r layer src; do
     if [ -n "$w" ]; then bad "$src ($layer layer) includes what its layer may not: $w"; else ok; fi
     case $src in *.c) ;; *) continue ;; esac
     nsrc=$((nsrc + 1))
-    flags="$warn $(layer_inc "$layer")"
-    name=$(echo "${src%.c}" | tr / _)
-    obj="$out/host/$name.o"
-    if ! cc $flags -fno-pie -O2 -c "$src" -o "$obj"; then bad "$src does not compile on the host"; continue; fi
-    ok
+    build "$layer" "$src" "$(echo "${src%.c}" | tr / _)"
+    obj=$built
+    [ -n "$obj" ] || continue
     w=$(writable "$obj")
     if [ -n "$w" ]; then bad "$src: writable static data: $w"; else ok; fi
     a=$(allocates "$obj")
     if [ -n "$a" ]; then bad "$src: $a"; else ok; fi
-    if avr-gcc -mmcu=atmega128 $flags -Os -c "$src" -o "$out/avr/$name.o"; then ok
-    else bad "$src does not compile warning-free with avr-gcc (16-bit int)"; fi
 done < <(units)
 
-# Images (the generated mains, make firmware-images): warning-free on both,
-# within their layer, no allocator, and no writable statics but the
-# documented ones.
+# Images (the generated mains, make firmware-images): warning-free with the
+# platform's compilers, within their layer, no allocator, and no writable
+# statics but the documented ones.
 nimg=0
 for p in $platforms; do
     [ -f "platforms/$p/images.list" ] || continue
     mains=$(ls "$gen/$p"/*_main.c 2>/dev/null)
     if [ -z "$mains" ]; then bad "$gen/$p has no generated mains: run make firmware-images"; continue; fi
-    flags="$warn $(layer_inc "$p-image")"
     for src in $mains; do
         nimg=$((nimg + 1))
-        name=image_${p}_$(basename "${src%.c}")
-        obj="$out/host/$name.o"
         w=$(layering "$p-image" "$src")
         if [ -n "$w" ]; then bad "$src ($p-image layer) includes what its layer may not: $w"; else ok; fi
-        if ! cc $flags -O2 -c "$src" -o "$obj"; then bad "$src does not compile on the host"; continue; fi
-        ok
-        if avr-gcc -mmcu=atmega128 $flags -Os -c "$src" -o "$out/avr/$name.o"; then ok
-        else bad "$src does not compile warning-free with avr-gcc (16-bit int)"; fi
+        build "$p-image" "$src" "image_${p}_$(basename "${src%.c}")"
+        obj=$built
+        [ -n "$obj" ] || continue
         w=$(nm "$obj" | awk '$2 ~ /^[dDbBC]$/ { print $3 }' | grep -vE '^(app_[A-Za-z0-9_]+|camera_frames)(\.[0-9]+)?$')
         if [ -n "$w" ]; then bad "$src: undocumented writable statics: $w"; else ok; fi
         a=$(allocates "$obj")
@@ -222,6 +257,6 @@ layer_probe epuck1-hal caught "${rel}firmware/common/controller.h"
 layer_probe epuck1-run clean foraging/forager.h
 layer_probe epuck1-run caught "${rel}sim_host/core/sim.h"
 
-echo "firmware hygiene: $nsrc sources and $nimg images, host and avr-gcc, each layer on its own include path"
+echo "firmware hygiene: $nsrc sources and $nimg images, each layer with its compilers and only its include path"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

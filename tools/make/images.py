@@ -48,9 +48,12 @@ constant) is an error naming the file and line; nothing is written then.
 
 usage: images.py list IMAGES.LIST [--platform DIR] [--fields KEY ...]
        images.py generate IMAGES.LIST --out DIR [--platform DIR] [--set NAME=VALUE ...]
+       images.py platform-value PLATFORM_DIR NAME
 
 `list` prints one word per image, NAME:VALUE:VALUE... with the values of
---fields (yes/no keys print yes or no).  `generate` writes DIR/<image>_main.c,
+--fields (yes/no keys print yes or no).  `platform-value` prints NAME of the
+platform's platform.py, one item a line (tests/firmware/hygiene.sh reads
+HYGIENE_COMPILERS so).  `generate` writes DIR/<image>_main.c,
 replacing a file only when its text changes (make rebuilds nothing else).
 Standard library only.
 """
@@ -307,7 +310,26 @@ def write_if_changed(path, text):
     return True
 
 
+def platform_value(platform_dir, name):
+    value = getattr(load_platform(platform_dir), name, None)
+    if value is None:
+        raise DeclarationError(f'{platform_dir}/platform.py has no {name}')
+    return value if isinstance(value, (list, tuple)) else [value]
+
+
 def main(argv=None):
+    if argv is None:
+        argv = sys.argv[1:]
+    if argv[:1] == ['platform-value']:
+        if len(argv) != 3:
+            print('usage: images.py platform-value PLATFORM_DIR NAME', file=sys.stderr)
+            return 2
+        try:
+            print('\n'.join(str(v) for v in platform_value(argv[1], argv[2])))
+        except DeclarationError as e:
+            print(f'images.py: {e}', file=sys.stderr)
+            return 1
+        return 0
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('action', choices=('list', 'generate'))
     ap.add_argument('images', help='the image list (platforms/<p>/images.list)')
