@@ -6,8 +6,9 @@
  * the payloads of telemetry_host.h; the host's side and the rates:
  * docs/host_link.md.
  *
- * An image that wants them gives the HAL the storage (about 250 bytes,
- * static in the image like the camera frames) after hal_epuck_init:
+ * An image that wants them (`host_link yes` in images.list) gives the HAL
+ * the storage (about 250 bytes, static in the image like the camera
+ * frames) after hal_epuck_init; the run loop (run/image_main.h) does:
  *
  *     static hal_epuck_host_t app_host;
  *     hal_epuck_init(&app_hal, &cfg, NULL, 0);
