@@ -190,7 +190,8 @@ def read_images(path, platform_keys, variables=None):
             if key in cur.keys:
                 raise DeclarationError(f'{where}: {key} is set twice in image {cur.name} '
                                        f'(first at {rel}:{cur.keys[key][1]})')
-            check_value(cur, key, keys[key], value, lineno)
+            if variables is not None or not VAR_RE.search(value):   # unexpanded: checked by generate
+                check_value(cur, key, keys[key], value, lineno)
             cur.keys[key] = (value, lineno)
     for im in images:
         for k, spec in keys.items():
