@@ -68,7 +68,7 @@ help:
 	@echo "make video      film seed 000's base run to out/video/foraging_base.mp4 (VIDEO_ARGS=)"
 	@echo "make study-drtm seed 000's study (STUDY_ARGS=--quick for a smoke run)"
 	@echo "make study-faults seed 000 under faults; make study-repatt seed 002's study (STUDY_ARGS=--quick)"
-	@echo "make study-gains seed 002's gains study, reduced (Figs 2a/2b; STUDY_ARGS=--estimate 120: the full sweep's cost)"
+	@echo "make study-gains seed 002's gains study, reduced (Figs 2a/2b; STUDY_ARGS=--quick, --estimate 120: the full sweep's cost)"
 	@echo "make study-eaipp seed 003 (EAIPP, Figs 10-17; STUDY_ARGS=--quick, --figures maze,loss, --picture)"
 	@echo "make firmware-check / firmware / flash   the e-puck gates, .hex files, flashing"
 	@echo "make monitor / spy   watch telemetry (LCM_URL=)"
