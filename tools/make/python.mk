@@ -7,7 +7,7 @@
 
 SWARMTOOLS_STAMP := $(VENV)/.swarmtools-installed
 $(SWARMTOOLS_STAMP): pyproject.toml $(LCM_PY_STAMP) | $(BUILD)/config.mk
-	$(VENV)/bin/pip install --disable-pip-version-check -q --no-deps --no-build-isolation -e .
+	$(call show,PIP,swarmtools into $(VENV) (editable))$(VENV)/bin/pip install --disable-pip-version-check -q --no-deps --no-build-isolation -e .
 	@touch $@
 
 deps: $(SWARMTOOLS_STAMP)
