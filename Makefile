@@ -67,6 +67,7 @@ include $(sort $(wildcard tools/make/*.mk))
 help:
 	@echo "make run        build what is needed and run the default scenario (RUN_SCENARIO=, RUN_ARGS=)"
 	@echo "make test       every test group, each with its time"
+	@echo "make new-controller NAME=foo / new-task NAME=bar   copy the tutorials' example under your name, build it, run it"
 	@echo "make docs       the documentation site, into build/site/ (make docs-serve: at http://127.0.0.1:8000/)"
 	@echo "make deps       install what the build and the tools need (.venv, swarmtools)"
 	@echo "make V=1 ...    the full compiler commands instead of the short CC lines"
