@@ -228,7 +228,9 @@ def cmd_plot(a: argparse.Namespace) -> int:
     store = Store(Path(a.dir))
     plan = store.load_plan()
     out = Path(a.out) if a.out else store.root / f"{a.y}_by_{a.x}.png"
-    plot_metric(store.root / "results.parquet", a.x, a.y, a.by, out, title=plan["name"])
+    frozen = sorted((store.root / "bin").glob("swarmsim-*"))   # the sweep's own simulator documents its keys
+    plot_metric(store.root / "results.parquet", a.x, a.y, a.by, out, title=plan["name"],
+                sim=frozen[-1] if frozen else default_sim())
     print(f"swarm-sweep: wrote {out}")
     return 0
 
