@@ -162,7 +162,7 @@ ALPHA = 0.05
 
 THETA_KEY = "robots.0.params.drtm_theta"
 # The study's arms: a policy, and for DRTM how theta0 and the bounds enter
-# eq 6 (README, seed 000: "offset" is our reading, "clip" the other one).
+# eq 6 (docs/studies/drtm.md: "offset" is our reading, "clip" the other one).
 POLICIES: tuple[str, ...] = ("drtm", "drtm_clip", "artm", "frtm")
 ARM_OF = {("drtm", "offset"): "drtm", ("drtm", "clip"): "drtm_clip", ("artm", "offset"): "artm",
           ("frtm", "offset"): "frtm"}
