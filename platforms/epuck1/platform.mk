@@ -8,13 +8,13 @@
 #                         (against stubs of the e-puck library) with avr-gcc
 #                         (XC16's data model) and arm-none-eabi-gcc
 #                         (Cortex-M4F); footprint table (build/firmware/
-#                         epuck1/footprint.md, and the README's) and the 2 KB
+#                         epuck1/footprint.md, and docs/hardware/footprint.md's) and the 2 KB
 #                         static RAM gate (tests/firmware/image_gates.py,
 #                         described by platform.py)
 #   make epuck1-tests     host tests of the HAL (both IR backends, the host
 #                         link) and the forager image run against the stubs,
 #                         its telemetry frames decoded; the flasher's tests
-#   make readme-footprint the README's footprint table from the gates' measurement
+#   make readme-footprint docs/hardware/footprint.md's table from the gates' measurement
 #   make firmware         .hex files with Microchip XC16 and the user's copy of
 #                         GCtronic's e-puck library (never in this repository):
 #                           XC16_DIR       XC16 install (bin/xc16-gcc)
@@ -52,8 +52,8 @@ EPUCK1_GATE_ARGS = --platform $(EPUCK1) --gen $(EPUCK1_GEN) --build $(FW_OUT)/ep
 epuck1-gates: lcm-types epuck1-images | $(BUILD)/config.mk
 	@$(PYTHON) tests/firmware/image_gates.py $(EPUCK1_GATE_ARGS)
 
-# The README's footprint table, written from the gates' measurement (which
-# fails while the README's differs from it).  The gates run first; their
+# The documentation's footprint table, written from the gates' measurement (which
+# fails while the page's differs from it).  The gates run first; their
 # failure on that difference is the reason to run this, so it is ignored.
 readme-footprint: lcm-types epuck1-images | $(BUILD)/config.mk
 	@$(PYTHON) tests/firmware/image_gates.py $(EPUCK1_GATE_ARGS) > /dev/null || true

@@ -89,6 +89,7 @@ GATES = {
         '.text + .rodata + .data initialisers; "image flash" adds the stubs, libgcc and libc '
         '(8-bit AVR code: the dsPIC\'s is smaller).',
     ],
-    # README.md's footprint table is this platform's (readme_footprint.py).
+    # The documentation's footprint table (docs/hardware/footprint.md,
+    # readme_footprint.py) is this platform's.
     'readme': True,
 }

@@ -42,9 +42,10 @@ their hash cache, count as ours in the static RAM.
                AVR code is 8-bit code: the dsPIC's will be smaller.
 
 Prints a table, writes it to BUILD/footprint.md (and, for the platform whose
-table the README shows, the README's form to footprint_readme.md), exits 1
-when a compile or link fails, the RAM gate is exceeded or the README's table
-is not the measured one.  Standard library only.
+table the documentation shows, the page's form to footprint_readme.md),
+exits 1 when a compile or link fails, the RAM gate is exceeded or the
+documentation's table (docs/hardware/footprint.md) is not the measured one.
+Standard library only.
 
 usage: image_gates.py --platform platforms/epuck1 --gen DIR [--build DIR] [--jobs N]
 """
@@ -506,12 +507,13 @@ def main():
         f.write('# Firmware footprint\n\n' + table)
     print(f'written to {os.path.relpath(out, ROOT)}')
     if gates.get('readme'):
-        # The README shows the same measurement in its own form: written
-        # beside it, and the README's copy must equal it (readme_footprint.py).
+        # The documentation shows the same measurement in its own form:
+        # written beside it, and the page's copy must equal it
+        # (readme_footprint.py).
         readme_table = readme_footprint.render(images, by, readme_footprint.compiler_versions(TARGETS), ram_gate)
         with open(os.path.join(ROOT, build, 'footprint_readme.md'), 'w') as f:
             f.write(readme_table)
-        why = readme_footprint.compare(os.path.join(ROOT, 'README.md'), readme_table)
+        why = readme_footprint.compare(readme_footprint.PAGE, readme_table)
         checks += 1
         if why and why.startswith('note:'):
             print(why)

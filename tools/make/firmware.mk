@@ -18,8 +18,8 @@
 #                         and the dsPIC estimate: build/firmware/cpu.md
 #
 # The images' build-time constants, which declarations name as $(NAME)
-# (tools/make/images.py): seed 000's simulation values by default; README,
-# seed 000, has its real-robot experiments' make lines.
+# (tools/make/images.py): seed 000's simulation values by default;
+# docs/studies/drtm.md has its real-robot experiments' make lines.
 #   FORAGER_POLICY (drtm|artm|frtm), FIRMWARE_N_ROBOTS (20), FIRMWARE_ARENA_MM
 #   (4000), FIRMWARE_F_D (20), FIRMWARE_NEST_RADIUS_MM (750),
 #   FIRMWARE_DRTM_THETA (offset|clip|raw), FIRMWARE_F0 (5),
