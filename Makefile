@@ -23,7 +23,7 @@ WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 # Layering: firmware sees only hal/ and firmware/ (tests/firmware/hygiene.sh
 # also checks its #include lines); the simulator sees everything.
 FW_INC := -Ihal -Ifirmware
-SIM_INC := $(FW_INC) -Isim_host
+SIM_INC := $(FW_INC) -Isim_host -Isim_host/include
 CFLAGS_COMMON := $(WARN) -g -O2 -fno-strict-aliasing -ffp-contract=off
 # Firmware and HAL helpers are C99; the simulator may use C11.
 FW_CFLAGS := -std=c99 -pedantic $(FW_INC) $(CFLAGS_COMMON)

@@ -17,7 +17,7 @@
 #include "registry.h"
 #include "version.h"
 #include "core/runner.h"
-#include "core/scenario.h"
+#include "swarmsim/scenario.h"
 #include "core/camera_render.h"
 #include "core/sim_video.h"
 #include "core/telemetry.h"

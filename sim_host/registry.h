@@ -12,7 +12,7 @@
 #include <stddef.h>
 
 #include "common/controller.h"
-#include "core/task.h"
+#include "swarmsim/task.h"
 
 /** The controller called `name`, or NULL. */
 const controller_def_t *registry_controller(const char *name);

@@ -17,8 +17,8 @@
 
 #include "hal.h"
 #include "units.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 
 #define PI 3.14159265358979
 /* One column of the 40-column, 56 deg frame, mrad. */

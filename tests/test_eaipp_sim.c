@@ -20,9 +20,9 @@
 
 #include "sim_fixture.h"
 
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "tasks/paths/paths.h"
 
 /* The seed and the bound: seed 10 merges at 175.4 s with the turret of

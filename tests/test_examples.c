@@ -16,9 +16,9 @@
 
 #include <cmocka.h>
 
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "examples/phototaxis.h"
 #include "tasks/gather/gather.h"
 

@@ -17,9 +17,9 @@
 #include <cmocka.h>
 
 #include "hal.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/sim_internal.h"
 #include "foraging/nest_beacon.h"
 

@@ -16,9 +16,9 @@
 
 #include "sim_fixture.h"
 
-#include "core/scenario.h"
-#include "core/metrics.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/sim.h"
 #include "foraging/forager.h"
 #include "foraging/nest_beacon.h"
 #include "tasks/foraging/foraging.h"

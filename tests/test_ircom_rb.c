@@ -19,8 +19,8 @@
 
 #include "hal.h"
 #include "registry.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/sim_internal.h"
 
 static scenario_t *idle_scenario(uint32_t robots)

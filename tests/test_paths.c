@@ -32,9 +32,9 @@
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "tasks/paths/paths.h"
 
 /* Groups: 0 the nest at (-1, 0), 1 the food at (+1, 0), 2 `swarm` idle

@@ -8,7 +8,7 @@
 
 #include <cmocka.h>
 
-#include "core/rand.h"
+#include "swarmsim/rand.h"
 #include "common/rng.h"
 
 static void test_normal_moments_and_tails(void **state)

@@ -19,8 +19,8 @@
 #include <cmocka.h>
 
 #include "core/robot_link.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "foraging/forager.h"
 #include "swarmlcm_robot_state_t.h"
 #include "swarmlcm_schema_t.h"

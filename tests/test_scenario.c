@@ -19,7 +19,7 @@
 #include <unistd.h>
 
 #include "common/random_walk.h"
-#include "core/scenario.h"
+#include "swarmsim/scenario.h"
 #include "foraging/forager.h"
 #include "registry.h"
 #include "tasks/foraging/foraging.h"

@@ -19,8 +19,8 @@
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/sim_internal.h"
 
 #define PI 3.14159265358979

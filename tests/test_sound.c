@@ -22,8 +22,8 @@
 
 #include "common/random_walk.h"
 #include "hal.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/sim_internal.h"
 #include "core/sound.h"
 

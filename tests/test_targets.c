@@ -27,9 +27,9 @@
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "tasks/targets/targets.h"
 
 #define PI 3.14159265358979

@@ -23,9 +23,9 @@
 #include <lcm/lcm.h>
 
 #include "common/random_walk.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/telemetry.h"
 #include "foraging/forager.h"
 #include "swarmlcm_event_t.h"

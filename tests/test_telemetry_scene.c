@@ -21,8 +21,8 @@
 #include <lcm/lcm.h>
 
 #include "core/render.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/telemetry.h"
 #include "core/telemetry_scene.h"
 #include "swarmlcm_scene_t.h"

@@ -2,7 +2,7 @@
  * grid.c - the uniform grid of grid.h: counting-sort binning of points and
  * boxes.
  */
-#include "grid.h"
+#include "swarmsim/grid.h"
 
 #include <math.h>
 #include <stdlib.h>

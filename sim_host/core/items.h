@@ -15,8 +15,8 @@
 
 #include <stdint.h>
 
-#include "grid.h"
-#include "scenario.h"
+#include "swarmsim/grid.h"
+#include "swarmsim/scenario.h"
 
 struct sim;
 struct sim_scratch;

@@ -3,7 +3,7 @@
  * counters (observable.h: obstacle-avoidance events are counted on the
  * robot, as seed 000 does), and what each task declares.
  */
-#include "metrics.h"
+#include "swarmsim/metrics.h"
 
 #include <math.h>
 

@@ -1,4 +1,4 @@
-#include "rand.h"
+#include "swarmsim/rand.h"
 
 #include <math.h>
 #include <pthread.h>

@@ -24,7 +24,7 @@
 
 #include <stdint.h>
 
-#include "drawing.h"
+#include "swarmsim/drawing.h"
 
 /** Size of the `err` buffers the functions below write to. */
 #define RENDER_ERR_MAX 256

@@ -21,11 +21,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "metrics.h"
+#include "swarmsim/metrics.h"
 #include "pool.h"
-#include "sim.h"
+#include "swarmsim/sim.h"
 #include "sim_render.h"
-#include "task.h"
+#include "swarmsim/task.h"
 
 #define PATH_MAX_LEN 1024
 

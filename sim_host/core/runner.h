@@ -29,7 +29,7 @@
 #include <stdint.h>
 
 #include "outdir.h"
-#include "scenario.h"
+#include "swarmsim/scenario.h"
 #include "summary.h"
 #include "sim_video.h"
 #include "telemetry.h"

@@ -17,7 +17,7 @@
  *  - A task runs when its section (named after the task) is present, in
  *    registry order whatever the file's order.
  */
-#include "scenario.h"
+#include "swarmsim/scenario.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -25,7 +25,7 @@
 
 #include "registry.h"
 #include "schema.h"
-#include "task.h"
+#include "swarmsim/task.h"
 #include "units.h"
 #include "yaml_tree.h"
 

@@ -9,14 +9,14 @@
 #include <box2d/box2d.h>
 
 #include "faults.h"
-#include "geometry.h"
-#include "grid.h"
+#include "swarmsim/geometry.h"
+#include "swarmsim/grid.h"
 #include "items.h"
 #include "hal.h"
-#include "rand.h"
-#include "sim.h"
+#include "swarmsim/rand.h"
+#include "swarmsim/sim.h"
 #include "robot_link.h"
-#include "task.h"
+#include "swarmsim/task.h"
 #include "telemetry/robot_telemetry.h"
 
 /** What a controller's `hal_t *` points to in the simulator. */

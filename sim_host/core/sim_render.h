@@ -4,7 +4,7 @@
 #define SIM_SIM_RENDER_H
 
 #include "render.h"
-#include "sim.h"
+#include "swarmsim/sim.h"
 
 /** Draws the current state of `sim` to `png_path`.  Returns 0 or -1 with a
  *  message in `err` (RENDER_ERR_MAX bytes). */

@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "sim.h"
+#include "swarmsim/sim.h"
 
 /* Defaults: a 1200 s run at 100 ms steps is 1,201 frames, one minute. */
 #define VIDEO_DEFAULT_EVERY 10

@@ -44,7 +44,7 @@
 
 #include <stdint.h>
 
-#include "scenario.h"
+#include "swarmsim/scenario.h"
 
 struct sim;
 

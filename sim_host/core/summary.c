@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "faults.h"
-#include "task.h"
+#include "swarmsim/task.h"
 
 static void json_string(FILE *f, const char *s)
 {

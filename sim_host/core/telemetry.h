@@ -31,8 +31,8 @@
 
 #include <stdint.h>
 
-#include "metrics.h"
-#include "sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/sim.h"
 
 #define TELEMETRY_CHANNEL_RUN_INFO "RUN_INFO"
 #define TELEMETRY_CHANNEL_SWARM_STATE "SWARM_STATE"

@@ -29,8 +29,8 @@
 
 #include "fuzz.h"
 
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "tasks/foraging/foraging.h"
 
 #define MAX_SETS 8

@@ -13,7 +13,7 @@
 
 #include "blob_detect.h"
 #include "core/camera_render.h"
-#include "core/scenario.h"
+#include "swarmsim/scenario.h"
 #include "core/sim_internal.h"
 
 /* Wall time, and this thread's CPU time: on a machine shared with other

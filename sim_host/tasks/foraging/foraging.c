@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/geometry.h"
-#include "core/grid.h"
-#include "core/rand.h"
+#include "swarmsim/geometry.h"
+#include "swarmsim/grid.h"
+#include "swarmsim/rand.h"
 #include "foraging/forager.h"
 #include "foraging/forager_sense_all.h"
 #include "foraging/nest_beacon.h"

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "core/rand.h"
+#include "swarmsim/rand.h"
 #include "units.h"
 
 /* Rejection sampling: draws per target before the layout is said not to fit. */

@@ -52,7 +52,7 @@
 
 #include <stdint.h>
 
-#include "core/task.h"
+#include "swarmsim/task.h"
 
 typedef enum targets_distribution {
     TARGETS_ONE = 0,
