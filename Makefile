@@ -34,7 +34,7 @@ LDLIBS_SIM := $(BOX2D_LIBS) $(YAML_LIBS) $(PNG_LIBS) $(GL_LIBS) -lpthread -lm
 # firmware/apps/ holds the robot images' mains, built by firmware.mk.
 FW_DIRS := $(filter-out firmware/apps,$(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c)))))
 FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c))
-SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/tasks/*/*.c)))
+SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/models/*/*.c sim_host/tasks/*/*.c)))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 
 # $(call objs,VARIANT,SOURCES)

@@ -6,6 +6,7 @@
 
 #include <string.h>
 
+#include "models/model.h"
 #include "registry_list.h"
 
 static const controller_def_t *const controllers[] = {
@@ -16,6 +17,13 @@ static const controller_def_t *const controllers[] = {
 static const task_def_t *const tasks[] = {
     REGISTRY_TASKS
 };
+
+/* The models, from their one list (models/model_list.h). */
+#define SIM_MODEL(name) &name##_model,
+const model_def_t *const sim_models[SIM_MODEL_COUNT] = {
+#include "models/model_list.h"
+};
+#undef SIM_MODEL
 
 #define COUNT(a) (sizeof (a) / sizeof (a)[0])
 

@@ -23,6 +23,8 @@
 #include "foraging/forager.h"
 #include "registry.h"
 #include "tasks/foraging/foraging.h"
+/* The models' configs, set and read in code (their headers are internal). */
+#include "models/tracker/tracker.h"
 
 #define MAX_SETS 8
 
@@ -177,7 +179,7 @@ static void test_defaults(void **state)
     assert_int_equal(sc->object_count, 0);
     assert_int_equal(sc->light_count, 0);
     assert_int_equal(sc->task_count, 0);
-    assert_int_equal(sc->tracker.enabled, 0);
+    assert_int_equal(tracker_config(sc)->enabled, 0);
     assert_string_equal(sc->groups[0].controller, "random_walk");
     assert_string_equal(sc->groups[0].name, "random_walk");
     assert_ptr_equal(sc->groups[0].def, registry_controller("random_walk"));
@@ -419,9 +421,9 @@ static void test_full_file(void **state)
     assert_int_equal(sc->ircom.quantise_bearing, 0);
     assert_int_equal(sc->ircom.blocked_by_robots, 1);
     assert_float_equal(sc->wheels.speed_noise_rel, 0.05, 1e-6);
-    assert_int_equal(sc->tracker.enabled, 1);
-    assert_float_equal(sc->tracker.noise_mm, 5.0, 1e-6);
-    assert_float_equal(sc->tracker.dropout, 0.1, 1e-6);
+    assert_int_equal(tracker_config(sc)->enabled, 1);
+    assert_float_equal(tracker_config(sc)->noise_mm, 5.0, 1e-6);
+    assert_float_equal(tracker_config(sc)->dropout, 0.1, 1e-6);
     assert_int_equal(sc->output.timeseries_every, 5);
     assert_int_equal(sc->task_count, 1);
     assert_ptr_equal(sc->tasks[0].def, &foraging_task);
@@ -749,7 +751,7 @@ static void test_override_existing_and_absent(void **state)
     assert_int_equal(fx->sc->group_count, 2);                /* appended */
     assert_string_equal(fx->sc->groups[1].controller, "idle");
     assert_int_equal(fx->sc->groups[1].count, 1);            /* entry default */
-    assert_int_equal(fx->sc->tracker.enabled, 1);
+    assert_int_equal(tracker_config(fx->sc)->enabled, 1);
     assert_int_equal(rw_params(fx->sc)->speed_steps_s, 300);
     assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);  /* default kept */
     assert_string_equal(fx->sc->name, "with space");

@@ -22,6 +22,7 @@
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
 #include "core/sim_internal.h"
+#include "models/tracker/tracker.h"
 
 #define PI 3.14159265358979
 
@@ -744,7 +745,7 @@ static void test_tracker_pose(void **state)
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
     sim_destroy(sim);
 
-    sc->tracker.enabled = 1;
+    tracker_config_mut(sc)->enabled = 1;
     sim = fixture_sim(sc, 4);
     sim_set_robot_pose(sim, 0, 0.1234, -0.5678, 1.0);
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_OK);
@@ -753,7 +754,7 @@ static void test_tracker_pose(void **state)
     assert_int_equal(p.heading_mrad, 1000);
     sim_destroy(sim);
 
-    sc->tracker.noise_mm = 10.0f;
+    tracker_config_mut(sc)->noise_mm = 10.0f;
     sim = fixture_sim(sc, 4);
     double sum = 0, sq = 0;
     for (int k = 0; k < 400; k++) {
@@ -767,8 +768,8 @@ static void test_tracker_pose(void **state)
     assert_true(fabs(mean) < 2.0 && sd > 8.0 && sd < 12.0);
     sim_destroy(sim);
 
-    sc->tracker.noise_mm = 0.0f;
-    sc->tracker.dropout = 1.0f;
+    tracker_config_mut(sc)->noise_mm = 0.0f;
+    tracker_config_mut(sc)->dropout = 1.0f;
     sim = fixture_sim(sc, 4);
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
     sim_destroy(sim);

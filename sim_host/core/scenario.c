@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "models/model.h"
 #include "registry.h"
 #include "schema.h"
 #include "swarmsim/task.h"
@@ -251,18 +252,6 @@ static const param_desc_t wheels_params[] = {
     PARAM_END
 };
 
-static const param_desc_t tracker_params[] = {
-    { .key = "enabled", PARAM_BOOL_FIELD(SC, tracker.enabled),
-      .doc = "an overhead tracker gives every robot its pose (hal_pose)" },
-    { .key = "noise_mm", PARAM_FIELD(SC, tracker.noise_mm, float), .min = 0, .max = 10000,
-      .doc = "Gaussian sd of the tracked x and y, mm" },
-    { .key = "noise_deg", PARAM_FIELD(SC, tracker.noise_deg, float), .min = 0, .max = 180,
-      .doc = "Gaussian sd of the tracked heading, deg" },
-    { .key = "dropout", PARAM_FIELD(SC, tracker.dropout, float), .min = 0, .max = 1,
-      .doc = "probability the tracker loses a robot for a step" },
-    PARAM_END
-};
-
 /* The names of sound_silent_t, in its order. */
 const char *const scenario_sound_silent_names[] = { "ambient", "none", NULL };
 
@@ -354,6 +343,8 @@ static const robot_group_t group_default = {
 
 static int check_object(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
 static int check_group(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
+static int fill_other(const loader_t *ld, const ypair_t *pair, const char *path, void *base);
+static const char *other_key(size_t i);
 static int fill_task(const loader_t *ld, const ypair_t *pair, const char *path, void *base);
 static const char *task_key(size_t i);
 
@@ -368,7 +359,6 @@ MAPPING_SCHEMA(ambient);
 MAPPING_SCHEMA(camera);
 MAPPING_SCHEMA(ircom);
 MAPPING_SCHEMA(wheels);
-MAPPING_SCHEMA(tracker);
 MAPPING_SCHEMA(sound);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
@@ -377,7 +367,7 @@ MAPPING_SCHEMA(host_message);
 
 static const seq_desc_t poses_seq = {
     "poses", SCENARIO_MAX_POSES, sizeof(pose_def_t), &pose_default, &pose_schema,
-    offsetof(robot_group_t, placement.poses), offsetof(robot_group_t, placement.pose_count), NULL, 0
+    offsetof(robot_group_t, placement.poses), offsetof(robot_group_t, placement.pose_count), NULL, 0, NULL
 };
 static const child_t placement_children[] = {
     { "poses", CHILD_SEQUENCE, NULL, &poses_seq, "poses: one {x, y, heading} per robot" },
@@ -388,7 +378,7 @@ static const schema_t placement_schema = { placement_params, placement_children,
 static int check_fault(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
 static const seq_desc_t faults_seq = {
     "faults", SCENARIO_MAX_FAULTS, sizeof(fault_def_t), &fault_default, &fault_schema,
-    offsetof(robot_group_t, faults), offsetof(robot_group_t, fault_count), check_fault, 0
+    offsetof(robot_group_t, faults), offsetof(robot_group_t, fault_count), check_fault, 0, NULL
 };
 
 static const child_t group_children[] = {
@@ -397,28 +387,31 @@ static const child_t group_children[] = {
     { "params", CHILD_DEFERRED, NULL, NULL, "the controller's parameters" },
     CHILD_END
 };
-static const schema_t group_schema = { group_params, group_children, NULL, NULL };
+static int fill_group_model(const loader_t *ld, const ypair_t *pair, const char *path, void *base);
+static const char *group_model_key(size_t i);
+static void group_model_defaults(void *group);
+static const schema_t group_schema = { group_params, group_children, fill_group_model, group_model_key };
 
 static const seq_desc_t groups_seq = {
     "groups", SCENARIO_MAX_GROUPS, sizeof(robot_group_t), &group_default, &group_schema,
-    offsetof(scenario_t, groups), offsetof(scenario_t, group_count), check_group, 0
+    offsetof(scenario_t, groups), offsetof(scenario_t, group_count), check_group, 0, group_model_defaults
 };
 /* On the heap: a scenario holds the objects its file lists, not room for
  * SCENARIO_MAX_OBJECTS of them. */
 static const seq_desc_t objects_seq = {
     "objects", SCENARIO_MAX_OBJECTS, sizeof(object_def_t), &object_default, &object_schema,
-    offsetof(scenario_t, objects), offsetof(scenario_t, object_count), check_object, 1
+    offsetof(scenario_t, objects), offsetof(scenario_t, object_count), check_object, 1, NULL
 };
 static const seq_desc_t lights_seq = {
     "lights", SCENARIO_MAX_LIGHTS, sizeof(light_def_t), &light_default, &light_schema,
-    offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL, 0
+    offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL, 0, NULL
 };
 
 static int check_host_message(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
 static const seq_desc_t host_messages_seq = {
     "messages", SCENARIO_MAX_HOST_MESSAGES, sizeof(host_message_def_t), &host_message_default,
     &host_message_schema, offsetof(scenario_t, host.messages), offsetof(scenario_t, host.message_count),
-    check_host_message, 0
+    check_host_message, 0, NULL
 };
 static const child_t host_children[] = {
     { "messages", CHILD_SEQUENCE, NULL, &host_messages_seq, "one {robot, at, hex} per message" },
@@ -438,7 +431,6 @@ static const child_t top_children[] = {
     { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
     { "ircom", CHILD_MAPPING, &ircom_schema, NULL, "IR communication" },
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
-    { "tracker", CHILD_MAPPING, &tracker_schema, NULL, "overhead tracker (hal_pose)" },
     { "sound", CHILD_MAPPING, &sound_schema, NULL, "speakers and microphones (seed 002's model)" },
     { "host", CHILD_MAPPING, &host_schema, NULL,
       "messages the host sends the robots (hal_host_receive; a planner's routes)" },
@@ -447,7 +439,7 @@ static const child_t top_children[] = {
       "the robots' own telemetry, in the loop" },
     CHILD_END
 };
-static const schema_t top_schema = { top_params, top_children, fill_task, task_key };
+static const schema_t top_schema = { top_params, top_children, fill_other, other_key };
 
 /* ---------------------------------------------------------------- defaults */
 
@@ -468,6 +460,7 @@ static int default_params_of(const controller_def_t *def, scenario_params_t *out
 static void group_defaults(robot_group_t *g, const controller_def_t *def)
 {
     *g = group_default;
+    group_model_defaults(g);
     if (def != NULL) {
         snprintf(g->controller, sizeof g->controller, "%s", def->name);
         g->def = def;
@@ -516,7 +509,6 @@ void scenario_defaults(scenario_t *out)
     out->wheels.speed_noise_rel = 0.0f;
     out->wheels.bias_sd = 0.0f;
     out->wheels.bias_per_step = 0;
-    out->tracker.enabled = 0;
     out->sound.enabled = 0;
     out->sound.a0 = 299.18;
     out->sound.alpha = 0.12;
@@ -536,6 +528,11 @@ void scenario_defaults(scenario_t *out)
     snprintf(out->robot_telemetry.channel_prefix, sizeof out->robot_telemetry.channel_prefix, "FW_");
     out->robot_telemetry.baud = 115200;
     out->robot_telemetry.dump = 0;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim_models[id]->default_config != NULL) {
+            sim_models[id]->default_config(scenario_model_config_mut(out, (sim_model_id_t)id));
+        }
+    }
 }
 
 uint32_t scenario_robot_count(const scenario_t *sc)
@@ -809,6 +806,124 @@ static int name_groups(const loader_t *ld, const ynode_t *root, scenario_t *sc)
     return 0;
 }
 
+/* ---------------------------------------------------------------- models */
+
+/* Each model's config (and group config) at its own 16-byte aligned offset
+ * of the scenario's block, in list order (model.h). */
+static size_t model_offset(sim_model_id_t id, int group)
+{
+    size_t off = 0;
+    for (uint32_t k = 0; k < (uint32_t)id; k++) {
+        size_t n = group ? sim_models[k]->group_config_size : sim_models[k]->config_size;
+        off += (n + 15u) & ~(size_t)15u;
+    }
+    SIM_ASSERT(off + (group ? sim_models[id]->group_config_size : sim_models[id]->config_size)
+               <= (group ? (size_t)SCENARIO_GROUP_MODEL_CONFIG_BYTES : (size_t)SCENARIO_MODEL_CONFIG_BYTES));
+    return off;
+}
+
+const void *scenario_model_config(const scenario_t *sc, sim_model_id_t id)
+{
+    return sc->model_config.bytes + model_offset(id, 0);
+}
+
+void *scenario_model_config_mut(scenario_t *sc, sim_model_id_t id)
+{
+    return sc->model_config.bytes + model_offset(id, 0);
+}
+
+const void *scenario_group_model_config(const robot_group_t *g, sim_model_id_t id)
+{
+    return sim_models[id]->group_config_size ? g->model_config.bytes + model_offset(id, 1) : NULL;
+}
+
+void *scenario_group_model_config_mut(robot_group_t *g, sim_model_id_t id)
+{
+    return sim_models[id]->group_config_size ? g->model_config.bytes + model_offset(id, 1) : NULL;
+}
+
+/* A group's model keys take their defaults (seq_desc_t.init). */
+static void group_model_defaults(void *group)
+{
+    robot_group_t *g = group;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim_models[id]->default_group_config != NULL) {
+            sim_models[id]->default_group_config(scenario_group_model_config_mut(g, (sim_model_id_t)id));
+        }
+    }
+}
+
+/* A key of a group that a model declares (model_def_t.group_schema). */
+static int fill_group_model(const loader_t *ld, const ypair_t *pair, const char *path, void *base)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const model_def_t *m = sim_models[id];
+        if (m->group_schema != NULL) {
+            int rc = schema_fill_known(ld, pair, path, m->group_schema,
+                                       scenario_group_model_config_mut(base, (sim_model_id_t)id));
+            if (rc != 0) {
+                return rc;
+            }
+        }
+    }
+    return 0;
+}
+
+static const char *group_model_key(size_t i)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const char *key;
+        for (size_t k = 0; sim_models[id]->group_schema != NULL
+                           && (key = schema_key_at(sim_models[id]->group_schema, k)) != NULL; k++) {
+            if (i-- == 0) {
+                return key;
+            }
+        }
+    }
+    return NULL;
+}
+
+/* A top-level key of a model's (one of its sections), or of a task's. */
+static int fill_other(const loader_t *ld, const ypair_t *pair, const char *path, void *base)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        int rc = schema_fill_known(ld, pair, path, sim_models[id]->schema,
+                                   scenario_model_config_mut(base, (sim_model_id_t)id));
+        if (rc != 0) {
+            return rc;
+        }
+    }
+    return fill_task(ld, pair, path, base);
+}
+
+static const char *other_key(size_t i)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const char *key;
+        for (size_t k = 0; (key = schema_key_at(sim_models[id]->schema, k)) != NULL; k++) {
+            if (i-- == 0) {
+                return key;
+            }
+        }
+    }
+    return task_key(i);
+}
+
+/* Every model's cross-checks, in list order. */
+static int check_models(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const model_def_t *m = sim_models[id];
+        char path[SCHEMA_PATH_MAX] = "", shown[SCHEMA_PATH_MAX], msg[SIM_ERR_MAX] = "";
+        if (m->check == NULL || m->check(scenario_model_config(sc, (sim_model_id_t)id), sc, path, msg) == 0) {
+            continue;
+        }
+        schema_display_path(shown, path);
+        return schema_fail(ld, schema_find(root, path), shown, "%s", msg);
+    }
+    return 0;
+}
+
 /* ---------------------------------------------------------------- tasks */
 
 static const char *task_key(size_t i)
@@ -1063,7 +1178,8 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
                            sc->ircom.tx_per_period, sc->ircom.slots);
     }
     if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0 || check_camera(ld, root, sc) != 0
-        || check_inside(ld, root, sc) != 0 || check_host_messages(ld, root, sc) != 0) {
+        || check_inside(ld, root, sc) != 0 || check_host_messages(ld, root, sc) != 0
+        || check_models(ld, root, sc) != 0) {
         return -1;
     }
     order_tasks(sc);
@@ -1180,6 +1296,11 @@ void scenario_free(scenario_t *sc)
         free(sc->objects);
         sc->objects = NULL;
         sc->object_count = 0;
+        for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+            if (sim_models[id]->free_config != NULL) {
+                sim_models[id]->free_config(scenario_model_config_mut(sc, (sim_model_id_t)id));
+            }
+        }
     }
 }
 
@@ -1221,6 +1342,18 @@ int scenario_write_effective(const char *path, const scenario_override_t *overri
 static void print_group_params(FILE *f, const char *prefix)
 {
     const controller_def_t *def;
+    /* The models' keys of a group first: "robots[]", the prefix without ".params". */
+    char group[SCHEMA_PATH_MAX];
+    snprintf(group, sizeof group, "%.*s", (int)(strlen(prefix) > 7 ? strlen(prefix) - 7 : 0), prefix);
+    robot_group_t *g = calloc(1, sizeof *g);
+    for (uint32_t id = 0; g != NULL && id < SIM_MODEL_COUNT; id++) {
+        if (sim_models[id]->group_schema != NULL) {
+            group_model_defaults(g);
+            schema_print(f, group, sim_models[id]->group_schema, scenario_group_model_config(g, (sim_model_id_t)id),
+                         NULL);
+        }
+    }
+    free(g);
     for (size_t i = 0; (def = registry_controller_at(i)) != NULL; i++) {
         scenario_params_t buf;
         if (default_params_of(def, &buf) != 0) {
@@ -1247,6 +1380,9 @@ void scenario_print_schema(FILE *file)
                   "the arena is centred on 0,0):\n");
     fprintf(file, "  %-34s %-6s %-12s %-22s %s\n", "key", "type", "default", "range", "meaning");
     schema_print(file, "", &top_schema, def, print_group_params);
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        schema_print(file, "", sim_models[id]->schema, scenario_model_config(def, (sim_model_id_t)id), NULL);
+    }
     for (size_t i = 0; (task = registry_task_at(i)) != NULL; i++) {
         union { uint8_t bytes[SCENARIO_TASK_CONFIG_MAX]; double d; uint64_t u; } cfg;
         memset(&cfg, 0, sizeof cfg);

@@ -88,7 +88,6 @@ static int build_robots(struct sim *sim, char err[256])
             sim_rand_seed(&r->noise, sim->seed, i, RAND_SENSORS);
             sim_rand_seed(&r->ircom_rand, sim->seed, i, RAND_IRCOM);
             sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
-            sim_rand_seed(&r->tracker_rand, sim->seed, i, RAND_TRACKER);
             sim_rand_seed(&r->sound_rand, sim->seed, i, RAND_SOUND);
             r->bias_left = r->bias_right = 0.0;
             if (sc->wheels.bias_sd > 0.0f) {
@@ -197,6 +196,11 @@ void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot
         p->ambient_min = (int16_t)low;
     }
     p->blobs = r->camera_stamp != 0 && r->camera_stamp >= since ? (int8_t)r->blob_count : -1;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim->models[id].def->platform) {
+            sim->models[id].def->platform(sim, sim->models[id].self, i, since, p);
+        }
+    }
 }
 
 /* After robot r's step: its image's telemetry sender, as on the robot.
@@ -231,15 +235,131 @@ static void step_robots(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
     for (uint32_t k = begin; k < end; k++) {
         uint32_t i = sim->step_order[k];
         sim_robot_t *r = &sim->robots[i];
-        if (r->ctrl && !faults_stopped(sim, i)) {
+        if (r->ctrl && !sim_robot_halted(sim, i)) {
             r->hal.worker = worker;
             r->def->step(r->ctrl, &r->hal);
             if (sim->robot_tx) {
                 robot_telemetry_of(sim, i);
             }
+            for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+                const sim_model_run_t *m = &sim->models[id];
+                if (m->def->after_robot) {
+                    m->def->after_robot(sim, m->self, i);
+                }
+            }
             r->hal.worker = 0;
         }
     }
+}
+
+/* ---------------------------------------------------------------- models */
+
+/* 64-byte aligned, zero-filled: a robot's element never shares a cache
+ * line with another model's. */
+static void *alloc_zeroed(size_t bytes)
+{
+    size_t size = (bytes + 63u) & ~(size_t)63u;
+    void *p = aligned_alloc(64, size ? size : 64);
+    if (p) {
+        memset(p, 0, size ? size : 64);
+    }
+    return p;
+}
+
+/* Every model's arrays and scratch, then its create, in list order. */
+static int create_models(struct sim *sim, char err[256])
+{
+    uint32_t workers = pool_threads(sim->pool);
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        sim_model_run_t *m = &sim->models[id];
+        m->def = sim_models[id];
+        m->config = scenario_model_config(sim->sc, (sim_model_id_t)id);
+        if (m->def->layout) {
+            m->def->layout(m->config, sim->sc, &m->layout);
+        }
+        SIM_ASSERT(m->layout.arrays <= MODEL_MAX_ARRAYS);
+        for (uint32_t k = 0; k < m->layout.arrays; k++) {
+            if (!(m->array[k] = alloc_zeroed((size_t)sim->n * m->layout.elem_size[k]))) {
+                snprintf(err, 256, "out of memory for the %s model's state of %u robots", m->def->name, sim->n);
+                return -1;
+            }
+        }
+        if (m->layout.scratch_size) {
+            m->scratch_stride = (m->layout.scratch_size + 63u) & ~(size_t)63u;
+            if (!(m->scratch = alloc_zeroed(workers * m->scratch_stride))) {
+                snprintf(err, 256, "out of memory for the %s model's working memory", m->def->name);
+                return -1;
+            }
+        }
+    }
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        sim_model_run_t *m = &sim->models[id];
+        m->created = 1;
+        if (m->def->create && m->def->create(sim, m->config, &m->self, err) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static void destroy_models(struct sim *sim)
+{
+    for (uint32_t id = SIM_MODEL_COUNT; id-- > 0;) {
+        sim_model_run_t *m = &sim->models[id];
+        if (m->created && m->def->destroy) {
+            m->def->destroy(m->self);
+        }
+        for (uint32_t k = 0; k < MODEL_MAX_ARRAYS; k++) {
+            free(m->array[k]);
+        }
+        free(m->scratch);
+    }
+}
+
+int sim_robot_halted(const struct sim *sim, uint32_t i)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        if (m->def->halts && m->def->halts(sim, m->self, i)) {
+            return 1;
+        }
+    }
+    return faults_stopped(sim, i);
+}
+
+typedef enum phase { PHASE_BEGIN, PHASE_BEFORE_CONTROL, PHASE_AFTER_CONTROL, PHASE_DRIVE, PHASE_END } phase_t;
+
+static void (*phase_hook(const model_def_t *d, phase_t p))(sim_t *, void *)
+{
+    switch (p) {
+    case PHASE_BEGIN: return d->begin_step;
+    case PHASE_BEFORE_CONTROL: return d->before_control;
+    case PHASE_AFTER_CONTROL: return d->after_control;
+    case PHASE_DRIVE: return d->drive;
+    default: return d->end_step;
+    }
+}
+
+/* One phase's hook of every model that takes part, in list order. */
+static void run_phase(struct sim *sim, phase_t p)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        void (*fn)(sim_t *, void *) = phase_hook(sim->models[id].def, p);
+        if (fn) {
+            fn(sim, sim->models[id].self);
+        }
+    }
+}
+
+static int models_serial(const struct sim *sim)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        if (m->def->serial && m->def->serial(sim, m->self)) {
+            return 1;
+        }
+    }
+    return 0;
 }
 
 static int create_tasks(struct sim *sim, char err[256])
@@ -355,7 +475,8 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         sim_destroy(sim);
         return NULL;
     }
-    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0 || faults_create(sim, err) != 0) {
+    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0 || faults_create(sim, err) != 0
+        || create_models(sim, err) != 0) {
         sim_destroy(sim);
         return NULL;
     }
@@ -386,6 +507,7 @@ void sim_destroy(sim_t *sim)
             sim->tasks[t].def->destroy(sim->tasks[t].self);
         }
     }
+    destroy_models(sim);
     world_destroy(sim);
     for (uint32_t w = 0; sim->scratch && w < pool_threads(sim->pool); w++) {
         free(sim->scratch[w].obstacle_mark);
@@ -420,11 +542,13 @@ void sim_step(sim_t *sim)
 {
     sim->n_events = 0;
     faults_begin_step(sim);
+    run_phase(sim, PHASE_BEGIN);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->before_control) {
             sim->tasks[t].def->before_control(sim->tasks[t].self, sim);
         }
     }
+    run_phase(sim, PHASE_BEFORE_CONTROL);
     for (uint32_t i = 0; sim->links && i < sim->n; i++) {
         robot_link_begin_step(&sim->links[i], sim->link_budget);
     }
@@ -436,7 +560,7 @@ void sim_step(sim_t *sim)
     /* Side by side when every sensor can be (not the rendered camera: one
      * GL context); each robot reads the start of the step, so the order
      * and the threads do not matter (test_sim: step order, thread count). */
-    if (camera_parallel(sim)) {
+    if (camera_parallel(sim) && !models_serial(sim)) {
         pool_for(sim->pool, sim->n, CONTROL_CHUNK, step_robots, sim);
     } else {
         step_robots(0, sim->n, 0, sim);
@@ -444,11 +568,13 @@ void sim_step(sim_t *sim)
     items_index_drop(sim);
     faults_transmit(sim);
     ircom_deliver(sim);
+    run_phase(sim, PHASE_AFTER_CONTROL);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->after_control) {
             sim->tasks[t].def->after_control(sim->tasks[t].self, sim);
         }
     }
+    run_phase(sim, PHASE_DRIVE);
     world_drive(sim);
     world_advance(sim);
     world_read_poses(sim);
@@ -459,6 +585,7 @@ void sim_step(sim_t *sim)
         }
     }
     sound_end_step(sim);
+    run_phase(sim, PHASE_END);
     sim->step++;
     for (uint32_t t = 0; t < sim->n_tasks && !sim->done; t++) {
         if (sim->tasks[t].def->done) {
@@ -577,8 +704,13 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
     /* Sensors must see the new pose even within this step (the sound
      * field too, when it is read before the step's controllers run). */
-    r->ir_stamp = r->ambient_stamp = r->camera_stamp = r->pose_stamp = 0;
+    r->ir_stamp = r->ambient_stamp = r->camera_stamp = 0;
     sim->sound_stamp = 0;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim->models[id].def->moved) {
+            sim->models[id].def->moved(sim, sim->models[id].self, i);
+        }
+    }
 }
 
 int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg)
@@ -714,6 +846,11 @@ uint64_t sim_state_hash(const sim_t *sim)
         h = fnv(h, &r->theta, sizeof r->theta);
         h = fnv(h, &r->steps_left, sizeof r->steps_left);
         h = fnv(h, &r->steps_right, sizeof r->steps_right);
+        for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+            if (sim->models[id].def->hash) {
+                h = sim->models[id].def->hash(sim, sim->models[id].self, i, h);
+            }
+        }
     }
     return h;
 }

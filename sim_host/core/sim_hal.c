@@ -164,35 +164,6 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
 void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_BODY_BIT, on); }
 void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_FRONT_BIT, on); }
 
-/* The overhead tracker: ground truth, with Gaussian noise and dropout from
- * the robot's own stream (drawn only when the tracker is on, so a run
- * without it is unchanged). */
-hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
-{
-    sim_robot_t *r = robot(hal);
-    const scenario_t *sc = hal->sim->sc;
-    if (!sc->tracker.enabled) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    if (r->pose_stamp != stamp(hal)) {
-        r->pose_stamp = stamp(hal);
-        r->pose_status = HAL_ERR_UNAVAILABLE;
-        if (sc->tracker.dropout <= 0.0f || sim_rand_uniform(&r->tracker_rand) >= sc->tracker.dropout) {
-            double x = 1000.0 * r->x + sc->tracker.noise_mm * sim_rand_normal(&r->tracker_rand);
-            double y = 1000.0 * r->y + sc->tracker.noise_mm * sim_rand_normal(&r->tracker_rand);
-            double h = r->theta + sc->tracker.noise_deg * UNITS_PI / 180.0 * sim_rand_normal(&r->tracker_rand);
-            h = atan2(sin(h), cos(h));
-            r->pose.x_mm = (int32_t)lround(x);
-            r->pose.y_mm = (int32_t)lround(y);
-            r->pose.heading_mrad = (int16_t)lround(1000.0 * h);
-            r->pose.age_ms = 0;   /* a fix every control step */
-            r->pose_status = HAL_OK;
-        }
-    }
-    *out = r->pose;
-    return r->pose_status;
-}
-
 /* The host's messages (scenario `host.messages`): a robot's next one in
  * file order, once its time has come.  No file section: no host link. */
 hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len)

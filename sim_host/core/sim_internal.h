@@ -9,6 +9,7 @@
 #include <box2d/box2d.h>
 
 #include "faults.h"
+#include "models/model.h"
 #include "swarmsim/geometry.h"
 #include "swarmsim/grid.h"
 #include "items.h"
@@ -35,7 +36,7 @@ typedef struct sim_robot {
     uint16_t leds;                 /**< bits 0-7 ring, 8 body, 9 front */
 
     /* Sensor caches, valid when *_stamp == sim->step + 1. */
-    uint64_t ir_stamp, ambient_stamp, camera_stamp, pose_stamp;
+    uint64_t ir_stamp, ambient_stamp, camera_stamp;
     uint16_t ir[HAL_IR_COUNT];
     uint16_t ambient[HAL_IR_COUNT];
     hal_blob_t blobs[HAL_MAX_BLOBS];
@@ -48,8 +49,6 @@ typedef struct sim_robot {
     double cam_phase_s;            /**< when its frame 0 began, s */
     hal_blob_t cam_next[HAL_MAX_BLOBS];
     sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
-    int8_t pose_status;            /**< of the tracker this step */
-    hal_pose_t pose;
     uint32_t host_next;            /**< host.messages: where its next one may be */
 
     uint16_t ircom_tx[SIM_IRCOM_TX_MAX]; /**< messages to send this step */
@@ -63,7 +62,6 @@ typedef struct sim_robot {
     sim_rand_t wheel_rand;         /**< actuation noise */
     double bias_left, bias_right;  /**< wheels.bias_sd's biases (this run's, or this step's), steps/s */
     sim_rand_t bias_rand;          /**< their draws (RAND_WHEEL_BIAS) */
-    sim_rand_t tracker_rand;       /**< the overhead tracker's noise and dropout */
     sim_rand_t sound_rand;         /**< eq 4's noise of every pair this robot hears */
 
     /* Sound (sound.h): what the controller set this step plays during the
@@ -159,6 +157,19 @@ typedef struct sim_group_counter {
     uint8_t slot;              /**< in sim->counters */
 } sim_group_counter_t;
 
+/** A model in a run: its config, its arrays, its scratch per worker and
+ *  what its create made. */
+typedef struct sim_model_run {
+    const model_def_t *def;
+    const void *config;            /**< in the scenario */
+    void *self;
+    model_layout_t layout;
+    void *array[MODEL_MAX_ARRAYS]; /**< n elements each */
+    uint8_t *scratch;              /**< one block per worker, layout.scratch_size each */
+    size_t scratch_stride;
+    int created;                   /**< its create ran (destroy is due) */
+} sim_model_run_t;
+
 /** A running task. */
 typedef struct sim_task_run {
     const task_def_t *def;
@@ -219,7 +230,48 @@ struct sim {
     uint64_t sound_stamp;          /**< the sound field is this step's when == step + 1 */
     vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
+
+    sim_model_run_t models[SIM_MODEL_COUNT];   /**< in list order (models/model_list.h) */
 };
+
+/** Model `id`'s config for this run. */
+static inline const void *sim_model_config(const struct sim *sim, sim_model_id_t id)
+{
+    return sim->models[id].config;
+}
+
+/** Array `k` of model `id`: robot i's element is at i x its elem_size. */
+static inline void *sim_model_array(const struct sim *sim, sim_model_id_t id, uint32_t k)
+{
+    return sim->models[id].array[k];
+}
+
+/** Model `id`'s working memory on pool worker `worker` (hal_t.worker). */
+static inline void *sim_model_scratch(const struct sim *sim, sim_model_id_t id, uint32_t worker)
+{
+    return sim->models[id].scratch + (size_t)worker * sim->models[id].scratch_stride;
+}
+
+/** What model `id`'s create left in its self (NULL: nothing). */
+static inline void *sim_model_self(const struct sim *sim, sim_model_id_t id)
+{
+    return sim->models[id].self;
+}
+
+/** The robot behind a controller's hal_t. */
+static inline sim_robot_t *sim_hal_robot(hal_t *hal)
+{
+    return &hal->sim->robots[hal->index];
+}
+
+/** The stamp of sensor readings taken in the current step (0: none yet). */
+static inline uint64_t sim_hal_stamp(const hal_t *hal)
+{
+    return hal->sim->step + 1;
+}
+
+/** Non-zero when a model stops robot i's controller and motors this step. */
+int sim_robot_halted(const struct sim *sim, uint32_t i);
 
 /* sim.c */
 /** Robot i's commands and sensor summaries as robot_telemetry reports them:

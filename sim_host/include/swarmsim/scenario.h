@@ -57,6 +57,14 @@
  *  default camera.range. */
 #define SCENARIO_CAMERA_EPUCK_REACH_M 0.9f
 #define SCENARIO_SEED_MAX UINT64_C(9007199254740991)
+/** Bytes for every model's config (sim_host/models/model.h), and for every
+ *  model's config of one group: each model's struct at its own 16-byte
+ *  aligned offset, in list order (scenario_model_config). */
+#define SCENARIO_MODEL_CONFIG_BYTES 4096
+#define SCENARIO_GROUP_MODEL_CONFIG_BYTES 512
+
+/** A block of plain data aligned for any member type. */
+#define SCENARIO_BLOCK(bytes_) union { uint8_t bytes[bytes_]; max_align_t align; }
 
 struct task_def;
 
@@ -187,6 +195,8 @@ typedef struct robot_group {
     uint8_t moves;              /**< 0: a static body that nothing pushes (a fixed station, a landmark) */
     uint32_t fault_count;
     fault_def_t faults[SCENARIO_MAX_FAULTS];
+    /** The models' keys of this group (model.h: group_schema). */
+    SCENARIO_BLOCK(SCENARIO_GROUP_MODEL_CONFIG_BYTES) model_config;
 } robot_group_t;
 
 /** A task's section, parsed into the task's own config struct. */
@@ -292,13 +302,6 @@ typedef struct scenario {
                                         eq 3 other than ARGoS's once-a-run bias) */
     } wheels;
 
-    struct {
-        uint8_t enabled;           /**< an overhead tracker gives hal_pose */
-        float noise_mm;            /**< Gaussian sd of x and y, mm */
-        float noise_deg;           /**< Gaussian sd of the heading, deg */
-        float dropout;             /**< probability a step has no pose */
-    } tracker;
-
     /** Sound (seed 002's eqs 1-4; sound.h).  Disabled: hal_mic_level and
      *  hal_speaker_set answer HAL_ERR_UNAVAILABLE and nothing is drawn. */
     struct {
@@ -335,6 +338,10 @@ typedef struct scenario {
 
     uint32_t task_count;
     task_config_t tasks[SCENARIO_MAX_TASKS];  /**< in registry order */
+
+    /** Every model's config (model.h), its defaults unless the file has its
+     *  sections; scenario_model_config finds one. */
+    SCENARIO_BLOCK(SCENARIO_MODEL_CONFIG_BYTES) model_config;
 } scenario_t;
 
 /** One `--set key.path=value` override. */
