@@ -24,6 +24,7 @@
 #include "registry.h"
 #include "tasks/foraging/foraging.h"
 /* The models' configs, set and read in code (their headers are internal). */
+#include "models/host/host.h"
 #include "models/tracker/tracker.h"
 
 #define MAX_SETS 8
@@ -1020,11 +1021,11 @@ static void test_host_messages(void **state)
     expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
     assert_int_equal(load_sets(fx, "s.yaml", RW "    count: 2\nhost:\n  messages:\n"
                                "    - {robot: 1, at: 0.5, hex: 'A1b2'}\n", NULL), 0);
-    assert_int_equal(fx->sc->host.message_count, 1);
-    assert_int_equal(fx->sc->host.messages[0].robot, 1);
-    assert_int_equal(fx->sc->host.messages[0].len, 2);
-    assert_int_equal(fx->sc->host.messages[0].bytes[0], 0xA1);
-    assert_int_equal(fx->sc->host.messages[0].bytes[1], 0xB2);
+    assert_int_equal(host_config(fx->sc)->message_count, 1);
+    assert_int_equal(host_config(fx->sc)->messages[0].robot, 1);
+    assert_int_equal(host_config(fx->sc)->messages[0].len, 2);
+    assert_int_equal(host_config(fx->sc)->messages[0].bytes[0], 0xA1);
+    assert_int_equal(host_config(fx->sc)->messages[0].bytes[1], 0xB2);
 }
 
 #define T(f) cmocka_unit_test_setup_teardown(f, setup, teardown)

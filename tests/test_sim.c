@@ -22,6 +22,7 @@
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
 #include "core/sim_internal.h"
+#include "models/host/host.h"
 #include "models/tracker/tracker.h"
 
 #define PI 3.14159265358979
@@ -793,14 +794,14 @@ static void test_host_messages(void **state)
         { 1, 0.0f, 3, 0x11 }, { 0, 0.25f, 1, 0x22 }, { 1, 0.0f, 2, 0x33 },
     };
     for (uint32_t k = 0; k < 3; k++) {
-        host_message_def_t *d = &sc->host.messages[k];
-        memset(d, 0, sizeof *d);
-        d->robot = m[k].robot;
-        d->at = m[k].at;
-        d->len = m[k].len;
-        d->bytes[0] = m[k].b0;
+        host_message_def_t d;
+        memset(&d, 0, sizeof d);
+        d.robot = m[k].robot;
+        d.at = m[k].at;
+        d.len = m[k].len;
+        d.bytes[0] = m[k].b0;
+        assert_int_equal(host_add_message(sc, &d), 0);
     }
-    sc->host.message_count = 3;
     sim = fixture_sim(sc, 4);   /* 100 ms control period */
     hal_t *h0 = sim_robot_hal(sim, 0), *h1 = sim_robot_hal(sim, 1);
     assert_int_equal(hal_host_receive(h0, buf, sizeof buf, &len), HAL_ERR_EMPTY);   /* not before 0.25 s */

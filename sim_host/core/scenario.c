@@ -255,18 +255,6 @@ static const param_desc_t wheels_params[] = {
 /* The names of sound_silent_t, in its order. */
 const char *const scenario_sound_silent_names[] = { "ambient", "none", NULL };
 
-#define HMSG host_message_def_t
-static const param_desc_t host_message_params[] = {
-    { .key = "robot", PARAM_FIELD(HMSG, robot, uint32_t), .min = 0, .max = 100000,
-      .doc = "robot id, 0-based over every group" },
-    { .key = "at", PARAM_FIELD(HMSG, at, float), .min = 0, .max = 1e9,
-      .doc = "s: hal_host_receive gives it from the first step at or after this" },
-    { .key = "hex", PARAM_STRING_FIELD(HMSG, hex),
-      .doc = "the message's bytes, two hex digits each (1 to 64 bytes)" },
-    PARAM_END
-};
-#undef HMSG
-
 static const param_desc_t sound_params[] = {
     { .key = "enabled", PARAM_BOOL_FIELD(SC, sound.enabled),
       .doc = "robots hear each other's speakers (hal_mic_level, hal_speaker_set)" },
@@ -333,7 +321,6 @@ static const object_def_t object_default = {
 static const light_def_t light_default = { 0.0f, 0.0f, 0.1f, 1.0f };
 static const pose_def_t pose_default = { 0.0f, 0.0f, NAN };
 static const fault_def_t fault_default = { FAULT_STOP, 1.0f, NAN, 0.0f, 0.0f, 0.0f };
-static const host_message_def_t host_message_default = { 0u, 0.0f, "", 0u, { 0u } };
 /* A group entry before its keys: one robot anywhere in the arena, random
  * heading; it must name its controller. */
 static const robot_group_t group_default = {
@@ -363,7 +350,6 @@ MAPPING_SCHEMA(sound);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
 MAPPING_SCHEMA(robot_telemetry);
-MAPPING_SCHEMA(host_message);
 
 static const seq_desc_t poses_seq = {
     "poses", SCENARIO_MAX_POSES, sizeof(pose_def_t), &pose_default, &pose_schema,
@@ -407,17 +393,6 @@ static const seq_desc_t lights_seq = {
     offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL, 0, NULL
 };
 
-static int check_host_message(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
-static const seq_desc_t host_messages_seq = {
-    "messages", SCENARIO_MAX_HOST_MESSAGES, sizeof(host_message_def_t), &host_message_default,
-    &host_message_schema, offsetof(scenario_t, host.messages), offsetof(scenario_t, host.message_count),
-    check_host_message, 0, NULL
-};
-static const child_t host_children[] = {
-    { "messages", CHILD_SEQUENCE, NULL, &host_messages_seq, "one {robot, at, hex} per message" },
-    CHILD_END
-};
-static const schema_t host_schema = { NULL, host_children, NULL, NULL };
 
 static const child_t top_children[] = {
     { "arena", CHILD_MAPPING, &arena_schema, NULL, "walled rectangle" },
@@ -432,8 +407,6 @@ static const child_t top_children[] = {
     { "ircom", CHILD_MAPPING, &ircom_schema, NULL, "IR communication" },
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
     { "sound", CHILD_MAPPING, &sound_schema, NULL, "speakers and microphones (seed 002's model)" },
-    { "host", CHILD_MAPPING, &host_schema, NULL,
-      "messages the host sends the robots (hal_host_receive; a planner's routes)" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
     { "robot_telemetry", CHILD_MAPPING, &robot_telemetry_schema, NULL,
       "the robots' own telemetry, in the loop" },
@@ -690,65 +663,6 @@ static int check_fault(const loader_t *ld, const ynode_t *item, const char *path
     if (!isnan(f->at) && f->rate > 0.0f) {
         schema_join(p, path, "rate");
         return schema_fail(ld, schema_node_of(item, "rate"), p, "give `at` or `rate`, not both");
-    }
-    return 0;
-}
-
-/* A host message's hex, decoded into its bytes. */
-static int check_host_message(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
-{
-    host_message_def_t *m = elem;
-    char p[SCHEMA_PATH_MAX];
-    size_t n = strlen(m->hex);
-    schema_join(p, path, "hex");
-    if (n == 0 || n % 2u != 0u) {
-        return schema_fail(ld, schema_node_of(item, "hex"), p,
-                           "%zu hex digits: a message is 1 to %u bytes, two digits each", n,
-                           (unsigned)HAL_HOST_MSG_MAX);
-    }
-    for (size_t k = 0; k < n; k++) {
-        char c = m->hex[k];
-        int v = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10
-              : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
-        if (v < 0) {
-            return schema_fail(ld, schema_node_of(item, "hex"), p, "'%c' (digit %zu) is not a hex digit",
-                               c, k + 1);
-        }
-        m->bytes[k / 2u] = (uint8_t)(k % 2u == 0u ? v << 4 : m->bytes[k / 2u] | v);
-    }
-    m->len = (uint8_t)(n / 2u);
-    return 0;
-}
-
-/* Every host message names a robot of the run, and a robot's come in time
- * order (hal_host_receive gives them in file order). */
-static int check_host_messages(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
-{
-    const ynode_t *seq = schema_find(root, "host.messages");
-    uint32_t robots = scenario_robot_count(sc);
-    char path[SCHEMA_PATH_MAX];
-    for (uint32_t i = 0; i < sc->host.message_count; i++) {
-        const host_message_def_t *m = &sc->host.messages[i];
-        const ynode_t *item = seq != NULL && seq->kind == YNODE_SEQUENCE && i < seq->count ? seq->items[i] : root;
-        schema_index_path(path, "host.messages", i);
-        if (m->robot >= robots) {
-            char q[SCHEMA_PATH_MAX];
-            schema_join(q, path, "robot");
-            return schema_fail(ld, schema_node_of(item, "robot"), q, "robot %u: the run has %u robots (ids 0 to %u)",
-                               m->robot, robots, robots ? robots - 1u : 0u);
-        }
-        for (uint32_t k = i + 1u; k < sc->host.message_count; k++) {
-            if (sc->host.messages[k].robot == m->robot && sc->host.messages[k].at < m->at) {
-                char q[SCHEMA_PATH_MAX], at[SCHEMA_PATH_MAX];
-                const ynode_t *later = seq != NULL && seq->kind == YNODE_SEQUENCE && k < seq->count
-                                       ? seq->items[k] : root;
-                schema_index_path(q, "host.messages", k);
-                schema_join(at, q, "at");
-                return schema_fail(ld, schema_node_of(later, "at"), at,
-                                   "%g s is before robot %u's message %u (%g s): list a robot's messages in time order",
-                                   sc->host.messages[k].at, m->robot, i, m->at);
-            }
-        }
     }
     return 0;
 }
@@ -1178,7 +1092,7 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
                            sc->ircom.tx_per_period, sc->ircom.slots);
     }
     if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0 || check_camera(ld, root, sc) != 0
-        || check_inside(ld, root, sc) != 0 || check_host_messages(ld, root, sc) != 0
+        || check_inside(ld, root, sc) != 0
         || check_models(ld, root, sc) != 0) {
         return -1;
     }

@@ -164,35 +164,6 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
 void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_BODY_BIT, on); }
 void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_FRONT_BIT, on); }
 
-/* The host's messages (scenario `host.messages`): a robot's next one in
- * file order, once its time has come.  No file section: no host link. */
-hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len)
-{
-    sim_robot_t *r = robot(hal);
-    const scenario_t *sc = hal->sim->sc;
-    *len = 0;
-    if (sc->host.message_count == 0) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    uint32_t k = r->host_next;
-    while (k < sc->host.message_count && sc->host.messages[k].robot != hal->index) {
-        k++;
-    }
-    r->host_next = k;   /* the scan resumes here: messages of other robots are skipped once */
-    if (k == sc->host.message_count
-        || (double)hal_time_ms(hal) < 1000.0 * (double)sc->host.messages[k].at - 0.5) {
-        return HAL_ERR_EMPTY;
-    }
-    const host_message_def_t *m = &sc->host.messages[k];
-    if (m->len > cap) {
-        return HAL_ERR_RANGE;
-    }
-    memcpy(buf, m->bytes, m->len);
-    *len = m->len;
-    r->host_next = k + 1u;
-    return HAL_OK;
-}
-
 uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)
 {
     /* The robot's own telemetry goes down its simulated UART when the

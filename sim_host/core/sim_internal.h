@@ -49,7 +49,6 @@ typedef struct sim_robot {
     double cam_phase_s;            /**< when its frame 0 began, s */
     hal_blob_t cam_next[HAL_MAX_BLOBS];
     sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
-    uint32_t host_next;            /**< host.messages: where its next one may be */
 
     uint16_t ircom_tx[SIM_IRCOM_TX_MAX]; /**< messages to send this step */
     uint8_t ircom_tx_n;            /**< how many (ircom.tx_per_period at most) */

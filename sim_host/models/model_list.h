@@ -9,3 +9,4 @@
  * messages (after_control).
  */
 SIM_MODEL(tracker)
+SIM_MODEL(host)

@@ -31,8 +31,6 @@
 #define SCENARIO_MAX_POSES 256
 #define SCENARIO_MAX_TASKS 4
 #define SCENARIO_CONTROLLER_PARAMS_MAX 512
-/** Most messages the host sends in one run (`host.messages`). */
-#define SCENARIO_MAX_HOST_MESSAGES 128
 #define SCENARIO_TASK_CONFIG_MAX 1024
 /** The one seed range, [0, 2^53 - 1]: the scenario's `seed`, --seed and every
  *  repetition's seed + r lie in it.  2^53 - 1 is exact as a double (the YAML
@@ -161,17 +159,6 @@ typedef enum camera_model {
 
 /** The names of camera_model_t (NULL-terminated). */
 extern const char *const scenario_camera_model_names[];
-
-/** A message the host (a planner, an operator's PC) sends one robot:
- *  hal_host_receive gives it from the first control step at or after `at`.
- *  On the e-puck the same bytes arrive over Bluetooth (docs/host_link.md). */
-typedef struct host_message_def {
-    uint32_t robot;                       /**< robot id, 0-based over every group */
-    float at;                             /**< s from the start */
-    char hex[2 * HAL_HOST_MSG_MAX + 1];   /**< the bytes as written: two hex digits each */
-    uint8_t len;                          /**< bytes, decoded from hex when loading */
-    uint8_t bytes[HAL_HOST_MSG_MAX];
-} host_message_def_t;
 
 /** A controller's params block (aligned for any member type). */
 typedef union scenario_params {
@@ -314,13 +301,6 @@ typedef struct scenario {
         uint8_t self_masking;      /**< a robot whose speaker played hears nothing (HAL_ERR_BUSY) */
         double cutoff;             /**< m; > 0: sources farther away give only ae (0: exact) */
     } sound;
-
-    /** What the host sends the robots (hal_host_receive), per robot in
-     *  file order; a robot's messages are listed with `at` not decreasing. */
-    struct {
-        uint32_t message_count;
-        host_message_def_t messages[SCENARIO_MAX_HOST_MESSAGES];
-    } host;
 
     struct {
         uint32_t timeseries_every; /**< control steps between CSV rows */
