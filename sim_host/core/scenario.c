@@ -275,18 +275,6 @@ static const param_desc_t sound_params[] = {
     PARAM_END
 };
 
-static const param_desc_t robot_telemetry_params[] = {
-    { .key = "enabled", PARAM_BOOL_FIELD(SC, robot_telemetry.enabled),
-      .doc = "every robot runs the image's telemetry sender; its frames are republished" },
-    { .key = "channel_prefix", PARAM_STRING_FIELD(SC, robot_telemetry.channel_prefix),
-      .doc = "prefix of the republished channels (as the bridge's --prefix)" },
-    { .key = "baud", PARAM_FIELD(SC, robot_telemetry.baud, uint32_t), .min = 0, .max = 10000000,
-      .doc = "the UART's rate, bits/s (0: unlimited); bytes beyond it wait in the sender" },
-    { .key = "dump", PARAM_BOOL_FIELD(SC, robot_telemetry.dump),
-      .doc = "also write each robot's raw byte stream to run_<seed>/uart/robot_<id>.bin" },
-    PARAM_END
-};
-
 static const param_desc_t random_cylinders_params[] = {
     { .key = "count", PARAM_FIELD(SC, random_cylinders.count, uint32_t), .min = 0, .max = SCENARIO_MAX_OBJECTS,
       .doc = "cylinders drawn at random when each run is built (0: none)" },
@@ -349,7 +337,6 @@ MAPPING_SCHEMA(wheels);
 MAPPING_SCHEMA(sound);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
-MAPPING_SCHEMA(robot_telemetry);
 
 static const seq_desc_t poses_seq = {
     "poses", SCENARIO_MAX_POSES, sizeof(pose_def_t), &pose_default, &pose_schema,
@@ -408,8 +395,6 @@ static const child_t top_children[] = {
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
     { "sound", CHILD_MAPPING, &sound_schema, NULL, "speakers and microphones (seed 002's model)" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
-    { "robot_telemetry", CHILD_MAPPING, &robot_telemetry_schema, NULL,
-      "the robots' own telemetry, in the loop" },
     CHILD_END
 };
 static const schema_t top_schema = { top_params, top_children, fill_other, other_key };
@@ -497,10 +482,6 @@ void scenario_defaults(scenario_t *out)
     out->random_cylinders.height = 0.1f;
     out->random_cylinders.gap = 0.08f;
     out->random_cylinders.layout_seed = 0;
-    out->robot_telemetry.enabled = 0;
-    snprintf(out->robot_telemetry.channel_prefix, sizeof out->robot_telemetry.channel_prefix, "FW_");
-    out->robot_telemetry.baud = 115200;
-    out->robot_telemetry.dump = 0;
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
         if (sim_models[id]->default_config != NULL) {
             sim_models[id]->default_config(scenario_model_config_mut(out, (sim_model_id_t)id));

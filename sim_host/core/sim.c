@@ -143,30 +143,6 @@ static void find_counters(struct sim *sim)
     }
 }
 
-/* The robots' own telemetry, when the scenario runs it in the loop. */
-static int create_robot_links(struct sim *sim, char err[256])
-{
-    const scenario_t *sc = sim->sc;
-    if (!sc->robot_telemetry.enabled) {
-        return 0;
-    }
-    size_t n = sim->n ? sim->n : 1;
-    sim->robot_tx = calloc(n, sizeof *sim->robot_tx);
-    sim->links = calloc(n, sizeof *sim->links);
-    if (!sim->robot_tx || !sim->links) {
-        snprintf(err, 256, "out of memory for the robots' telemetry links");
-        return -1;
-    }
-    for (uint32_t i = 0; i < sim->n; i++) {
-        robot_telemetry_init(&sim->robot_tx[i]);
-        robot_link_init(&sim->links[i]);
-    }
-    /* 8N1: ten bits a byte. */
-    uint64_t per_step = (uint64_t)sc->robot_telemetry.baud * sc->control_period_ms / 10000u;
-    sim->link_budget = sc->robot_telemetry.baud == 0 || per_step > UINT32_MAX ? UINT32_MAX : (uint32_t)per_step;
-    return 0;
-}
-
 void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p)
 {
     const sim_robot_t *r = &sim->robots[i];
@@ -203,26 +179,6 @@ void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot
     }
 }
 
-/* After robot r's step: its image's telemetry sender, as on the robot.
- * It reads only the robot's own state and this step's sensor caches, so
- * the run is the same with it or without it. */
-static void robot_telemetry_of(struct sim *sim, uint32_t i)
-{
-    sim_robot_t *r = &sim->robots[i];
-    robot_telemetry_t *tx = &sim->robot_tx[i];
-    robot_telemetry_platform_t p;
-    const robot_telemetry_platform_t *due = NULL;
-    robot_telemetry_source_t src = {
-        .controller = r->def->name, .observables = r->def->observables, .state = r->ctrl,
-    };
-    if (robot_telemetry_state_due(tx)) {
-        sim_robot_platform(sim, i, sim->step + 1, &p);
-        src.state_name = r->def->state_name(r->ctrl);
-        due = &p;
-    }
-    robot_telemetry_step(tx, &r->hal, &src, due);
-}
-
 /* Robots take a few microseconds each: chunks of 64 keep the pool's
  * locking small beside the work. */
 #define CONTROL_CHUNK 64u
@@ -238,9 +194,6 @@ static void step_robots(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
         if (r->ctrl && !sim_robot_halted(sim, i)) {
             r->hal.worker = worker;
             r->def->step(r->ctrl, &r->hal);
-            if (sim->robot_tx) {
-                robot_telemetry_of(sim, i);
-            }
             for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
                 const sim_model_run_t *m = &sim->models[id];
                 if (m->def->after_robot) {
@@ -485,10 +438,6 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         sim->py[i] = sim->robots[i].y;
     }
     find_counters(sim);
-    if (create_robot_links(sim, err) != 0) {
-        sim_destroy(sim);
-        return NULL;
-    }
     if (world_create(sim, err) != 0 || grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0
         || create_tasks(sim, err) != 0) {
         sim_destroy(sim);
@@ -533,8 +482,6 @@ void sim_destroy(sim_t *sim)
     free(sim->obstacles);
     free(sim->objects);
     free(sim->events);
-    free(sim->robot_tx);
-    free(sim->links);
     free(sim);
 }
 
@@ -549,9 +496,6 @@ void sim_step(sim_t *sim)
         }
     }
     run_phase(sim, PHASE_BEFORE_CONTROL);
-    for (uint32_t i = 0; sim->links && i < sim->n; i++) {
-        robot_link_begin_step(&sim->links[i], sim->link_budget);
-    }
     /* Whole, before any controller reads it (sound.h). */
     sound_update(sim);
     /* Items stay put while the controllers step (items.h); out of memory,
@@ -799,10 +743,6 @@ void sim_event(sim_t *sim, uint32_t robot, const char *kind, const char *detail,
     e->value = value;
 }
 
-const struct robot_link *sim_robot_link(const sim_t *sim, uint32_t i)
-{
-    return sim->links ? &sim->links[i] : NULL;
-}
 
 uint32_t sim_events(const sim_t *sim, const sim_event_rec_t **events)
 {

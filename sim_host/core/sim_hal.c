@@ -163,15 +163,3 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
 
 void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_BODY_BIT, on); }
 void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_FRONT_BIT, on); }
-
-uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)
-{
-    /* The robot's own telemetry goes down its simulated UART when the
-     * scenario runs it in the loop (robot_link.h); otherwise the simulator
-     * publishes from its own view and these bytes are accepted and dropped. */
-    if (hal->sim->links) {
-        return robot_link_write(&hal->sim->links[hal->index], bytes, len);
-    }
-    (void)bytes;
-    return len;
-}

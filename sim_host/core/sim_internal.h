@@ -212,11 +212,6 @@ struct sim {
     uint8_t n_group_counters[SCENARIO_MAX_GROUPS];
     sim_group_counter_t group_counters[SCENARIO_MAX_GROUPS][SIM_MAX_COUNTERS];
 
-    /* robot_telemetry.enabled: each robot's sender and the link it writes
-     * to (NULL otherwise). */
-    robot_telemetry_t *robot_tx;
-    robot_link_t *links;
-    uint32_t link_budget;          /**< bytes per step the UART carries */
 
     fault_run_t *faults;           /**< faults.h */
     uint32_t n_faults;

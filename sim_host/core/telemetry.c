@@ -27,6 +27,7 @@
 
 #include <lcm/lcm.h>
 
+#include "models/uart/uart.h"
 #include "sim_internal.h"
 #include "swarmlcm_event_t.h"
 #include "swarmlcm_robot_state_t.h"
@@ -195,13 +196,13 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
         telemetry_close(t, 0, err);
         return -1;
     }
-    if (sim->links) {
+    if (uart_config(sim->sc)->enabled) {
         static const char *const names[TELEMETRY_CH_COUNT] = TELEMETRY_CHANNEL_NAMES;
         for (int c = 1; c < TELEMETRY_CH_COUNT; c++) {
             t->fw_channel_len[c] = snprintf(t->fw_channel[c], sizeof t->fw_channel[c], "%s%s",
-                                            sim->sc->robot_telemetry.channel_prefix, names[c]);
+                                            uart_config(sim->sc)->channel_prefix, names[c]);
         }
-        if (sim->sc->robot_telemetry.dump && log_path) {
+        if (uart_config(sim->sc)->dump && log_path) {
             const char *slash = strrchr(log_path, '/');
             size_t len = slash ? (size_t)(slash - log_path) : 0;
             snprintf(t->dump_dir, sizeof t->dump_dir, "%.*s%suart", (int)len, log_path, len ? "/" : "");
@@ -324,7 +325,7 @@ static uint8_t *reserve(telemetry_t *t, int size)
  * bytes dumped when asked. */
 static void send_robot_frames(telemetry_t *t, const struct sim *sim, uint32_t i)
 {
-    const robot_link_t *l = &sim->links[i];
+    const robot_link_t *l = sim_robot_link(sim, i);
     for (uint8_t k = 0; k < l->n_frames; k++) {
         const robot_link_frame_t *f = &l->frames[k];
         int off = LOG_HEADER + t->fw_channel_len[f->channel];
@@ -682,7 +683,7 @@ void telemetry_step(telemetry_t *t, const sim_t *simp)
     for (uint32_t i = 0; i < sim->n; i++) {
         robot_events(t, sim, i);
     }
-    for (uint32_t i = 0; sim->links && i < sim->n; i++) {
+    for (uint32_t i = 0; sim_robot_link(sim, 0) && i < sim->n; i++) {
         send_robot_frames(t, sim, i);
     }
     int info_due = t->info_every && sim->step % t->info_every == 0;

@@ -10,3 +10,4 @@
  */
 SIM_MODEL(tracker)
 SIM_MODEL(host)
+SIM_MODEL(uart)

@@ -306,16 +306,6 @@ typedef struct scenario {
         uint32_t timeseries_every; /**< control steps between CSV rows */
     } output;
 
-    /** Software in the loop for the robots' own telemetry: every robot runs
-     *  the image's sender (firmware/telemetry/robot_telemetry.c) and the
-     *  simulator republishes its frames as the serial bridge does. */
-    struct {
-        uint8_t enabled;
-        char channel_prefix[16];   /**< before the channel names ("FW_": FW_ROBOT_STATE) */
-        uint32_t baud;             /**< the UART's rate, bits/s (0: unlimited) */
-        uint8_t dump;              /**< also write each robot's raw bytes (uart/robot_<id>.bin) */
-    } robot_telemetry;
-
     uint32_t task_count;
     task_config_t tasks[SCENARIO_MAX_TASKS];  /**< in registry order */
 
