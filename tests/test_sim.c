@@ -23,6 +23,7 @@
 #include "swarmsim/sim.h"
 #include "core/sim_internal.h"
 #include "models/host/host.h"
+#include "models/sound/sound.h"
 #include "models/tracker/tracker.h"
 
 #define PI 3.14159265358979
@@ -849,7 +850,7 @@ static void test_hal_status(void **state)
     assert_int_equal(hal_ir_bearing_mrad(hal, 8), 0);
     sim_destroy(sim);
 
-    sc->sound.enabled = 1;
+    sound_config_mut(sc)->enabled = 1;
     sim = fixture_sim(sc, 4);
     hal = sim_robot_hal(sim, 0);
     assert_int_equal(hal_mic_level(hal, 2, 3, &level), HAL_OK);

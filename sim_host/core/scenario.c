@@ -252,29 +252,6 @@ static const param_desc_t wheels_params[] = {
     PARAM_END
 };
 
-/* The names of sound_silent_t, in its order. */
-const char *const scenario_sound_silent_names[] = { "ambient", "none", NULL };
-
-static const param_desc_t sound_params[] = {
-    { .key = "enabled", PARAM_BOOL_FIELD(SC, sound.enabled),
-      .doc = "robots hear each other's speakers (hal_mic_level, hal_speaker_set)" },
-    { .key = "a0", PARAM_FIELD(SC, sound.a0, double), .min = 0, .max = 1e6,
-      .doc = "eq 1: level of a source at 0 m, units (1 unit = 1000 level counts)" },
-    { .key = "alpha", PARAM_FIELD(SC, sound.alpha, double), .min = 0, .max = 1000,
-      .doc = "eq 1: attenuation, 1/m (paper 0.12; e-puck scale 0.12/k = 0.726)" },
-    { .key = "ae", PARAM_FIELD(SC, sound.ae, double), .min = 0, .max = 1e6,
-      .doc = "eq 1: ambient term, units, once per robot in the sum" },
-    { .key = "noise", PARAM_FIELD(SC, sound.noise, double), .min = 0, .max = 1,
-      .doc = "eq 4: relative Gaussian sd of each pair's term (0.06 = N100, 0 = N0)" },
-    { .key = "silent_robots", PARAM_ENUM_FIELD(SC, sound.silent_robots, scenario_sound_silent_names),
-      .doc = "a robot silent in a band adds its ambient term (ambient) or nothing (none)" },
-    { .key = "self_masking", PARAM_BOOL_FIELD(SC, sound.self_masking),
-      .doc = "a robot whose speaker played hears nothing that period (false: full duplex)" },
-    { .key = "cutoff", PARAM_FIELD(SC, sound.cutoff, double), .min = 0, .max = 1e6,
-      .doc = "m; > 0: sources farther away add only ae (error <= a0 e^(-alpha cutoff) each)" },
-    PARAM_END
-};
-
 static const param_desc_t random_cylinders_params[] = {
     { .key = "count", PARAM_FIELD(SC, random_cylinders.count, uint32_t), .min = 0, .max = SCENARIO_MAX_OBJECTS,
       .doc = "cylinders drawn at random when each run is built (0: none)" },
@@ -334,7 +311,6 @@ MAPPING_SCHEMA(ambient);
 MAPPING_SCHEMA(camera);
 MAPPING_SCHEMA(ircom);
 MAPPING_SCHEMA(wheels);
-MAPPING_SCHEMA(sound);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
 
@@ -393,7 +369,6 @@ static const child_t top_children[] = {
     { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
     { "ircom", CHILD_MAPPING, &ircom_schema, NULL, "IR communication" },
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
-    { "sound", CHILD_MAPPING, &sound_schema, NULL, "speakers and microphones (seed 002's model)" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
     CHILD_END
 };
@@ -467,14 +442,6 @@ void scenario_defaults(scenario_t *out)
     out->wheels.speed_noise_rel = 0.0f;
     out->wheels.bias_sd = 0.0f;
     out->wheels.bias_per_step = 0;
-    out->sound.enabled = 0;
-    out->sound.a0 = 299.18;
-    out->sound.alpha = 0.12;
-    out->sound.ae = 48.18;
-    out->sound.noise = 0.06;
-    out->sound.silent_robots = SOUND_SILENT_AMBIENT;
-    out->sound.self_masking = 1;
-    out->sound.cutoff = 0.0;
     out->output.timeseries_every = 10;
     out->random_cylinders.count = 0;
     out->random_cylinders.radius_min = 0.05f;

@@ -10,7 +10,6 @@
 
 #include "pool.h"
 #include "sim_internal.h"
-#include "sound.h"
 #include "units.h"
 
 static void build_obstacles(struct sim *sim)
@@ -88,7 +87,6 @@ static int build_robots(struct sim *sim, char err[256])
             sim_rand_seed(&r->noise, sim->seed, i, RAND_SENSORS);
             sim_rand_seed(&r->ircom_rand, sim->seed, i, RAND_IRCOM);
             sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
-            sim_rand_seed(&r->sound_rand, sim->seed, i, RAND_SOUND);
             r->bias_left = r->bias_right = 0.0;
             if (sc->wheels.bias_sd > 0.0f) {
                 /* Eq 3's bias b, drawn once a run as ARGoS does (its own
@@ -496,8 +494,6 @@ void sim_step(sim_t *sim)
         }
     }
     run_phase(sim, PHASE_BEFORE_CONTROL);
-    /* Whole, before any controller reads it (sound.h). */
-    sound_update(sim);
     /* Items stay put while the controllers step (items.h); out of memory,
      * the camera scans every item instead, with the same result. */
     (void)items_index_build(sim);
@@ -528,7 +524,6 @@ void sim_step(sim_t *sim)
             sim->tasks[t].def->after_physics(sim->tasks[t].self, sim);
         }
     }
-    sound_end_step(sim);
     run_phase(sim, PHASE_END);
     sim->step++;
     for (uint32_t t = 0; t < sim->n_tasks && !sim->done; t++) {
@@ -649,7 +644,6 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     /* Sensors must see the new pose even within this step (the sound
      * field too, when it is read before the step's controllers run). */
     r->ir_stamp = r->ambient_stamp = r->camera_stamp = 0;
-    sim->sound_stamp = 0;
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
         if (sim->models[id].def->moved) {
             sim->models[id].def->moved(sim, sim->models[id].self, i);

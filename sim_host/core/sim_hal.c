@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "sim_internal.h"
-#include "sound.h"
 #include "units.h"
 
 static sim_robot_t *robot(hal_t *hal) { return &hal->sim->robots[hal->index]; }
@@ -67,41 +66,6 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
 {
     *width_px = hal->sim->sc->camera.width_px;
     *height_px = hal->sim->sc->camera.height_px;
-    return HAL_OK;
-}
-
-/* Sound (sound.h): the field is computed serially before the controllers
- * step; here only read.  Read between steps (tests), it is computed then:
- * the field the next step's controllers will see. */
-hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
-{
-    *level = 0;
-    if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
-        return HAL_ERR_RANGE;
-    }
-    if (!hal->sim->sc->sound.enabled) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    sound_update(hal->sim);
-    sim_robot_t *r = robot(hal);
-    if (hal->sim->sc->sound.self_masking && r->speaker_played != 0u) {
-        return HAL_ERR_BUSY;
-    }
-    /* The three microphones hear the same (sound.h). */
-    *level = r->sound_level[band];
-    return HAL_OK;
-}
-
-/* Plays from the next period on: the step's end makes it what played. */
-hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
-{
-    if (band >= HAL_SOUND_BANDS) {
-        return HAL_ERR_RANGE;
-    }
-    if (!hal->sim->sc->sound.enabled) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    robot(hal)->speaker_set = band;
     return HAL_OK;
 }
 

@@ -61,14 +61,7 @@ typedef struct sim_robot {
     sim_rand_t wheel_rand;         /**< actuation noise */
     double bias_left, bias_right;  /**< wheels.bias_sd's biases (this run's, or this step's), steps/s */
     sim_rand_t bias_rand;          /**< their draws (RAND_WHEEL_BIAS) */
-    sim_rand_t sound_rand;         /**< eq 4's noise of every pair this robot hears */
 
-    /* Sound (sound.h): what the controller set this step plays during the
-     * next period; at the step's end it becomes what played. */
-    uint8_t speaker_set;           /**< band set this step (0: silence) */
-    uint8_t speaker_played;        /**< band that played during the last period */
-    uint32_t sound_level[HAL_SOUND_BANDS]; /**< counts per band over the last period ([0] unused) */
-    double sound_acc[HAL_SOUND_BANDS];     /**< sound_update's sums, units (working memory) */
     uint32_t group;                /**< index into the scenario's groups */
     const controller_def_t *def;   /**< what runs on this robot */
     void *ctrl;                    /**< controller state, or NULL when it has none */
@@ -221,7 +214,6 @@ struct sim {
 
     struct camera_state *camera;   /**< camera.c's renderer and recorder (NULL until used) */
 
-    uint64_t sound_stamp;          /**< the sound field is this step's when == step + 1 */
     vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
 

@@ -11,3 +11,4 @@
 SIM_MODEL(tracker)
 SIM_MODEL(host)
 SIM_MODEL(uart)
+SIM_MODEL(sound)

@@ -142,15 +142,6 @@ typedef struct fault_def {
                                      radio_bursts: mean time between bursts, s */
 } fault_def_t;
 
-/** What a robot silent in a band adds to that band's sum (sound.silent_robots). */
-typedef enum sound_silent {
-    SOUND_SILENT_AMBIENT = 0,    /**< its ambient term ae (eq 2 over every other robot) */
-    SOUND_SILENT_NONE = 1        /**< nothing: only emitters are in the sum */
-} sound_silent_t;
-
-/** The names of sound_silent_t (NULL-terminated). */
-extern const char *const scenario_sound_silent_names[];
-
 /** How the camera's blobs are made (camera.model). */
 typedef enum camera_model {
     CAMERA_GEOMETRIC = 0,        /**< from the objects' angles (sensors.c): fast, the default */
@@ -288,19 +279,6 @@ typedef struct scenario {
         uint8_t bias_per_step;     /**< 1: b drawn anew every control step (a reading of
                                         eq 3 other than ARGoS's once-a-run bias) */
     } wheels;
-
-    /** Sound (seed 002's eqs 1-4; sound.h).  Disabled: hal_mic_level and
-     *  hal_speaker_set answer HAL_ERR_UNAVAILABLE and nothing is drawn. */
-    struct {
-        uint8_t enabled;
-        double a0;                 /**< eq 1's level at the source (0 m), units */
-        double alpha;              /**< eq 1's attenuation, 1/m (at the scenario's scale) */
-        double ae;                 /**< eq 1's ambient term, units, once per source */
-        double noise;              /**< eq 4's relative sd per pair (0.06: N100, 0: N0) */
-        int silent_robots;         /**< sound_silent_t: SOUND_SILENT_AMBIENT or _NONE */
-        uint8_t self_masking;      /**< a robot whose speaker played hears nothing (HAL_ERR_BUSY) */
-        double cutoff;             /**< m; > 0: sources farther away give only ae (0: exact) */
-    } sound;
 
     struct {
         uint32_t timeseries_every; /**< control steps between CSV rows */
