@@ -25,6 +25,7 @@
 #include "tasks/foraging/foraging.h"
 /* The models' configs, set and read in code (their headers are internal). */
 #include "models/host/host.h"
+#include "models/ircom/ircom.h"
 #include "models/tracker/tracker.h"
 
 #define MAX_SETS 8
@@ -198,12 +199,12 @@ static void test_defaults(void **state)
     assert_float_equal(sc->camera.fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
     assert_int_equal(sc->camera.width_px, 40);
     assert_int_equal(sc->camera.height_px, 20);   /* the e-puck image's frame */
-    assert_float_equal(sc->ircom.range, 0.25, 1e-6);
-    assert_float_equal(sc->ircom.loss, 0.1, 1e-6);
-    assert_float_equal(sc->ircom.bearing_noise, 5.0, 1e-6);
-    assert_float_equal(sc->ircom.range_noise_rel, 0.1, 1e-6);
-    assert_int_equal(sc->ircom.quantise_bearing, 1);
-    assert_int_equal(sc->ircom.blocked_by_robots, 0);
+    assert_float_equal(ircom_config(sc)->range, 0.25, 1e-6);
+    assert_float_equal(ircom_config(sc)->loss, 0.1, 1e-6);
+    assert_float_equal(ircom_config(sc)->bearing_noise, 5.0, 1e-6);
+    assert_float_equal(ircom_config(sc)->range_noise_rel, 0.1, 1e-6);
+    assert_int_equal(ircom_config(sc)->quantise_bearing, 1);
+    assert_int_equal(ircom_config(sc)->blocked_by_robots, 0);
     assert_float_equal(sc->wheels.speed_noise_rel, 0.0, 1e-9);
     assert_int_equal(sc->output.timeseries_every, 10);
 }
@@ -415,12 +416,12 @@ static void test_full_file(void **state)
     assert_float_equal(sc->camera.range, 1.0, 1e-6);
     assert_int_equal(sc->camera.width_px, 64);
     assert_int_equal(sc->camera.height_px, 48);
-    assert_float_equal(sc->ircom.range, 0.3, 1e-6);
-    assert_float_equal(sc->ircom.loss, 0.25, 1e-6);
-    assert_float_equal(sc->ircom.bearing_noise, 10.0, 1e-6);
-    assert_float_equal(sc->ircom.range_noise_rel, 0.2, 1e-6);
-    assert_int_equal(sc->ircom.quantise_bearing, 0);
-    assert_int_equal(sc->ircom.blocked_by_robots, 1);
+    assert_float_equal(ircom_config(sc)->range, 0.3, 1e-6);
+    assert_float_equal(ircom_config(sc)->loss, 0.25, 1e-6);
+    assert_float_equal(ircom_config(sc)->bearing_noise, 10.0, 1e-6);
+    assert_float_equal(ircom_config(sc)->range_noise_rel, 0.2, 1e-6);
+    assert_int_equal(ircom_config(sc)->quantise_bearing, 0);
+    assert_int_equal(ircom_config(sc)->blocked_by_robots, 1);
     assert_float_equal(sc->wheels.speed_noise_rel, 0.05, 1e-6);
     assert_int_equal(tracker_config(sc)->enabled, 1);
     assert_float_equal(tracker_config(sc)->noise_mm, 5.0, 1e-6);

@@ -23,6 +23,7 @@
 #include "swarmsim/sim.h"
 #include "core/sim_internal.h"
 #include "models/host/host.h"
+#include "models/ircom/ircom.h"
 #include "models/sound/sound.h"
 #include "models/tracker/tracker.h"
 
@@ -465,7 +466,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(2, 2.0f);
-    sc->ircom.loss = 0.0f;
+    ircom_config_mut(sc)->loss = 0.0f;
     const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.03f, .height = 0.05f };
     assert_int_equal(scenario_add_object(sc, &obj), 0);
     sim_t *sim = fixture_sim(sc, 11);
@@ -506,7 +507,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sim_destroy(sim);
 
     /* 16-bit payload (range-and-bearing turret). */
-    sc->ircom.payload_bits = 16;
+    ircom_config_mut(sc)->payload_bits = 16;
     sim = fixture_sim(sc, 13);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
@@ -517,7 +518,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sim_destroy(sim);
 
     /* Loss 1: nothing arrives. */
-    sc->ircom.loss = 1.0f;
+    ircom_config_mut(sc)->loss = 1.0f;
     sc->object_count = 0;
     sim = fixture_sim(sc, 12);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "models/ircom/ircom.h"
 #include "sim_internal.h"
 
 #define NEVER UINT64_MAX
@@ -169,19 +170,16 @@ int faults_radio_out(const struct sim *sim, uint32_t i)
 
 void faults_transmit(struct sim *sim)
 {
-    uint16_t mask = (uint16_t)((1u << sim->sc->ircom.payload_bits) - 1u);
     for (uint32_t k = 0; k < sim->n_faults; k++) {
         const fault_run_t *fr = &sim->faults[k];
         sim_robot_t *r = &sim->robots[fr->robot];
         if (!fr->active || faults_stopped(sim, fr->robot)) continue;   /* a stopped robot is silent */
         if (fr->kind == FAULT_BABBLE) {
-            r->ircom_tx[0] = (uint16_t)((uint16_t)sim_rand_u64(&r->fault_rand) & mask);
-            r->ircom_tx_n = 1;
+            ircom_set_outgoing(sim, fr->robot, (uint16_t)sim_rand_u64(&r->fault_rand));
         } else if (fr->kind == FAULT_LIAR) {
             for (uint32_t t = 0; t < sim->n_tasks; t++) {
                 if (sim->tasks[t].def->lie) {
-                    r->ircom_tx[0] = (uint16_t)(sim->tasks[t].def->lie(sim->tasks[t].self, sim, fr->robot) & mask);
-                    r->ircom_tx_n = 1;
+                    ircom_set_outgoing(sim, fr->robot, sim->tasks[t].def->lie(sim->tasks[t].self, sim, fr->robot));
                     break;
                 }
             }

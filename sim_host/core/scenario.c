@@ -215,32 +215,6 @@ static const param_desc_t camera_params[] = {
     PARAM_END
 };
 
-static const param_desc_t ircom_params[] = {
-    { .key = "range", PARAM_FIELD(SC, ircom.range, float), .min = 0, .max = 10,
-      .doc = "centre-to-centre reach, m" },
-    { .key = "loss", PARAM_FIELD(SC, ircom.loss, float), .min = 0, .max = 1,
-      .doc = "probability a message is lost" },
-    { .key = "bearing_noise", PARAM_FIELD(SC, ircom.bearing_noise, float), .min = 0, .max = 180,
-      .doc = "Gaussian sd added to the bearing, deg" },
-    { .key = "range_noise_rel", PARAM_FIELD(SC, ircom.range_noise_rel, float), .min = 0, .max = 1,
-      .doc = "relative Gaussian sd of the range" },
-    { .key = "quantise_bearing", PARAM_BOOL_FIELD(SC, ircom.quantise_bearing),
-      .doc = "report the receiving sensor's bearing" },
-    { .key = "blocked_by_robots", PARAM_BOOL_FIELD(SC, ircom.blocked_by_robots),
-      .doc = "robots also block line of sight" },
-    { .key = "payload_bits", PARAM_FIELD(SC, ircom.payload_bits, uint8_t), .min = 8, .max = 16,
-      .doc = "data bits per message: 8 libIrcom, 16 range-and-bearing turret" },
-    { .key = "bearing_noise_vec", PARAM_FIELD(SC, ircom.bearing_noise_vec, float), .min = 0, .max = 10,
-      .doc = "sd of a random vector (uniform azimuth, Gaussian length) added to the sender's offset, m (seed 003)" },
-    { .key = "tx_per_period", PARAM_FIELD(SC, ircom.tx_per_period, uint8_t), .min = 1, .max = SIM_IRCOM_TX_MAX,
-      .doc = "messages a robot may send per control period (the turret's rate)" },
-    { .key = "slots", PARAM_FIELD(SC, ircom.slots, uint16_t), .min = 0, .max = 1000,
-      .doc = "frame times per control period for collisions (0: no collisions)" },
-    { .key = "queue", PARAM_FIELD(SC, ircom.queue, uint8_t), .min = 1, .max = SIM_IRCOM_QUEUE_MAX,
-      .doc = "messages a receiver's inbox holds (libIrcom: 20)" },
-    PARAM_END
-};
-
 static const param_desc_t wheels_params[] = {
     { .key = "speed_noise_rel", PARAM_FIELD(SC, wheels.speed_noise_rel, float), .min = 0, .max = 1,
       .doc = "per-wheel relative speed noise (sd)" },
@@ -309,7 +283,6 @@ MAPPING_SCHEMA(fault);
 MAPPING_SCHEMA(ir);
 MAPPING_SCHEMA(ambient);
 MAPPING_SCHEMA(camera);
-MAPPING_SCHEMA(ircom);
 MAPPING_SCHEMA(wheels);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
@@ -367,7 +340,6 @@ static const child_t top_children[] = {
     { "ir", CHILD_MAPPING, &ir_schema, NULL, "IR proximity sensors" },
     { "ambient", CHILD_MAPPING, &ambient_schema, NULL, "ambient light sensors" },
     { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
-    { "ircom", CHILD_MAPPING, &ircom_schema, NULL, "IR communication" },
     { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
     CHILD_END
@@ -428,17 +400,6 @@ void scenario_defaults(scenario_t *out)
     out->camera.height_px = EPUCK_CAMERA_HEIGHT_PX;
     out->camera.model = CAMERA_GEOMETRIC;
     out->camera.fps = SCENARIO_CAMERA_EPUCK_FPS;
-    out->ircom.range = 0.25f;
-    out->ircom.loss = 0.1f;
-    out->ircom.bearing_noise = 5.0f;
-    out->ircom.range_noise_rel = 0.1f;
-    out->ircom.quantise_bearing = 1;
-    out->ircom.blocked_by_robots = 0;
-    out->ircom.payload_bits = 8;
-    out->ircom.bearing_noise_vec = 0.0f;
-    out->ircom.tx_per_period = 1;
-    out->ircom.slots = 0;
-    out->ircom.queue = 20;
     out->wheels.speed_noise_rel = 0.0f;
     out->wheels.bias_sd = 0.0f;
     out->wheels.bias_per_step = 0;
@@ -983,19 +944,6 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
                                    grp->def->name);
             }
         }
-        if (grp->count > 0 && grp->def->ircom_bits > sc->ircom.payload_bits) {
-            char path[SCHEMA_PATH_MAX];
-            snprintf(path, sizeof path, "robots.%u.controller", g);
-            const ynode_t *node = schema_find(root, path);
-            char at[SCHEMA_PATH_MAX];
-            schema_index_path(at, "robots", g);
-            schema_join(path, at, "controller");
-            return schema_fail(ld, node, path,
-                               "controller '%s' sends %u-bit IR messages but ircom.payload_bits is %u "
-                               "(set ircom.payload_bits: %u, the range-and-bearing turret)",
-                               grp->def->name, grp->def->ircom_bits, sc->ircom.payload_bits,
-                               grp->def->ircom_bits);
-        }
     }
     return 0;
 }
@@ -1032,12 +980,6 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
         return schema_fail(ld, d != NULL ? d : root, "duration",
                            "%g s is shorter than one control period (%g s)", sc->duration,
                            sc->control_period_ms / 1000.0);
-    }
-    if (sc->ircom.slots > 0 && sc->ircom.tx_per_period > sc->ircom.slots) {
-        const ynode_t *d = schema_find(root, "ircom.tx_per_period");
-        return schema_fail(ld, d != NULL ? d : root, "ircom.tx_per_period",
-                           "%u messages a period do not fit in %u slots (ircom.slots)",
-                           sc->ircom.tx_per_period, sc->ircom.slots);
     }
     if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0 || check_camera(ld, root, sc) != 0
         || check_inside(ld, root, sc) != 0

@@ -78,14 +78,11 @@ static int build_robots(struct sim *sim, char err[256])
             sim_robot_t *r = &sim->robots[i];
             r->hal.sim = sim;
             r->hal.index = i;
-            r->rx = sim->rx_store + (size_t)i * sc->ircom.queue;
-            r->ircom_tx_n = 0;
             r->group = g;
             r->def = def;
             r->moves = grp->moves;
             r->ctrl = stride ? (uint8_t *)sim->ctrl_blocks[g] + (size_t)k * stride : NULL;
             sim_rand_seed(&r->noise, sim->seed, i, RAND_SENSORS);
-            sim_rand_seed(&r->ircom_rand, sim->seed, i, RAND_IRCOM);
             sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
             r->bias_left = r->bias_right = 0.0;
             if (sc->wheels.bias_sd > 0.0f) {
@@ -381,7 +378,6 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     sim->robots = calloc(n, sizeof *sim->robots);
     sim->ctrl_blocks = calloc(ng, sizeof *sim->ctrl_blocks);
     sim->step_order = calloc(n, sizeof *sim->step_order);
-    sim->rx_store = calloc(n * (sc->ircom.queue ? sc->ircom.queue : 1u), sizeof *sim->rx_store);
     sim->px = calloc(n, sizeof *sim->px);
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
@@ -389,7 +385,7 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     /* Cells a little larger than the IR reach: an IR query touches at
      * most 3 x 3 cells. */
     float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
-    if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->rx_store || !sim->px
+    if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
         || !sim->py || !sim->obstacles || !sim->objects
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
@@ -474,7 +470,6 @@ void sim_destroy(sim_t *sim)
     free(sim->ctrl_blocks);
     free(sim->robots);
     free(sim->step_order);
-    free(sim->rx_store);
     free(sim->px);
     free(sim->py);
     free(sim->obstacles);
@@ -507,7 +502,6 @@ void sim_step(sim_t *sim)
     }
     items_index_drop(sim);
     faults_transmit(sim);
-    ircom_deliver(sim);
     run_phase(sim, PHASE_AFTER_CONTROL);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->after_control) {
@@ -649,17 +643,6 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
             sim->models[id].def->moved(sim, sim->models[id].self, i);
         }
     }
-}
-
-int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg)
-{
-    sim_robot_t *r = &sim->robots[i];
-    if (r->rx_count >= sim->sc->ircom.queue) {
-        return -1;
-    }
-    r->rx[(r->rx_head + r->rx_count) % sim->sc->ircom.queue] = *msg;
-    r->rx_count++;
-    return 0;
 }
 
 void sim_arena_half(const sim_t *sim, float *hw, float *hh)

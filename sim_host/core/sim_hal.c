@@ -69,30 +69,6 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
-uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->sim->sc->ircom.payload_bits; }
-
-hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
-{
-    sim_robot_t *r = robot(hal);
-    if (r->ircom_tx_n >= hal->sim->sc->ircom.tx_per_period) {
-        return HAL_ERR_BUSY;
-    }
-    r->ircom_tx[r->ircom_tx_n++] = (uint16_t)(value & (uint16_t)((1u << hal->sim->sc->ircom.payload_bits) - 1u));
-    return HAL_OK;
-}
-
-hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
-{
-    sim_robot_t *r = robot(hal);
-    if (r->rx_count == 0) {
-        return HAL_ERR_EMPTY;
-    }
-    *out = r->rx[r->rx_head];
-    r->rx_head = (uint8_t)((r->rx_head + 1) % hal->sim->sc->ircom.queue);
-    r->rx_count--;
-    return HAL_OK;
-}
-
 static int16_t clamp_speed(int16_t v)
 {
     return v > HAL_WHEEL_SPEED_MAX ? HAL_WHEEL_SPEED_MAX : (v < -HAL_WHEEL_SPEED_MAX ? -HAL_WHEEL_SPEED_MAX : v);

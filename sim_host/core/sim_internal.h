@@ -50,14 +50,7 @@ typedef struct sim_robot {
     hal_blob_t cam_next[HAL_MAX_BLOBS];
     sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
 
-    uint16_t ircom_tx[SIM_IRCOM_TX_MAX]; /**< messages to send this step */
-    uint8_t ircom_tx_n;            /**< how many (ircom.tx_per_period at most) */
-    hal_ircom_msg_t *rx;           /**< its receive queue: ircom.queue slots of sim->rx_store */
-    uint8_t rx_head, rx_count;
-    uint32_t rx_dropped;
-
     sim_rand_t noise;              /**< sensor noise */
-    sim_rand_t ircom_rand;         /**< loss and estimate noise at this receiver */
     sim_rand_t wheel_rand;         /**< actuation noise */
     double bias_left, bias_right;  /**< wheels.bias_sd's biases (this run's, or this step's), steps/s */
     sim_rand_t bias_rand;          /**< their draws (RAND_WHEEL_BIAS) */
@@ -183,7 +176,6 @@ struct sim {
     float *px, *py;                /**< robot centres, for the grid */
     grid_t robot_grid;
     uint32_t *step_order;          /**< robots in the order they step (phase 2) */
-    hal_ircom_msg_t *rx_store;     /**< every robot's receive queue, ircom.queue each (libIrcom: 20) */
 
     uint32_t n_obstacles;          /**< the scenario's objects, then its random cylinders */
     object_def_t *objects;         /**< n_obstacles: what each obstacle is (placement_cylinders) */
@@ -298,8 +290,6 @@ void camera_destroy(struct sim *sim);
  *  model and no recorder (the renderer has one GL context per run). */
 int camera_parallel(const struct sim *sim);
 
-/* ircom.c */
-void ircom_deliver(struct sim *sim);
 
 /** Writes to `out` (at most `max`) the indices of obstacles whose bounding
  *  boxes meet [minx,maxx] x [miny,maxy], each once, in ascending order of

@@ -17,10 +17,6 @@
 #include "common/controller.h"
 #include "common/param.h"
 
-/** Most messages a robot may send per control period (ircom.tx_per_period). */
-#define SIM_IRCOM_TX_MAX 16u
-/** Largest receive queue (ircom.queue). */
-#define SIM_IRCOM_QUEUE_MAX 64u
 
 #define SCENARIO_NAME_MAX 64
 #define SCENARIO_PATH_MAX 512
@@ -250,24 +246,6 @@ typedef struct scenario {
                                         fresh every control step */
         float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
     } camera;
-
-    struct {
-        float range;               /**< centre-to-centre reach, m */
-        float loss;                /**< probability a message is lost */
-        float bearing_noise;       /**< Gaussian sd added to the bearing, deg */
-        float range_noise_rel;     /**< relative Gaussian sd of the range */
-        uint8_t quantise_bearing;  /**< report the receiving sensor's bearing */
-        uint8_t blocked_by_robots; /**< robots also block line of sight */
-        uint8_t payload_bits;      /**< 8 (libIrcom) or 16 (range-and-bearing turret) */
-        float bearing_noise_vec;   /**< seed 003's direction noise: sd of the length of a
-                                        random vector (uniform azimuth) added to the
-                                        vector between the robots, m; 0 = none */
-        uint8_t tx_per_period;     /**< messages hal_ircom_send accepts per control period */
-        uint16_t slots;            /**< collision model: frame times per period (a frame
-                                        lands in a random one; two or more in one slot at
-                                        a receiver are all lost); 0 = no collisions */
-        uint8_t queue;             /**< messages a receiver's inbox holds */
-    } ircom;
 
     /* Actuation noise, ARGoS's differential-steering model (seed 003's eq 3):
      * a = f (w + b) per wheel, w the commanded speed, f ~ N(1, speed_noise_rel)

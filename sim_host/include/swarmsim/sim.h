@@ -82,6 +82,8 @@ uint16_t sim_robot_leds(const sim_t *sim, uint32_t i);
  *  standing in for a robot, e.g. ideal information).  Returns 0, or -1 when
  *  the inbox is full. */
 int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg);
+/** How far an IR message reaches, centre to centre, m (`ircom.range`). */
+float sim_ircom_range_m(const sim_t *sim);
 
 /* ---------------------------------------------------------------- world */
 

@@ -521,7 +521,6 @@ static void foraging_update(void *self, sim_t *sim)
 static void foraging_broadcast_truth(void *self, sim_t *sim)
 {
     foraging_t *f = self;
-    const scenario_t *sc = sim_scenario(sim);
     uint16_t frame;
     if (f->cfg->information != FORAGING_INFO_GLOBAL) {
         return;
@@ -546,7 +545,7 @@ static void foraging_broadcast_truth(void *self, sim_t *sim)
         sim_robot_pose(sim, i, &px, &py, &pt);
         float dx = f->cfg->nest.x - (float)px, dy = f->cfg->nest.y - (float)py;
         float d = sqrtf(dx * dx + dy * dy);
-        if (d > sc->ircom.range) {
+        if (d > sim_ircom_range_m(sim)) {
             continue;
         }
         hal_ircom_msg_t m;
