@@ -26,6 +26,7 @@
 /* The models' configs, set and read in code (their headers are internal). */
 #include "models/host/host.h"
 #include "models/ircom/ircom.h"
+#include "models/wheels/wheels.h"
 #include "models/tracker/tracker.h"
 
 #define MAX_SETS 8
@@ -205,7 +206,7 @@ static void test_defaults(void **state)
     assert_float_equal(ircom_config(sc)->range_noise_rel, 0.1, 1e-6);
     assert_int_equal(ircom_config(sc)->quantise_bearing, 1);
     assert_int_equal(ircom_config(sc)->blocked_by_robots, 0);
-    assert_float_equal(sc->wheels.speed_noise_rel, 0.0, 1e-9);
+    assert_float_equal(wheels_config(sc)->speed_noise_rel, 0.0, 1e-9);
     assert_int_equal(sc->output.timeseries_every, 10);
 }
 
@@ -422,7 +423,7 @@ static void test_full_file(void **state)
     assert_float_equal(ircom_config(sc)->range_noise_rel, 0.2, 1e-6);
     assert_int_equal(ircom_config(sc)->quantise_bearing, 0);
     assert_int_equal(ircom_config(sc)->blocked_by_robots, 1);
-    assert_float_equal(sc->wheels.speed_noise_rel, 0.05, 1e-6);
+    assert_float_equal(wheels_config(sc)->speed_noise_rel, 0.05, 1e-6);
     assert_int_equal(tracker_config(sc)->enabled, 1);
     assert_float_equal(tracker_config(sc)->noise_mm, 5.0, 1e-6);
     assert_float_equal(tracker_config(sc)->dropout, 0.1, 1e-6);

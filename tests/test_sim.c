@@ -21,9 +21,9 @@
 #include "units.h"
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
-#include "core/sim_internal.h"
 #include "models/host/host.h"
 #include "models/ircom/ircom.h"
+#include "models/wheels/wheels.h"
 #include "models/sound/sound.h"
 #include "models/tracker/tracker.h"
 
@@ -326,7 +326,7 @@ static uint64_t run_hash(uint64_t seed, int steps)
 {
     scenario_t *sc = calloc(1, sizeof *sc);
     scenario_defaults(sc);
-    sc->wheels.speed_noise_rel = 0.05f;
+    wheels_config_mut(sc)->speed_noise_rel = 0.05f;
     sim_t *sim = fixture_sim(sc, seed);
     for (int k = 0; k < steps; k++) sim_step(sim);
     uint64_t h = sim_state_hash(sim);
@@ -345,6 +345,19 @@ static void test_same_seed_same_state(void **state)
 
 /* ----------------------------------------------------- wheel bias (eq 3) */
 
+/* Robot i's wheel bias (left or right), steps/s, read through the run's
+ * fields (sim_field), as a binding reads robots' arrays.  Writable: the
+ * saturation test sets a bias by hand. */
+static double *bias_of(const sim_t *sim, uint32_t i, int right)
+{
+    sim_field_t f;
+    assert_int_equal(sim_field(sim, right ? "wheels.bias_right" : "wheels.bias_left", &f), 0);
+    assert_int_equal(f.type, SIM_FIELD_F64);
+    assert_int_equal(f.count, 1);
+    assert_true(i < sim_robot_count(sim));
+    return (double *)(uintptr_t)((const char *)f.base + (size_t)i * f.stride);
+}
+
 /* wheels.bias_sd: each robot's two biases are drawn once a run, Gaussian with
  * the key's sd (m/s), from their own stream; off by default. */
 static void test_wheel_bias_draws(void **state)
@@ -352,23 +365,23 @@ static void test_wheel_bias_draws(void **state)
     (void)state;
     scenario_t *sc = fixture_idle_scenario(400, 20.0f);
     sim_t *sim = fixture_sim(sc, 5);
-    for (uint32_t i = 0; i < sim->n; i++) {
-        assert_true(sim->robots[i].bias_left == 0.0 && sim->robots[i].bias_right == 0.0);
+    for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+        assert_true(*bias_of(sim, i, 0) == 0.0 && *bias_of(sim, i, 1) == 0.0);
     }
     sim_destroy(sim);
-    sc->wheels.bias_sd = 0.02f;                       /* 2 cm/s = 155 steps/s */
+    wheels_config_mut(sc)->bias_sd = 0.02f;                       /* 2 cm/s = 155 steps/s */
     sim = fixture_sim(sc, 5);
     sim_t *same = fixture_sim(sc, 5), *other = fixture_sim(sc, 6);
     double sum = 0, sq = 0;
-    for (uint32_t i = 0; i < sim->n; i++) {
-        const sim_robot_t *r = &sim->robots[i];
-        assert_true(r->bias_left != r->bias_right);
-        assert_true(r->bias_left == same->robots[i].bias_left);
-        assert_true(r->bias_left != other->robots[i].bias_left);
-        sum += r->bias_left + r->bias_right;
-        sq += r->bias_left * r->bias_left + r->bias_right * r->bias_right;
+    for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+        const double bl = *bias_of(sim, i, 0), br = *bias_of(sim, i, 1);
+        assert_true(bl != br);
+        assert_true(bl == *bias_of(same, i, 0));
+        assert_true(bl != *bias_of(other, i, 0));
+        sum += bl + br;
+        sq += bl * bl + br * br;
     }
-    const double n = 2.0 * sim->n, sd = sqrt(sq / n), expect = 0.02 / EPUCK_STEP_M;
+    const double n = 2.0 * sim_robot_count(sim), sd = sqrt(sq / n), expect = 0.02 / EPUCK_STEP_M;
     /* 800 draws: the sd within 10 % (about 4 standard errors), the mean
      * within 4 standard errors of 0. */
     if (fabs(sd - expect) > 0.10 * expect || fabs(sum / n) > 4.0 * expect / sqrt(n)) {
@@ -388,11 +401,11 @@ static void test_wheel_bias_moves_and_saturates(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(2, 8.0f);
-    sc->wheels.bias_sd = 0.02f;
+    wheels_config_mut(sc)->bias_sd = 0.02f;
     sim_t *sim = fixture_sim(sc, 9);
     sim_set_robot_pose(sim, 0, -2.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 2.0, 2.0, 0.0);
-    const double bl = sim->robots[0].bias_left, br = sim->robots[0].bias_right;
+    const double bl = *bias_of(sim, 0, 0), br = *bias_of(sim, 0, 1);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
     double turned = 0, prev = 0, x, y, t;
     for (int k = 0; k < 10; k++) {                      /* 1 s */
@@ -413,7 +426,7 @@ static void test_wheel_bias_moves_and_saturates(void **state)
     sim_robot_pose(sim, 1, &x, &y, &t);                 /* commanded (0, 0) */
     assert_true(x == 2.0f && y == 2.0f);
     /* Saturation: a 0.5 m/s bias on both wheels drives at 1000 steps/s. */
-    sim->robots[1].bias_left = sim->robots[1].bias_right = 0.5 / EPUCK_STEP_M;
+    *bias_of(sim, 1, 0) = *bias_of(sim, 1, 1) = 0.5 / EPUCK_STEP_M;
     hal_set_wheel_speeds(sim_robot_hal(sim, 1), 100, 100);
     for (int k = 0; k < 10; k++) sim_step(sim);
     sim_robot_pose(sim, 1, &x, &y, &t);
@@ -432,22 +445,22 @@ static void test_wheel_bias_per_step(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(1, 8.0f);
-    sc->wheels.bias_sd = 0.02f;
-    sc->wheels.bias_per_step = 1;
+    wheels_config_mut(sc)->bias_sd = 0.02f;
+    wheels_config_mut(sc)->bias_per_step = 1;
     sim_t *sim = fixture_sim(sc, 9), *same = fixture_sim(sc, 9);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
     hal_set_wheel_speeds(sim_robot_hal(same, 0), 388, 388);
-    double sq = 0, prev = sim->robots[0].bias_left;
+    double sq = 0, prev = *bias_of(sim, 0, 0);
     int changed = 0;
     const int steps = 400;
     for (int k = 0; k < steps; k++) {
         sim_step(sim);
         sim_step(same);
-        const sim_robot_t *r = &sim->robots[0];
-        assert_true(r->bias_left == same->robots[0].bias_left && r->bias_right == same->robots[0].bias_right);
-        changed += r->bias_left != prev;
-        prev = r->bias_left;
-        sq += r->bias_left * r->bias_left + r->bias_right * r->bias_right;
+        const double bl = *bias_of(sim, 0, 0), br = *bias_of(sim, 0, 1);
+        assert_true(bl == *bias_of(same, 0, 0) && br == *bias_of(same, 0, 1));
+        changed += bl != prev;
+        prev = bl;
+        sq += bl * bl + br * br;
         hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
         hal_set_wheel_speeds(sim_robot_hal(same, 0), 388, 388);
     }

@@ -30,6 +30,8 @@
 #include "swarmsim/metrics.h"
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
+/* The wheels' keys, set in code (an internal header). */
+#include "models/wheels/wheels.h"
 #include "tasks/targets/targets.h"
 
 #define PI 3.14159265358979
@@ -45,7 +47,7 @@ static scenario_t *world(uint32_t robots, float arena)
     sc->control_period_ms = 25;
     sc->camera.fps = 0.0f;
     sc->ir.noise_rel = sc->ir.noise_abs = 0.0f;
-    sc->wheels.speed_noise_rel = 0.0f;
+    wheels_config_mut(sc)->speed_noise_rel = 0.0f;
     sc->task_count = 1;
     sc->tasks[0].def = &targets_task;
     targets_task.default_config(sc->tasks[0].config.bytes);

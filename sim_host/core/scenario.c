@@ -215,17 +215,6 @@ static const param_desc_t camera_params[] = {
     PARAM_END
 };
 
-static const param_desc_t wheels_params[] = {
-    { .key = "speed_noise_rel", PARAM_FIELD(SC, wheels.speed_noise_rel, float), .min = 0, .max = 1,
-      .doc = "per-wheel relative speed noise (sd)" },
-    { .key = "bias_sd", PARAM_FIELD(SC, wheels.bias_sd, float), .min = 0, .max = 1,
-      .doc = "sd of a per-robot, per-wheel speed bias drawn once a run, m/s (seed 003's eq 3; "
-             "the e-puck saturates at 0.129 m/s)" },
-    { .key = "bias_per_step", PARAM_BOOL_FIELD(SC, wheels.bias_per_step),
-      .doc = "draw the bias anew every control step instead of once a run (another reading of eq 3)" },
-    PARAM_END
-};
-
 static const param_desc_t random_cylinders_params[] = {
     { .key = "count", PARAM_FIELD(SC, random_cylinders.count, uint32_t), .min = 0, .max = SCENARIO_MAX_OBJECTS,
       .doc = "cylinders drawn at random when each run is built (0: none)" },
@@ -283,7 +272,6 @@ MAPPING_SCHEMA(fault);
 MAPPING_SCHEMA(ir);
 MAPPING_SCHEMA(ambient);
 MAPPING_SCHEMA(camera);
-MAPPING_SCHEMA(wheels);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
 
@@ -340,7 +328,6 @@ static const child_t top_children[] = {
     { "ir", CHILD_MAPPING, &ir_schema, NULL, "IR proximity sensors" },
     { "ambient", CHILD_MAPPING, &ambient_schema, NULL, "ambient light sensors" },
     { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
-    { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
     CHILD_END
 };
@@ -400,9 +387,6 @@ void scenario_defaults(scenario_t *out)
     out->camera.height_px = EPUCK_CAMERA_HEIGHT_PX;
     out->camera.model = CAMERA_GEOMETRIC;
     out->camera.fps = SCENARIO_CAMERA_EPUCK_FPS;
-    out->wheels.speed_noise_rel = 0.0f;
-    out->wheels.bias_sd = 0.0f;
-    out->wheels.bias_per_step = 0;
     out->output.timeseries_every = 10;
     out->random_cylinders.count = 0;
     out->random_cylinders.radius_min = 0.05f;

@@ -83,16 +83,6 @@ static int build_robots(struct sim *sim, char err[256])
             r->moves = grp->moves;
             r->ctrl = stride ? (uint8_t *)sim->ctrl_blocks[g] + (size_t)k * stride : NULL;
             sim_rand_seed(&r->noise, sim->seed, i, RAND_SENSORS);
-            sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
-            r->bias_left = r->bias_right = 0.0;
-            if (sc->wheels.bias_sd > 0.0f) {
-                /* Eq 3's bias b, drawn once a run as ARGoS does (its own
-                 * stream: other streams and golden hashes are unchanged). */
-                sim_rand_seed(&r->bias_rand, sim->seed, i, RAND_WHEEL_BIAS);
-                const double sd_steps = sc->wheels.bias_sd / EPUCK_STEP_M;
-                r->bias_left = sd_steps * sim_rand_normal(&r->bias_rand);
-                r->bias_right = sd_steps * sim_rand_normal(&r->bias_rand);
-            }
             if (r->ctrl) {
                 def->init(r->ctrl, params.bytes, sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
             }
@@ -141,8 +131,7 @@ static void find_counters(struct sim *sim)
 void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p)
 {
     const sim_robot_t *r = &sim->robots[i];
-    p->wheel_left = r->cmd_left;
-    p->wheel_right = r->cmd_right;
+    p->wheel_left = p->wheel_right = 0;
     p->leds = (int16_t)r->leds;
     p->ir_max = -1;
     p->ir_max_index = -1;
@@ -589,6 +578,65 @@ uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float 
     return n;
 }
 
+/* ---------------------------------------------------------------- fields */
+
+#define CORE_FIELD(name, unit, doc, type, member) \
+    { name, unit, doc, type, 0, offsetof(sim_robot_t, member), 1 }
+/* What every robot has (array 0: sim->robots). */
+static const model_field_t core_fields[] = {
+    CORE_FIELD("pose.x", "m", "x of the centre at the start of the step", SIM_FIELD_F32, x),
+    CORE_FIELD("pose.y", "m", "y of the centre at the start of the step", SIM_FIELD_F32, y),
+    CORE_FIELD("pose.theta", "rad", "heading, CCW from +x", SIM_FIELD_F32, theta),
+    CORE_FIELD("leds", "", "LED word: bit k ring LED k, bit 8 body, bit 9 front", SIM_FIELD_U16, leds),
+    CORE_FIELD("group", "", "index into the scenario's groups", SIM_FIELD_U32, group),
+    { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
+};
+
+static void view_of(const model_field_t *f, const void *array, size_t stride, sim_field_t *out)
+{
+    out->name = f->name;
+    out->unit = f->unit;
+    out->doc = f->doc;
+    out->type = f->type;
+    out->base = array ? (const char *)array + f->offset : NULL;
+    out->stride = stride;
+    out->count = f->count;
+}
+
+int sim_field_at(const sim_t *sim, uint32_t k, sim_field_t *out)
+{
+    for (const model_field_t *f = core_fields; f->name; f++) {
+        if (k-- == 0) {
+            view_of(f, sim->n ? sim->robots : NULL, sizeof(sim_robot_t), out);
+            return 0;
+        }
+    }
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        for (const model_field_t *f = m->def->fields; f && f->name; f++) {
+            /* Only what this run allocated: a model off holds nothing. */
+            if (f->array >= m->layout.arrays || m->layout.elem_size[f->array] == 0) {
+                continue;
+            }
+            if (k-- == 0) {
+                view_of(f, sim->n ? m->array[f->array] : NULL, m->layout.elem_size[f->array], out);
+                return 0;
+            }
+        }
+    }
+    return -1;
+}
+
+int sim_field(const sim_t *sim, const char *name, sim_field_t *out)
+{
+    for (uint32_t k = 0; sim_field_at(sim, k, out) == 0; k++) {
+        if (strcmp(out->name, name) == 0) {
+            return 0;
+        }
+    }
+    return -1;
+}
+
 /* ---------------------------------------------------------------- accessors */
 
 uint64_t sim_step_count(const sim_t *sim) { return sim->step; }
@@ -617,12 +665,6 @@ void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *
     *x = r->x;
     *y = r->y;
     *theta = r->theta;
-}
-
-void sim_robot_wheels(const sim_t *sim, uint32_t i, int16_t *left, int16_t *right)
-{
-    *left = sim->robots[i].cmd_left;
-    *right = sim->robots[i].cmd_right;
 }
 
 void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta)
@@ -743,7 +785,7 @@ void sim_set_step_order(sim_t *sim, int order, uint64_t key)
     }
 }
 
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
+uint64_t sim_hash_bytes(uint64_t h, const void *p, size_t n)
 {
     const unsigned char *b = p;
     for (size_t k = 0; k < n; k++) {
@@ -755,14 +797,12 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
 uint64_t sim_state_hash(const sim_t *sim)
 {
     uint64_t h = UINT64_C(0xcbf29ce484222325);
-    h = fnv(h, &sim->step, sizeof sim->step);
+    h = sim_hash_bytes(h, &sim->step, sizeof sim->step);
     for (uint32_t i = 0; i < sim->n; i++) {
         const sim_robot_t *r = &sim->robots[i];
-        h = fnv(h, &r->x, sizeof r->x);
-        h = fnv(h, &r->y, sizeof r->y);
-        h = fnv(h, &r->theta, sizeof r->theta);
-        h = fnv(h, &r->steps_left, sizeof r->steps_left);
-        h = fnv(h, &r->steps_right, sizeof r->steps_right);
+        h = sim_hash_bytes(h, &r->x, sizeof r->x);
+        h = sim_hash_bytes(h, &r->y, sizeof r->y);
+        h = sim_hash_bytes(h, &r->theta, sizeof r->theta);
         for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
             if (sim->models[id].def->hash) {
                 h = sim->models[id].def->hash(sim, sim->models[id].self, i, h);

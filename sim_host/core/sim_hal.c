@@ -69,26 +69,6 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
-static int16_t clamp_speed(int16_t v)
-{
-    return v > HAL_WHEEL_SPEED_MAX ? HAL_WHEEL_SPEED_MAX : (v < -HAL_WHEEL_SPEED_MAX ? -HAL_WHEEL_SPEED_MAX : v);
-}
-
-void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s)
-{
-    sim_robot_t *r = robot(hal);
-    r->cmd_left = clamp_speed(left_steps_s);
-    r->cmd_right = clamp_speed(right_steps_s);
-}
-
-void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right)
-{
-    sim_robot_t *r = robot(hal);
-    /* 16-bit counters wrap as on the robot. */
-    *left = (int16_t)(uint16_t)(int64_t)r->steps_left;
-    *right = (int16_t)(uint16_t)(int64_t)r->steps_right;
-}
-
 static void set_bit(uint16_t *bits, unsigned bit, uint8_t on)
 {
     *bits = on ? (uint16_t)(*bits | (1u << bit)) : (uint16_t)(*bits & ~(1u << bit));

@@ -31,8 +31,6 @@ typedef struct sim_robot {
     hal_t hal;
     b2BodyId body;
     float x, y, theta;             /**< pose at the start of this control step */
-    int16_t cmd_left, cmd_right;   /**< commanded wheel speeds, steps/s */
-    double steps_left, steps_right;/**< commanded steps so far */
     uint16_t leds;                 /**< bits 0-7 ring, 8 body, 9 front */
 
     /* Sensor caches, valid when *_stamp == sim->step + 1. */
@@ -51,9 +49,6 @@ typedef struct sim_robot {
     sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
 
     sim_rand_t noise;              /**< sensor noise */
-    sim_rand_t wheel_rand;         /**< actuation noise */
-    double bias_left, bias_right;  /**< wheels.bias_sd's biases (this run's, or this step's), steps/s */
-    sim_rand_t bias_rand;          /**< their draws (RAND_WHEEL_BIAS) */
 
     uint32_t group;                /**< index into the scenario's groups */
     const controller_def_t *def;   /**< what runs on this robot */
@@ -247,6 +242,9 @@ static inline uint64_t sim_hal_stamp(const hal_t *hal)
 {
     return hal->sim->step + 1;
 }
+
+/** FNV-1a 64 of `n` bytes folded into `h`: the state hash (sim_state_hash). */
+uint64_t sim_hash_bytes(uint64_t h, const void *p, size_t n);
 
 /** Non-zero when a model stops robot i's controller and motors this step. */
 int sim_robot_halted(const struct sim *sim, uint32_t i);

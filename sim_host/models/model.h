@@ -86,18 +86,13 @@ typedef struct model_layout {
                                               schedules): for the memory estimate only */
 } model_layout_t;
 
-/** Types of a per-robot field (model_field_t). */
-typedef enum model_field_type {
-    FIELD_U8, FIELD_I8, FIELD_U16, FIELD_I16, FIELD_U32, FIELD_I32, FIELD_U64, FIELD_F32, FIELD_F64
-} model_field_type_t;
-
 /** A per-robot value a model exposes (sim_field): `count` values of
  *  `type` at `offset` in each element of its array `array`. */
 typedef struct model_field {
     const char *name;     /**< "<model>.<what>", e.g. "wheels.cmd_left" */
     const char *unit;     /**< "" when it has none */
     const char *doc;      /**< one line */
-    model_field_type_t type;
+    sim_field_type_t type;
     uint32_t array;       /**< which of the model's arrays */
     size_t offset;        /**< in that array's element */
     uint32_t count;       /**< values per robot (8: one per IR sensor) */

@@ -247,17 +247,6 @@ typedef struct scenario {
         float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
     } camera;
 
-    /* Actuation noise, ARGoS's differential-steering model (seed 003's eq 3):
-     * a = f (w + b) per wheel, w the commanded speed, f ~ N(1, speed_noise_rel)
-     * drawn every step, b ~ N(0, bias_sd) drawn once per robot and wheel per
-     * run.  See world_drive. */
-    struct {
-        float speed_noise_rel;     /**< per-wheel relative speed noise (sd): f's sd */
-        float bias_sd;             /**< sd of each wheel's bias b, m/s; 0 = none */
-        uint8_t bias_per_step;     /**< 1: b drawn anew every control step (a reading of
-                                        eq 3 other than ARGoS's once-a-run bias) */
-    } wheels;
-
     struct {
         uint32_t timeseries_every; /**< control steps between CSV rows */
     } output;

@@ -69,6 +69,35 @@ const char *sim_robot_state_name(const sim_t *sim, uint32_t i);
 /** The hal_t of robot `i`, to drive a robot from a test. */
 hal_t *sim_robot_hal(sim_t *sim, uint32_t i);
 
+/** Types of a per-robot field's values (sim_field_t). */
+typedef enum sim_field_type {
+    SIM_FIELD_U8, SIM_FIELD_I8, SIM_FIELD_U16, SIM_FIELD_I16, SIM_FIELD_U32, SIM_FIELD_I32, SIM_FIELD_U64,
+    SIM_FIELD_F32, SIM_FIELD_F64
+} sim_field_type_t;
+
+/** A per-robot value of the run, where it lives: robot i's `count` values
+ *  of `type` start at (const char *)base + i * stride.  What the core keeps
+ *  of every robot ("pose.x", "pose.y", "pose.theta", "leds", "group") and
+ *  what each model exposes ("wheels.cmd_left", "sound.level", ...; --help
+ *  lists them).  Valid until the sim is destroyed; the values are those of
+ *  the current step.  For bindings that read robots as arrays without a
+ *  copy per robot (a strided view). */
+typedef struct sim_field {
+    const char *name;
+    const char *unit;       /**< "" when it has none */
+    const char *doc;
+    sim_field_type_t type;
+    const void *base;       /**< robot 0's first value (NULL when the run has no robots) */
+    size_t stride;          /**< bytes from one robot's values to the next */
+    uint32_t count;         /**< values per robot */
+} sim_field_t;
+
+/** The field called `name`: 0, or -1 when the run has none of that name
+ *  (a model that allocated nothing for this run, such as sound when off). */
+int sim_field(const sim_t *sim, const char *name, sim_field_t *out);
+/** The k-th field of the run (0, 1, ...): 0, or -1 past the last. */
+int sim_field_at(const sim_t *sim, uint32_t k, sim_field_t *out);
+
 /** Pose of robot `i`: m, m, rad (CCW from +x). */
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta);
 /** Teleports robot `i` (tests and placement). */

@@ -495,11 +495,11 @@ static const char *const ircom_hal_calls[] = {
 };
 
 static const model_field_t ircom_fields[] = {
-    { "ircom.inbox", "messages", "messages waiting in the inbox", FIELD_U8, INBOX,
+    { "ircom.inbox", "messages", "messages waiting in the inbox", SIM_FIELD_U8, INBOX,
       offsetof(ircom_inbox_t, count), 1 },
-    { "ircom.dropped", "messages", "arrivals a full inbox refused so far", FIELD_U32, INBOX,
+    { "ircom.dropped", "messages", "arrivals a full inbox refused so far", SIM_FIELD_U32, INBOX,
       offsetof(ircom_inbox_t, dropped), 1 },
-    { NULL, NULL, NULL, FIELD_U8, 0, 0, 0 }
+    { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
 };
 
 const model_def_t ircom_model = {

@@ -389,10 +389,10 @@ hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
 static const char *const sound_hal_calls[] = { "hal_mic_level", "hal_speaker_set", NULL };
 
 static const model_field_t sound_fields[] = {
-    { "sound.played", "", "band its speaker played during the last period (0: silence)", FIELD_U8, PLAYED, 0, 1 },
-    { "sound.level", "counts", "level per band over the last period (index 0 unused)", FIELD_U32, LEVEL, 0,
+    { "sound.played", "", "band its speaker played during the last period (0: silence)", SIM_FIELD_U8, PLAYED, 0, 1 },
+    { "sound.level", "counts", "level per band over the last period (index 0 unused)", SIM_FIELD_U32, LEVEL, 0,
       HAL_SOUND_BANDS },
-    { NULL, NULL, NULL, FIELD_U8, 0, 0, 0 }
+    { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
 };
 
 const model_def_t sound_model = {
