@@ -81,3 +81,15 @@ const task_def_t *registry_task_at(size_t i)
 {
     return i < COUNT(tasks) ? tasks[i] : NULL;
 }
+
+const task_def_t *registry_task_for_controller(const char *controller)
+{
+    for (size_t i = 0; i < COUNT(tasks); i++) {
+        for (size_t k = 0; tasks[i]->controllers != NULL && tasks[i]->controllers[k] != NULL; k++) {
+            if (strcmp(tasks[i]->controllers[k], controller) == 0) {
+                return tasks[i];
+            }
+        }
+    }
+    return NULL;
+}

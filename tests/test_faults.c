@@ -1,5 +1,5 @@
 /*
- * test_faults.c - faults injected into robots (sim_host/core/faults.c):
+ * test_faults.c - faults injected into robots (sim_host/models/faults/faults.c):
  * who fails and when (the fraction, the onset, the seed), what each fault
  * does through the HAL, the record of it (events, summary counts), the
  * liar bounded by the beacon, and the scenario keys' errors.
@@ -20,7 +20,8 @@
 #include "swarmsim/metrics.h"
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
-#include "core/sim_internal.h"
+/* Who was drawn to fail, and faults_stopped: the model's own header. */
+#include "models/faults/faults.h"
 #include "foraging/nest_beacon.h"
 
 /* Loads YAML text (through a temporary file) with overrides. */
@@ -290,8 +291,9 @@ static void test_liar_is_bounded_by_the_beacon(void **state)
         if (!strcmp(sim_robot_def(sim, i)->name, NEST_BEACON_NAME)) b = sim_robot_controller_const(sim, i);
     }
     assert_non_null(b);
-    assert_int_equal(sim->n_faults, 1);
-    uint32_t liar = sim->faults[0].robot;
+    const fault_run_t *drawn;
+    assert_int_equal(faults_drawn(sim, &drawn), 1);
+    uint32_t liar = drawn[0].robot;
     /* Its credited total (mod 256): one deposit per 20 steps, not 3000. */
     assert_true(b->last_deposits[liar] >= 148u && b->last_deposits[liar] <= 150u);
     assert_true(b->ledger_units <= NB_LEDGER_LIMIT_TOKENS * 1500);

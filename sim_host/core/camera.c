@@ -31,6 +31,7 @@
 #include "blob_detect.h"
 #include "camera_picture.h"
 #include "camera_render.h"
+#include "models/faults/faults.h"
 #include "sim_internal.h"
 #include "units.h"
 

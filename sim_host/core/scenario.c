@@ -92,30 +92,6 @@ static const param_desc_t group_params[] = {
     PARAM_END
 };
 
-/* The names of fault_kind_t, in its order. */
-const char *const scenario_fault_names[] = {
-    "stop", "wheel_stall", "wheel_drift", "ir_fail", "ir_noise", "camera_fail", "radio_dropout",
-    "radio_bursts", "liar", "babble", NULL
-};
-
-#define FLT fault_def_t
-static const param_desc_t fault_params[] = {
-    { .key = "kind", PARAM_ENUM_FIELD(FLT, kind, scenario_fault_names),
-      .doc = "what goes wrong (README: faults)" },
-    { .key = "fraction", PARAM_FIELD(FLT, fraction, float), .min = 0, .max = 1,
-      .doc = "of the group's robots, drawn per run (rounded)" },
-    { .key = "at", PARAM_ANGLE_FIELD(FLT, at), .min = 0, .max = 1e7,
-      .doc = "onset, s, or random (uniform over the run)" },
-    { .key = "rate", PARAM_FIELD(FLT, rate, float), .min = 0, .max = 1000,
-      .doc = "> 0: onset after an exponential time of this rate, 1/s (instead of at)" },
-    { .key = "duration", PARAM_FIELD(FLT, duration, float), .min = 0, .max = 1e7,
-      .doc = "s it lasts (0: to the end); radio_bursts: mean burst length, s" },
-    { .key = "value", PARAM_FIELD(FLT, value, float), .min = -1e6, .max = 1e6,
-      .doc = "wheel_drift: speed factor; ir_noise: sd, counts; radio_bursts: mean gap, s" },
-    PARAM_END
-};
-#undef FLT
-
 static const param_desc_t placement_params[] = {
     { .key = "shape", PARAM_ENUM_FIELD(GRP, placement.shape, placement_choices),
       .doc = "region the robots start in (bodies inside it)" },
@@ -248,7 +224,6 @@ static const object_def_t object_default = {
 };
 static const light_def_t light_default = { 0.0f, 0.0f, 0.1f, 1.0f };
 static const pose_def_t pose_default = { 0.0f, 0.0f, NAN };
-static const fault_def_t fault_default = { FAULT_STOP, 1.0f, NAN, 0.0f, 0.0f, 0.0f };
 /* A group entry before its keys: one robot anywhere in the arena, random
  * heading; it must name its controller. */
 static const robot_group_t group_default = {
@@ -268,7 +243,6 @@ MAPPING_SCHEMA(arena);
 MAPPING_SCHEMA(object);
 MAPPING_SCHEMA(light);
 MAPPING_SCHEMA(pose);
-MAPPING_SCHEMA(fault);
 MAPPING_SCHEMA(ir);
 MAPPING_SCHEMA(ambient);
 MAPPING_SCHEMA(camera);
@@ -285,15 +259,9 @@ static const child_t placement_children[] = {
 };
 static const schema_t placement_schema = { placement_params, placement_children, NULL, NULL };
 
-static int check_fault(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
-static const seq_desc_t faults_seq = {
-    "faults", SCENARIO_MAX_FAULTS, sizeof(fault_def_t), &fault_default, &fault_schema,
-    offsetof(robot_group_t, faults), offsetof(robot_group_t, fault_count), check_fault, 0, NULL
-};
 
 static const child_t group_children[] = {
     { "placement", CHILD_MAPPING, &placement_schema, NULL, "where the robots start" },
-    { "faults", CHILD_SEQUENCE, NULL, &faults_seq, "faults injected into some of the robots" },
     { "params", CHILD_DEFERRED, NULL, NULL, "the controller's parameters" },
     CHILD_END
 };
@@ -533,29 +501,6 @@ static int check_placement(const loader_t *ld, const ynode_t *item, const char *
         return schema_fail(ld, schema_node_of(node ? node : item, "poses"), q,
                            "%u poses for a group of %u robots (give one per robot)",
                            pl->pose_count, g->count);
-    }
-    return 0;
-}
-
-/* After a group's keys: its controller, policy and params (over the
- * controller's defaults), placement. */
-/* A fault's value must mean something for its kind. */
-static int check_fault(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
-{
-    const fault_def_t *f = elem;
-    char p[SCHEMA_PATH_MAX];
-    if ((f->kind == FAULT_WHEEL_DRIFT && !(f->value >= 0.0f && f->value <= 2.0f))
-        || (f->kind == FAULT_IR_NOISE && !(f->value > 0.0f))
-        || (f->kind == FAULT_RADIO_BURSTS && !(f->value > 0.0f && f->duration > 0.0f))) {
-        schema_join(p, path, "value");
-        return schema_fail(ld, schema_node_of(item, "value"), p, "%s needs %s", scenario_fault_names[f->kind],
-                           f->kind == FAULT_WHEEL_DRIFT ? "a speed factor in [0, 2] (0.8: 20 % slow)"
-                           : f->kind == FAULT_IR_NOISE ? "a noise sd > 0, counts (e.g. 200)"
-                           : "a mean gap > 0 s (value) and a mean burst > 0 s (duration)");
-    }
-    if (!isnan(f->at) && f->rate > 0.0f) {
-        schema_join(p, path, "rate");
-        return schema_fail(ld, schema_node_of(item, "rate"), p, "give `at` or `rate`, not both");
     }
     return 0;
 }
@@ -880,19 +825,6 @@ static int check_inside(const loader_t *ld, const ynode_t *root, const scenario_
     return 0;
 }
 
-/* What a controller needs of the platform the scenario models. */
-/* The registered task that lists `controller` as needing it, or NULL. */
-static const task_def_t *task_needed_by(const char *controller)
-{
-    const task_def_t *t;
-    for (size_t i = 0; (t = registry_task_at(i)) != NULL; i++) {
-        for (size_t k = 0; t->controllers != NULL && t->controllers[k] != NULL; k++) {
-            if (strcmp(t->controllers[k], controller) == 0) return t;
-        }
-    }
-    return NULL;
-}
-
 static int has_task(const scenario_t *sc, const task_def_t *def)
 {
     for (uint32_t t = 0; t < sc->task_count; t++) {
@@ -905,7 +837,7 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
 {
     for (uint32_t g = 0; g < sc->group_count; g++) {
         const robot_group_t *grp = &sc->groups[g];
-        const task_def_t *world = task_needed_by(grp->def->name);
+        const task_def_t *world = registry_task_for_controller(grp->def->name);
         if (grp->count > 0 && world != NULL && !has_task(sc, world)) {
             char path[SCHEMA_PATH_MAX], at[SCHEMA_PATH_MAX];
             snprintf(path, sizeof path, "robots.%u.controller", g);
@@ -916,17 +848,6 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
                                "controller '%s' needs the %s task, its world (without it the robots "
                                "have nothing to do): add a `%s:` section (swarmsim --help lists its keys)",
                                grp->def->name, world->name, world->name);
-        }
-        for (uint32_t k = 0; k < grp->fault_count; k++) {
-            if (grp->faults[k].kind == FAULT_LIAR && (world == NULL || world->lie == NULL)) {
-                char path[SCHEMA_PATH_MAX];
-                snprintf(path, sizeof path, "robots.%u.faults.%u.kind", g, k);
-                const ynode_t *node = schema_find(root, path);
-                snprintf(path, sizeof path, "robots[%u].faults[%u].kind", g, k);
-                return schema_fail(ld, node, path, "controller '%s' has no task that defines what a "
-                                   "lying robot sends (task_def_t.lie); use babble for random messages",
-                                   grp->def->name);
-            }
         }
     }
     return 0;

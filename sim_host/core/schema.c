@@ -419,12 +419,21 @@ static int unknown_key(const loader_t *ld, const ynode_t *key, const char *path,
         schema_list_key(valid, sizeof valid, d->key);
     }
     for (c = schema->children; c != NULL && c->key != NULL; c++) {
-        schema_consider(key->text, c->key, &best, &dist);
-        schema_list_key(valid, sizeof valid, c->key);
+        if (c->kind != CHILD_DEFERRED) {
+            schema_consider(key->text, c->key, &best, &dist);
+            schema_list_key(valid, sizeof valid, c->key);
+        }
     }
     for (i = 0; schema->other_key != NULL && (other = schema->other_key(i)) != NULL; i++) {
         schema_consider(key->text, other, &best, &dist);
         schema_list_key(valid, sizeof valid, other);
+    }
+    /* Keys filled after the others (a group's params) come last. */
+    for (c = schema->children; c != NULL && c->key != NULL; c++) {
+        if (c->kind == CHILD_DEFERRED) {
+            schema_consider(key->text, c->key, &best, &dist);
+            schema_list_key(valid, sizeof valid, c->key);
+        }
     }
     if (best != NULL) {
         return schema_fail(ld, key, path, "unknown key '%.64s' (did you mean '%s'?)", key->text, best);

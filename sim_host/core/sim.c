@@ -261,7 +261,7 @@ int sim_robot_halted(const struct sim *sim, uint32_t i)
             return 1;
         }
     }
-    return faults_stopped(sim, i);
+    return 0;
 }
 
 typedef enum phase { PHASE_BEGIN, PHASE_BEFORE_CONTROL, PHASE_AFTER_CONTROL, PHASE_DRIVE, PHASE_END } phase_t;
@@ -411,8 +411,7 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         sim_destroy(sim);
         return NULL;
     }
-    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0 || faults_create(sim, err) != 0
-        || create_models(sim, err) != 0) {
+    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0 || create_models(sim, err) != 0) {
         sim_destroy(sim);
         return NULL;
     }
@@ -448,7 +447,6 @@ void sim_destroy(sim_t *sim)
     }
     free(sim->scratch);
     pool_destroy(sim->pool);
-    faults_destroy(sim);
     camera_destroy(sim);
     items_index_free(sim);
     grid_free(&sim->robot_grid);
@@ -470,7 +468,6 @@ void sim_destroy(sim_t *sim)
 void sim_step(sim_t *sim)
 {
     sim->n_events = 0;
-    faults_begin_step(sim);
     run_phase(sim, PHASE_BEGIN);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->before_control) {
@@ -490,7 +487,6 @@ void sim_step(sim_t *sim)
         step_robots(0, sim->n, 0, sim);
     }
     items_index_drop(sim);
-    faults_transmit(sim);
     run_phase(sim, PHASE_AFTER_CONTROL);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->after_control) {

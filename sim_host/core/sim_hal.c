@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "models/faults/faults.h"
 #include "sim_internal.h"
 #include "units.h"
 

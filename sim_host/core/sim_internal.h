@@ -8,7 +8,6 @@
 
 #include <box2d/box2d.h>
 
-#include "faults.h"
 #include "models/model.h"
 #include "swarmsim/geometry.h"
 #include "swarmsim/grid.h"
@@ -56,12 +55,6 @@ typedef struct sim_robot {
     uint8_t moves;                 /**< 0: a static body */
     uint8_t escaped;
 
-    /* Faults (faults.h): how many of each kind are active, and their values. */
-    uint8_t fault_on[FAULT_KIND_COUNT];
-    uint8_t radio_bursting;        /**< in a radio_bursts dropout now */
-    float drift;                   /**< wheel_drift factor */
-    float ir_noise_sd;             /**< ir_noise, counts */
-    sim_rand_t fault_rand;         /**< babble bits, ir_noise, bursts */
 } sim_robot_t;
 
 /** A robot's body velocity for Box2D this step (world_drive), and how far
@@ -71,16 +64,6 @@ typedef struct world_velocity {
     float w;
     double moved;
 } world_velocity_t;
-
-/** One fault of one robot, as drawn for this run. */
-typedef struct fault_run {
-    uint32_t robot;
-    uint8_t kind;                  /**< fault_kind_t */
-    uint8_t active, bad;           /**< bad: in a radio burst */
-    uint64_t on_step, off_step;    /**< UINT64_MAX: never */
-    float value, duration;
-    double start_s, end_s;         /**< NaN until it happens */
-} fault_run_t;
 
 typedef struct obstacle {
     int shape;                     /**< object_shape_t */
@@ -192,9 +175,6 @@ struct sim {
     uint8_t n_group_counters[SCENARIO_MAX_GROUPS];
     sim_group_counter_t group_counters[SCENARIO_MAX_GROUPS][SIM_MAX_COUNTERS];
 
-
-    fault_run_t *faults;           /**< faults.h */
-    uint32_t n_faults;
 
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;

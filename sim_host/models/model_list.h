@@ -8,6 +8,7 @@
  * faulty robots' messages on the air before ircom delivers the step's
  * messages (after_control).
  */
+SIM_MODEL(faults)
 SIM_MODEL(tracker)
 SIM_MODEL(host)
 SIM_MODEL(uart)

@@ -106,38 +106,6 @@ typedef struct placement_def {
     pose_def_t poses[SCENARIO_MAX_POSES];
 } placement_def_t;
 
-/** Most faults a group declares. */
-#define SCENARIO_MAX_FAULTS 8
-
-/** What goes wrong with a robot (faults.h says how each acts). */
-typedef enum fault_kind {
-    FAULT_STOP = 0,          /**< controller and motors halted */
-    FAULT_WHEEL_STALL,       /**< the left wheel does not turn */
-    FAULT_WHEEL_DRIFT,       /**< the left wheel turns at `value` times its command */
-    FAULT_IR_FAIL,           /**< proximity sensors read 0 */
-    FAULT_IR_NOISE,          /**< proximity sensors get Gaussian noise of sd `value` */
-    FAULT_CAMERA_FAIL,       /**< the camera sees nothing */
-    FAULT_RADIO_DROPOUT,     /**< sends and hears nothing */
-    FAULT_RADIO_BURSTS,      /**< dropouts of mean `duration` s, every `value` s on average */
-    FAULT_LIAR,              /**< sends, every step, the false message its task defines */
-    FAULT_BABBLE,            /**< sends random bits every step */
-    FAULT_KIND_COUNT
-} fault_kind_t;
-
-/** The names of fault_kind_t (NULL-terminated): the scenario's `kind:` words. */
-extern const char *const scenario_fault_names[];
-
-/** A fault of some of a group's robots, from an onset time. */
-typedef struct fault_def {
-    int kind;                   /**< fault_kind_t */
-    float fraction;             /**< of the group's robots, rounded (1: all) */
-    float at;                   /**< onset, s; NaN ("random"): uniform over the run */
-    float rate;                 /**< > 0: onset after an exponential time of this rate, 1/s */
-    float duration;             /**< s it lasts (0: to the end); radio_bursts: mean burst */
-    float value;                /**< wheel_drift: speed factor; ir_noise: sd, counts;
-                                     radio_bursts: mean time between bursts, s */
-} fault_def_t;
-
 /** How the camera's blobs are made (camera.model). */
 typedef enum camera_model {
     CAMERA_GEOMETRIC = 0,        /**< from the objects' angles (sensors.c): fast, the default */
@@ -167,8 +135,6 @@ typedef struct robot_group {
     float heading;              /**< start heading, deg; NaN: random */
     float min_spacing;          /**< centre-to-centre distance to every robot placed before, m */
     uint8_t moves;              /**< 0: a static body that nothing pushes (a fixed station, a landmark) */
-    uint32_t fault_count;
-    fault_def_t faults[SCENARIO_MAX_FAULTS];
     /** The models' keys of this group (model.h: group_schema). */
     SCENARIO_BLOCK(SCENARIO_GROUP_MODEL_CONFIG_BYTES) model_config;
 } robot_group_t;

@@ -54,6 +54,7 @@
 
 #include "core/pool.h"
 #include "core/sim_internal.h"
+#include "models/faults/faults.h"
 #include "units.h"
 
 #define C ircom_config_t

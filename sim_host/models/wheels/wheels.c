@@ -8,6 +8,7 @@
 
 #include "core/pool.h"
 #include "core/sim_internal.h"
+#include "models/faults/faults.h"
 #include "units.h"
 
 #define W wheels_config_t
