@@ -36,6 +36,8 @@
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
 #include "tasks/paths/paths.h"
+/* The IR sensors' keys, set in code (an internal header). */
+#include "models/ir/ir.h"
 
 /* Groups: 0 the nest at (-1, 0), 1 the food at (+1, 0), 2 `swarm` idle
  * robots in a row at y = -2 (out of everyone's range until posed). */
@@ -47,7 +49,7 @@ static scenario_t *world(uint32_t swarm)
     sc->arena.width = sc->arena.height = 5.0f;
     sc->duration = 1000.0;
     sc->control_period_ms = 100;
-    sc->ir.noise_rel = sc->ir.noise_abs = 0.0f;
+    ir_config_mut(sc)->noise_rel = ir_config_mut(sc)->noise_abs = 0.0f;
     sc->group_count = 3;
     const char *names[3] = { "nest", "food", "swarm" };
     for (uint32_t g = 0; g < 3; g++) {

@@ -24,6 +24,7 @@
 #include "registry.h"
 #include "tasks/foraging/foraging.h"
 /* The models' configs, set and read in code (their headers are internal). */
+#include "models/ir/ir.h"
 #include "models/host/host.h"
 #include "models/ircom/ircom.h"
 #include "models/wheels/wheels.h"
@@ -188,13 +189,13 @@ static void test_defaults(void **state)
     assert_ptr_equal(sc->groups[0].def, registry_controller("random_walk"));
     assert_int_equal(rw_params(sc)->speed_steps_s, 500);
     assert_int_equal(rw_params(sc)->avoid_exit, 150);
-    assert_float_equal(sc->ir.aperture, 15.0, 1e-6);
-    assert_float_equal(sc->ir.range, 0.1, 1e-6);
-    assert_float_equal(sc->ir.noise_rel, 0.01, 1e-6);
-    assert_float_equal(sc->ir.noise_abs, 5.0, 1e-6);
-    assert_float_equal(sc->ambient.dark, 4000.0, 1e-6);
-    assert_float_equal(sc->ambient.half, 1.0, 1e-6);
-    assert_float_equal(sc->ambient.noise_rel, 0.01, 1e-6);
+    assert_float_equal(ir_config(sc)->aperture, 15.0, 1e-6);
+    assert_float_equal(ir_config(sc)->range, 0.1, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_rel, 0.01, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_abs, 5.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.dark, 4000.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.half, 1.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.noise_rel, 0.01, 1e-6);
     assert_float_equal(sc->camera.fov, 56.0, 1e-6);
     assert_float_equal(sc->camera.range, 0.9, 1e-6);   /* the detector's reach (test_camera_render) */
     assert_float_equal(sc->camera.fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
@@ -406,13 +407,13 @@ static void test_full_file(void **state)
     assert_int_equal(rw_params(sc)->avoid_enter, 500);
     assert_int_equal(rw_params(sc)->avoid_exit, 250);
 
-    assert_float_equal(sc->ir.aperture, 20.0, 1e-6);
-    assert_float_equal(sc->ir.range, 0.07, 1e-6);
-    assert_float_equal(sc->ir.noise_rel, 0.05, 1e-6);
-    assert_float_equal(sc->ir.noise_abs, 10.0, 1e-6);
-    assert_float_equal(sc->ambient.dark, 3800.0, 1e-6);
-    assert_float_equal(sc->ambient.half, 0.5, 1e-6);
-    assert_float_equal(sc->ambient.noise_rel, 0.02, 1e-6);
+    assert_float_equal(ir_config(sc)->aperture, 20.0, 1e-6);
+    assert_float_equal(ir_config(sc)->range, 0.07, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_rel, 0.05, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_abs, 10.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.dark, 3800.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.half, 0.5, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.noise_rel, 0.02, 1e-6);
     assert_float_equal(sc->camera.fov, 60.0, 1e-6);
     assert_float_equal(sc->camera.range, 1.0, 1e-6);
     assert_int_equal(sc->camera.width_px, 64);

@@ -21,6 +21,7 @@
 #include "units.h"
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
+#include "models/ir/ir.h"
 #include "models/host/host.h"
 #include "models/ircom/ircom.h"
 #include "models/wheels/wheels.h"
@@ -122,7 +123,7 @@ static void test_light_falls_with_distance(void **state)
     scenario_t *sc = fixture_idle_scenario(1, 6.0f);
     sc->light_count = 1;
     sc->lights[0] = (light_def_t){ .x = 0.0f, .y = 0.0f, .height = 0.1f, .intensity = 1.0f };
-    sc->ambient.noise_rel = 0.0f;
+    ir_config_mut(sc)->ambient.noise_rel = 0.0f;
     sim_t *sim = fixture_sim(sc, 4);
     double prev = 0;
     static const double dist[] = { 0.3, 0.6, 1.2, 2.4 };
@@ -137,7 +138,7 @@ static void test_light_falls_with_distance(void **state)
         assert_true(back > front);
         prev = front;
     }
-    assert_true(prev < sc->ambient.dark);
+    assert_true(prev < ir_config_mut(sc)->ambient.dark);
     sim_destroy(sim);
     scenario_free(sc);
     free(sc);

@@ -31,6 +31,7 @@
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
 /* The wheels' keys, set in code (an internal header). */
+#include "models/ir/ir.h"
 #include "models/wheels/wheels.h"
 #include "tasks/targets/targets.h"
 
@@ -46,7 +47,7 @@ static scenario_t *world(uint32_t robots, float arena)
     sc->groups[0].placement.width = sc->groups[0].placement.height = 0.3f;
     sc->control_period_ms = 25;
     sc->camera.fps = 0.0f;
-    sc->ir.noise_rel = sc->ir.noise_abs = 0.0f;
+    ir_config_mut(sc)->noise_rel = ir_config_mut(sc)->noise_abs = 0.0f;
     wheels_config_mut(sc)->speed_noise_rel = 0.0f;
     sc->task_count = 1;
     sc->tasks[0].def = &targets_task;

@@ -148,28 +148,6 @@ static const param_desc_t light_params[] = {
     PARAM_END
 };
 
-static const param_desc_t ir_params[] = {
-    { .key = "aperture", PARAM_FIELD(SC, ir.aperture, float), .min = 0.1, .max = 90,
-      .doc = "half-angle of the sensing cone, deg" },
-    { .key = "range", PARAM_FIELD(SC, ir.range, float), .min = 0.001, .max = 1,
-      .doc = "beyond this a sensor reads ~0, m" },
-    { .key = "noise_rel", PARAM_FIELD(SC, ir.noise_rel, float), .min = 0, .max = 1,
-      .doc = "relative Gaussian sd of the value" },
-    { .key = "noise_abs", PARAM_FIELD(SC, ir.noise_abs, float), .min = 0, .max = 4095,
-      .doc = "additive Gaussian sd, raw counts" },
-    PARAM_END
-};
-
-static const param_desc_t ambient_params[] = {
-    { .key = "dark", PARAM_FIELD(SC, ambient.dark, float), .min = 0, .max = 4095,
-      .doc = "raw reading in the dark, counts" },
-    { .key = "half", PARAM_FIELD(SC, ambient.half, float), .min = 1e-6, .max = 1e6,
-      .doc = "irradiance at which the reading halves (1 = unit lamp at 1 m)" },
-    { .key = "noise_rel", PARAM_FIELD(SC, ambient.noise_rel, float), .min = 0, .max = 1,
-      .doc = "relative Gaussian sd" },
-    PARAM_END
-};
-
 static const param_desc_t camera_params[] = {
     { .key = "fov", PARAM_FIELD(SC, camera.fov, float), .min = 1, .max = 360,
       .doc = "horizontal field of view, deg (up to 179 the e-puck's pinhole camera; wider: an "
@@ -243,8 +221,6 @@ MAPPING_SCHEMA(arena);
 MAPPING_SCHEMA(object);
 MAPPING_SCHEMA(light);
 MAPPING_SCHEMA(pose);
-MAPPING_SCHEMA(ir);
-MAPPING_SCHEMA(ambient);
 MAPPING_SCHEMA(camera);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
@@ -293,8 +269,6 @@ static const child_t top_children[] = {
     { "random_cylinders", CHILD_MAPPING, &random_cylinders_schema, NULL,
       "cylinders at random positions, drawn for each run (seed 003's obstacle tests)" },
     { "lights", CHILD_SEQUENCE, NULL, &lights_seq, "point lights (at most 16)" },
-    { "ir", CHILD_MAPPING, &ir_schema, NULL, "IR proximity sensors" },
-    { "ambient", CHILD_MAPPING, &ambient_schema, NULL, "ambient light sensors" },
     { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
     CHILD_END
@@ -342,13 +316,6 @@ void scenario_defaults(scenario_t *out)
     group_defaults(&out->groups[0], registry_controller(DEFAULT_CONTROLLER));
     out->groups[0].count = 20;
     snprintf(out->groups[0].name, sizeof out->groups[0].name, "%s", DEFAULT_CONTROLLER);
-    out->ir.aperture = 15.0f;
-    out->ir.range = 0.1f;
-    out->ir.noise_rel = 0.01f;
-    out->ir.noise_abs = 5.0f;
-    out->ambient.dark = 4000.0f;
-    out->ambient.half = 1.0f;
-    out->ambient.noise_rel = 0.01f;
     out->camera.fov = 56.0f;
     out->camera.range = SCENARIO_CAMERA_EPUCK_REACH_M;
     out->camera.width_px = EPUCK_CAMERA_WIDTH_PX;

@@ -82,7 +82,6 @@ static int build_robots(struct sim *sim, char err[256])
             r->def = def;
             r->moves = grp->moves;
             r->ctrl = stride ? (uint8_t *)sim->ctrl_blocks[g] + (size_t)k * stride : NULL;
-            sim_rand_seed(&r->noise, sim->seed, i, RAND_SENSORS);
             if (r->ctrl) {
                 def->init(r->ctrl, params.bytes, sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
             }
@@ -133,28 +132,9 @@ void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot
     const sim_robot_t *r = &sim->robots[i];
     p->wheel_left = p->wheel_right = 0;
     p->leds = (int16_t)r->leds;
-    p->ir_max = -1;
+    p->ir_max = -1;            /* the models fill what they read at `since` or later */
     p->ir_max_index = -1;
-    if (r->ir_stamp != 0 && r->ir_stamp >= since) {
-        uint16_t best = 0;
-        uint8_t at = 0;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-            if (r->ir[k] > best) {
-                best = r->ir[k];
-                at = k;
-            }
-        }
-        p->ir_max = (int16_t)best;
-        p->ir_max_index = (int8_t)at;
-    }
     p->ambient_min = -1;
-    if (r->ambient_stamp != 0 && r->ambient_stamp >= since) {
-        uint16_t low = HAL_RAW_MAX;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-            low = r->ambient[k] < low ? r->ambient[k] : low;
-        }
-        p->ambient_min = (int16_t)low;
-    }
     p->blobs = r->camera_stamp != 0 && r->camera_stamp >= since ? (int8_t)r->blob_count : -1;
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
         if (sim->models[id].def->platform) {
@@ -371,9 +351,18 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
     sim->objects = calloc(no, sizeof *sim->objects);
-    /* Cells a little larger than the IR reach: an IR query touches at
-     * most 3 x 3 cells. */
-    float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
+    /* Cells a little larger than the farthest per-step query around a
+     * robot (the IR sensors' reach): such a query touches at most 3 x 3
+     * cells. */
+    float reach = 0.0f;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        model_layout_t lay = { 0 };
+        if (sim_models[id]->layout) {
+            sim_models[id]->layout(scenario_model_config(sc, (sim_model_id_t)id), sc, &lay);
+        }
+        reach = fmaxf(reach, lay.neighbour_reach_m);
+    }
+    float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + reach + 0.04f);
     if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
         || !sim->py || !sim->obstacles || !sim->objects
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
@@ -390,7 +379,6 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     for (uint32_t i = 0; i < sim->n; i++) {
         sim->step_order[i] = i;
     }
-    sensors_init(sim);
     if (sc->object_count > 0) {
         memcpy(sim->objects, sc->objects, sc->object_count * sizeof *sim->objects);
     }
@@ -675,7 +663,7 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
     /* Sensors must see the new pose even within this step (the sound
      * field too, when it is read before the step's controllers run). */
-    r->ir_stamp = r->ambient_stamp = r->camera_stamp = 0;
+    r->camera_stamp = 0;
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
         if (sim->models[id].def->moved) {
             sim->models[id].def->moved(sim, sim->models[id].self, i);

@@ -22,34 +22,8 @@ uint32_t hal_time_ms(hal_t *hal)
 
 uint16_t hal_control_period_ms(hal_t *hal) { return hal->sim->sc->control_period_ms; }
 
-uint16_t hal_ir_proximity(hal_t *hal, uint8_t index)
-{
-    sim_robot_t *r = robot(hal);
-    if (index >= HAL_IR_COUNT) {
-        return 0;
-    }
-    if (r->ir_stamp != stamp(hal)) {
-        sensors_ir(hal->sim, hal->index, r->ir);
-        faults_ir(hal->sim, hal->index, r->ir);
-        r->ir_stamp = stamp(hal);
-    }
-    return r->ir[index];
-}
-
-uint16_t hal_ir_ambient(hal_t *hal, uint8_t index)
-{
-    sim_robot_t *r = robot(hal);
-    if (index >= HAL_IR_COUNT) {
-        return HAL_RAW_MAX;
-    }
-    if (r->ambient_stamp != stamp(hal)) {
-        sensors_ambient(hal->sim, hal->index, r->ambient);
-        r->ambient_stamp = stamp(hal);
-    }
-    return r->ambient[index];
-}
-
-uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
+uint8_t hal_camera_blobs
+(hal_t *hal, hal_blob_t *out, uint8_t max)
 {
     sim_robot_t *r = robot(hal);
     if (r->camera_stamp != stamp(hal)) {

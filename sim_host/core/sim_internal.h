@@ -33,9 +33,7 @@ typedef struct sim_robot {
     uint16_t leds;                 /**< bits 0-7 ring, 8 body, 9 front */
 
     /* Sensor caches, valid when *_stamp == sim->step + 1. */
-    uint64_t ir_stamp, ambient_stamp, camera_stamp;
-    uint16_t ir[HAL_IR_COUNT];
-    uint16_t ambient[HAL_IR_COUNT];
+    uint64_t camera_stamp;
     hal_blob_t blobs[HAL_MAX_BLOBS];
     uint8_t blob_count;
     /* Camera frames (camera.c), with camera.fps > 0: `blobs` come from the
@@ -47,7 +45,6 @@ typedef struct sim_robot {
     hal_blob_t cam_next[HAL_MAX_BLOBS];
     sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
 
-    sim_rand_t noise;              /**< sensor noise */
 
     uint32_t group;                /**< index into the scenario's groups */
     const controller_def_t *def;   /**< what runs on this robot */
@@ -181,7 +178,6 @@ struct sim {
 
     struct camera_state *camera;   /**< camera.c's renderer and recorder (NULL until used) */
 
-    vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
 
     sim_model_run_t models[SIM_MODEL_COUNT];   /**< in list order (models/model_list.h) */
@@ -249,12 +245,6 @@ int placement_run(struct sim *sim, char err[256]);
 int placement_cylinders(struct sim *sim, char err[256]);
 
 /* sensors.c */
-/** Precomputes what the sensor models share (sensor directions). */
-void sensors_init(struct sim *sim);
-/** Noise-free calibrated proximity at distance d (m) from a surface. */
-float sensors_ir_curve(float d, float range);
-void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
-void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
 uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
 
 

@@ -84,6 +84,9 @@ typedef struct model_layout {
     size_t scratch_size;                 /**< bytes of working memory per pool worker */
     size_t run_bytes;                    /**< what its create allocates besides (renderers,
                                               schedules): for the memory estimate only */
+    float neighbour_reach_m;             /**< how far beyond a robot's body its queries of the
+                                              robot grid look each step (the grid's cells are
+                                              sized for the largest); 0: no say */
 } model_layout_t;
 
 /** A per-robot value a model exposes (sim_field): `count` values of

@@ -9,6 +9,7 @@
  * messages (after_control).
  */
 SIM_MODEL(faults)
+SIM_MODEL(ir)
 SIM_MODEL(tracker)
 SIM_MODEL(host)
 SIM_MODEL(uart)

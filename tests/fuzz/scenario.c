@@ -30,6 +30,8 @@
 #include "fuzz.h"
 
 #include "swarmsim/scenario.h"
+/* The host model's messages live on the heap (compared apart). */
+#include "models/host/host.h"
 #include "swarmsim/sim.h"
 #include "tasks/foraging/foraging.h"
 
@@ -140,16 +142,24 @@ static void check_effective(const scenario_override_t *sets, size_t n)
     }
     memset(again->path, 0, sizeof again->path);
     memset(sc->path, 0, sizeof sc->path);
-    /* The objects are on the heap: compared as arrays, their pointers
-     * left out of the struct's bytes. */
+    /* The objects and the host's messages are on the heap: compared as
+     * arrays, their pointers left out of the struct's bytes. */
     FUZZ_CHECK(sc->object_count == again->object_count);
     FUZZ_CHECK(sc->object_count == 0 ||
                memcmp(sc->objects, again->objects, sc->object_count * sizeof *sc->objects) == 0);
+    host_config_t *hs = host_config_mut(sc), *ha = host_config_mut(again);
+    FUZZ_CHECK(hs->message_count == ha->message_count);
+    FUZZ_CHECK(hs->message_count == 0 ||
+               memcmp(hs->messages, ha->messages, hs->message_count * sizeof *hs->messages) == 0);
     object_def_t *objects_sc = sc->objects, *objects_again = again->objects;
+    host_message_def_t *messages_sc = hs->messages, *messages_again = ha->messages;
     sc->objects = again->objects = NULL;
+    hs->messages = ha->messages = NULL;
     int differ = memcmp(sc, again, sizeof *sc) != 0;
     sc->objects = objects_sc;
     again->objects = objects_again;
+    hs->messages = messages_sc;
+    ha->messages = messages_again;
     scenario_free(again);
     if (differ) {
         const uint8_t *a = (const uint8_t *)sc, *b = (const uint8_t *)again;

@@ -189,19 +189,6 @@ typedef struct scenario {
     light_def_t lights[SCENARIO_MAX_LIGHTS];
 
     struct {
-        float aperture;            /**< half-angle of the sensing cone, deg */
-        float range;               /**< beyond this the sensor reads ~0, m */
-        float noise_rel;           /**< relative Gaussian sd of the value */
-        float noise_abs;           /**< additive Gaussian sd, raw counts */
-    } ir;
-
-    struct {
-        float dark;                /**< raw reading in the dark, counts */
-        float half;                /**< irradiance at which the reading halves */
-        float noise_rel;           /**< relative Gaussian sd */
-    } ambient;
-
-    struct {
         float fov;                 /**< horizontal field of view, deg; above
                                         SCENARIO_CAMERA_PINHOLE_MAX_DEG an all-round
                                         (panoramic) stand-in, up to 360 */
