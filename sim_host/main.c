@@ -18,7 +18,8 @@
 #include "version.h"
 #include "core/runner.h"
 #include "swarmsim/scenario.h"
-#include "core/camera_render.h"
+#include "models/camera/camera.h"
+#include "models/camera/camera_render.h"
 #include "core/sim_video.h"
 #include "core/telemetry.h"
 
@@ -316,7 +317,7 @@ int main(int argc, char **argv)
         free(sc);
         return 2;
     }
-    if (sc->camera.model == CAMERA_RENDERED || have_camera_robot) {
+    if (camera_config(sc)->model == CAMERA_RENDERED || have_camera_robot) {
         camera_render_set_threads();   /* before any OSMesa context (camera_render.h) */
     }
     if (telemetry.realtime > 0.0 && !telemetry.enabled) {

@@ -24,6 +24,7 @@
 #include "registry.h"
 #include "tasks/foraging/foraging.h"
 /* The models' configs, set and read in code (their headers are internal). */
+#include "models/camera/camera.h"
 #include "models/ir/ir.h"
 #include "models/host/host.h"
 #include "models/ircom/ircom.h"
@@ -196,11 +197,11 @@ static void test_defaults(void **state)
     assert_float_equal(ir_config(sc)->ambient.dark, 4000.0, 1e-6);
     assert_float_equal(ir_config(sc)->ambient.half, 1.0, 1e-6);
     assert_float_equal(ir_config(sc)->ambient.noise_rel, 0.01, 1e-6);
-    assert_float_equal(sc->camera.fov, 56.0, 1e-6);
-    assert_float_equal(sc->camera.range, 0.9, 1e-6);   /* the detector's reach (test_camera_render) */
-    assert_float_equal(sc->camera.fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
-    assert_int_equal(sc->camera.width_px, 40);
-    assert_int_equal(sc->camera.height_px, 20);   /* the e-puck image's frame */
+    assert_float_equal(camera_config(sc)->fov, 56.0, 1e-6);
+    assert_float_equal(camera_config(sc)->range, 0.9, 1e-6);   /* the detector's reach (test_camera_render) */
+    assert_float_equal(camera_config(sc)->fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
+    assert_int_equal(camera_config(sc)->width_px, 40);
+    assert_int_equal(camera_config(sc)->height_px, 20);   /* the e-puck image's frame */
     assert_float_equal(ircom_config(sc)->range, 0.25, 1e-6);
     assert_float_equal(ircom_config(sc)->loss, 0.1, 1e-6);
     assert_float_equal(ircom_config(sc)->bearing_noise, 5.0, 1e-6);
@@ -414,10 +415,10 @@ static void test_full_file(void **state)
     assert_float_equal(ir_config(sc)->ambient.dark, 3800.0, 1e-6);
     assert_float_equal(ir_config(sc)->ambient.half, 0.5, 1e-6);
     assert_float_equal(ir_config(sc)->ambient.noise_rel, 0.02, 1e-6);
-    assert_float_equal(sc->camera.fov, 60.0, 1e-6);
-    assert_float_equal(sc->camera.range, 1.0, 1e-6);
-    assert_int_equal(sc->camera.width_px, 64);
-    assert_int_equal(sc->camera.height_px, 48);
+    assert_float_equal(camera_config(sc)->fov, 60.0, 1e-6);
+    assert_float_equal(camera_config(sc)->range, 1.0, 1e-6);
+    assert_int_equal(camera_config(sc)->width_px, 64);
+    assert_int_equal(camera_config(sc)->height_px, 48);
     assert_float_equal(ircom_config(sc)->range, 0.3, 1e-6);
     assert_float_equal(ircom_config(sc)->loss, 0.25, 1e-6);
     assert_float_equal(ircom_config(sc)->bearing_noise, 10.0, 1e-6);

@@ -21,6 +21,7 @@
 #include "units.h"
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
+#include "models/camera/camera.h"
 #include "models/ir/ir.h"
 #include "models/host/host.h"
 #include "models/ircom/ircom.h"
@@ -156,7 +157,7 @@ static void test_camera_field_of_view_and_occlusion(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(2, 3.0f);
-    sc->camera.fps = 0.0f;   /* blobs of each step's poses: the geometry under test */
+    camera_config_mut(sc)->fps = 0.0f;   /* blobs of each step's poses: the geometry under test */
     assert_int_equal(scenario_add_object(sc, &(object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f,
                                                              .radius = 0.03f, .height = 0.05f,
                                                              .colour = HAL_COLOUR_RED }), 0);
@@ -846,8 +847,8 @@ static void test_hal_status(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(1, 2.0f);
-    sc->camera.width_px = 40;
-    sc->camera.height_px = 20;
+    camera_config_mut(sc)->width_px = 40;
+    camera_config_mut(sc)->height_px = 20;
     sim_t *sim = fixture_sim(sc, 4);
     hal_t *hal = sim_robot_hal(sim, 0);
     uint32_t level = 5;

@@ -231,8 +231,8 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
             ok = 0;
         }
         sim_step(sim);
-        if (sim_camera_error(sim)) {   /* a renderer or a camera picture failed */
-            fail(job, "%s: %s", sc->path, sim_camera_error(sim));
+        if (sim_error(sim)) {   /* a renderer or a camera picture failed */
+            fail(job, "%s: %s", sc->path, sim_error(sim));
             ok = 0;
         }
         telemetry_step(tel, sim);

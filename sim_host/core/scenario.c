@@ -47,8 +47,6 @@
 static const char *const shape_choices[] = { "cylinder", "box", NULL };
 static const char *const colour_choices[] = { "none", "red", "green", "blue", NULL };
 static const char *const placement_choices[] = { "rectangle", "circle", "ring", "grid", "poses", NULL };
-/* The names of camera_model_t, in its order. */
-const char *const scenario_camera_model_names[] = { "geometric", "rendered", NULL };
 
 static const param_desc_t top_params[] = {
     { .key = "name", PARAM_STRING_FIELD(SC, name),
@@ -148,27 +146,6 @@ static const param_desc_t light_params[] = {
     PARAM_END
 };
 
-static const param_desc_t camera_params[] = {
-    { .key = "fov", PARAM_FIELD(SC, camera.fov, float), .min = 1, .max = 360,
-      .doc = "horizontal field of view, deg (up to 179 the e-puck's pinhole camera; wider: an "
-             "all-round panoramic stand-in, lens on the robot's axis)" },
-    { .key = "range", PARAM_FIELD(SC, camera.range, float), .min = 0.01, .max = 100,
-      .doc = "objects farther away are not seen (their nearest point), m; the default is the "
-             "e-puck detector's reach for a 3.5 x 4.2 cm cylinder (geometric; rendered draws to 5 m)" },
-    { .key = "width_px", PARAM_FIELD(SC, camera.width_px, uint16_t), .min = 1, .max = 640,
-      .doc = "the robot's frame width, pixels" },
-    { .key = "height_px", PARAM_FIELD(SC, camera.height_px, uint16_t), .min = 1, .max = 480,
-      .doc = "the robot's frame height, pixels" },
-    { .key = "model", PARAM_ENUM_FIELD(SC, camera.model, scenario_camera_model_names),
-      .doc = "geometric (fast: blobs from angles) or rendered (OSMesa frame through hal/blob_detect.c)" },
-    { .key = "fps", PARAM_FIELD(SC, camera.fps, float), .min = 0, .max = 1000,
-      .doc = "frames per second, both models; blobs are a frame old and held until the next "
-             "(the e-puck image's 4.3 by default; 0: fresh every control step)" },
-    { .key = "noise", PARAM_FIELD(SC, camera.noise, float), .min = 0, .max = 255,
-      .doc = "rendered: Gaussian sd added to each pixel's 8-bit channels, counts" },
-    PARAM_END
-};
-
 static const param_desc_t random_cylinders_params[] = {
     { .key = "count", PARAM_FIELD(SC, random_cylinders.count, uint32_t), .min = 0, .max = SCENARIO_MAX_OBJECTS,
       .doc = "cylinders drawn at random when each run is built (0: none)" },
@@ -221,7 +198,6 @@ MAPPING_SCHEMA(arena);
 MAPPING_SCHEMA(object);
 MAPPING_SCHEMA(light);
 MAPPING_SCHEMA(pose);
-MAPPING_SCHEMA(camera);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
 
@@ -269,7 +245,6 @@ static const child_t top_children[] = {
     { "random_cylinders", CHILD_MAPPING, &random_cylinders_schema, NULL,
       "cylinders at random positions, drawn for each run (seed 003's obstacle tests)" },
     { "lights", CHILD_SEQUENCE, NULL, &lights_seq, "point lights (at most 16)" },
-    { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
     CHILD_END
 };
@@ -316,12 +291,6 @@ void scenario_defaults(scenario_t *out)
     group_defaults(&out->groups[0], registry_controller(DEFAULT_CONTROLLER));
     out->groups[0].count = 20;
     snprintf(out->groups[0].name, sizeof out->groups[0].name, "%s", DEFAULT_CONTROLLER);
-    out->camera.fov = 56.0f;
-    out->camera.range = SCENARIO_CAMERA_EPUCK_REACH_M;
-    out->camera.width_px = EPUCK_CAMERA_WIDTH_PX;
-    out->camera.height_px = EPUCK_CAMERA_HEIGHT_PX;
-    out->camera.model = CAMERA_GEOMETRIC;
-    out->camera.fps = SCENARIO_CAMERA_EPUCK_FPS;
     out->output.timeseries_every = 10;
     out->random_cylinders.count = 0;
     out->random_cylinders.radius_min = 0.05f;
@@ -820,31 +789,6 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
     return 0;
 }
 
-/* The rendered camera is a pinhole camera over a frame the detector takes. */
-static int check_camera(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
-{
-    if (sc->camera.model != CAMERA_RENDERED) {
-        return 0;
-    }
-    const char *key = NULL;
-    if (sc->camera.fov > SCENARIO_CAMERA_PINHOLE_MAX_DEG) {
-        key = "camera.fov";
-    } else if (sc->camera.width_px > SCENARIO_CAMERA_RENDERED_MAX_PX) {
-        key = "camera.width_px";
-    } else if (sc->camera.height_px > SCENARIO_CAMERA_RENDERED_MAX_PX) {
-        key = "camera.height_px";
-    }
-    if (key == NULL) {
-        return 0;
-    }
-    const ynode_t *node = schema_find(root, key);
-    return schema_fail(ld, node != NULL ? node : root, key,
-                       "camera.model rendered needs a pinhole camera (fov <= %g deg) and a frame of at "
-                       "most %u x %u pixels (hal/blob_detect.c's limit)",
-                       (double)SCENARIO_CAMERA_PINHOLE_MAX_DEG, SCENARIO_CAMERA_RENDERED_MAX_PX,
-                       SCENARIO_CAMERA_RENDERED_MAX_PX);
-}
-
 static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
 {
     if (sc->duration * 1000.0 < sc->control_period_ms) {
@@ -853,7 +797,7 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
                            "%g s is shorter than one control period (%g s)", sc->duration,
                            sc->control_period_ms / 1000.0);
     }
-    if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0 || check_camera(ld, root, sc) != 0
+    if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0
         || check_inside(ld, root, sc) != 0
         || check_models(ld, root, sc) != 0) {
         return -1;

@@ -135,7 +135,7 @@ void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot
     p->ir_max = -1;            /* the models fill what they read at `since` or later */
     p->ir_max_index = -1;
     p->ambient_min = -1;
-    p->blobs = r->camera_stamp != 0 && r->camera_stamp >= since ? (int8_t)r->blob_count : -1;
+    p->blobs = -1;
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
         if (sim->models[id].def->platform) {
             sim->models[id].def->platform(sim, sim->models[id].self, i, since, p);
@@ -435,7 +435,6 @@ void sim_destroy(sim_t *sim)
     }
     free(sim->scratch);
     pool_destroy(sim->pool);
-    camera_destroy(sim);
     items_index_free(sim);
     grid_free(&sim->robot_grid);
     grid_free(&sim->obstacle_grid);
@@ -469,7 +468,7 @@ void sim_step(sim_t *sim)
     /* Side by side when every sensor can be (not the rendered camera: one
      * GL context); each robot reads the start of the step, so the order
      * and the threads do not matter (test_sim: step order, thread count). */
-    if (camera_parallel(sim) && !models_serial(sim)) {
+    if (!models_serial(sim)) {
         pool_for(sim->pool, sim->n, CONTROL_CHUNK, step_robots, sim);
     } else {
         step_robots(0, sim->n, 0, sim);
@@ -501,6 +500,18 @@ void sim_step(sim_t *sim)
 }
 
 int sim_done(const sim_t *sim) { return sim->done; }
+
+const char *sim_error(const sim_t *sim)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        const char *e = m->def->error ? m->def->error(sim, m->self) : NULL;
+        if (e) {
+            return e;
+        }
+    }
+    return NULL;
+}
 
 uint32_t sim_gather_obstacles(const struct sim *sim, sim_scratch_t *ws, float minx, float miny, float maxx,
                               float maxy, uint32_t *out, uint32_t max)
@@ -663,7 +674,6 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
     /* Sensors must see the new pose even within this step (the sound
      * field too, when it is read before the step's controllers run). */
-    r->camera_stamp = 0;
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
         if (sim->models[id].def->moved) {
             sim->models[id].def->moved(sim, sim->models[id].self, i);

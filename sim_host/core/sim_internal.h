@@ -31,27 +31,11 @@ typedef struct sim_robot {
     b2BodyId body;
     float x, y, theta;             /**< pose at the start of this control step */
     uint16_t leds;                 /**< bits 0-7 ring, 8 body, 9 front */
-
-    /* Sensor caches, valid when *_stamp == sim->step + 1. */
-    uint64_t camera_stamp;
-    hal_blob_t blobs[HAL_MAX_BLOBS];
-    uint8_t blob_count;
-    /* Camera frames (camera.c), with camera.fps > 0: `blobs` come from the
-     * last complete frame; `cam_next` from the one being captured. */
-    uint8_t cam_ready;             /**< cam_phase_s and cam_rand are drawn */
-    uint8_t cam_next_count;
-    int64_t cam_capture;           /**< index of the frame cam_next holds */
-    double cam_phase_s;            /**< when its frame 0 began, s */
-    hal_blob_t cam_next[HAL_MAX_BLOBS];
-    sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
-
-
     uint32_t group;                /**< index into the scenario's groups */
     const controller_def_t *def;   /**< what runs on this robot */
     void *ctrl;                    /**< controller state, or NULL when it has none */
     uint8_t moves;                 /**< 0: a static body */
     uint8_t escaped;
-
 } sim_robot_t;
 
 /** A robot's body velocity for Box2D this step (world_drive), and how far
@@ -72,16 +56,6 @@ typedef struct obstacle {
     float aabb[4];
 } obstacle_t;
 
-/** An angular interval seen from the camera, rad, and its nearest distance, m. */
-typedef struct sim_interval { float lo, hi, near; } sim_interval_t;
-
-/** An interval the all-round camera may turn into a blob, and the most
- *  pixels it could show. */
-typedef struct sim_cam_candidate { float bound; uint32_t index; } sim_cam_candidate_t;
-
-/** Most robots or obstacles the camera considers within its range. */
-#define SIM_CAMERA_MAX_NEAR 1024u
-
 /** One pool worker's working memory (pool.h): what a sensor query, a
  *  delivery or a listener's sum needs while it runs, so that robots are
  *  sensed side by side.  Worker 0 is the thread that steps the run, and
@@ -91,13 +65,6 @@ typedef struct sim_scratch {
     uint32_t mark_stamp;
     uint32_t *robots;              /**< n: a query's robots (sound, IR delivery) */
     uint32_t *items;               /**< item_index.cap: a query's items (items.h) */
-    struct {                       /**< sensors_camera's */
-        uint32_t obstacles[SIM_CAMERA_MAX_NEAR];
-        uint32_t robots[SIM_CAMERA_MAX_NEAR];
-        uint32_t occluder_object[2 * SIM_CAMERA_MAX_NEAR];
-        sim_interval_t intervals[2 * SIM_CAMERA_MAX_NEAR];
-        sim_cam_candidate_t candidates[2 * SIM_CAMERA_MAX_NEAR];   /**< the all-round camera's */
-    } cam;
 } sim_scratch_t;
 
 /** A counter the run's controllers declare (observable.h), and its keys in
@@ -176,7 +143,6 @@ struct sim {
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;
 
-    struct camera_state *camera;   /**< camera.c's renderer and recorder (NULL until used) */
 
     sim_metrics_t metrics;
 
@@ -243,21 +209,6 @@ int placement_run(struct sim *sim, char err[256]);
 /** Draws the scenario's random cylinders into sim->objects after its
  *  objects (placement.c).  Returns 0, or -1 with a message. */
 int placement_cylinders(struct sim *sim, char err[256]);
-
-/* sensors.c */
-uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
-
-
-/* camera.c: the camera's frames, either model */
-/** Brings robot i's blobs (robots[i].blobs, blob_count) up to this step:
- *  a new frame when one is due (hal_camera_blobs, once a step). */
-void camera_update(struct sim *sim, uint32_t i);
-/** Frees the renderer and the recorder. */
-void camera_destroy(struct sim *sim);
-/** Non-zero when robots' frames may be taken side by side: the geometric
- *  model and no recorder (the renderer has one GL context per run). */
-int camera_parallel(const struct sim *sim);
-
 
 /** Writes to `out` (at most `max`) the indices of obstacles whose bounding
  *  boxes meet [minx,maxx] x [miny,maxy], each once, in ascending order of

@@ -10,6 +10,7 @@
  */
 SIM_MODEL(faults)
 SIM_MODEL(ir)
+SIM_MODEL(camera)
 SIM_MODEL(tracker)
 SIM_MODEL(host)
 SIM_MODEL(uart)

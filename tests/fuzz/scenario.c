@@ -31,6 +31,7 @@
 
 #include "swarmsim/scenario.h"
 /* The host model's messages live on the heap (compared apart). */
+#include "models/camera/camera.h"
 #include "models/host/host.h"
 #include "swarmsim/sim.h"
 #include "tasks/foraging/foraging.h"
@@ -124,7 +125,7 @@ static int too_big(const scenario_t *s)
     const foraging_config_t *fc = scenario_task_config(s, &foraging_task);
     return scenario_robot_count(s) > 40u || s->object_count > 64u || s->physics_substeps > 16u
            || s->arena.width > 20.0f || s->arena.height > 20.0f
-           || (uint32_t)s->camera.width_px * s->camera.height_px > 4096u
+           || (uint32_t)camera_config(s)->width_px * camera_config(s)->height_px > 4096u
            || (fc != NULL && fc->food_count > 50u);
 }
 

@@ -32,24 +32,6 @@
  *  repetition's seed + r lie in it.  2^53 - 1 is exact as a double (the YAML
  *  loader compares through one), as a JSON number and as a signed 64-bit
  *  integer, so summaries and sweep tables carry seeds without rounding. */
-/** The widest pinhole camera, deg: a wider `camera.fov` (up to 360) is the
- *  all-round stand-in, a panoramic (cylindrical) image centred ahead with
- *  its lens on the robot's axis (sensors.c). */
-#define SCENARIO_CAMERA_PINHOLE_MAX_DEG 179.0f
-/** The rendered camera's largest frame side, pixels (hal/blob_detect.h's
- *  BLOB_MAX_WIDTH and BLOB_MAX_HEIGHT). */
-#define SCENARIO_CAMERA_RENDERED_MAX_PX 160u
-/** Frames per second of the e-puck image's camera (40 x 20 RGB565: the
- *  sensor's 640 x 320 window subsampled 16 x 16): 4.3 fps, the rate GCtronic's
- *  e-puck library gives for 16 x 16 subsampling in RGB565 (camera/fast_2_timer/
- *  e_po3030k.h, "Performances"; the PO6030K driver quotes the same). */
-#define SCENARIO_CAMERA_EPUCK_FPS 4.3f
-/** How far the e-puck image's detector sees a red cylinder 3.5 cm wide and
- *  4.2 cm high (seed 000's food), m: the rendered model sees it straight
- *  ahead to 0.88 m, lit or shaded (test_camera_render), where it covers
- *  about 3 pixels, the detector's min_pixels.  The geometric model's
- *  default camera.range. */
-#define SCENARIO_CAMERA_EPUCK_REACH_M 0.9f
 #define SCENARIO_SEED_MAX UINT64_C(9007199254740991)
 /** Bytes for every model's config (sim_host/models/model.h), and for every
  *  model's config of one group: each model's struct at its own 16-byte
@@ -105,15 +87,6 @@ typedef struct placement_def {
     uint32_t pose_count;
     pose_def_t poses[SCENARIO_MAX_POSES];
 } placement_def_t;
-
-/** How the camera's blobs are made (camera.model). */
-typedef enum camera_model {
-    CAMERA_GEOMETRIC = 0,        /**< from the objects' angles (sensors.c): fast, the default */
-    CAMERA_RENDERED = 1          /**< an OSMesa frame through hal/blob_detect.c (camera_render.c) */
-} camera_model_t;
-
-/** The names of camera_model_t (NULL-terminated). */
-extern const char *const scenario_camera_model_names[];
 
 /** A controller's params block (aligned for any member type). */
 typedef union scenario_params {
@@ -187,18 +160,6 @@ typedef struct scenario {
 
     uint32_t light_count;
     light_def_t lights[SCENARIO_MAX_LIGHTS];
-
-    struct {
-        float fov;                 /**< horizontal field of view, deg; above
-                                        SCENARIO_CAMERA_PINHOLE_MAX_DEG an all-round
-                                        (panoramic) stand-in, up to 360 */
-        float range;               /**< objects farther away are not seen, m */
-        uint16_t width_px, height_px; /**< the robot's frame, pixels (blob sizes refer to it) */
-        int model;                 /**< camera_model_t */
-        float fps;                 /**< frames per second (SCENARIO_CAMERA_EPUCK_FPS), 0:
-                                        fresh every control step */
-        float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
-    } camera;
 
     struct {
         uint32_t timeseries_every; /**< control steps between CSV rows */

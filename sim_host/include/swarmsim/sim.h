@@ -168,9 +168,10 @@ const struct robot_link *sim_robot_link(const sim_t *sim, uint32_t i);
  *  Returns 0, or -1 when `robot` is not a robot or `dir` too long. */
 int sim_camera_record(sim_t *sim, uint32_t robot, const char *dir);
 
-/** NULL, or what went wrong with the camera (a renderer that could not be
- *  made, a picture that could not be written): the run must stop. */
-const char *sim_camera_error(const sim_t *sim);
+/** NULL, or what went wrong in a model during the last step (a camera
+ *  renderer that could not be made, a picture that could not be written):
+ *  the run must stop. */
+const char *sim_error(const sim_t *sim);
 
 /** FNV-1a hash of every robot's pose bits and counters: equal hashes mean
  *  bit-identical runs. */

@@ -1,20 +1,20 @@
 /*
- * sensors.c - geometric sensor models of the e-puck, calibrated to the
- * facts of hal/units.h and the measurements cited below.  Each is
- * computed at most once per control step per robot, and only when the
- * controller asks (see sim_hal.c).
+ * camera_geometric.c - the camera's geometric model (camera.model
+ * geometric): blobs from the angles the other robots, the obstacles and the
+ * tasks' items cover as seen from the lens, each cut by whatever is nearer
+ * in front of it, sized in the robot image's pixels.  Fast, and the
+ * default; the rendered model (camera_render.c) is its check.
  */
 #include <math.h>
 #include <stdlib.h>
 
-#include "sim_internal.h"
+#include "camera_internal.h"
 #include "units.h"
 
-/* Where the IR sensors and the camera are: hal/units.h. */
+/* Where the camera is: hal/units.h. */
 #define CAMERA_HEIGHT EPUCK_CAMERA_HEIGHT_M
 
-
-typedef sim_interval_t interval_t;
+typedef camera_interval_t interval_t;
 
 /* What the camera sees from: the lens, its heading (angle and unit vector)
  * and its range; all_round: the panoramic stand-in (fov > 179 deg), which
@@ -162,7 +162,7 @@ static int all_round_pieces(const interval_t *occ, uint32_t nocc, uint32_t t, fl
 
 /* What one camera needs to turn an interval into a blob. */
 typedef struct camera_frame {
-    const scenario_t *sc;
+    const camera_config_t *cfg;
     const sim_item_t *const *items;   /**< per task */
     const interval_t *occ;
     const uint32_t *occ_obj;
@@ -186,7 +186,7 @@ static float rows_of(const camera_frame_t *fr, float near, float height)
 {
     float dist = near > 0.001f ? near : 0.001f;
     float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
-    return fminf(vang, fr->vfov) / (fr->vfov / fr->sc->camera.height_px);
+    return fminf(vang, fr->vfov) / (fr->vfov / fr->cfg->height_px);
 }
 
 /* The blob of interval t (an obstacle or an item), or 0 when it shows
@@ -251,41 +251,42 @@ static float pixel_bound(const struct sim *sim, const camera_frame_t *fr, uint32
 /* Candidates by their bound, most first, then by index. */
 static int by_bound(const void *a, const void *b)
 {
-    const sim_cam_candidate_t *x = a, *y = b;
+    const camera_candidate_t *x = a, *y = b;
     if (x->bound != y->bound) return x->bound < y->bound ? 1 : -1;
     return (x->index > y->index) - (x->index < y->index);
 }
 
-uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
+uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
 {
-    const scenario_t *sc = sim->sc;
-    sim_robot_t *r = &sim->robots[i];
-    float heading = r->theta, range = sc->camera.range;
-    float half = sc->camera.fov * (float)UNITS_PI / 360.0f;
-    float col = 2.0f * half / sc->camera.width_px;        /* rad per column */
-    float vfov = 2.0f * half * sc->camera.height_px / sc->camera.width_px;
+    const camera_config_t *cfg = sim_model_config(sim, SIM_MODEL_camera);
+    const sim_robot_t *r = &sim->robots[i];
+    float heading = r->theta, range = cfg->range;
+    float half = cfg->fov * (float)UNITS_PI / 360.0f;
+    float col = 2.0f * half / cfg->width_px;        /* rad per column */
+    float vfov = 2.0f * half * cfg->height_px / cfg->width_px;
     vec2_t dir = v2(cosf(heading), sinf(heading));
     vec2_t cam = v2(r->x + EPUCK_BODY_RADIUS_M * dir.x, r->y + EPUCK_BODY_RADIUS_M * dir.y);
     /* The all-round stand-in (fov > 179 deg): a panoramic (cylindrical)
      * image of `fov` degrees centred ahead, its lens on the robot's axis
      * (as the e-puck's omnidirectional turret sits on top of the body),
      * pixels square in angle: col rad per column and per row. */
-    int all_round = sc->camera.fov > SCENARIO_CAMERA_PINHOLE_MAX_DEG;
+    int all_round = cfg->fov > CAMERA_PINHOLE_MAX_DEG;
     if (all_round) {
         cam = v2(r->x, r->y);
-        vfov = col * sc->camera.height_px;
+        vfov = col * cfg->height_px;
     }
     view_t vw = { cam, heading, dir, range, all_round };
 
     sim_scratch_t *ws = sim_robot_scratch(sim, i);
-    uint32_t *obst = ws->cam.obstacles, *rob = ws->cam.robots;
-    uint32_t *occ_obj = ws->cam.occluder_object;
-    interval_t *occ = (interval_t *)ws->cam.intervals;
+    camera_scratch_t *cw = sim_model_scratch(sim, SIM_MODEL_camera, sim->robots[i].hal.worker);
+    uint32_t *obst = cw->obstacles, *rob = cw->robots;
+    uint32_t *occ_obj = cw->occluder_object;
+    interval_t *occ = cw->intervals;
     uint32_t no = sim_gather_obstacles(sim, ws, cam.x - range, cam.y - range, cam.x + range, cam.y + range,
-                                       obst, SIM_CAMERA_MAX_NEAR);
+                                       obst, CAMERA_MAX_NEAR);
     uint32_t nr = sim_gather_robots(sim, cam.x - range - EPUCK_BODY_RADIUS_M, cam.y - range - EPUCK_BODY_RADIUS_M,
                                     cam.x + range + EPUCK_BODY_RADIUS_M, cam.y + range + EPUCK_BODY_RADIUS_M,
-                                    rob, SIM_CAMERA_MAX_NEAR);
+                                    rob, CAMERA_MAX_NEAR);
     /* Everything that can hide something: other robots and all obstacles. */
     uint32_t nocc = 0;
     for (uint32_t j = 0; j < nr; j++) {
@@ -314,7 +315,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         float m = sqrtf(range * range + 0.01f) + 0.01f;
         const uint32_t *ids;
         uint32_t n_cand = items_near(sim, ws, t, n_items, cam.x - m, cam.y - m, cam.x + m, cam.y + m, &ids);
-        for (uint32_t c = 0; c < n_cand && nocc < 2 * SIM_CAMERA_MAX_NEAR; c++) {
+        for (uint32_t c = 0; c < n_cand && nocc < 2 * CAMERA_MAX_NEAR; c++) {
             uint32_t k = ids ? ids[c] : c;
             if (k > CAM_ITEM_INDEX) {
                 break;
@@ -328,7 +329,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         }
     }
 
-    camera_frame_t fr = { sc, items, occ, occ_obj, nocc, half, col, vfov, range, all_round };
+    camera_frame_t fr = { cfg, items, occ, occ_obj, nocc, half, col, vfov, range, all_round };
     hal_blob_t blobs[CAM_MAX_BLOBS];
     uint32_t nb = 0;
     if (!all_round) {
@@ -344,12 +345,12 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
          * they could show (their whole interval), stopping once HAL_MAX_BLOBS
          * blobs are larger than anything left can be (the robot gets only
          * those).  The result is the one the full scan gives. */
-        sim_cam_candidate_t *cand = ws->cam.candidates;
+        camera_candidate_t *cand = cw->candidates;
         uint32_t m = 0;
         for (uint32_t t = first_obstacle; t < nocc; t++) {
             float bd = pixel_bound(sim, &fr, t);
             if (bd > 0.0f) {
-                cand[m++] = (sim_cam_candidate_t){ bd, t };
+                cand[m++] = (camera_candidate_t){ bd, t };
             }
         }
         qsort(cand, m, sizeof cand[0], by_bound);
