@@ -70,12 +70,12 @@ static void command_line(int argc, char **argv, char *buf, size_t len)
 
 /* The effective scenario (file + overrides) as YAML text, malloc'd. */
 static char *effective_scenario(const char *path, const scenario_override_t *sets, size_t n,
-                                size_t *len, char err[SCENARIO_ERROR_MAX])
+                                size_t *len, char err[SIM_ERR_MAX])
 {
     char *text = NULL;
     FILE *f = open_memstream(&text, len);
     if (!f) {
-        snprintf(err, SCENARIO_ERROR_MAX, "out of memory");
+        snprintf(err, SIM_ERR_MAX, "out of memory");
         return NULL;
     }
     int rc = scenario_write_effective(path, sets, n, f, err);
@@ -292,7 +292,7 @@ int main(int argc, char **argv)
     }
 
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX > 512 ? SCENARIO_ERROR_MAX : 512];
+    char err[SIM_ERR_MAX > 512 ? SIM_ERR_MAX : 512];
     if (!sc) {
         fprintf(stderr, "swarmsim: out of memory\n");
         return 1;

@@ -239,7 +239,7 @@ static void test_rendered_runs_are_deterministic(void **state)
 {
     (void)state;
     scenario_t *sc = calloc(1, sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_override_t set[] = { { .text = "camera.model=rendered" }, { .text = "camera.noise=6" } };
     assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", set, 2, sc, err), 0);
     uint64_t hash[2];
@@ -278,7 +278,7 @@ static void test_rendered_runs_are_deterministic(void **state)
 static void under_nest_lamp(scenario_t *sc, int arena)
 {
     scenario_t *base = calloc(1, sizeof *base);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(base);
     assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", NULL, 0, base, err), 0);
     if (arena) {

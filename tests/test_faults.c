@@ -25,7 +25,7 @@
 #include "foraging/nest_beacon.h"
 
 /* Loads YAML text (through a temporary file) with overrides. */
-static int load_text(const char *yaml, const char *const *sets, scenario_t *sc, char err[SCENARIO_ERROR_MAX])
+static int load_text(const char *yaml, const char *const *sets, scenario_t *sc, char err[SIM_ERR_MAX])
 {
     char path[] = "/tmp/test_faults_XXXXXX";
     scenario_override_t ov[8];
@@ -45,7 +45,7 @@ static int load_text(const char *yaml, const char *const *sets, scenario_t *sc, 
 
 static sim_t *make(const char *yaml, const char *const *sets, uint64_t seed, scenario_t **out)
 {
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_t *sc = calloc(1, sizeof *sc);
     assert_non_null(sc);
     if (load_text(yaml, sets, sc, err) != 0) fail_msg("%s", err);
@@ -277,7 +277,7 @@ static void test_radio_faults(void **state)
 static void test_liar_is_bounded_by_the_beacon(void **state)
 {
     (void)state;
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_override_t ov[] = { { "robots.0.faults=[{kind: liar, fraction: 0.05, at: 0}]" },
                                  { "foraging.desired_food=1" } };   /* S < 0: everyone stays home, in range */
     scenario_t *sc = calloc(1, sizeof *sc);
@@ -304,7 +304,7 @@ static void test_liar_is_bounded_by_the_beacon(void **state)
 
 static void expect_error(const char *set, const char *want)
 {
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     const char *sets[] = { set, NULL };
     scenario_t *sc = calloc(1, sizeof *sc);
     assert_non_null(sc);

@@ -379,7 +379,7 @@ static void test_random_cylinders(void **state)
     /* No room: an error, not a hang. */
     sc->random_cylinders.count = 400;
     sc->random_cylinders.radius_min = sc->random_cylinders.radius_max = 0.3f;
-    char err[256] = "";
+    char err[SIM_ERR_MAX] = "";
     assert_null(sim_create(sc, 1, err));
     assert_non_null(strstr(err, "random_cylinders"));
     scenario_free(sc);
@@ -395,7 +395,7 @@ static scenario_t *shipped(const char *file, const scenario_override_t *set, siz
     char path[256];
     snprintf(path, sizeof path, "../sim_host/scenarios/%s", file);
     scenario_t *sc = calloc(1, sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     if (scenario_load(path, set, n_set, sc, err) != 0) fail_msg("%s: %s", file, err);
     return sc;
 }

@@ -37,7 +37,7 @@ static char tmpdir[256];
 
 typedef struct fixture {
     scenario_t *sc;
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     char path[512];  /* the file of the last load */
 } fixture_t;
 
@@ -899,7 +899,7 @@ static void test_group_names(void **state)
 static void test_effective_scenario_of_a_multiline_value(void **state)
 {
     fixture_t *fx = *state;
-    char err[SCENARIO_ERROR_MAX], out[600];
+    char err[SIM_ERR_MAX], out[600];
     scenario_t *again = malloc(sizeof *again);
     assert_non_null(again);
     snprintf(fx->path, sizeof fx->path, "%s/multiline.yaml", tmpdir);

@@ -551,7 +551,7 @@ static void test_placement_failure_is_reported(void **state)
     (void)state;
     scenario_t *sc = fixture_idle_scenario(500, 0.5f);
     sc->groups[0].placement.shape = PLACE_RECTANGLE;
-    char err[256] = "";
+    char err[SIM_ERR_MAX] = "";
     sim_t *sim = sim_create(sc, 1, err);
     assert_null(sim);
     assert_non_null(strstr(err, "cannot place robot"));
@@ -649,7 +649,7 @@ static void test_bad_pose_is_reported(void **state)
     scenario_t *sc = two_groups(2, 0);
     const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.1f, .height = 0.05f };
     assert_int_equal(scenario_add_object(sc, &obj), 0);
-    char err[256] = "";
+    char err[SIM_ERR_MAX] = "";
     assert_null(sim_create(sc, 1, err));
     assert_non_null(strstr(err, "robots[1] (post): pose 0 at (0.5, 0.5) m is not free"));
     scenario_free(sc);
@@ -665,7 +665,7 @@ static void test_step_order_does_not_matter(void **state)
                                          "../sim_host/scenarios/random_walk.yaml" };
     for (size_t f = 0; f < 2; f++) {
         scenario_t *sc = malloc(sizeof *sc);
-        char err[SCENARIO_ERROR_MAX];
+        char err[SIM_ERR_MAX];
         uint64_t hash[3];
         assert_non_null(sc);
         if (scenario_load(files[f], NULL, 0, sc, err) != 0) fail_msg("%s", err);
@@ -702,7 +702,7 @@ static void test_thread_count_does_not_matter(void **state)
     static const scenario_override_t sets[] = { { "robots.0.count=800" }, { "arena.width=25.3" },
                                                 { "arena.height=25.3" }, { "foraging.food_count=800" } };
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load("../tools/bench/bench_full_sensing.yaml", sets, 4, sc, err) != 0) fail_msg("%s", err);
     uint64_t hash[3], held[3];

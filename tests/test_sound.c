@@ -422,7 +422,7 @@ static void test_scenario_section(void **state)
 {
     (void)state;
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load("data/scenarios/sound_small.yaml", NULL, 0, sc, err) != 0) fail_msg("%s", err);
     assert_true(sound_config_mut(sc)->enabled == 1 && sound_config_mut(sc)->self_masking == 1);
@@ -500,7 +500,7 @@ static controller_def_t chatty_def;
 static scenario_t *chatty_scenario(void)
 {
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load("data/scenarios/sound_small.yaml", NULL, 0, sc, err) != 0) fail_msg("%s", err);
     chatty_def = random_walk_def;
@@ -528,7 +528,7 @@ typedef struct chatty_run {
 static void *chatty_run(void *arg)
 {
     chatty_run_t *r = arg;
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(r->sc, r->seed, err);
     if (!sim) return NULL;
     sim_set_step_order(sim, r->order, 77);

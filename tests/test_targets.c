@@ -91,7 +91,7 @@ static void test_layouts(void **state)
     scenario_t *sc = world(1, 8.264f);
     targets_config_t *c = config(sc);
     float x[200], y[200];
-    char err[256];
+    char err[SIM_ERR_MAX];
     assert_int_equal(c->count, 200);
     for (int d = TARGETS_ONE; d <= TARGETS_UNIFORM; d++) {
         c->distribution = d;

@@ -17,14 +17,15 @@
 #ifndef SIM_OUTDIR_H
 #define SIM_OUTDIR_H
 
+#include "swarmsim/base.h"
+
 #define OUTDIR_MARKER ".swarmsim-out"
-#define OUTDIR_ERR_MAX 512
 
 typedef enum outdir_mode { OUTDIR_NEW, OUTDIR_REPLACE, OUTDIR_RESUME } outdir_mode_t;
 
 /** Makes `dir` ready for the invocation `ident` (one line, no newline).
  *  Returns 0, or -1 with a message in `err` and nothing changed. */
-int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char err[OUTDIR_ERR_MAX]);
+int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char err[SIM_ERR_MAX]);
 
 /** mkdir -p */
 int outdir_mkdirs(const char *path);

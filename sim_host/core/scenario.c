@@ -877,9 +877,9 @@ static int old_syntax(const loader_t *ld, const ynode_t *root)
 }
 
 int scenario_load(const char *path, const scenario_override_t *overrides,
-                  size_t override_count, scenario_t *out, char err[SCENARIO_ERROR_MAX])
+                  size_t override_count, scenario_t *out, char err[SIM_ERR_MAX])
 {
-    loader_t ld = { path != NULL ? path : "(null)", err, SCENARIO_ERROR_MAX };
+    loader_t ld = { path != NULL ? path : "(null)", err, SIM_ERR_MAX };
     ynode_t *root = NULL;
     int rc;
     err[0] = '\0';
@@ -887,12 +887,12 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
     if (path == NULL || set_path_and_name(&ld, path, out) != 0) {
         return path == NULL ? schema_fail(&ld, NULL, "", "no scenario file") : -1;
     }
-    if (ytree_parse_file(path, &root, err, SCENARIO_ERROR_MAX) != 0) {
+    if (ytree_parse_file(path, &root, err, SIM_ERR_MAX) != 0) {
         return -1;
     }
     rc = check_root(&ld, &root, override_count);
     for (size_t i = 0; rc == 0 && i < override_count; i++) {
-        rc = ytree_apply_override(&root, overrides[i].text, err, SCENARIO_ERROR_MAX);
+        rc = ytree_apply_override(&root, overrides[i].text, err, SIM_ERR_MAX);
     }
     if (rc == 0) {
         rc = old_syntax(&ld, root);
@@ -939,19 +939,19 @@ int scenario_add_object(scenario_t *sc, const object_def_t *o)
 }
 
 int scenario_write_effective(const char *path, const scenario_override_t *overrides,
-                             size_t override_count, FILE *out, char err[SCENARIO_ERROR_MAX])
+                             size_t override_count, FILE *out, char err[SIM_ERR_MAX])
 {
-    loader_t ld = { path, err, SCENARIO_ERROR_MAX };
+    loader_t ld = { path, err, SIM_ERR_MAX };
     ynode_t *root = NULL;
-    if (ytree_parse_file(path, &root, err, SCENARIO_ERROR_MAX) != 0) {
+    if (ytree_parse_file(path, &root, err, SIM_ERR_MAX) != 0) {
         return -1;
     }
     int rc = check_root(&ld, &root, override_count);
     for (size_t i = 0; rc == 0 && i < override_count; i++) {
-        rc = ytree_apply_override(&root, overrides[i].text, err, SCENARIO_ERROR_MAX);
+        rc = ytree_apply_override(&root, overrides[i].text, err, SIM_ERR_MAX);
     }
     if (rc == 0) {
-        rc = ytree_write(out, root, err, SCENARIO_ERROR_MAX);
+        rc = ytree_write(out, root, err, SIM_ERR_MAX);
     }
     ytree_free(root);
     return rc == 0 ? 0 : -1;

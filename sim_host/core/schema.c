@@ -26,7 +26,7 @@ static void format_into(char *buf, size_t len, const char *fmt, ...)
 
 int schema_fail(const loader_t *ld, const ynode_t *node, const char *path, const char *fmt, ...)
 {
-    char msg[512], where[SCHEMA_PATH_MAX + 300];
+    char msg[SIM_ERR_MAX], where[SCHEMA_PATH_MAX + 300];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);

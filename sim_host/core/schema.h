@@ -23,6 +23,7 @@
 #include <stdio.h>
 
 #include "common/param.h"
+#include "swarmsim/base.h"
 #include "yaml_tree.h"
 
 #define SCHEMA_PATH_MAX 256

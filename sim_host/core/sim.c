@@ -48,7 +48,7 @@ static void build_obstacles(struct sim *sim)
 /* Every group's robots and their controllers, initialised with the
  * group's params (the scenario's, then its policy, then what the tasks
  * tell it). */
-static int build_robots(struct sim *sim, char err[256])
+static int build_robots(struct sim *sim, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
     uint32_t i = 0;
@@ -70,7 +70,7 @@ static int build_robots(struct sim *sim, char err[256])
         if (stride && grp->count) {
             sim->ctrl_blocks[g] = calloc(grp->count, stride);
             if (!sim->ctrl_blocks[g]) {
-                snprintf(err, 256, "out of memory for the controllers of group %u", g);
+                snprintf(err, SIM_ERR_MAX, "out of memory for the controllers of group %u", g);
                 return -1;
             }
         }
@@ -184,7 +184,7 @@ static void *alloc_zeroed(size_t bytes)
 }
 
 /* Every model's arrays and scratch, then its create, in list order. */
-static int create_models(struct sim *sim, char err[256])
+static int create_models(struct sim *sim, char err[SIM_ERR_MAX])
 {
     uint32_t workers = pool_threads(sim->pool);
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
@@ -197,14 +197,14 @@ static int create_models(struct sim *sim, char err[256])
         SIM_ASSERT(m->layout.arrays <= MODEL_MAX_ARRAYS);
         for (uint32_t k = 0; k < m->layout.arrays; k++) {
             if (!(m->array[k] = alloc_zeroed((size_t)sim->n * m->layout.elem_size[k]))) {
-                snprintf(err, 256, "out of memory for the %s model's state of %u robots", m->def->name, sim->n);
+                snprintf(err, SIM_ERR_MAX, "out of memory for the %s model's state of %u robots", m->def->name, sim->n);
                 return -1;
             }
         }
         if (m->layout.scratch_size) {
             m->scratch_stride = (m->layout.scratch_size + 63u) & ~(size_t)63u;
             if (!(m->scratch = alloc_zeroed(workers * m->scratch_stride))) {
-                snprintf(err, 256, "out of memory for the %s model's working memory", m->def->name);
+                snprintf(err, SIM_ERR_MAX, "out of memory for the %s model's working memory", m->def->name);
                 return -1;
             }
         }
@@ -279,7 +279,7 @@ static int models_serial(const struct sim *sim)
     return 0;
 }
 
-static int create_tasks(struct sim *sim, char err[256])
+static int create_tasks(struct sim *sim, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
     for (uint32_t t = 0; t < sc->task_count; t++) {
@@ -318,20 +318,20 @@ static int create_workers(struct sim *sim, uint32_t threads)
     return 0;
 }
 
-sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
+sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[SIM_ERR_MAX])
 {
     return sim_create_threads(sc, seed, 1, err);
 }
 
-sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[256])
+sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[SIM_ERR_MAX])
 {
     if (threads < 1 || threads > POOL_MAX_THREADS) {
-        snprintf(err, 256, "threads in a run: %u is not in [1, %u]", threads, POOL_MAX_THREADS);
+        snprintf(err, SIM_ERR_MAX, "threads in a run: %u is not in [1, %u]", threads, POOL_MAX_THREADS);
         return NULL;
     }
     struct sim *sim = calloc(1, sizeof *sim);
     if (!sim) {
-        snprintf(err, 256, "out of memory");
+        snprintf(err, SIM_ERR_MAX, "out of memory");
         return NULL;
     }
     sim->sc = sc;
@@ -367,12 +367,12 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         || !sim->py || !sim->obstacles || !sim->objects
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
-        snprintf(err, 256, "out of memory for %u robots", sim->n);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u robots", sim->n);
         sim_destroy(sim);
         return NULL;
     }
     if (create_workers(sim, threads) != 0) {
-        snprintf(err, 256, "cannot start %u threads for the run (or out of memory)", threads);
+        snprintf(err, SIM_ERR_MAX, "cannot start %u threads for the run (or out of memory)", threads);
         sim_destroy(sim);
         return NULL;
     }
@@ -395,7 +395,7 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     bad = bad || grid_build_boxes(&sim->obstacle_grid, (const float (*)[4])boxes, sim->n_obstacles) != 0;
     free(boxes);
     if (bad) {
-        snprintf(err, 256, "out of memory for %u obstacles", sim->n_obstacles);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u obstacles", sim->n_obstacles);
         sim_destroy(sim);
         return NULL;
     }

@@ -198,17 +198,17 @@ int sim_robot_halted(const struct sim *sim, uint32_t i);
 void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p);
 
 /* world.c: Box2D bodies */
-int world_create(struct sim *sim, char err[256]);
+int world_create(struct sim *sim, char err[SIM_ERR_MAX]);
 void world_destroy(struct sim *sim);
 void world_drive(struct sim *sim);
 void world_advance(struct sim *sim);
 void world_read_poses(struct sim *sim);
 
 /* placement.c: start poses of every group */
-int placement_run(struct sim *sim, char err[256]);
+int placement_run(struct sim *sim, char err[SIM_ERR_MAX]);
 /** Draws the scenario's random cylinders into sim->objects after its
  *  objects (placement.c).  Returns 0, or -1 with a message. */
-int placement_cylinders(struct sim *sim, char err[256]);
+int placement_cylinders(struct sim *sim, char err[SIM_ERR_MAX]);
 
 /** Writes to `out` (at most `max`) the indices of obstacles whose bounding
  *  boxes meet [minx,maxx] x [miny,maxy], each once, in ascending order of

@@ -45,7 +45,7 @@ typedef struct sim_video sim_video_t;
 
 /** Starts a video of `sim` at frame_px wide (rounded down to even, the
  *  height from the arena's aspect).  `quiet`: no line on stderr at the
- *  end.  NULL with a message in `err` (VIDEO_ERR_MAX bytes). */
+ *  end.  NULL with a message in `err` (SIM_ERR_MAX bytes). */
 sim_video_t *sim_video_open(const video_options_t *o, const sim_t *sim, uint32_t frame_px,
                             int quiet, char *err);
 

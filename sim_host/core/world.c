@@ -62,7 +62,7 @@ static void create_static(struct sim *sim)
  * turns for those two calls.  Everything else in a world is its own. */
 static pthread_mutex_t world_table_lock = PTHREAD_MUTEX_INITIALIZER;
 
-int world_create(struct sim *sim, char err[256])
+int world_create(struct sim *sim, char err[SIM_ERR_MAX])
 {
     b2WorldDef wd = b2DefaultWorldDef();
     wd.gravity = (b2Vec2){ 0.0f, 0.0f };
@@ -81,7 +81,7 @@ int world_create(struct sim *sim, char err[256])
     pthread_mutex_unlock(&world_table_lock);
     sim->drive = calloc(sim->n ? sim->n : 1, sizeof *sim->drive);
     if (!b2World_IsValid(sim->world) || !sim->drive) {
-        snprintf(err, 256, "cannot create the Box2D world (or out of memory)");
+        snprintf(err, SIM_ERR_MAX, "cannot create the Box2D world (or out of memory)");
         return -1;
     }
     create_static(sim);

@@ -103,8 +103,8 @@ static size_t split(const uint8_t *data, size_t size, char *buf, scenario_overri
 /* The error names where the bad value came from. */
 static void check_error(const char *err, const scenario_override_t *sets, size_t n)
 {
-    size_t len = strnlen(err, SCENARIO_ERROR_MAX);
-    FUZZ_CHECK(len > 0 && len < SCENARIO_ERROR_MAX);
+    size_t len = strnlen(err, SIM_ERR_MAX);
+    FUZZ_CHECK(len > 0 && len < SIM_ERR_MAX);
     if (strncmp(err, file_in, strlen(file_in)) == 0) {
         return;
     }
@@ -132,7 +132,7 @@ static int too_big(const scenario_t *s)
 /* The effective scenario, written and read back, is the scenario. */
 static void check_effective(const scenario_override_t *sets, size_t n)
 {
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     FILE *f = fopen(file_out, "wb");
     FUZZ_CHECK(f != NULL);
     FUZZ_CHECK(scenario_write_effective(file_in, sets, n, f, err) == 0);
@@ -176,7 +176,7 @@ static void check_effective(const scenario_override_t *sets, size_t n)
 
 static uint64_t run(uint32_t steps)
 {
-    char err[256];
+    char err[SIM_ERR_MAX];
     uint64_t h;
     sim_t *sim = sim_create(sc, sc->seed, err);
     if (sim == NULL) {
@@ -195,7 +195,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static char *buf;
     scenario_override_t sets[MAX_SETS];
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     size_t n;
 
     if (size > MAX_TEXT) {

@@ -46,7 +46,7 @@ int main(int argc, char **argv)
     }
     camera_render_set_threads();
     static scenario_t sc;
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     if (scenario_load(argv[1], NULL, 0, &sc, err) != 0) {
         fprintf(stderr, "camera_bench: %s\n", err);
         return 2;

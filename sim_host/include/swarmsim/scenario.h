@@ -16,11 +16,11 @@
 
 #include "common/controller.h"
 #include "common/param.h"
+#include "base.h"
 
 
 #define SCENARIO_NAME_MAX 64
 #define SCENARIO_PATH_MAX 512
-#define SCENARIO_ERROR_MAX 512
 #define SCENARIO_MAX_OBJECTS 4096
 #define SCENARIO_MAX_LIGHTS 16
 #define SCENARIO_MAX_GROUPS 16
@@ -203,7 +203,7 @@ void scenario_defaults(scenario_t *out);
  */
 int scenario_load(const char *path, const scenario_override_t *overrides,
                   size_t override_count, scenario_t *out,
-                  char err[SCENARIO_ERROR_MAX]);
+                  char err[SIM_ERR_MAX]);
 
 /**
  * Writes the effective scenario to `out` as YAML: the file's tree with the
@@ -212,7 +212,7 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
  * after scenario_load succeeded.  Returns 0, or -1 with a message in `err`.
  */
 int scenario_write_effective(const char *path, const scenario_override_t *overrides,
-                             size_t override_count, FILE *out, char err[SCENARIO_ERROR_MAX]);
+                             size_t override_count, FILE *out, char err[SIM_ERR_MAX]);
 
 /** Every robot of every group. */
 uint32_t scenario_robot_count(const scenario_t *sc);

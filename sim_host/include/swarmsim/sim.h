@@ -31,12 +31,12 @@ typedef struct sim_metrics {
 
 /** Builds the world for run seed `seed`.  Returns NULL with a message in
  *  `err` (e.g. robots that cannot be placed). */
-sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256]);
+sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[SIM_ERR_MAX]);
 /** The same run stepped on `threads` threads (1 .. 64): the controllers and
  *  their sensors, IR delivery, the sound field with a cutoff and Box2D's
  *  solver spread over them.  The results are those of sim_create, byte for
  *  byte, at any thread count. */
-sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[256]);
+sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[SIM_ERR_MAX]);
 void sim_destroy(sim_t *sim);
 
 /** One control period (task.h lists its phases). */

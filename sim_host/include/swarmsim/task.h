@@ -72,7 +72,7 @@ typedef struct task_def {
 
     /** Cross-checks after loading.  Returns 0, or -1 with the key (relative
      *  to the section, "nest.diameter"; "" for the section) and a message. */
-    int (*check)(const void *config, const scenario_t *sc, char key[64], char msg[256]);
+    int (*check)(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX]);
 
     /** Tells robots of `group` what a real robot would be built with:
      *  fills the task's part of `params`, the group's controller's params
@@ -81,7 +81,7 @@ typedef struct task_def {
                       void *params);
 
     /** Its state for one run; NULL with a message in `err` on failure. */
-    void *(*create)(sim_t *sim, const void *config, char err[256]);
+    void *(*create)(sim_t *sim, const void *config, char err[SIM_ERR_MAX]);
     void (*destroy)(void *self);
 
     void (*before_control)(void *self, sim_t *sim);

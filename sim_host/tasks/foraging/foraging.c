@@ -151,26 +151,26 @@ static uint32_t robots_running(const scenario_t *sc, const controller_def_t *def
     return n;
 }
 
-static int foraging_check(const void *config, const scenario_t *sc, char key[64], char msg[256])
+static int foraging_check(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX])
 {
     const foraging_config_t *c = config;
     double r = c->nest.diameter / 2.0;
     uint32_t beacons = robots_running(sc, &nest_beacon_def);
     if (!scenario_inside_arena(sc, c->nest.x, c->nest.y, r, r)) {
         snprintf(key, 64, "nest");
-        scenario_outside_message(sc, "the nest circle reaches", msg, 256);
+        scenario_outside_message(sc, "the nest circle reaches", msg, SIM_ERR_MAX);
         return -1;
     }
     if (c->information == FORAGING_INFO_BEACON && beacons != 1) {
         snprintf(key, 64, "information");
-        snprintf(msg, 256, "'beacon' needs one robot running nest_beacon at the nest (the scenario "
+        snprintf(msg, SIM_ERR_MAX, "'beacon' needs one robot running nest_beacon at the nest (the scenario "
                  "has %u); add a group {count: 1, controller: nest_beacon, moves: false} or use "
                  "'global'", beacons);
         return -1;
     }
     if (c->information == FORAGING_INFO_GLOBAL && beacons != 0) {
         snprintf(key, 64, "information");
-        snprintf(msg, 256, "'global' replaces the nest beacon by the simulator: remove the "
+        snprintf(msg, SIM_ERR_MAX, "'global' replaces the nest beacon by the simulator: remove the "
                  "nest_beacon group (or set its count to 0)");
         return -1;
     }
@@ -185,7 +185,7 @@ static int foraging_check(const void *config, const scenario_t *sc, char key[64]
         double u = held[i].v * held[i].scale;
         if (fabs(u - round(u)) > 1e-6 * fmax(1.0, fabs(u)) || u > 65535.0) {
             snprintf(key, 64, "%s", held[i].key);
-            snprintf(msg, 256, "%g is not what the nest beacon can count: it holds %s up to %g (use "
+            snprintf(msg, SIM_ERR_MAX, "%g is not what the nest beacon can count: it holds %s up to %g (use "
                      "such a value, or information: global)", held[i].v,
                      held[i].scale > 1.0 ? "multiples of 0.001 token/min" : "whole energy units",
                      65535.0 / held[i].scale);
@@ -291,14 +291,14 @@ static void foraging_destroy(void *self)
     free(f);
 }
 
-static void *foraging_create(sim_t *sim, const void *config, char err[256])
+static void *foraging_create(sim_t *sim, const void *config, char err[SIM_ERR_MAX])
 {
     const foraging_config_t *c = config;
     const scenario_t *sc = sim_scenario(sim);
     foraging_t *f = calloc(1, sizeof *f);
     uint32_t n = sim_robot_count(sim), n1 = n ? n : 1;
     if (!f) {
-        snprintf(err, 256, "out of memory for the foraging task");
+        snprintf(err, SIM_ERR_MAX, "out of memory for the foraging task");
         return NULL;
     }
     f->cfg = c;
@@ -324,7 +324,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
     int grid_bad = grid_init(&f->token_grid, -hw, -hh, 2 * hw, 2 * hh, 0.5f) != 0;
     if (!f->is_forager || !f->task || !f->leave_step || !f->tokens || !f->carrier || !f->carried
         || !f->oae_window || !f->floor_x || !f->floor_y || !f->near || grid_bad) {
-        snprintf(err, 256, "out of memory for %u food tokens", f->n_tokens);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u food tokens", f->n_tokens);
         foraging_destroy(f);
         return NULL;
     }
@@ -345,7 +345,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
         f->tokens[k].height = c->token_height;
         f->tokens[k].colour = HAL_COLOUR_RED;
         if (place_token(f, sim, k) != 0) {
-            snprintf(err, 256, "cannot place food token %u of %u outside the nest and obstacles",
+            snprintf(err, SIM_ERR_MAX, "cannot place food token %u of %u outside the nest and obstacles",
                      k + 1, f->n_tokens);
             foraging_destroy(f);
             return NULL;
