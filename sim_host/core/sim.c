@@ -452,6 +452,16 @@ void sim_destroy(sim_t *sim)
     free(sim);
 }
 
+/* The robot grid from this step's poses.  Its room for every robot was
+ * made when the run was built (the first binning), so this cannot fail
+ * unless memory is already gone. */
+static void rebin_robots(struct sim *sim)
+{
+    if (grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0) {
+        sim_out_of_memory("the robot grid");
+    }
+}
+
 void sim_step(sim_t *sim)
 {
     sim->n_events = 0;
@@ -462,9 +472,8 @@ void sim_step(sim_t *sim)
         }
     }
     run_phase(sim, PHASE_BEFORE_CONTROL);
-    /* Items stay put while the controllers step (items.h); out of memory,
-     * the camera scans every item instead, with the same result. */
-    (void)items_index_build(sim);
+    /* Items stay put while the controllers step (items.h). */
+    items_index_build(sim);
     /* Side by side when every sensor can be (not the rendered camera: one
      * GL context); each robot reads the start of the step, so the order
      * and the threads do not matter (test_sim: step order, thread count). */
@@ -484,7 +493,7 @@ void sim_step(sim_t *sim)
     world_drive(sim);
     world_advance(sim);
     world_read_poses(sim);
-    grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
+    rebin_robots(sim);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->after_physics) {
             sim->tasks[t].def->after_physics(sim->tasks[t].self, sim);
@@ -640,22 +649,28 @@ uint64_t sim_seed(const sim_t *sim) { return sim->seed; }
 const scenario_t *sim_scenario(const sim_t *sim) { return sim->sc; }
 const sim_metrics_t *sim_metrics(const sim_t *sim) { return &sim->metrics; }
 uint32_t sim_robot_count(const sim_t *sim) { return sim->n; }
-uint32_t sim_robot_group(const sim_t *sim, uint32_t i) { return sim->robots[i].group; }
-const controller_def_t *sim_robot_def(const sim_t *sim, uint32_t i) { return sim->robots[i].def; }
-void *sim_robot_controller(sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
-const void *sim_robot_controller_const(const sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
-hal_t *sim_robot_hal(sim_t *sim, uint32_t i) { return &sim->robots[i].hal; }
-uint16_t sim_robot_leds(const sim_t *sim, uint32_t i) { return sim->robots[i].leds; }
+uint32_t sim_robot_group(const sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].group; }
+const controller_def_t *sim_robot_def(const sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].def; }
+void *sim_robot_controller(sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].ctrl; }
+const void *sim_robot_controller_const(const sim_t *sim, uint32_t i)
+{
+    SIM_ASSERT(i < sim->n);
+    return sim->robots[i].ctrl;
+}
+hal_t *sim_robot_hal(sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return &sim->robots[i].hal; }
+uint16_t sim_robot_leds(const sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].leds; }
 uint32_t sim_obstacle_count(const sim_t *sim) { return sim->n_obstacles; }
 
 const char *sim_robot_state_name(const sim_t *sim, uint32_t i)
 {
+    SIM_ASSERT(i < sim->n);
     const sim_robot_t *r = &sim->robots[i];
     return r->def->state_name(r->ctrl);   /* ctrl is NULL for a stateless controller */
 }
 
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta)
 {
+    SIM_ASSERT(i < sim->n);
     const sim_robot_t *r = &sim->robots[i];
     *x = r->x;
     *y = r->y;
@@ -664,6 +679,7 @@ void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *
 
 void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta)
 {
+    SIM_ASSERT(i < sim->n);
     sim_robot_t *r = &sim->robots[i];
     r->x = (float)x;
     r->y = (float)y;
@@ -671,7 +687,7 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     sim->px[i] = r->x;
     sim->py[i] = r->y;
     b2Body_SetTransform(r->body, (b2Vec2){ r->x, r->y }, b2MakeRot(r->theta));
-    grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
+    rebin_robots(sim);
     /* Sensors must see the new pose even within this step (the sound
      * field too, when it is read before the step's controllers run). */
     for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
@@ -744,7 +760,7 @@ void sim_event(sim_t *sim, uint32_t robot, const char *kind, const char *detail,
         uint32_t cap = sim->events_cap ? 2 * sim->events_cap : 64;
         sim_event_rec_t *e = realloc(sim->events, cap * sizeof *e);
         if (!e) {
-            return;   /* telemetry only: losing an event cannot change the run */
+            sim_out_of_memory("a step's events");
         }
         sim->events = e;
         sim->events_cap = cap;

@@ -321,7 +321,8 @@ static void *foraging_create(sim_t *sim, const void *config, char err[SIM_ERR_MA
     sim_arena_half(sim, &hw, &hh);
     /* Cells of 0.5 m: a grasp's reach (a few cm) meets at most 4 of them,
      * and at seed 000's density (20 tokens on 16 m^2) a cell holds ~0.3. */
-    int grid_bad = grid_init(&f->token_grid, -hw, -hh, 2 * hw, 2 * hh, 0.5f) != 0;
+    int grid_bad = grid_init(&f->token_grid, -hw, -hh, 2 * hw, 2 * hh, 0.5f) != 0
+                   || grid_reserve(&f->token_grid, nt) != 0;
     if (!f->is_forager || !f->task || !f->leave_step || !f->tokens || !f->carrier || !f->carried
         || !f->oae_window || !f->floor_x || !f->floor_y || !f->near || grid_bad) {
         snprintf(err, SIM_ERR_MAX, "out of memory for %u food tokens", f->n_tokens);
@@ -418,8 +419,7 @@ static void carry_and_grasp(foraging_t *f, sim_t *sim)
         f->floor_y[k] = floor ? f->tokens[k].y : NAN;
     }
     if (grid_build_points(&f->token_grid, f->floor_x, f->floor_y, f->n_tokens) != 0) {
-        fprintf(stderr, "swarmsim: out of memory for the foraging task's token grid\n");
-        abort();
+        sim_out_of_memory("the foraging task's token grid");
     }
     for (uint32_t i = 0; i < f->n_robots; i++) {
         double px, py, pt;
