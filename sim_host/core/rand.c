@@ -11,6 +11,20 @@ static uint64_t splitmix64(uint64_t *x)
     return z ^ (z >> 31);
 }
 
+uint64_t sim_rand_purpose(const char *name)
+{
+    /* FNV-1a, folded into [128, 255]: sim_rand_seed shifts the purpose
+     * left by 56 bits, so only its low byte reaches the seed; the top bit
+     * keeps it off the numbered purposes (below 128), the name picks the
+     * other seven.  Two names may share a purpose (1 in 128): test_rand
+     * checks that the shipped names do not. */
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    for (; *name; name++) {
+        h = (h ^ (uint8_t)*name) * UINT64_C(0x100000001b3);
+    }
+    return 128u + (h & 0x7Fu);
+}
+
 void sim_rand_seed(sim_rand_t *r, uint64_t seed, uint64_t index, uint64_t purpose)
 {
     uint64_t x = seed ^ (index * UINT64_C(0xd1342543de82ef95)) ^ (purpose << 56);
