@@ -329,7 +329,11 @@ int main(int argc, char **argv)
     }
     if (check_only) {   /* a sweep validates each combination of overrides this way */
         if (!quiet) {
-            printf("swarmsim: %s: ok\n", path);
+            sim_memory_t m;
+            char need[32];
+            sim_memory_estimate(sc, 1, &m);
+            scenario_format_bytes(m.total, need, sizeof need);
+            printf("swarmsim: %s: ok (a run needs about %s)\n", path, need);
         }
         scenario_free(sc);
         free(sc);

@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -888,6 +889,50 @@ static void test_hal_status(void **state)
     free(sc);
 }
 
+/* ----------------------------------------------------- memory estimate */
+
+/* Resident memory of this process, bytes (/proc/self/statm). */
+static uint64_t resident_bytes(void)
+{
+    unsigned long pages = 0, resident = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    assert_non_null(f);
+    assert_int_equal(fscanf(f, "%lu %lu", &pages, &resident), 2);
+    fclose(f);
+    return (uint64_t)resident * 4096u;
+}
+
+/* sim_memory_estimate against what a run's resident memory grows by: the
+ * random walk of the benchmark worlds (20 robots/m^2) at 20,000 robots,
+ * within 25 %.  Under a sanitizer memory is its own, so only plain builds
+ * compare (the estimate must still grow with the robots). */
+static void test_memory_estimate(void **state)
+{
+    (void)state;
+    scenario_t *sc = calloc(1, sizeof *sc);
+    assert_non_null(sc);
+    scenario_defaults(sc);
+    sc->groups[0].count = 20000;
+    sc->arena.width = sc->arena.height = 32.0f;
+    sim_memory_t small, big;
+    sim_memory_estimate(sc, 1, &big);
+    sc->groups[0].count = 200;
+    sim_memory_estimate(sc, 1, &small);
+    assert_true(big.total > small.total + 19000u * 2000u);
+    sc->groups[0].count = 20000;
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+    uint64_t before = resident_bytes();
+    sim_t *sim = fixture_sim(sc, 1);
+    for (int k = 0; k < 3; k++) sim_step(sim);
+    uint64_t grew = resident_bytes() - before;
+    print_message("20,000 robots: estimate %llu B, resident memory grew by %llu B (%.2f)\n",
+                  (unsigned long long)big.total, (unsigned long long)grew, (double)big.total / (double)grew);
+    assert_true((double)big.total > 0.75 * (double)grew && (double)big.total < 1.25 * (double)grew);
+    sim_destroy(sim);
+#endif
+    free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -911,6 +956,7 @@ int main(void)
         cmocka_unit_test(test_thread_count_does_not_matter),
         cmocka_unit_test(test_tracker_pose),
         cmocka_unit_test(test_host_messages),
+        cmocka_unit_test(test_memory_estimate),
         cmocka_unit_test(test_hal_status),
         cmocka_unit_test(test_wheel_bias_draws),
         cmocka_unit_test(test_wheel_bias_per_step),

@@ -25,6 +25,7 @@
 
 #include "models/model.h"
 #include "registry.h"
+#include "swarmsim/sim.h"
 #include "schema.h"
 #include "swarmsim/task.h"
 #include "units.h"
@@ -59,6 +60,8 @@ static const param_desc_t top_params[] = {
       .max = 10000, .doc = "one controller step, ms" },
     { .key = "physics_substeps", PARAM_FIELD(SC, physics_substeps, uint16_t), .min = 1, .max = 64,
       .doc = "physics sub-steps per control step" },
+    { .key = "memory_limit_mb", PARAM_FIELD(SC, memory_limit_mb, uint32_t), .min = 1, .max = 16777216,
+      .doc = "refuse the scenario when a run needs more, MB (the estimate: swarmsim --check)" },
     PARAM_END
 };
 
@@ -284,6 +287,7 @@ void scenario_defaults(scenario_t *out)
     out->duration = 60.0;
     out->control_period_ms = 100;
     out->physics_substeps = 4;
+    out->memory_limit_mb = SCENARIO_MEMORY_LIMIT_MB;
     out->arena.width = 4.0f;
     out->arena.height = 4.0f;
     out->arena.wall_thickness = 0.05f;
@@ -789,6 +793,37 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
     return 0;
 }
 
+void scenario_format_bytes(uint64_t bytes, char *out, size_t len)
+{
+    if (bytes >= UINT64_C(1000000000)) {
+        snprintf(out, len, "%.1f GB", (double)bytes / 1e9);
+    } else if (bytes >= UINT64_C(1000000)) {
+        snprintf(out, len, "%.0f MB", (double)bytes / 1e6);
+    } else {
+        snprintf(out, len, bytes < 10000u ? "%.1f kB" : "%.0f kB", (double)bytes / 1e3);
+    }
+}
+
+/* Before anything is allocated: a run must fit memory_limit_mb. */
+static int check_memory(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+{
+    sim_memory_t m;
+    sim_memory_estimate(sc, 1, &m);
+    if (m.total <= (uint64_t)sc->memory_limit_mb << 20) {
+        return 0;
+    }
+    char total[32], each[32];
+    scenario_format_bytes(m.total, total, sizeof total);
+    scenario_format_bytes(m.per_robot, each, sizeof each);
+    const ynode_t *limit = ytree_get(root, "memory_limit_mb"), *robots = ytree_get(root, "robots");
+    return schema_fail(ld, limit != NULL ? limit : robots != NULL ? robots : root,
+                       limit != NULL ? "memory_limit_mb" : "robots",
+                       "a run of this scenario needs about %s (%u robots at about %s each), more than "
+                       "memory_limit_mb %u: fewer robots, or a larger limit (--set memory_limit_mb=%llu)",
+                       total, m.robots, each, sc->memory_limit_mb,
+                       (unsigned long long)((m.total >> 20) * 5 / 4 + 1));
+}
+
 static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
 {
     if (sc->duration * 1000.0 < sc->control_period_ms) {
@@ -803,7 +838,7 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
         return -1;
     }
     order_tasks(sc);
-    return check_tasks(ld, root, sc);
+    return check_tasks(ld, root, sc) != 0 ? -1 : check_memory(ld, root, sc);
 }
 
 /* ---------------------------------------------------------------- loading */

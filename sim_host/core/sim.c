@@ -318,6 +318,55 @@ static int create_workers(struct sim *sim, uint32_t threads)
     return 0;
 }
 
+/* Box2D v3's memory per body, bytes: a dynamic body with one circle
+ * shape (b2Body, its sim and state, the shape, its broad-phase proxy and
+ * tree node, its share of the contacts and islands at the benchmark
+ * worlds' density), and per static shape.  Measured on random walks at 20
+ * robots/m^2: swarmsim's peak resident memory grew by 2,823 B a robot from
+ * 10,000 to 100,000 robots (outputs and the runner included), a run's own
+ * growth in test_sim is 2,330 B a robot at 20,000; with this constant the
+ * estimate says 2,567 B a robot, between the two (test_sim keeps it
+ * within 25 % of the run's growth). */
+#define BOX2D_BYTES_PER_BODY 1800u
+#define BOX2D_BYTES_PER_SHAPE 400u
+/* The sim itself, the pool, the scenario's copy of the objects... */
+#define RUN_FIXED_BYTES (256u * 1024u)
+
+void sim_memory_estimate(const scenario_t *sc, uint32_t threads, sim_memory_t *out)
+{
+    uint64_t n = scenario_robot_count(sc), no = (uint64_t)sc->object_count + sc->random_cylinders.count;
+    uint64_t w = threads ? threads : 1;
+    uint64_t robots = n * (sizeof(sim_robot_t) + 2 * sizeof(float) + sizeof(uint32_t) + sizeof(world_velocity_t)
+                           + sizeof(uint32_t) + w * sizeof(uint32_t) + BOX2D_BYTES_PER_BODY);
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        const controller_def_t *def = sc->groups[g].def;
+        robots += (uint64_t)sc->groups[g].count * (def ? (def->state_size + 15u) & ~(size_t)15u : 0u);
+    }
+    uint64_t models = 0;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        model_layout_t lay = { 0 };
+        if (sim_models[id]->layout) {
+            sim_models[id]->layout(scenario_model_config(sc, (sim_model_id_t)id), sc, &lay);
+        }
+        for (uint32_t k = 0; k < lay.arrays && k < MODEL_MAX_ARRAYS; k++) {
+            robots += n * lay.elem_size[k];
+        }
+        models += w * lay.scratch_size + lay.run_bytes;
+    }
+    uint64_t tasks = 0;
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        const task_def_t *def = sc->tasks[t].def;
+        tasks += def->memory ? def->memory(sc->tasks[t].config.bytes, sc) : 0u;
+    }
+    /* Two grids over the arena (robots, obstacles), cells of 0.5 m at least. */
+    uint64_t cells = (uint64_t)(sc->arena.width / 0.5f + 2.0f) * (uint64_t)(sc->arena.height / 0.5f + 2.0f);
+    uint64_t world = no * (sizeof(obstacle_t) + sizeof(object_def_t) + w * sizeof(uint32_t) + sizeof(uint32_t)
+                           + BOX2D_BYTES_PER_SHAPE) + 2 * cells * sizeof(uint32_t);
+    out->robots = (uint32_t)n;
+    out->per_robot = n ? robots / n : 0;
+    out->total = RUN_FIXED_BYTES + robots + models + tasks + world;
+}
+
 sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[SIM_ERR_MAX])
 {
     return sim_create_threads(sc, seed, 1, err);

@@ -130,6 +130,8 @@ typedef struct scenario {
     double duration;               /**< simulated time, s */
     uint16_t control_period_ms;    /**< one controller step, ms */
     uint16_t physics_substeps;     /**< Box2D sub-steps per control step */
+    uint32_t memory_limit_mb;      /**< the loader refuses a scenario whose run needs more
+                                        (sim_memory_estimate), MB of 2^20 bytes */
 
     struct {
         float width, height;       /**< walled rectangle centred on 0,0, m */
@@ -228,6 +230,15 @@ void scenario_outside_message(const scenario_t *sc, const char *what, char *msg,
 /** The config of task `def` in `sc`, or NULL when the scenario has no such
  *  section. */
 const void *scenario_task_config(const scenario_t *sc, const struct task_def *def);
+
+/** The default memory_limit_mb: a run of 2 GB.  The largest benchmark world
+ *  (100,000 robots, full sensing) needs about 0.4 GB; a scenario past the
+ *  limit is almost always a count with a zero too many, and a study runs
+ *  several runs side by side. */
+#define SCENARIO_MEMORY_LIMIT_MB 2048u
+
+/** "3.2 GB", "14 MB", "850 kB": `bytes` for messages. */
+void scenario_format_bytes(uint64_t bytes, char *out, size_t len);
 
 /** Writes every key with its default, unit and range to `f` (for --help). */
 void scenario_print_schema(FILE *file);

@@ -39,6 +39,20 @@ sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[SIM_ERR_MAX]);
 sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[SIM_ERR_MAX]);
 void sim_destroy(sim_t *sim);
 
+/** What a run of a scenario needs, estimated from the scenario alone,
+ *  before anything is allocated: the core's arrays and grids, each
+ *  model's arrays and run state (model.h), the controllers' states, the
+ *  tasks' (task_def_t.memory), and Box2D's bodies and shapes (a measured
+ *  constant per body: sim.c).  Within about 25 % of what a run's resident
+ *  memory grows by (test_sim).  The loader refuses a scenario whose
+ *  estimate passes its `memory_limit_mb`. */
+typedef struct sim_memory {
+    uint64_t total;            /**< bytes of one run on `threads` threads */
+    uint64_t per_robot;        /**< bytes each robot adds, on average */
+    uint32_t robots;
+} sim_memory_t;
+void sim_memory_estimate(const scenario_t *sc, uint32_t threads, sim_memory_t *out);
+
 /** One control period (task.h lists its phases). */
 void sim_step(sim_t *sim);
 

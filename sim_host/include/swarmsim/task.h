@@ -80,6 +80,10 @@ typedef struct task_def {
     void (*configure)(const void *config, const scenario_t *sc, const robot_group_t *group,
                       void *params);
 
+    /** About how many bytes its create allocates for a run of `sc`, for
+     *  the loader's memory estimate (sim_memory_estimate); NULL: a few. */
+    size_t (*memory)(const void *config, const scenario_t *sc);
+
     /** Its state for one run; NULL with a message in `err` on failure. */
     void *(*create)(sim_t *sim, const void *config, char err[SIM_ERR_MAX]);
     void (*destroy)(void *self);

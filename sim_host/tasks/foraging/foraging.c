@@ -658,10 +658,24 @@ static uint16_t foraging_lie(const void *self, const sim_t *sim, uint32_t robot)
 /* Robots of these controllers need the foraging world to do anything. */
 static const char *const foraging_controllers[] = { "forager", "forager_sense_all", "nest_beacon", NULL };
 
+/* What create allocates: per robot and per token, and the T2 window. */
+static size_t foraging_memory(const void *config, const scenario_t *sc)
+{
+    const foraging_config_t *c = config;
+    const foraging_t *f = NULL;
+    size_t n = scenario_robot_count(sc), nt = c->food_count;
+    size_t window = (size_t)fmax(1.0, floor(t2_s(sc, c) * 1000.0 / sc->control_period_ms + 0.5));
+    return sizeof *f + n * (sizeof *f->is_forager + sizeof *f->task + sizeof *f->leave_step + sizeof *f->carried)
+           + nt * (sizeof *f->tokens + sizeof *f->carrier + sizeof *f->floor_x + sizeof *f->floor_y
+                   + sizeof *f->near + sizeof(uint32_t))
+           + window * sizeof *f->oae_window;
+}
+
 const task_def_t foraging_task = {
     .name = "foraging",
     .doc = "seed 000: food tokens, the nest and its ground-truth energy ledger",
     .config_size = sizeof(foraging_config_t),
+    .memory = foraging_memory,
     .params = foraging_params,
     .sections = foraging_sections,
     .default_config = foraging_default_config,

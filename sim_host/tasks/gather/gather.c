@@ -158,10 +158,19 @@ static int gather_done(const void *self, const sim_t *sim)
            && (double)g->in_goal >= (double)g->cfg->stop_fraction * g->n;
 }
 
+/* What create allocates: a flag per robot. */
+static size_t gather_memory(const void *config, const scenario_t *sc)
+{
+    const gather_t *g = NULL;
+    (void)config;
+    return sizeof *g + scenario_robot_count(sc) * sizeof *g->inside;
+}
+
 const task_def_t gather_task = {
     .name = "gather",
     .doc = "example: robots in a goal circle; ends the run when enough are in (README)",
     .config_size = sizeof(gather_config_t),
+    .memory = gather_memory,
     .params = gather_params,
     .sections = gather_sections,
     .default_config = gather_default_config,

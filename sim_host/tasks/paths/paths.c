@@ -433,10 +433,21 @@ static int paths_done(const void *self, const sim_t *sim)
     return ((const paths_t *)self)->merged;
 }
 
+/* What create allocates: per robot. */
+static size_t paths_memory(const void *config, const scenario_t *sc)
+{
+    const paths_t *p = NULL;
+    (void)config;
+    return sizeof *p + scenario_robot_count(sc) * (sizeof *p->role + sizeof *p->node + sizeof *p->from_nest
+                                                   + sizeof *p->from_food + sizeof *p->chain_pos + sizeof *p->queue
+                                                   + sizeof *p->chain);
+}
+
 const task_def_t paths_task = {
     .name = "paths",
     .doc = "seed 003: link a fixed nest and food robot by a chain of still robots within range R",
     .config_size = sizeof(paths_config_t),
+    .memory = paths_memory,
     .params = paths_params,
     .default_config = paths_default_config,
     .check = paths_check,

@@ -438,10 +438,20 @@ static int targets_done(const void *self, const sim_t *sim)
  * (its random walk is the same firmware with gains 1). */
 static const char *const targets_controllers[] = { "repatt", NULL };
 
+/* What create allocates: per target and per robot. */
+static size_t targets_memory(const void *config, const scenario_t *sc)
+{
+    const targets_config_t *c = config;
+    const targets_t *t = NULL;
+    return sizeof *t + (size_t)c->count * (sizeof *t->items + 2 * sizeof(float))
+           + scenario_robot_count(sc) * (sizeof *t->waiting_on + sizeof *t->still);
+}
+
 const task_def_t targets_task = {
     .name = "targets",
     .doc = "seed 002: red targets in Fig 1's layouts, a central nest, 5 s pick-ups, stop at 90 %",
     .config_size = sizeof(targets_config_t),
+    .memory = targets_memory,
     .params = targets_params,
     .sections = targets_sections,
     .default_config = targets_default_config,
