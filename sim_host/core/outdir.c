@@ -127,17 +127,19 @@ int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char 
     }
     if (!empty) {
         if (mode == OUTDIR_NEW) {
-            snprintf(err, SIM_ERR_MAX, "%s: not empty (an earlier invocation's outputs?); --replace "
-                     "replaces it, --resume continues it, or give another --out", dir);
+            snprintf(err, SIM_ERR_MAX, "%s: not empty (an earlier invocation's outputs?); add --replace to "
+                     "replace it (only a folder swarmsim made), --resume to continue it, or give another --out "
+                     "(without --out, out/<scenario> is replaced on every run)", dir);
             return -1;
         }
+        const char *how = mode == OUTDIR_DEFAULT ? "the default --out" : "--replace";
         if (marked != 1) {
-            snprintf(err, SIM_ERR_MAX, "--replace: %s was not made by swarmsim (no " OUTDIR_MARKER
-                     "): refusing to delete it; give another --out", dir);
+            snprintf(err, SIM_ERR_MAX, "%s: %s was not made by swarmsim (no " OUTDIR_MARKER
+                     "): refusing to delete it; give another --out", how, dir);
             return -1;
         }
         if (outdir_remove_tree(dir) != 0) {
-            snprintf(err, SIM_ERR_MAX, "--replace: cannot remove %s: %s", dir, strerror(errno));
+            snprintf(err, SIM_ERR_MAX, "%s: cannot remove %s: %s", how, dir, strerror(errno));
             return -1;
         }
     }

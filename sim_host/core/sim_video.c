@@ -105,21 +105,6 @@ int video_check_options(const video_options_t *o)
     return 0;
 }
 
-void video_print_usage(FILE *f)
-{
-    fprintf(f,
-"video (needs ffmpeg):\n"
-"  --video FILE.mp4  film the first repetition (seed N) as H.264 MP4, with the\n"
-"                  time stamp, legend and robot ids of the PNG frames; written\n"
-"                  to FILE.mp4.tmp and renamed when complete.  Other\n"
-"                  repetitions are not filmed.  Size: --frame-px, made even\n"
-"  --video-every N one frame every N control steps (default %d), and the last\n"
-"  --video-fps F   frames per second of the video (default %g): a 1200 s run\n"
-"                  at 100 ms steps lasts 12000 / %d / %g = %g s\n"
-"\n", VIDEO_DEFAULT_EVERY, VIDEO_DEFAULT_FPS, VIDEO_DEFAULT_EVERY, VIDEO_DEFAULT_FPS,
-            12000.0 / VIDEO_DEFAULT_EVERY / VIDEO_DEFAULT_FPS);
-}
-
 /* ---------------------------------------------------------------- recorder */
 
 /* "<path>: <msg>" in err, cut at SIM_ERR_MAX (the start says what failed). */

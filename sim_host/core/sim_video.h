@@ -38,9 +38,6 @@ int video_parse_option(const char *opt, const char *value, video_options_t *o, i
  *  exist, ffmpeg missing.  Returns 0, or -1 with the reason on stderr. */
 int video_check_options(const video_options_t *o);
 
-/** The options' part of --help. */
-void video_print_usage(FILE *f);
-
 typedef struct sim_video sim_video_t;
 
 /** Starts a video of `sim` at frame_px wide (rounded down to even, the
