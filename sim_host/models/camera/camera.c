@@ -19,8 +19,8 @@
  * younger than on the robot.
  *
  * camera.fps 0: blobs of the current state every control step (an
- * idealised sensor: RepAtt's scenarios, whose paper detects targets every
- * simulation step).  A `camera_fail` fault hides the blobs either way.
+ * idealised sensor, for a paper whose robots detect their targets every
+ * simulation step: seed 002's).  A `camera_fail` fault hides the blobs either way.
  */
 #include <errno.h>
 #include <stddef.h>
