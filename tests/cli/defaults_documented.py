@@ -97,6 +97,9 @@ def check_structs(keys, fail):
         for t in re.findall(r'\}\s*(\w+_config_t)\s*;', text):
             for field, doc in struct_fields(header, t).items():
                 matches = [k for (c, k) in keys if c == '' and k.split('.')[-1] == field]
+                if len(matches) > 1:   # the same name in several sections: the folder's
+                    folder = os.path.basename(os.path.dirname(header))
+                    matches = [k for k in matches if k.split('.')[0] == folder]
                 if len(matches) == 1:
                     compared += 1
                     if not same(doc, keys[('', matches[0])]):
