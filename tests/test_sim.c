@@ -889,6 +889,28 @@ static void test_hal_status(void **state)
     free(sc);
 }
 
+/* A controller's observables by name: the random walkers' "oae" counters
+ * sum to the summary's total; an unknown name is refused. */
+static void test_observables(void **state)
+{
+    (void)state;
+    scenario_t *sc = calloc(1, sizeof *sc);
+    assert_non_null(sc);
+    scenario_defaults(sc);
+    sim_t *sim = fixture_sim(sc, 4);
+    for (int k = 0; k < 600; k++) sim_step(sim);
+    double sum = 0;
+    float v;
+    for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+        assert_int_equal(sim_robot_observable(sim, i, "oae", &v), 0);
+        sum += v;
+    }
+    assert_true(sum > 0 && sum == fixture_metric(sim, "oae_total"));
+    assert_int_equal(sim_robot_observable(sim, 0, "no_such_thing", &v), -1);
+    sim_destroy(sim);
+    free(sc);
+}
+
 /* ----------------------------------------------------- memory estimate */
 
 /* Resident memory of this process, bytes (/proc/self/statm). */
@@ -956,6 +978,7 @@ int main(void)
         cmocka_unit_test(test_thread_count_does_not_matter),
         cmocka_unit_test(test_tracker_pose),
         cmocka_unit_test(test_host_messages),
+        cmocka_unit_test(test_observables),
         cmocka_unit_test(test_memory_estimate),
         cmocka_unit_test(test_hal_status),
         cmocka_unit_test(test_wheel_bias_draws),

@@ -717,6 +717,19 @@ const char *sim_robot_state_name(const sim_t *sim, uint32_t i)
     return r->def->state_name(r->ctrl);   /* ctrl is NULL for a stateless controller */
 }
 
+int sim_robot_observable(const sim_t *sim, uint32_t i, const char *name, float *value)
+{
+    SIM_ASSERT(i < sim->n);
+    const sim_robot_t *r = &sim->robots[i];
+    for (const observable_t *o = r->def->observables; r->ctrl && o && o->name; o++) {
+        if (strcmp(o->name, name) == 0) {
+            *value = observable_read(o, r->ctrl);
+            return 0;
+        }
+    }
+    return -1;
+}
+
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta)
 {
     SIM_ASSERT(i < sim->n);

@@ -1,11 +1,24 @@
 /*
  * sim.h - one simulation run: a Box2D world of e-pucks in groups, each
- * robot running its firmware controller through the simulator's hal_t, and
- * the scenario's tasks around them (task.h says how one step runs).
+ * robot running its firmware controller through the simulator's hal_t, the
+ * sensor and actuator models, and the scenario's tasks around them (task.h
+ * and sim_host/models/model.h say how one step runs).
+ *
+ * The simulator's public API, for tasks, tools, tests and bindings alike:
+ *   create    scenario_load (scenario.h: a file and --set overrides, errors
+ *             with file and line), then sim_create / sim_create_threads;
+ *   step      sim_step, sim_done;
+ *   read      robots' poses, wheels, LEDs, controllers' states and
+ *             observables (below), every per-robot field as a strided
+ *             array (sim_field), the run's ground truth (sim_metrics);
+ *   metrics   metrics_sample (time series) and metrics_final (the summary's
+ *             metrics, the tasks' included: metrics.h), sim_state_hash;
+ *   destroy   sim_destroy, then scenario_free.
+ * The internals (sim_host/core/, sim_host/models/) are not part of it.
  *
  * Ownership: the scenario must outlive the sim.  Not thread-safe: one sim
- * is stepped by one thread, but different sims run concurrently without
- * sharing anything.
+ * is stepped by one thread (which may spread a step over the run's own
+ * threads), but different sims run concurrently without sharing anything.
  */
 #ifndef SIM_SIM_H
 #define SIM_SIM_H
@@ -80,6 +93,10 @@ void *sim_robot_controller(sim_t *sim, uint32_t i);
 const void *sim_robot_controller_const(const sim_t *sim, uint32_t i);
 /** The current state name of its controller. */
 const char *sim_robot_state_name(const sim_t *sim, uint32_t i);
+/** The value of observable `name` (the controller's observable.h table:
+ *  "threshold", "oae", ...) of robot `i` into *value, scaled as telemetry
+ *  reports it: 0, or -1 when its controller declares none of that name. */
+int sim_robot_observable(const sim_t *sim, uint32_t i, const char *name, float *value);
 /** The hal_t of robot `i`, to drive a robot from a test. */
 hal_t *sim_robot_hal(sim_t *sim, uint32_t i);
 

@@ -26,6 +26,9 @@
  *   5. physics: wheels drive the bodies, Box2D resolves contacts;
  *   6. after_physics of every task (serial): it sees the new poses;
  *   7. the step count advances, then the run asks done().
+ * The models (the sensors and actuators, sim_host/models/model.h) take part
+ * around these: their sensing in step 2, IR delivery as step 3, the wheels
+ * in step 5; model.h lists the phases of both in one order.
  * Hooks may be NULL.
  */
 #ifndef SIM_TASK_H
