@@ -770,12 +770,11 @@ const object_def_t *sim_object(const sim_t *sim, uint32_t k)
     return k < sim->n_obstacles ? &sim->objects[k] : NULL;
 }
 
-int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
+int sim_obstacles_cut(const struct sim *sim, sim_scratch_t *ws, vec2_t p, vec2_t q)
 {
-    vec2_t p = v2((float)x0, (float)y0), q = v2((float)x1, (float)y1);
     uint32_t near[256];
-    uint32_t n = sim_gather_obstacles(sim, &sim->scratch[0], fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x),
-                                      fmaxf(p.y, q.y), near, 256);
+    uint32_t n = sim_gather_obstacles(sim, ws, fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x), fmaxf(p.y, q.y),
+                                      near, 256);
     for (uint32_t k = 0; k < n; k++) {
         const obstacle_t *o = &sim->obstacles[near[k]];
         if (o->shape == SHAPE_CYLINDER) {
@@ -787,6 +786,11 @@ int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
         }
     }
     return 0;
+}
+
+int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
+{
+    return sim_obstacles_cut(sim, &sim->scratch[0], v2((float)x0, (float)y0), v2((float)x1, (float)y1));
 }
 
 void sim_obstacle_bounds(const sim_t *sim, uint32_t k, float out[4])

@@ -215,6 +215,9 @@ int placement_cylinders(struct sim *sim, char err[SIM_ERR_MAX]);
  *  first grid hit; returns how many.  `ws`: the calling worker's scratch. */
 uint32_t sim_gather_obstacles(const struct sim *sim, sim_scratch_t *ws, float minx, float miny, float maxx,
                               float maxy, uint32_t *out, uint32_t max);
+/** Non-zero when an obstacle cuts the segment from p to q (the first 256
+ *  whose boxes meet the segment's: line of sight). */
+int sim_obstacles_cut(const struct sim *sim, sim_scratch_t *ws, vec2_t p, vec2_t q);
 /** The scratch of the worker stepping robot i now (worker 0's outside the
  *  control phase). */
 sim_scratch_t *sim_robot_scratch(const struct sim *sim, uint32_t i);

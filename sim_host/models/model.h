@@ -195,6 +195,16 @@ void *scenario_model_config_mut(scenario_t *sc, sim_model_id_t id);
 const void *scenario_group_model_config(const robot_group_t *g, sim_model_id_t id);
 void *scenario_group_model_config_mut(robot_group_t *g, sim_model_id_t id);
 
+/** The schema of a model with one top-level section `key` (its scalar keys
+ *  `params`, its nested `children` or NULL, one line of `doc`): defines
+ *  `static const schema_t var`, for model_def_t.schema. */
+#define MODEL_ONE_SECTION(var, key, params, children, doc)                                \
+    static const schema_t var##_section = { params, children, NULL, NULL };               \
+    static const child_t var##_sections[] = {                                            \
+        { key, CHILD_MAPPING, &var##_section, NULL, doc }, CHILD_END                      \
+    };                                                                                    \
+    static const schema_t var = { NULL, var##_sections, NULL, NULL }
+
 /** Typed accessors of a model's config in a scenario, for its header:
  *  NAME_config(sc) and NAME_config_mut(sc) (tests and tools that set a
  *  model's keys in code). */

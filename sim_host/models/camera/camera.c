@@ -63,12 +63,8 @@ static const param_desc_t camera_params[] = {
 };
 #undef C
 
-static const schema_t section = { camera_params, NULL, NULL, NULL };
-static const child_t sections[] = {
-    { "camera", CHILD_MAPPING, &section, NULL, "front camera blobs" },
-    CHILD_END
-};
-static const schema_t camera_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(camera_schema, "camera", camera_params, NULL,
+                  "front camera blobs");
 
 /* The e-puck image's camera: 56 deg, 40 x 20 pixels, 4.3 fps, the
  * detector's reach. */

@@ -75,12 +75,8 @@ static const child_t ground_children[] = {
     { "regions", CHILD_SEQUENCE, NULL, &regions_seq, "areas of the floor with their own grey level" },
     CHILD_END
 };
-static const schema_t section = { ground_params, ground_children, NULL, NULL };
-static const child_t sections[] = {
-    { "ground", CHILD_MAPPING, &section, NULL, "the floor the ground sensors read (robots[].ground_sensors)" },
-    CHILD_END
-};
-static const schema_t ground_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(ground_schema, "ground", ground_params, ground_children,
+                  "the floor the ground sensors read (robots[].ground_sensors)");
 
 #define GG ground_group_config_t
 static const param_desc_t group_params[] = {

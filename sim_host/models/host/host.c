@@ -58,13 +58,8 @@ static const child_t host_children[] = {
     { "messages", CHILD_SEQUENCE, NULL, &messages_seq, "one {robot, at, hex} per message" },
     CHILD_END
 };
-static const schema_t section = { NULL, host_children, NULL, NULL };
-static const child_t sections[] = {
-    { "host", CHILD_MAPPING, &section, NULL,
-      "messages the host sends the robots (hal_host_receive; a planner's routes)" },
-    CHILD_END
-};
-static const schema_t host_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(host_schema, "host", NULL, host_children,
+                  "messages the host sends the robots (hal_host_receive; a planner's routes)");
 
 /* Every message names a robot of the run, and a robot's come in time order
  * (hal_host_receive gives them in file order). */

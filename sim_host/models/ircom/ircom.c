@@ -85,12 +85,8 @@ static const param_desc_t ircom_params[] = {
 };
 #undef C
 
-static const schema_t section = { ircom_params, NULL, NULL, NULL };
-static const child_t sections[] = {
-    { "ircom", CHILD_MAPPING, &section, NULL, "IR communication" },
-    CHILD_END
-};
-static const schema_t ircom_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(ircom_schema, "ircom", ircom_params, NULL,
+                  "IR communication");
 
 /* libIrcom's: 25 cm, 8 bits, one message a period, an inbox of 20; the
  * noise of its estimates (EPUCK.md). */
@@ -214,18 +210,9 @@ static int blocked(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_
 {
     const sim_robot_t *a = &sim->robots[from], *b = &sim->robots[to];
     vec2_t p = v2(a->x, a->y), q = v2(b->x, b->y);
-    uint32_t near[IRCOM_MAX_NEAR];
-    uint32_t n = sim_gather_obstacles(sim, ws, fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x),
-                                      fmaxf(p.y, q.y), near, IRCOM_MAX_NEAR);
-    for (uint32_t k = 0; k < n; k++) {
-        const obstacle_t *o = &sim->obstacles[near[k]];
-        if (o->shape == SHAPE_CYLINDER) {
-            if (geom_segment_hits_circle(p, q, o->c, o->r)) return 1;
-        } else {
-            for (int e = 0; e < 4; e++) {
-                if (geom_segments_intersect(p, q, o->corner[e], o->corner[(e + 1) & 3])) return 1;
-            }
-        }
+    uint32_t near[IRCOM_MAX_NEAR], n;
+    if (sim_obstacles_cut(sim, ws, p, q)) {
+        return 1;
     }
     if (m->cfg->blocked_by_robots) {
         n = sim_gather_robots(sim, fminf(p.x, q.x) - EPUCK_BODY_RADIUS_M, fminf(p.y, q.y) - EPUCK_BODY_RADIUS_M,

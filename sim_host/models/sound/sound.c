@@ -42,12 +42,8 @@ static const param_desc_t sound_params[] = {
 };
 #undef S
 
-static const schema_t section = { sound_params, NULL, NULL, NULL };
-static const child_t sections[] = {
-    { "sound", CHILD_MAPPING, &section, NULL, "speakers and microphones (seed 002's model)" },
-    CHILD_END
-};
-static const schema_t sound_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(sound_schema, "sound", sound_params, NULL,
+                  "speakers and microphones (seed 002's model)");
 
 /* Seed 002's values (DESIGN.md): A0, alpha, Ae, N100's noise. */
 static void sound_defaults(void *config)

@@ -30,12 +30,8 @@ static const param_desc_t tracker_params[] = {
 };
 #undef T
 
-static const schema_t section = { tracker_params, NULL, NULL, NULL };
-static const child_t sections[] = {
-    { "tracker", CHILD_MAPPING, &section, NULL, "overhead tracker (hal_pose)" },
-    CHILD_END
-};
-static const schema_t tracker_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(tracker_schema, "tracker", tracker_params, NULL,
+                  "overhead tracker (hal_pose)");
 
 static void tracker_layout(const void *config, const scenario_t *sc, model_layout_t *out)
 {

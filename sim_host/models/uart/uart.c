@@ -23,12 +23,8 @@ static const param_desc_t uart_params[] = {
 };
 #undef U
 
-static const schema_t section = { uart_params, NULL, NULL, NULL };
-static const child_t sections[] = {
-    { "robot_telemetry", CHILD_MAPPING, &section, NULL, "the robots' own telemetry, in the loop" },
-    CHILD_END
-};
-static const schema_t uart_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(uart_schema, "robot_telemetry", uart_params, NULL,
+                  "the robots' own telemetry, in the loop");
 
 static void uart_defaults(void *config)
 {

@@ -24,12 +24,8 @@ static const param_desc_t wheels_params[] = {
 };
 #undef W
 
-static const schema_t section = { wheels_params, NULL, NULL, NULL };
-static const child_t sections[] = {
-    { "wheels", CHILD_MAPPING, &section, NULL, "wheel motors" },
-    CHILD_END
-};
-static const schema_t wheels_schema = { NULL, sections, NULL, NULL };
+MODEL_ONE_SECTION(wheels_schema, "wheels", wheels_params, NULL,
+                  "wheel motors");
 
 /* One robot's motors. */
 typedef struct wheels_robot {
