@@ -913,6 +913,7 @@ static void test_observables(void **state)
 
 /* ----------------------------------------------------- memory estimate */
 
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 /* Resident memory of this process, bytes (/proc/self/statm). */
 static uint64_t resident_bytes(void)
 {
@@ -923,6 +924,7 @@ static uint64_t resident_bytes(void)
     fclose(f);
     return (uint64_t)resident * 4096u;
 }
+#endif
 
 /* sim_memory_estimate against what a run's resident memory grows by: the
  * random walk of the benchmark worlds (20 robots/m^2) at 20,000 robots,
