@@ -137,7 +137,7 @@ def check_tables(keys, fail):
                 values = [v.strip() for v in cells[1].split(',')]
                 if not names or len(values) != len(names):
                     continue
-                for name, value in zip(names, values):
+                for name, value in zip(names, values, strict=True):
                     key = name if '.' in name else (section + '.' + name if section else name)
                     if ('', key) not in keys:
                         if '.' in name or section:
