@@ -42,7 +42,7 @@ FW_DIRS := $(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c))))
 # The wire protocols (wire/<protocol>/*.c: telemetry framing, the host
 # link's messages) are linked with them.
 FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c)) $(sort $(wildcard wire/*/*.c))
-SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/models/*/*.c sim_host/tasks/*/*.c)))
+SIM_SRC := $(filter-out sim_host/main.c sim_host/version.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/models/*/*.c sim_host/tasks/*/*.c)))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 
 # $(call objs,VARIANT,SOURCES)

@@ -78,6 +78,7 @@ static int build_robots(struct sim *sim, char err[SIM_ERR_MAX])
             sim_robot_t *r = &sim->robots[i];
             r->hal.sim = sim;
             r->hal.index = i;
+            r->id = (uint16_t)i;
             r->group = g;
             r->def = def;
             r->moves = grp->moves;

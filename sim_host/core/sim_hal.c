@@ -13,7 +13,7 @@
 
 static sim_robot_t *robot(hal_t *hal) { return &hal->sim->robots[hal->index]; }
 
-uint16_t hal_robot_id(hal_t *hal) { return (uint16_t)hal->index; }
+uint16_t hal_robot_id(hal_t *hal) { return robot(hal)->id; }
 
 uint32_t hal_time_ms(hal_t *hal)
 {

@@ -36,6 +36,7 @@ typedef struct sim_robot {
     void *ctrl;                    /**< controller state, or NULL when it has none */
     uint8_t moves;                 /**< 0: a static body */
     uint8_t escaped;
+    uint16_t id;                   /**< hal_robot_id: the index unless set (sim_set_robot_id) */
 } sim_robot_t;
 
 /** A robot's body velocity for Box2D this step (world_drive), and how far

@@ -207,6 +207,14 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
                   size_t override_count, scenario_t *out,
                   char err[SIM_ERR_MAX]);
 
+/** scenario_load into a scenario of its own on the heap (for bindings,
+ *  which do not know its size): the scenario, or NULL with the message in
+ *  `err`.  scenario_destroy frees it whole. */
+scenario_t *scenario_create(const char *path, const scenario_override_t *overrides,
+                            size_t override_count, char err[SIM_ERR_MAX]);
+/** Frees what scenario_create made (NULL: a no-op). */
+void scenario_destroy(scenario_t *sc);
+
 /**
  * Writes the effective scenario to `out` as YAML: the file's tree with the
  * overrides applied (comments are not kept; absent keys keep meaning their

@@ -5,15 +5,20 @@
  * and sim_host/models/model.h say how one step runs).
  *
  * The simulator's public API, for tasks, tools, tests and bindings alike:
- *   create    scenario_load (scenario.h: a file and --set overrides, errors
- *             with file and line), then sim_create / sim_create_threads;
- *   step      sim_step, sim_done;
+ *   create    scenario_load or scenario_create (scenario.h: a file and --set
+ *             overrides, errors with file and line), then sim_create /
+ *             sim_create_threads;
+ *   step      sim_step, sim_step_n, sim_done;
  *   read      robots' poses, wheels, LEDs, controllers' states and
  *             observables (below), every per-robot field as a strided
  *             array (sim_field), the run's ground truth (sim_metrics);
  *   metrics   metrics_sample (time series) and metrics_final (the summary's
- *             metrics, the tasks' included: metrics.h), sim_state_hash;
- *   destroy   sim_destroy, then scenario_free.
+ *             metrics, the tasks' included: metrics.h), sim_state_hash,
+ *             sim_summary_json;
+ *   stand in  a robot's UART bytes, its id, poses and messages from the host
+ *             (a fake robot on a pseudo-terminal: sim_robot_uart ...);
+ *   destroy   sim_destroy, then scenario_free (scenario_destroy).
+ * A whole run with its outputs, as the command line makes it: command.h.
  * The internals (sim_host/core/, sim_host/models/) are not part of it.
  *
  * Ownership: the scenario must outlive the sim.  Not thread-safe: one sim
@@ -68,6 +73,13 @@ void sim_memory_estimate(const scenario_t *sc, uint32_t threads, sim_memory_t *o
 
 /** One control period (task.h lists its phases). */
 void sim_step(sim_t *sim);
+
+/** Up to `n` control periods, as swarmsim's run loop steps them: it stops
+ *  early after a step at which a task's stop condition holds (sim_done) or
+ *  a model failed (sim_error).  Returns the steps done (0 when the run was
+ *  done already).  One call for many steps: a binding crosses into C once
+ *  per call, not once per step. */
+uint64_t sim_step_n(sim_t *sim, uint64_t n);
 
 /** Non-zero once a task's stop condition holds (checked after each step). */
 int sim_done(const sim_t *sim);
@@ -128,6 +140,55 @@ typedef struct sim_field {
 int sim_field(const sim_t *sim, const char *name, sim_field_t *out);
 /** The k-th field of the run (0, 1, ...): 0, or -1 past the last. */
 int sim_field_at(const sim_t *sim, uint32_t k, sim_field_t *out);
+
+/** The robots of group `g` (an index into the scenario's groups): ids
+ *  *first .. *first + *count - 1. */
+void sim_group_robots(const sim_t *sim, uint32_t g, uint32_t *first, uint32_t *count);
+
+/** Observable `k` (0, 1, ..., in its controller's table, observable.h) of
+ *  group `g`'s robots, where it lives: a view of `count` 1 over the
+ *  group's controller states (robot first + j's field at base + j *
+ *  stride, first from sim_group_robots), named and documented by the
+ *  table.  The value telemetry reports is the field times *scale, in
+ *  `unit`.  0, or -1 past the table's last entry (and for a controller
+ *  without state or a group without robots).  For bindings, as sim_field. */
+int sim_group_observable_at(const sim_t *sim, uint32_t g, uint32_t k, sim_field_t *out, float *scale);
+
+/** The current state names of robots first .. first + count - 1, into
+ *  names[0 .. count - 1] (NULL for a controller without state): one call
+ *  for a swarm.  The strings are the controllers' own literals, alive as
+ *  long as the program. */
+void sim_robot_state_names(const sim_t *sim, uint32_t first, uint32_t count, const char **names);
+
+/** The id robot `i` reports (hal_robot_id): its index, unless set.  A
+ *  stand-in for a real robot (tools/swarmtools/fake_epuck) reports the id
+ *  its image was flashed with. */
+uint16_t sim_robot_id(const sim_t *sim, uint32_t i);
+void sim_set_robot_id(sim_t *sim, uint32_t i, uint16_t id);
+
+/** The bytes robot `i`'s image wrote to its UART during the last step,
+ *  when the run runs the robots' own telemetry (robot_telemetry.enabled):
+ *  their count (at most ROBOT_LINK_RAW, 4096 a step), *bytes pointing at
+ *  them until the next step; 0 (and NULL) otherwise.  What a real robot's
+ *  serial port would carry. */
+uint32_t sim_robot_uart(const sim_t *sim, uint32_t i, const uint8_t **bytes);
+
+/** The host link live, as a real robot's serial port delivers it
+ *  (docs/host_link.md), for a stand-in robot driven from outside: a
+ *  message for robot `i`, which hal_host_receive gives after the
+ *  scenario's due `host.messages`, in arrival order, from a mailbox of
+ *  SIM_HOST_MAILBOX messages as on the e-puck (a message that finds it full
+ *  is dropped: returns -1; 0 when taken, -1 also for 0 or more than
+ *  HAL_HOST_MSG_MAX bytes). */
+#define SIM_HOST_MAILBOX 2u
+int sim_host_send(sim_t *sim, uint32_t i, const uint8_t *bytes, uint8_t len);
+/** A pose fix for robot `i` from the host (an overhead tracker on the PC):
+ *  from the next step hal_pose gives it (it overrides the scenario's
+ *  tracker), with age_ms counting from that step, and HAL_ERR_UNAVAILABLE
+ *  once it is older than HAL_POSE_MAX_AGE_MS. */
+void sim_host_pose(sim_t *sim, uint32_t i, const hal_pose_t *pose);
+/** Messages sim_host_send dropped for robot `i` (its mailbox was full). */
+uint32_t sim_host_dropped(const sim_t *sim, uint32_t i);
 
 /** Pose of robot `i`: m, m, rad (CCW from +x). */
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta);
@@ -207,6 +268,16 @@ const char *sim_error(const sim_t *sim);
 /** FNV-1a hash of every robot's pose bits and counters: equal hashes mean
  *  bit-identical runs. */
 uint64_t sim_state_hash(const sim_t *sim);
+
+/** The run's summary as swarmsim writes run_<seed>/summary.json (the
+ *  scenario, the provenance, seed, steps, state hash and metrics_final),
+ *  for the run as it stands: malloc'd text (free it), or NULL with a
+ *  message in `err`.  `code_version` and `command` are the provenance's
+ *  (NULL: "unknown", ""); `overrides` are those the scenario was loaded
+ *  with (its effective text's hash is the summary's scenario_hash). */
+char *sim_summary_json(const sim_t *sim, const char *code_version, const char *command,
+                       const scenario_override_t *overrides, size_t override_count,
+                       char err[SIM_ERR_MAX]);
 
 /** Test hook: the order robots step in (phase 2 of task.h).  0 ascending
  *  ids (the default), 1 descending, 2 a shuffle drawn from `key`. */

@@ -54,11 +54,19 @@ static const seq_desc_t messages_seq = {
     "messages", HOST_MAX_MESSAGES, sizeof(host_message_def_t), &message_default, &message_schema,
     offsetof(host_config_t, messages), offsetof(host_config_t, message_count), decode_hex, 1, NULL
 };
+#define H host_config_t
+static const param_desc_t host_params[] = {
+    { .key = "live", PARAM_BOOL_FIELD(H, live),
+      .doc = "the link is also driven from outside between steps (sim_host_send, sim_host_pose: a "
+             "stand-in robot on a pseudo-terminal); its poses then give hal_pose" },
+    PARAM_END
+};
+#undef H
 static const child_t host_children[] = {
     { "messages", CHILD_SEQUENCE, NULL, &messages_seq, "one {robot, at, hex} per message" },
     CHILD_END
 };
-MODEL_ONE_SECTION(host_schema, "host", NULL, host_children,
+MODEL_ONE_SECTION(host_schema, "host", host_params, host_children,
                   "messages the host sends the robots (hal_host_receive; a planner's routes)");
 
 /* Every message names a robot of the run, and a robot's come in time order
@@ -111,13 +119,102 @@ int host_add_message(scenario_t *sc, const host_message_def_t *m)
     return 0;
 }
 
-/* Per robot: where its next message may be in the list. */
+/* What the live link brought robot i (host.live): its mailbox, oldest
+ * first, and its latest pose fix. */
+typedef struct host_live {
+    uint8_t n;                                /* messages waiting */
+    uint8_t len[SIM_HOST_MAILBOX];
+    uint8_t bytes[SIM_HOST_MAILBOX][HAL_HOST_MSG_MAX];
+    uint8_t has_pose;
+    hal_pose_t pose;
+    uint64_t pose_step;                       /* the first step that sees it */
+    uint32_t dropped;                         /* messages that found the mailbox full */
+} host_live_t;
+
+/* Per robot: where its next message may be in the list; with host.live,
+ * its live link too. */
 static void host_layout(const void *config, const scenario_t *sc, model_layout_t *out)
 {
-    (void)config;
+    const host_config_t *cfg = config;
     (void)sc;
-    out->arrays = 1;
+    out->arrays = cfg->live ? 2 : 1;
     out->elem_size[0] = sizeof(uint32_t);
+    out->elem_size[1] = cfg->live ? sizeof(host_live_t) : 0;
+}
+
+static host_live_t *live_of(const sim_t *sim, uint32_t i)
+{
+    const host_config_t *cfg = sim_model_config(sim, SIM_MODEL_host);
+    SIM_ASSERT(i < sim->n);
+    return cfg->live ? &((host_live_t *)sim_model_array(sim, SIM_MODEL_host, 1))[i] : NULL;
+}
+
+int sim_host_send(sim_t *sim, uint32_t i, const uint8_t *bytes, uint8_t len)
+{
+    host_live_t *l = live_of(sim, i);
+    if (l == NULL || len == 0 || len > HAL_HOST_MSG_MAX) {
+        return -1;
+    }
+    if (l->n == SIM_HOST_MAILBOX) {
+        l->dropped++;   /* the waiting ones are older, and a route's order matters */
+        return -1;
+    }
+    memcpy(l->bytes[l->n], bytes, len);
+    l->len[l->n++] = len;
+    return 0;
+}
+
+void sim_host_pose(sim_t *sim, uint32_t i, const hal_pose_t *pose)
+{
+    host_live_t *l = live_of(sim, i);
+    if (l != NULL) {
+        l->pose = *pose;
+        l->has_pose = 1;
+        l->pose_step = sim->step;
+    }
+}
+
+uint32_t sim_host_dropped(const sim_t *sim, uint32_t i)
+{
+    const host_live_t *l = live_of(sim, i);
+    return l ? l->dropped : 0u;
+}
+
+int host_live_pose(hal_t *hal, hal_pose_t *out, hal_status_t *status)
+{
+    const host_live_t *l = live_of(hal->sim, hal->index);
+    if (l == NULL) {
+        return -1;
+    }
+    uint64_t age = (hal->sim->step - l->pose_step) * hal->sim->sc->control_period_ms;
+    if (!l->has_pose || age > HAL_POSE_MAX_AGE_MS) {
+        *status = HAL_ERR_UNAVAILABLE;
+        return 0;
+    }
+    *out = l->pose;
+    out->age_ms = (uint16_t)age;
+    *status = HAL_OK;
+    return 0;
+}
+
+/* The oldest live message of robot `hal`, if any: HAL_ERR_EMPTY when none
+ * waits. */
+static hal_status_t live_receive(host_live_t *l, uint8_t *buf, uint8_t cap, uint8_t *len)
+{
+    if (l->n == 0) {
+        return HAL_ERR_EMPTY;
+    }
+    if (l->len[0] > cap) {
+        return HAL_ERR_RANGE;   /* it stays, as on the e-puck */
+    }
+    memcpy(buf, l->bytes[0], l->len[0]);
+    *len = l->len[0];
+    l->n--;
+    if (l->n) {
+        memcpy(l->bytes[0], l->bytes[1], l->len[1]);
+        l->len[0] = l->len[1];
+    }
+    return HAL_OK;
 }
 
 /* A robot's next message in file order, once its time has come. */
@@ -125,9 +222,10 @@ hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *le
 {
     const host_config_t *cfg = sim_model_config(hal->sim, SIM_MODEL_host);
     uint32_t *next = &((uint32_t *)sim_model_array(hal->sim, SIM_MODEL_host, 0))[hal->index];
+    host_live_t *live = live_of(hal->sim, hal->index);
     *len = 0;
     if (cfg->message_count == 0) {
-        return HAL_ERR_UNAVAILABLE;
+        return live ? live_receive(live, buf, cap, len) : HAL_ERR_UNAVAILABLE;
     }
     uint32_t k = *next;
     while (k < cfg->message_count && cfg->messages[k].robot != hal->index) {
@@ -136,7 +234,7 @@ hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *le
     *next = k;   /* the scan resumes here: messages of other robots are skipped once */
     if (k == cfg->message_count
         || (double)hal_time_ms(hal) < 1000.0 * (double)cfg->messages[k].at - 0.5) {
-        return HAL_ERR_EMPTY;
+        return live ? live_receive(live, buf, cap, len) : HAL_ERR_EMPTY;
     }
     const host_message_def_t *m = &cfg->messages[k];
     if (m->len > cap) {

@@ -3,8 +3,11 @@
  * planner, an operator) sends the robots, which hal_host_receive gives each
  * robot in file order once their time has come.  On the e-puck the same
  * bytes arrive over Bluetooth (docs/host_link.md); here they come from the
- * scenario's `host.messages`.  A scenario without messages has no host
- * link: hal_host_receive answers HAL_ERR_UNAVAILABLE.
+ * scenario's `host.messages`, and with `host.live` also from outside the
+ * run, between steps (sim_host_send; sim_host_pose for hal_pose), into a
+ * mailbox of two messages per robot as on the e-puck.  A scenario without
+ * messages and not live has no host link: hal_host_receive answers
+ * HAL_ERR_UNAVAILABLE.
  */
 #ifndef SIM_MODELS_HOST_H
 #define SIM_MODELS_HOST_H
@@ -28,10 +31,13 @@ typedef struct host_message_def {
 } host_message_def_t;
 
 /** Section `host`: the messages in file order (a robot's with `at` not
- *  decreasing), on the heap (scenario_free frees them). */
+ *  decreasing), on the heap (scenario_free frees them), and whether the
+ *  link is also driven live from outside (sim_host_send, sim_host_pose:
+ *  a stand-in robot on a pseudo-terminal, tools/swarmtools/fake_epuck). */
 typedef struct host_config {
     uint32_t message_count;
     host_message_def_t *messages;
+    uint8_t live;
 } host_config_t;
 
 MODEL_CONFIG_ACCESSORS(host, host_config_t)
@@ -39,5 +45,11 @@ MODEL_CONFIG_ACCESSORS(host, host_config_t)
 /** Appends a message (code that builds a scenario without a file).
  *  Returns 0, or -1 past HOST_MAX_MESSAGES or out of memory. */
 int host_add_message(scenario_t *sc, const host_message_def_t *m);
+
+/** hal_pose's answer from the live link (host.live): -1 when the run has
+ *  none (the tracker answers), else 0 with *status and *out set: the
+ *  latest sim_host_pose fix, aged, or HAL_ERR_UNAVAILABLE before the first
+ *  and once it is older than HAL_POSE_MAX_AGE_MS (the e-puck's rule). */
+int host_live_pose(hal_t *hal, hal_pose_t *out, hal_status_t *status);
 
 #endif

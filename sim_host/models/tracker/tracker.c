@@ -3,6 +3,8 @@
  */
 #include "tracker.h"
 
+#include "models/host/host.h"
+
 #include <math.h>
 
 #include "core/sim_internal.h"
@@ -70,6 +72,10 @@ hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
     const tracker_config_t *cfg = sim_model_config(hal->sim, SIM_MODEL_tracker);
     const sim_robot_t *r = sim_hal_robot(hal);
     tracker_robot_t *t = &robots(hal->sim)[hal->index];
+    hal_status_t live;
+    if (host_live_pose(hal, out, &live) == 0) {
+        return live;   /* the host's fixes over the robot's link (host.live) */
+    }
     if (!cfg->enabled) {
         return HAL_ERR_UNAVAILABLE;
     }
