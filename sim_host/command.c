@@ -164,7 +164,7 @@ int swarmsim_command(int argc, char **argv, const char *code_version, volatile s
         .reps = (uint32_t)reps,
         .threads = (uint32_t)cli.threads,
         .run_threads = (uint32_t)cli.run_threads,
-        .steps = cli.have_steps ? cli.steps : (uint64_t)(sc->duration * 1000.0 / sc->control_period_ms + 0.5),
+        .steps = cli.have_steps ? cli.steps : scenario_steps(sc),
         .out_dir = out_dir,
         .frames_every = (uint32_t)cli.frames,
         .frame_px = (uint32_t)cli.frame_px,

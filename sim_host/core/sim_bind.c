@@ -36,6 +36,21 @@ void scenario_destroy(scenario_t *sc)
     }
 }
 
+uint64_t scenario_steps(const scenario_t *sc)
+{
+    return (uint64_t)(sc->duration * 1000.0 / sc->control_period_ms + 0.5);
+}
+
+uint64_t scenario_seed(const scenario_t *sc) { return sc->seed; }
+
+uint32_t sim_group_count(const sim_t *sim) { return sim->sc->group_count; }
+
+const char *sim_group_name(const sim_t *sim, uint32_t g)
+{
+    SIM_ASSERT(g < sim->sc->group_count);
+    return sim->sc->groups[g].name;
+}
+
 uint64_t sim_step_n(sim_t *sim, uint64_t n)
 {
     uint64_t done = 0;

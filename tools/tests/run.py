@@ -1,7 +1,7 @@
 """Runs the host tools' tests (tools/tests/telemetry, study, sil, sweep,
-fuzz, the parsers' property tests, and plan, the ALNS planner; the
-flasher's run in `make firmware-check`) with unittest discovery and ends
-with one line
+fuzz, the parsers' property tests, plan, the ALNS planner, and sim, the
+simulator from Python; the flasher's run in `make firmware-check`) with
+unittest discovery and ends with one line
 'python tools: N passed, N failed, N skipped'."""
 import sys
 import unittest
@@ -9,7 +9,7 @@ from pathlib import Path
 
 here = Path(__file__).resolve().parent
 suite = unittest.TestSuite()
-for group in ("telemetry", "study", "sil", "sweep", "fuzz", "plan"):
+for group in ("telemetry", "study", "sil", "sweep", "fuzz", "plan", "sim"):
     suite.addTests(unittest.defaultTestLoader.discover(str(here / group), top_level_dir=str(here.parent)))
 result = unittest.TextTestRunner(verbosity=2).run(suite)
 failed = len(result.failures) + len(result.errors) + len(result.unexpectedSuccesses)

@@ -227,6 +227,13 @@ int scenario_write_effective(const char *path, const scenario_override_t *overri
 /** Every robot of every group. */
 uint32_t scenario_robot_count(const scenario_t *sc);
 
+/** The control steps of its `duration` (duration / control period,
+ *  rounded): what swarmsim runs without --steps. */
+uint64_t scenario_steps(const scenario_t *sc);
+/** Its `seed`: the first repetition's without --seed (sc->seed, for
+ *  bindings that do not read the struct). */
+uint64_t scenario_seed(const scenario_t *sc);
+
 /** Non-zero when a rectangle of half-extents hx, hy (m) centred on (x, y)
  *  lies inside the arena (to 1 um): the check of objects, lights and the
  *  tasks' own regions. */

@@ -141,6 +141,11 @@ int sim_field(const sim_t *sim, const char *name, sim_field_t *out);
 /** The k-th field of the run (0, 1, ...): 0, or -1 past the last. */
 int sim_field_at(const sim_t *sim, uint32_t k, sim_field_t *out);
 
+/** The scenario's groups, and group `g`'s label in outputs (its `name`,
+ *  by default its controller's). */
+uint32_t sim_group_count(const sim_t *sim);
+const char *sim_group_name(const sim_t *sim, uint32_t g);
+
 /** The robots of group `g` (an index into the scenario's groups): ids
  *  *first .. *first + *count - 1. */
 void sim_group_robots(const sim_t *sim, uint32_t g, uint32_t *first, uint32_t *count);
@@ -174,19 +179,22 @@ void sim_set_robot_id(sim_t *sim, uint32_t i, uint16_t id);
 uint32_t sim_robot_uart(const sim_t *sim, uint32_t i, const uint8_t **bytes);
 
 /** The host link live, as a real robot's serial port delivers it
- *  (docs/host_link.md), for a stand-in robot driven from outside: a
- *  message for robot `i`, which hal_host_receive gives after the
- *  scenario's due `host.messages`, in arrival order, from a mailbox of
- *  SIM_HOST_MAILBOX messages as on the e-puck (a message that finds it full
- *  is dropped: returns -1; 0 when taken, -1 also for 0 or more than
- *  HAL_HOST_MSG_MAX bytes). */
+ *  (docs/host_link.md), for a stand-in robot driven from outside, in a
+ *  run whose scenario sets `host.live`: a message for robot `i`, which
+ *  hal_host_receive gives after the scenario's due `host.messages`, in
+ *  arrival order, from a mailbox of SIM_HOST_MAILBOX messages as on the
+ *  e-puck.  Returns 0 when taken, -1 when it found the mailbox full and
+ *  was dropped (counted), -2 for a run without `host.live` or a length
+ *  of 0 or more than HAL_HOST_MSG_MAX bytes. */
 #define SIM_HOST_MAILBOX 2u
 int sim_host_send(sim_t *sim, uint32_t i, const uint8_t *bytes, uint8_t len);
-/** A pose fix for robot `i` from the host (an overhead tracker on the PC):
- *  from the next step hal_pose gives it (it overrides the scenario's
- *  tracker), with age_ms counting from that step, and HAL_ERR_UNAVAILABLE
- *  once it is older than HAL_POSE_MAX_AGE_MS. */
-void sim_host_pose(sim_t *sim, uint32_t i, const hal_pose_t *pose);
+/** A pose fix for robot `i` from the host (an overhead tracker on the PC),
+ *  with `host.live`: from the next step hal_pose gives it (in place of the
+ *  scenario's tracker), with age_ms counting from that step, and
+ *  HAL_ERR_UNAVAILABLE before the first fix and once the last is older
+ *  than HAL_POSE_MAX_AGE_MS (the e-puck's rule).  0, or -2 without
+ *  `host.live`. */
+int sim_host_pose(sim_t *sim, uint32_t i, const hal_pose_t *pose);
 /** Messages sim_host_send dropped for robot `i` (its mailbox was full). */
 uint32_t sim_host_dropped(const sim_t *sim, uint32_t i);
 

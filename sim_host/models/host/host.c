@@ -153,7 +153,7 @@ int sim_host_send(sim_t *sim, uint32_t i, const uint8_t *bytes, uint8_t len)
 {
     host_live_t *l = live_of(sim, i);
     if (l == NULL || len == 0 || len > HAL_HOST_MSG_MAX) {
-        return -1;
+        return -2;
     }
     if (l->n == SIM_HOST_MAILBOX) {
         l->dropped++;   /* the waiting ones are older, and a route's order matters */
@@ -164,14 +164,16 @@ int sim_host_send(sim_t *sim, uint32_t i, const uint8_t *bytes, uint8_t len)
     return 0;
 }
 
-void sim_host_pose(sim_t *sim, uint32_t i, const hal_pose_t *pose)
+int sim_host_pose(sim_t *sim, uint32_t i, const hal_pose_t *pose)
 {
     host_live_t *l = live_of(sim, i);
-    if (l != NULL) {
-        l->pose = *pose;
-        l->has_pose = 1;
-        l->pose_step = sim->step;
+    if (l == NULL) {
+        return -2;
     }
+    l->pose = *pose;
+    l->has_pose = 1;
+    l->pose_step = sim->step;
+    return 0;
 }
 
 uint32_t sim_host_dropped(const sim_t *sim, uint32_t i)

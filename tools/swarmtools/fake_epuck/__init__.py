@@ -1,0 +1,1 @@
+"""swarm-fake-epuck: e-puck1 stand-ins on pseudo-terminals."""
