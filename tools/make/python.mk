@@ -17,6 +17,6 @@ python-tests: deps $(LCM_TYPE_OUTPUTS) $(TELEMETRY_FRAME_SO) $(BUILD)/swarmsim
 	@SWARMSIM=$(BUILD)/swarmsim TELEMETRY_FRAME_SO=$(TELEMETRY_FRAME_SO) $(PYTHON) tools/tests/run.py
 
 lint: deps
-	@$(VENV)/bin/ruff check pyproject.toml tools/swarmtools tools/tests tools/bench tools/docs tools/scaffold.py tools/make tests/firmware tests/fuzz tests/docs platforms && echo "lint: ruff found nothing"
+	@$(VENV)/bin/ruff check pyproject.toml tools/swarmtools tools/tests tools/bench tools/docs docs/examples tools/scaffold.py tools/make tests/firmware tests/fuzz tests/docs platforms && echo "lint: ruff found nothing"
 
 EXTRA_TESTS += lint python-tests

@@ -26,7 +26,7 @@ $(BUILD)/obj/sim_host/version.o: $(BUILD)/gen/version.h
 $(BUILD)/obj/sim_host/version.o: SIM_CFLAGS += -I$(BUILD)/gen
 
 $(SIM_SO): $(BUILD)/libswarm.a $(BUILD)/obj/sim_host/version.o
-	$(call show,LD,$@)$(CC) -shared -Wl,--no-undefined -o $@.tmp $(BUILD)/obj/sim_host/version.o \
+	$(call show,LD,$@)$(CC) -shared -Wl,--no-undefined -Wl,-Bsymbolic -o $@.tmp $(BUILD)/obj/sim_host/version.o \
 	  -Wl,--whole-archive $(BUILD)/libswarm.a -Wl,--no-whole-archive $(LDLIBS_SIM) && mv $@.tmp $@
 
 all: $(SIM_SO)

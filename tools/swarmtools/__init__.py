@@ -17,7 +17,9 @@ _EXPORTS = {
     "RunData": "dataframes",
 }
 
-__all__ = sorted(_EXPORTS)
+__all__ = ["LogData", "Run", "RunData", "RunError", "ScenarioError", "Sim", "SimError", "iter_log", "load_log",
+           "load_run", "run"]
+assert sorted(__all__) == sorted(_EXPORTS)
 
 if TYPE_CHECKING:
     from .dataframes import LogData, RunData, iter_log, load_log, load_run

@@ -32,12 +32,15 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterator
+import sys
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from . import lcm_batch
 
 #: numpy dtypes of the LCM primitive types.
 _DTYPES = {"int8_t": np.int8, "int16_t": np.int16, "int32_t": np.int32, "int64_t": np.int64, "byte": np.uint8,
@@ -46,16 +49,31 @@ _DTYPES = {"int8_t": np.int8, "int16_t": np.int16, "int32_t": np.int32, "int64_t
 CHUNK_ROWS = 65536
 #: The tables load_log builds: attribute, channel name (after the prefix).
 TABLES = {"swarm": "SWARM_STATE", "robots": "ROBOT_STATE", "events": "SWARM_EVENT"}
+_ATTR = {ch: a for a, ch in TABLES.items()}
 
 
 class LogReadError(ValueError):
     """A log that is not, or no longer, a well-formed LCM log of ours."""
 
 
+class _NotBatched(Exception):
+    """Bytes the batch decoder does not take: the checked decoder explains them."""
+
+
+def _checked_decode(data: bytes, channel: str, path: str):
+    """The message of `data` through the checked decoder (LogReadError for one it refuses)."""
+    from .telemetry import common
+    try:
+        return common.decode(data, channel)
+    except common.IncompatibleMessage as e:
+        raise LogReadError(e.explain(path)) from None
+
+
 class _Table:
     """The rows of one channel, built in chunks of typed columns."""
 
-    def __init__(self, cls, schemas, log_time: bool, chunk_rows: int):
+    def __init__(self, cls, schemas, log_time: bool, chunk_rows: int, run: int | None = None,
+                 source: tuple[str, str] = ("", "")):
         self.schemas = schemas
         self.chunk_rows = chunk_rows
         self.kind = cls.__name__
@@ -72,13 +90,18 @@ class _Table:
         self.cats: dict[str, dict[str, int]] = {s: {} for s, t in self.fixed if t == "string"}
         self.chunks: list[dict[str, np.ndarray]] = []
         self.extra_dtype: dict[Any, Any] = {}
+        self.cls = cls
+        self.source = source      # (log path, channel): for the checked decoder's errors
+        self.version = getattr(cls, "VERSION", None)
+        self.batch = lcm_batch.Batch(cls, run) if not self.pairs and lcm_batch.supports(cls) else None
         self._new_chunk()
 
     def _new_chunk(self):
         self.rows = 0
-        self.cols: dict[str, list] = {s: [] for s, _ in self.fixed}
+        self.cols: dict[str, np.ndarray] = {
+            s: np.empty(self.chunk_rows, dtype=np.int32 if t == "string" else _DTYPES[t]) for s, t in self.fixed}
         if self.log_time:
-            self.cols["log_utime"] = []
+            self.cols["log_utime"] = np.empty(self.chunk_rows, dtype=np.int64)
         self.extra: dict[Any, np.ndarray] = {}   # (schema kind, name, k) or pair column -> chunk array
 
     def _extra(self, key, dtype, fill):
@@ -99,9 +122,9 @@ class _Table:
                 if c is None:
                     c = codes[v] = len(codes)
                 v = c
-            self.cols[slot].append(v)
+            self.cols[slot][row] = v
         if self.log_time:
-            self.cols["log_utime"].append(log_utime)
+            self.cols["log_utime"][row] = log_utime
         for names_slot, values_slot, prefix in self.pairs:
             for name, v in zip(getattr(msg, names_slot), getattr(msg, values_slot), strict=True):
                 self._extra(("pair", prefix + name), np.int32, 0)[row] = v
@@ -110,22 +133,95 @@ class _Table:
             dtype = np.float64 if self.kind == "swarm_state_t" else np.float32
             for k, v in enumerate(msg.values):
                 self._extra(("value", key[0], key[1], k), dtype, np.nan)[row] = v
+        return self._next_row()
+
+    def _next_row(self) -> bool:
         self.rows += 1
         if self.rows == self.chunk_rows:
             self.flush()
             return True
         return False
 
+    def add_raw(self, data: bytes, log_utime: int) -> bool | None:
+        """Appends a row from a message's bytes, decoded later with its
+        chunk (lcm_batch): True when a chunk was completed, False when not,
+        None when the run filter drops it; raises _NotBatched when the
+        bytes do not hold a message of the type (add() the decoded one)."""
+        filed = self.batch.add(data, self.rows)
+        if filed is None:
+            return None
+        if not filed:
+            raise _NotBatched
+        if self.log_time:
+            self.cols["log_utime"][self.rows] = log_utime
+        return self._next_row()
+
+    def _decode_batch(self):
+        """Decodes the chunk's filed messages into its columns (new strings
+        get their category codes in the order of their first row, as add()
+        gives them)."""
+        layouts = []
+        first: dict[str, dict[str, int]] = {slot: {} for slot in self.cats}
+        for rows, arr in self.batch.layouts_decoded():
+            bad = np.flatnonzero(arr["version"] != self.version) if self.version is not None else []
+            if len(bad):
+                _checked_decode(arr[bad[0]].tobytes(), *self.source[::-1])
+                raise LogReadError(f"{self.source[0]}: a {self.kind} of version {arr['version'][bad[0]]}")
+            strings = {}
+            for slot in self.cats:
+                uniq, where, inverse = np.unique(arr[slot], return_index=True, return_inverse=True)
+                texts = []
+                for j, raw in enumerate(uniq):
+                    try:
+                        text = raw.decode("utf-8")
+                    except UnicodeDecodeError:
+                        _checked_decode(arr[where[j]].tobytes(), *self.source[::-1])
+                        raise
+                    texts.append(text)
+                    if text not in self.cats[slot]:
+                        seen = first[slot].get(text)
+                        at = int(rows[where[j]])
+                        first[slot][text] = at if seen is None else min(seen, at)
+                strings[slot] = (texts, inverse)
+            layouts.append((rows, arr, strings))
+        for slot, news in first.items():
+            codes = self.cats[slot]
+            for text in sorted(news, key=news.get):
+                codes[text] = len(codes)
+        for rows, arr, strings in layouts:
+            for slot, typename in self.fixed:
+                if typename != "string":
+                    self.cols[slot][rows] = arr[slot]
+                    continue
+                texts, inverse = strings[slot]
+                codes = self.cats[slot]
+                lut = np.array([codes[t] for t in texts], dtype=np.int32)
+                self.cols[slot][rows] = lut[inverse]
+            if not self.has_values or "values" not in arr.dtype.names:
+                continue
+            values = arr["values"]
+            if self.kind == "robot_state_t":
+                texts, inverse = strings["controller"]
+                groups = [(("controller", name), inverse == j) for j, name in enumerate(texts)]
+            else:
+                groups = [(("swarm", "swarm"), slice(None))]
+            dtype = np.float64 if self.kind == "swarm_state_t" else np.float32
+            for key, which in groups:
+                at = rows[which]
+                for k in range(values.shape[1]):
+                    self._extra(("value", key[0], key[1], k), dtype, np.nan)[at] = values[which, k]
+
     def flush(self):
         if self.rows == 0:
             return
         n = self.rows
+        if self.batch is not None and self.batch.layouts:
+            self._decode_batch()
         chunk = {}
-        for slot, typename in self.fixed:
-            dtype = np.int32 if typename == "string" else _DTYPES[typename]
-            chunk[slot] = np.array(self.cols[slot], dtype=dtype)
+        for slot, _ in self.fixed:
+            chunk[slot] = self.cols[slot][:n].copy()
         if self.log_time:
-            chunk["log_utime"] = np.array(self.cols["log_utime"], dtype=np.int64)
+            chunk["log_utime"] = self.cols["log_utime"][:n].copy()
         for key, a in self.extra.items():
             chunk[key] = a[:n].copy()
         self.chunks.append(chunk)
@@ -233,31 +329,103 @@ def _summary_dict(msg) -> dict:
 
 #: The channels load_log reads (after the prefix); the others are counted, not decoded.
 _READ = {"TELEMETRY_SCHEMA", "RUN_SUMMARY", "RUN_INFO", *TABLES.values()}
+#: Channels whose messages a table decodes in batches (lcm_batch): the bulk of a log.
+_BATCHED = {"ROBOT_STATE", "SWARM_EVENT"}
+#: _events' stand-in for a message left to its table's batch decoder.
+_RAW = object()
 
 
-def _events(path, prefix):
-    """(log event, message) of the channels load_log reads, through the
-    checked reader (every event's lengths; every message read by its
-    fingerprint and version); (event, None) for the others.  Errors as
+def _add_row(tables: dict, attr: str, name: str, ev, msg, schemas, log_time: bool, chunk_rows: int,
+             run: int | None, path: str) -> bool:
+    """Adds a message (or its bytes: _RAW) to its table; True when the
+    table completed a chunk."""
+    t = tables.get(attr)
+    if msg is _RAW:
+        if t is None:
+            from .telemetry import common
+            cls = common.type_class(common.CHANNEL_TYPES[name])
+            t = tables[attr] = _Table(cls, schemas, log_time, chunk_rows, run, (path, ev.channel))
+        try:
+            return bool(t.add_raw(ev.data, ev.timestamp))
+        except _NotBatched:
+            msg = _checked_decode(ev.data, ev.channel, path)
+        if msg is None or type(msg) is not t.cls:
+            raise LogReadError(f"{path}: a message on {ev.channel} is not a {t.kind}")
+        if run is not None and msg.run != run:
+            return False
+    if t is None:
+        t = tables[attr] = _Table(type(msg), schemas, log_time, chunk_rows, run, (path, ev.channel))
+    return t.add(msg, ev.timestamp)
+
+
+class _Progress:
+    """A log's bytes read so far: a tqdm bar on stderr (progress=True), or
+    progress(bytes_read, bytes_total) called about every 1 % of the file."""
+
+    def __init__(self, progress, path: str, total: int):
+        self.bar = self.call = None
+        self.total = total
+        self.step = max(1, total // 100)
+        self.next = 0
+        if callable(progress):
+            self.call = progress
+        elif progress:
+            from tqdm import tqdm
+            self.bar = tqdm(total=total, unit="B", unit_scale=True, unit_divisor=1024, mininterval=0.5,
+                            desc=os.path.basename(path), file=sys.stderr, leave=False)
+
+    def at(self, offset: int):
+        if offset < self.next:
+            return
+        self.next = offset + self.step
+        if self.bar is not None:
+            self.bar.update(offset - self.bar.n)
+        elif self.call is not None:
+            self.call(offset, self.total)
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.update(self.total - self.bar.n)
+            self.bar.close()
+        elif self.call is not None:
+            self.call(self.total, self.total)
+
+
+def _events(path, prefix, progress=None):
+    """(log event, name after the prefix, message) of the channels load_log
+    reads, through the checked reader (every event's lengths; every
+    message read by its fingerprint and version); _RAW for the message of
+    a channel whose table decodes its bytes in batches (lcm_batch, with
+    the same checks); None for the channels not read.  Errors as
     LogReadError."""
     from .telemetry import common, logfile
     path = os.fspath(path)
     if not os.path.isfile(path):
         raise FileNotFoundError(f"{path}: no such file")
     count = 0
+    shown = _Progress(progress, path, os.path.getsize(path)) if progress else None
     try:
         for ev in logfile.events(path):
             count += 1
-            if _select(ev.channel, prefix) not in _READ:
-                yield ev, None
+            if shown is not None:
+                shown.at(ev.offset)
+            name = _select(ev.channel, prefix)
+            if name not in _READ:
+                yield ev, name, None
+                continue
+            if name in _BATCHED:
+                yield ev, name, _RAW
                 continue
             try:
                 msg = common.decode(ev.data, ev.channel)
             except common.IncompatibleMessage as e:
                 raise LogReadError(e.explain(path)) from None
-            yield ev, msg
+            yield ev, name, msg
     except logfile.LogError as e:
         raise LogReadError(str(e) if count else f"{path}: not an LCM log ({e})") from None
+    finally:
+        if shown is not None:
+            shown.close()
     if count == 0 and os.path.getsize(path) > 0:
         raise LogReadError(f"{path}: not an LCM log (no events in it)")
 
@@ -270,7 +438,8 @@ def _select(channel: str, prefix: str):
 
 
 def iter_log(path: str | os.PathLike, prefix: str = "", run: int | None = None, chunk_rows: int = CHUNK_ROWS,
-             log_time: bool = False) -> Iterator[tuple[str, Any]]:
+             log_time: bool = False, progress: bool | Callable[[int, int], None] = False,
+             ) -> Iterator[tuple[str, Any]]:
     """The log's tables chunk by chunk: (table name, DataFrame of at most
     `chunk_rows` rows) as each fills, then the last part of each.  Values
     are named by the schemas heard so far (a simulator sends them first;
@@ -278,24 +447,21 @@ def iter_log(path: str | os.PathLike, prefix: str = "", run: int | None = None, 
     from .telemetry import common
     schemas = common.Schemas()
     tables: dict[str, _Table] = {}
-    for ev, msg in _events(path, prefix):
+    for ev, name, msg in _events(path, prefix, progress):
         if msg is None:
             continue
-        if run is not None and getattr(msg, "run", run) != run:
+        if msg is not _RAW and run is not None and getattr(msg, "run", run) != run:
             continue
-        name = _select(ev.channel, prefix)
         if name == "TELEMETRY_SCHEMA":
             schemas.add(msg)
             continue
-        attr = next((a for a, ch in TABLES.items() if ch == name), None)
+        attr = _ATTR.get(name)
         if attr is None:
             continue
-        t = tables.get(attr)
-        if t is None:
-            t = tables[attr] = _Table(type(msg), schemas, log_time, chunk_rows)
-        if t.add(msg, ev.timestamp):
+        if _add_row(tables, attr, name, ev, msg, schemas, log_time, chunk_rows, run, os.fspath(path)):
+            t = tables[attr]
             yield attr, t.frame()
-            tables[attr] = _Table(type(msg), schemas, log_time, chunk_rows)
+            tables[attr] = _Table(t.cls, schemas, log_time, chunk_rows, run, t.source)
             tables[attr].cats = t.cats     # keep the categories' codes stable across chunks
     for attr, t in tables.items():
         if t.rows or t.chunks:
@@ -303,7 +469,7 @@ def iter_log(path: str | os.PathLike, prefix: str = "", run: int | None = None, 
 
 
 def load_log(path: str | os.PathLike, prefix: str = "", run: int | None = None, log_time: bool = False,
-             chunk_rows: int = CHUNK_ROWS) -> LogData:
+             chunk_rows: int = CHUNK_ROWS, progress: bool | Callable[[int, int], None] = False) -> LogData:
     """A telemetry log (a run's telemetry.lcmlog, or lcm-logger's of the
     bridge) as DataFrames: swarm, robots, events, and the summaries.
 
@@ -311,6 +477,9 @@ def load_log(path: str | os.PathLike, prefix: str = "", run: int | None = None, 
               the simulator republished; the bridge's --prefix)
     run       only the messages of the run with this seed
     log_time  a first column log_utime: the log event's timestamp, us
+    progress  True: a progress bar of the bytes read on stderr (tqdm);
+              a function: called as progress(bytes_read, bytes_total)
+              about every 1 % of the file and once at its end
 
     Raises FileNotFoundError, or LogReadError for a file that is not a
     well-formed log of ours (naming the byte offset where it breaks)."""
@@ -318,13 +487,12 @@ def load_log(path: str | os.PathLike, prefix: str = "", run: int | None = None, 
     schemas = common.Schemas()
     data = LogData(Path(path), schemas=schemas)
     tables: dict[str, _Table] = {}
-    for ev, msg in _events(path, prefix):
+    for ev, name, msg in _events(path, prefix, progress):
         if msg is None:
             data.other_channels[ev.channel] = data.other_channels.get(ev.channel, 0) + 1
             continue
-        if run is not None and getattr(msg, "run", run) != run:
+        if msg is not _RAW and run is not None and getattr(msg, "run", run) != run:
             continue
-        name = _select(ev.channel, prefix)
         if name == "TELEMETRY_SCHEMA":
             schemas.add(msg)
         elif name == "RUN_SUMMARY":
@@ -332,14 +500,11 @@ def load_log(path: str | os.PathLike, prefix: str = "", run: int | None = None, 
         elif name == "RUN_INFO":
             data.run_info.append(_plain(msg))
         else:
-            attr = next((a for a, ch in TABLES.items() if ch == name), None)
+            attr = _ATTR.get(name)
             if attr is None:
                 data.other_channels[ev.channel] = data.other_channels.get(ev.channel, 0) + 1
                 continue
-            t = tables.get(attr)
-            if t is None:
-                t = tables[attr] = _Table(type(msg), schemas, log_time, chunk_rows)
-            t.add(msg, ev.timestamp)
+            _add_row(tables, attr, name, ev, msg, schemas, log_time, chunk_rows, run, os.fspath(path))
     import pandas as pd
     for attr in TABLES:
         t = tables.pop(attr, None)

@@ -1,0 +1,11 @@
+# api_bench.mk - the Python API's cost over the C loop
+# (tools/bench/python_api.py against tools/bench/api_loop.c):
+# `make bench-api`, and `make bench` runs it too.
+.PHONY: bench-api
+$(BUILD)/api_loop: tools/bench/api_loop.c $(BUILD)/libswarm.a
+	$(call show,CC,$@)$(CC) $(SIM_CFLAGS) -o $@ $< $(BUILD)/libswarm.a $(LDLIBS_SIM)
+
+bench-api: deps $(BUILD)/api_loop $(BUILD)/libswarmsim.so
+	$(PYTHON) tools/bench/python_api.py --c-loop $(BUILD)/api_loop $(BENCH_API_ARGS)
+
+bench: bench-api
