@@ -24,6 +24,7 @@ import time
 import tty
 import unittest
 
+import swarmtools.fake_epuck.bootloader as fake_boot
 import swarmtools.flash.epuck as ef
 
 # The flasher as a user runs it (python -m, from the installed package).
@@ -89,115 +90,49 @@ def sample_program():
 # ------------------------------------------------------------------ simulator
 
 class Bootloader(threading.Thread):
-    """The dsPIC Tiny Bootloader on the master side of a pty."""
+    """swarm-fake-epuck's Tiny Bootloader (swarmtools.fake_epuck.bootloader)
+    on the master side of a pty: the robot is reset when the flasher's
+    first byte arrives (as the handshake presses reset on a fake robot),
+    so its listening window starts then."""
 
     def __init__(self, master, answer_after=1, noise=b'', nak=None, stop_after=None,
                  silent=False, initial=None, flood=False):
         super().__init__(daemon=True)
-        self.flood = flood                  # the program floods the line until the answer
         self.fd = master
-        self.answer_after = answer_after    # answer the n-th 0xC1
-        self.noise = noise                  # bytes the user program sends first
-        self.nak = dict(nak or {})          # packet index -> 'N' answers before 'K'
-        self.stop_after = stop_after        # stop answering after this many packets
-        self.silent = silent                # never answer the handshake
+        self.silent = silent
         self.flash = dict(initial or {})    # PC -> (lo, mid, up)
-        self.errors = []
-        self.rows = []                      # row PCs written, in order
-        self.receptions = {}                # packet index -> times received
-        self.ended = False
-        self.extra = b''
+        faults = fake_boot.Faults(answer_after=answer_after, silent=silent, nak=dict(nak or {}),
+                                  stop_after=stop_after, noise=noise, flood=flood)
+        self.boot = fake_boot.Bootloader(self.flash, faults, now=0.0)
         self.stop = threading.Event()
 
-    def read(self, n, timeout=3.0):
-        out = b''
-        end = time.monotonic() + timeout
-        while len(out) < n:
-            if self.stop.is_set() or time.monotonic() > end:
-                return None
-            import select
-            r, _, _ = select.select([self.fd], [], [], 0.05)
-            if r:
-                try:
-                    out += os.read(self.fd, n - len(out))
-                except OSError:
-                    return None
-        return out
-
-    def send(self, data):
-        os.write(self.fd, data)
+    # What the tests read: the bootloader's record of the session.
+    errors = property(lambda self: self.boot.deviations)
+    rows = property(lambda self: self.boot.rows)
+    receptions = property(lambda self: self.boot.receptions)
+    ended = property(lambda self: self.boot.state == "ended")
+    extra = property(lambda self: self.boot.after_end)
 
     def run(self):
-        if self.noise:
-            self.send(self.noise)
-        flooding = threading.Event()
-        if self.flood:
-            flooding.set()
-
-            def flood():
-                while flooding.is_set() and not self.stop.is_set():
-                    try:
-                        self.send(b'x' * 256)    # no 'q' in it
-                    except OSError:
-                        return
-            threading.Thread(target=flood, daemon=True).start()
-        seen = 0
-        while True:
-            b = self.read(1, timeout=10.0)
-            if b is None:
-                return
-            if b[0] != 0xC1:
-                self.errors.append(f'handshake: got 0x{b[0]:02X}, expected 0xC1')
-                return
-            seen += 1
-            if not self.silent and seen >= self.answer_after:
-                break
-        flooding.clear()
-        time.sleep(0.05)
-        self.send(b'qK')
-        index = 0
-        while True:
-            head = self.read(4)
-            if head is None:
-                self.errors.append('stream ended without the end sequence')
-                return
-            if head[3] == 0xFF:
-                if head != bytes([0x95, 0x00, 0x00, 0xFF]):
-                    self.errors.append(f'end sequence {head.hex()} != 950000ff')
-                self.ended = True
-                rest = self.read(1, timeout=0.3)
-                if rest:
-                    self.extra = rest
-                    self.errors.append(f'bytes after the end sequence: {rest.hex()}')
-                return
-            body = self.read(97)
-            if body is None:
-                self.errors.append(f'packet {index} truncated')
-                return
-            pkt = head + body
-            self.receptions[index] = self.receptions.get(index, 0) + 1
-            if self.stop_after is not None and index >= self.stop_after:
-                return   # the robot went away: no answer
-            if sum(pkt) & 0xFF:
-                self.errors.append(f'packet {index}: checksum does not make the sum 0')
-                self.send(b'N')
-                continue
-            if self.nak.get(index, 0) > 0:
-                self.nak[index] -= 1
-                self.send(b'N')   # as if the line had corrupted it
-                continue
-            pc = head[0] | (head[1] << 8) | (head[2] << 16)
-            if head[3] != 0x60:
-                self.errors.append(f'packet {index}: count byte 0x{head[3]:02X} != 0x60')
-            if pc % ROW:
-                self.errors.append(f'packet {index}: address 0x{pc:X} not on a row boundary')
-            if pc + ROW > BOOT_CODE and pc < 0x18000 and pc != 0x17F00 or pc >= 0x18000:
-                self.errors.append(f'packet {index}: row 0x{pc:X} overwrites the bootloader')
-            for i in range(32):   # erase and write the row
-                self.flash[pc + 2 * i] = tuple(pkt[4 + 3 * i:7 + 3 * i])
-            self.rows.append(pc)
-            self.send(b'K')
-            index += 1
+        import select
+        reset_at = None
+        while not self.stop.is_set():
+            now = 0.0 if reset_at is None else time.monotonic() - reset_at
+            out = self.boot.poll(now)
+            r, _, _ = select.select([self.fd], [], [], 0.01 if self.boot.faults.flood else 0.05)
+            if r:
+                try:
+                    data = os.read(self.fd, 4096)
+                except OSError:
+                    return
+                if reset_at is None:
+                    reset_at = time.monotonic()
+                out += self.boot.feed(data, time.monotonic() - reset_at)
+            if out:
+                try:
+                    os.write(self.fd, out)
+                except OSError:
+                    return
 
 
 def word_of(t):
