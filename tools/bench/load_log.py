@@ -23,6 +23,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from python_api import cpu_name  # this folder: the machine line both benchmarks print
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENARIO = ROOT / "tools" / "bench" / "bench_random_walk.yaml"
 BYTES_PER_ROBOT_STEP = 19.4        # what the scenario's log takes, measured: to size the run
@@ -83,16 +85,6 @@ def main(argv=None):
     print(f"\nmachine: {os.cpu_count()} cores, {cpu_name()}, Python {platform.python_version()}; medians of "
           f"{args.runs} runs; wall time of the whole process (Python's start and imports included); peak "
           f"memory: the way's largest process's max RSS")
-
-
-def cpu_name():
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return "unknown CPU"
 
 
 if __name__ == "__main__":

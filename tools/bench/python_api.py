@@ -3,7 +3,9 @@
 C loop: the same world, seed and steps through swarmtools.Sim (the public
 C API in build/libswarmsim.so, through ctypes) and through a C program
 that calls sim_step in a loop (tools/bench/api_loop.c, linked with the
-same objects), each run in turn, medians over --runs.
+same objects), each run in turn, medians over --runs.  Times are the
+process's CPU time over the steps alone (the world's loading excluded),
+which a machine shared with other work disturbs less than wall time.
 
 Python is measured three ways per world: step(K) for K steps a call
 (default 100), the same reading the robots' poses and states after each
@@ -37,21 +39,21 @@ def world(n):
 def c_loop(binary, n, steps, seed):
     out = subprocess.run([binary, str(SCENARIO), str(steps), str(seed), *world(n)], check=True,
                          capture_output=True, text=True).stdout.split()
-    return float(out[1]), out[3]
+    return float(out[3]), out[5]
 
 
 def python_loop(n, steps, seed, per_call, read):
     import swarmtools
     with swarmtools.Sim(SCENARIO, seed=seed, overrides=world(n)) as sim:
         robots = sim.robots
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         done = 0
         while done < steps:
             done += sim.step(min(per_call, steps - done))
             if read:
                 _ = robots.x.sum() + robots.y.sum()
                 _ = robots.state_codes()
-        t1 = time.perf_counter()
+        t1 = time.process_time()
         return t1 - t0, sim.state_hash
 
 
