@@ -9,8 +9,8 @@ import random
 import signal
 import subprocess
 import time
-import tty
 
+from swarmtools.fake_epuck.robot import Port
 from swarmtools.telemetry import bridge, common
 from swarmtools.telemetry.frames import encode_frame
 
@@ -28,40 +28,28 @@ class Collect:
         self.got.append((channel, common.decode(data)))
 
 
-class PtyRobot:
-    """An e-puck stand-in: the master side of a pty, reached by the bridge
-    through a symlink (as udev names rfcomm ports), which can disappear and
-    come back on a new pty."""
+class PtyRobot(Port):
+    """An e-puck stand-in that sends what a test crafts (garbage, old
+    versions): swarm-fake-epuck's port (a pty behind a link that appears
+    whole, as udev names rfcomm ports), written blocking so that no byte
+    is lost, which can disappear and come back on a new pty."""
 
     def __init__(self, link):
-        self.link = link
-        self.master = None
+        super().__init__(link)
         self.connect()
 
     def connect(self):
-        self.master, slave = os.openpty()
-        tty.setraw(slave)            # before any byte: no line discipline on the way
-        self.slave_path = os.ttyname(slave)
-        os.close(slave)
-        if os.path.lexists(self.link):
-            os.remove(self.link)
-        os.symlink(self.slave_path, self.link)
+        self.slave_path = self.open()
+        os.set_blocking(self.master, True)
 
     def disconnect(self):
-        os.remove(self.link)
-        os.close(self.master)
-        self.master = None
+        self.close(remove_link=True)
 
     def send(self, data):
         view = memoryview(data)
         while view:
             n = os.write(self.master, view)
             view = view[n:]
-
-    def close(self):
-        if self.master is not None:
-            os.close(self.master)
-            self.master = None
 
 
 def pump(br, until, timeout=5.0):
