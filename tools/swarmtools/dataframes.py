@@ -162,7 +162,13 @@ class _Table:
         gives them)."""
         layouts = []
         first: dict[str, dict[str, int]] = {slot: {} for slot in self.cats}
-        for rows, arr in self.batch.layouts_decoded():
+        try:
+            decoded = list(self.batch.layouts_decoded())
+        except lcm_batch.BadMessage as e:
+            _checked_decode(e.data, *self.source[::-1])
+            raise LogReadError(f"{self.source[0]}: a {self.kind} on {self.source[1]} whose lengths do not "
+                               f"hold") from None
+        for rows, arr in decoded:
             bad = np.flatnonzero(arr["version"] != self.version) if self.version is not None else []
             if len(bad):
                 _checked_decode(arr[bad[0]].tobytes(), *self.source[::-1])
@@ -215,7 +221,7 @@ class _Table:
         if self.rows == 0:
             return
         n = self.rows
-        if self.batch is not None and self.batch.layouts:
+        if self.batch is not None and self.batch.pending:
             self._decode_batch()
         chunk = {}
         for slot, _ in self.fixed:

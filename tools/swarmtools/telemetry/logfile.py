@@ -51,34 +51,52 @@ def channel_name(raw: bytes) -> str:
     return raw.decode("utf-8", errors="backslashreplace")
 
 
+#: Bytes read from the file at a time (events are cut from these blocks:
+#: three small reads an event cost more than the decoding).
+BLOCK = 1 << 20
+
+
 def events(path: str | os.PathLike) -> Iterator[Event]:
     """Every event of the log at `path`, in order; LogError at the first
     event the file cannot hold."""
     path = os.fspath(path)
     size = os.path.getsize(path)
+    hsize = HEADER.size
+    unpack = HEADER.unpack_from
     with open(path, "rb") as f:
-        offset = 0
+        buf, pos, offset = b"", 0, 0        # buf[pos] is the file's byte `offset`
+        names: dict[bytes, str] = {}
         while offset < size:
-            head = f.read(HEADER.size)
-            if len(head) < HEADER.size:
-                raise LogError(f"{path}: truncated event at byte {offset}: {len(head)} of the "
-                               f"{HEADER.size} header bytes")
-            sync, num, stamp, clen, dlen = HEADER.unpack(head)
+            if len(buf) - pos < hsize:
+                buf, pos = buf[pos:] + f.read(BLOCK), 0
+                if len(buf) < hsize:
+                    raise LogError(f"{path}: truncated event at byte {offset}: {len(buf)} of the "
+                                   f"{hsize} header bytes")
+            sync, num, stamp, clen, dlen = unpack(buf, pos)
             if sync != SYNC:
                 raise LogError(f"{path}: corrupt event at byte {offset}: sync word 0x{sync:08X}, "
                                f"expected 0x{SYNC:08X}")
-            left = size - offset - HEADER.size
+            left = size - offset - hsize
             if not 0 <= clen <= MAX_CHANNEL:
                 raise LogError(f"{path}: corrupt event at byte {offset}: channel length {clen}")
             if dlen < 0 or clen + dlen > left:
                 raise LogError(f"{path}: corrupt event at byte {offset}: channel and data lengths "
                                f"{clen} + {dlen}, but only {left} bytes are left in the file")
-            channel = f.read(clen)
-            data = f.read(dlen)
-            if len(channel) != clen or len(data) != dlen:
-                raise LogError(f"{path}: truncated event at byte {offset}")
-            yield Event(num, stamp, channel_name(channel), data, offset)
-            offset += HEADER.size + clen + dlen
+            total = hsize + clen + dlen
+            if len(buf) - pos < total:
+                buf, pos = buf[pos:] + f.read(max(BLOCK, total)), 0
+                if len(buf) < total:
+                    raise LogError(f"{path}: truncated event at byte {offset}")
+            at = pos + hsize
+            raw = buf[at:at + clen]
+            name = names.get(raw)
+            if name is None:
+                name = channel_name(raw)
+                if len(names) < 256:        # a log has a few channels; a damaged one, any number
+                    names[raw] = name
+            yield Event(num, stamp, name, buf[at + clen:at + clen + dlen], offset)
+            pos += total
+            offset += total
 
 
 def check(path: str | os.PathLike) -> int:
