@@ -12,9 +12,10 @@ The log is read by the project's checked reader (telemetry/logfile.py:
 every event's lengths checked against the file; telemetry/common.py: every
 message by its fingerprint and version), one event at a time, and each
 table is built in chunks of typed numpy columns (strings as categories),
-so memory grows with the tables' size, not the log's Python objects: a
-1 GB log of robot states makes tables of about its own size (the figures:
-docs/reference/python-api.md).  For a log too big for that, iter_log
+so memory grows with the tables' size, not the log's Python objects.  The
+robots' states and the events, the bulk of a log, are decoded in batches
+(lcm_batch.py) with the same checks; the figures: `make bench-load-log`,
+docs/development/benchmarks.md.  For a log too big for that, iter_log
 yields the tables chunk by chunk.
 
 Column names: a message's fields as in lcm_types/ (nested fields skipped),
