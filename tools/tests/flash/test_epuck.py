@@ -133,6 +133,9 @@ class Bootloader(threading.Thread):
                     os.write(self.fd, out)
                 except OSError:
                     return
+            b = self.boot
+            if b.state == "gone" or b.state == "ended" and now - b.ended_at >= fake_boot.END_GRACE_S:
+                return                      # nothing more to answer: the session is over
 
 
 def word_of(t):
