@@ -8,6 +8,7 @@ import os
 import random
 import signal
 import subprocess
+import threading
 import time
 
 from swarmtools.fake_epuck.robot import Port
@@ -50,6 +51,37 @@ class PtyRobot(Port):
         while view:
             n = os.write(self.master, view)
             view = view[n:]
+
+
+class StderrLines:
+    """A process's stderr, line by line as it comes (a thread reads it), to
+    wait for the line that says the event a test needs has happened."""
+
+    def __init__(self, proc):
+        self.proc = proc
+        self.lines = []
+        self.cond = threading.Condition()
+        self.thread = threading.Thread(target=self._read, daemon=True)
+        self.thread.start()
+
+    def _read(self):
+        for line in self.proc.stderr:
+            with self.cond:
+                self.lines.append(line)
+                self.cond.notify_all()
+
+    def wait_for(self, text, timeout=30.0):
+        """Waits for a line that contains `text`."""
+        with self.cond:
+            ok = self.cond.wait_for(lambda: any(text in line for line in self.lines), timeout)
+        if not ok:
+            raise AssertionError(f"timed out waiting for {text!r} on stderr: {''.join(self.lines)}")
+
+    def end(self, timeout=10.0):
+        """The process's exit status and all its stderr, once it ended."""
+        self.proc.wait(timeout)
+        self.thread.join(timeout)
+        return self.proc.returncode, "".join(self.lines)
 
 
 def pump(br, until, timeout=5.0):
@@ -209,10 +241,11 @@ class PseudoTerminals(TempDir):
         robot = PtyRobot(str(self.tmp / "rfcomm3"))
         log = self.tmp / "bridge.lcmlog"
         proc = subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", robot.link, "--lcm", f"file://{log}?mode=w",
-                                 "--id", f"{robot.link}=3", "--status-every", "0.2", "--report-every", "0"],
+                                 "--id", f"{robot.link}=3", "--status-every", "0.2", "--report-every", "0.1"],
                                 stderr=subprocess.PIPE, text=True)
+        out = StderrLines(proc)
         try:
-            time.sleep(0.5)
+            out.wait_for("robot 3: up, 0 frames")          # the port is open, the loop runs
             robot.send(b"\xff" * 50)
             for seq in range(10):
                 robot.send(c_frame(1, 99, seq, robot_state(robot_id=99, values=[seq]).encode()))
@@ -222,13 +255,15 @@ class PseudoTerminals(TempDir):
             robot.send(c_frame(2, 99, 11, event(kind="oae", value=4).encode()))
             robot.send(c_frame(6, 99, 12, schema("sorter", ["carried"], counters=[1]).encode()))
             robot.send(c_frame(1, 99, 13, V1_ROBOT_STATE))
-            time.sleep(1.0)
+            out.wait_for("12 frames, 1 CRC errors")
         finally:
             proc.send_signal(signal.SIGINT)
-            _, err = proc.communicate(timeout=10)
+            _, err = out.end()
             robot.close()
         self.assertEqual(proc.returncode, 130, err)
         self.assertTrue(err.splitlines()[-1].startswith("swarm-bridge: stopped by SIGINT; "), err)
+        # The periodic reports (--report-every, what the test waited on) aside:
+        err = "".join(line for line in err.splitlines(True) if not line.startswith(f"swarm-bridge: {robot.link} robot 3: up, "))
         self.assertIn("12 frames, 1 CRC errors", err)
         self.assertIn("1 bad payloads", err)
         self.assertEqual(err.count("comes from an older version of the toolkit (telemetry v1, robot_state_t)"), 2,
@@ -279,19 +314,19 @@ class StartAndStop(TempDir):
         link = self.tmp / "rfcomm4"
         log = self.tmp / "bridge.lcmlog"
         p = subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", link, "--wait", "--reopen", "0.1",
-                              "--lcm", f"file://{log}?mode=w", "--report-every", "0"], stderr=subprocess.PIPE,
+                              "--lcm", f"file://{log}?mode=w", "--report-every", "0.1"], stderr=subprocess.PIPE,
                              text=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+        out = StderrLines(p)
         robot = None
         try:
-            time.sleep(0.8)
+            out.wait_for(f"waiting for {link}")
             self.assertIsNone(p.poll(), "the bridge did not wait")
             robot = PtyRobot(str(link))
-            time.sleep(0.5)
             robot.send(encode_frame(1, 5, 0, robot_state(robot_id=5).encode()))
-            time.sleep(0.5)
+            out.wait_for("robot 5: up, 1 frames")
         finally:
             p.send_signal(signal.SIGINT)
-            _, err = p.communicate(timeout=10)
+            _, err = out.end()
             if robot:
                 robot.close()
         self.assertEqual(p.returncode, 130, err)
@@ -303,11 +338,14 @@ class StartAndStop(TempDir):
     def test_sigterm_and_duration_are_named(self):
         robot = PtyRobot(str(self.tmp / "rfcomm2"))          # a robot that says nothing
         try:
-            p = self.bridge(robot.link, "--duration", "30", "--quiet")
-            time.sleep(0.8)
+            p = subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", robot.link, "--lcm", "memq://",
+                                  "--duration", "60", "--report-every", "0.1"], stderr=subprocess.PIPE, text=True)
+            out = StderrLines(p)
+            out.wait_for(f"{robot.link}")                  # a report: the loop runs, its handlers are in place
             p.send_signal(signal.SIGTERM)
-            _, err = p.communicate(timeout=10)
-            self.assertEqual((p.returncode, err), (143, "swarm-bridge: stopped by SIGTERM\n"))
+            status, err = out.end()
+            self.assertEqual(status, 143, err)
+            self.assertTrue(err.splitlines()[-1].startswith("swarm-bridge: stopped by SIGTERM; "), err)
             p = self.bridge(robot.link, "--duration", "0.5", "--quiet")
             _, err = p.communicate(timeout=10)
             self.assertEqual((p.returncode, err), (0, "swarm-bridge: stopped after --duration 0.5 s\n"))
