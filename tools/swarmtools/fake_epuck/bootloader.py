@@ -103,6 +103,7 @@ class Bootloader:
         self.state = "listen"
         self.started = now
         self.handshakes = 0
+        self.late_handshakes = 0       # handshakes after the answer (see feed)
         self.buf = bytearray()
         self.index = 0                 # packets written
         self.rows: list[int] = []      # row PCs written, in order
@@ -140,6 +141,13 @@ class Bootloader:
                     self.state = "session"
                     out += ANSWER
             elif self.state == "session":
+                if b == HANDSHAKE and not self.buf and not self.receptions:
+                    # A handshake after the answer, before the first packet: the flasher sent it
+                    # because the fake's loop answered late (busy starting another robot's
+                    # program), which a real bootloader, answering at once, never is.  No
+                    # packet starts with 0xC1 (a row's address is a multiple of 0x40).
+                    self.late_handshakes += 1
+                    continue
                 self.buf.append(b)
                 out += self._take(now)
             elif self.state == "ended":

@@ -21,11 +21,11 @@ from swarmtools.telemetry.host_link import HostLink
 PYTHON = sys.executable
 
 
-def wait_for(what, until, timeout=20.0):
+def wait_for(what, until, timeout=20.0, detail=None):
     end = time.monotonic() + timeout
     while not until():
         if time.monotonic() > end:
-            raise AssertionError(f"timed out waiting for {what}")
+            raise AssertionError(f"timed out waiting for {what}{detail() if detail else ''}")
         time.sleep(0.05)
 
 
@@ -52,7 +52,8 @@ class FlashBridgeLog(FakeCase):
                 self.assertEqual(r.returncode, 0, r.stderr)
                 self.assertIn("done: ", r.stderr)
             wait_for("both robots to run the image",
-                     lambda: all(r.status()["state"] == "running" for r in fakes.robots))
+                     lambda: all(r.status()["state"] == "running" for r in fakes.robots),
+                     detail=lambda: f": {[(r.status(), r.notes) for r in fakes.robots]}")
             for k, robot in enumerate(fakes.robots):
                 s = robot.status()
                 self.assertEqual((s["image"], s["robot_id"]), ("forager", 7 + k))
@@ -81,6 +82,21 @@ class FlashBridgeLog(FakeCase):
         self.assertIn("gave up after 5 retries", r.stderr)
         self.assertEqual((status["state"], status["image"]), ("boot", None), "still in its bootloader, no image")
         self.assertEqual(status["deviations"], [])
+
+
+class LateAnswer(unittest.TestCase):
+    def test_handshakes_queued_behind_a_late_answer_are_not_packet_bytes(self):
+        # The fake's loop can be busy (starting another robot's program) while the flasher
+        # repeats 0xC1: they arrive together, and only the first is the handshake.
+        from swarmtools.fake_epuck.bootloader import Bootloader, bootloader_code
+        flash = bootloader_code()
+        boot = Bootloader(flash, Faults(), now=0.0)
+        self.assertEqual(boot.feed(b"\xc1\xc1\xc1", 0.1), b"qK")
+        self.assertEqual(boot.feed(b"\xc1", 0.15), b"")          # one more, sent before the answer was read
+        body = bytes([0x40, 0x00, 0x00, 0x60]) + bytes(range(96))
+        packet = body + bytes([-sum(body) & 0xFF])
+        self.assertEqual(boot.feed(packet, 0.2), b"K")
+        self.assertEqual((boot.rows, boot.deviations, boot.late_handshakes), ([0x40], [], 3))
 
 
 class HostLinkToTheRobot(FakeCase):
