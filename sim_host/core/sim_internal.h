@@ -97,6 +97,9 @@ typedef struct sim_model_run {
     int created;                   /**< its create ran (destroy is due) */
 } sim_model_run_t;
 
+/** Phases of a step that models take part in (sim.c). */
+#define SIM_PHASES 5
+
 /** A running task. */
 typedef struct sim_task_run {
     const task_def_t *def;
@@ -147,6 +150,12 @@ struct sim {
     sim_metrics_t metrics;
 
     sim_model_run_t models[SIM_MODEL_COUNT];   /**< in list order (models/model_list.h) */
+    /* The models that take part in each phase of a step (sim.c's phase_t),
+     * that step after each robot, that may halt one: found once, so that
+     * a step does not ask every model about every hook. */
+    uint8_t n_phase[SIM_PHASES], phase_model[SIM_PHASES][SIM_MODEL_COUNT];
+    uint8_t n_after_robot, after_robot[SIM_MODEL_COUNT];
+    uint8_t n_halts, halts[SIM_MODEL_COUNT];
 };
 
 /** Model `id`'s config for this run. */

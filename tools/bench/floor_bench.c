@@ -115,15 +115,18 @@ static sim_t *create(const scenario_t *sc, uint32_t threads)
     return sim;
 }
 
-/* The random walk's chunk, its velocities recorded for the floor (n
- * stores a step: charged to the random walk, not to the floor). */
-static void step_recorded(bench_t *b)
+/* Each world's chunk in a function of its own (not inlined), so that a
+ * profiler can count one world's instructions alone
+ * (valgrind --tool=callgrind --toggle-collect=step_rw).  The random walk's
+ * velocities are recorded for the floor (n stores a step: charged to the
+ * random walk, not to the floor). */
+static __attribute__((noinline)) void step_rw(bench_t *b)
 {
     struct sim *sim = b->w[W_RW].sim;
     for (uint32_t s = 0; s < b->steps; s++) {
         sim_step(sim);
         velocity_t *row = b->rec + (size_t)s * b->n;
-        for (uint32_t i = 0; i < b->n; i++) {
+        for (uint32_t i = 0; b->rec && i < b->n; i++) {
             row[i].v = sim->drive[i].v;
             row[i].w = sim->drive[i].w;
         }
@@ -131,7 +134,7 @@ static void step_recorded(bench_t *b)
 }
 
 /* The floor's chunk: Box2D alone (world_drive's calls, then the step). */
-static void step_floor(bench_t *b)
+static __attribute__((noinline)) void step_floor(bench_t *b)
 {
     struct sim *f = b->w[W_FLOOR].sim;
     for (uint32_t s = 0; s < b->steps; s++) {
@@ -146,17 +149,22 @@ static void step_floor(bench_t *b)
     }
 }
 
+static __attribute__((noinline)) void step_fs(bench_t *b)
+{
+    for (uint32_t s = 0; s < b->steps; s++) {
+        sim_step(b->w[W_FS].sim);
+    }
+}
+
 static void step_world(bench_t *b, int w, int rep)
 {
     double c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID), t0 = clock_s(CLOCK_MONOTONIC);
     if (w == W_FLOOR) {
         step_floor(b);
     } else if (w == W_RW) {
-        step_recorded(b);
+        step_rw(b);
     } else {
-        for (uint32_t s = 0; s < b->steps; s++) {
-            sim_step(b->w[w].sim);
-        }
+        step_fs(b);
     }
     if (rep >= 0) {
         b->w[w].cpu[rep] = clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0;
