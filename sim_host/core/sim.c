@@ -633,16 +633,18 @@ uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float 
     int32_t cx0, cy0, cx1, cy1;
     uint32_t n = 0;
     grid_range(g, minx, miny, maxx, maxy, &cx0, &cy0, &cx1, &cy1);
+    const uint32_t *items = g->items, *start = g->start;
+    const float *px = sim->px, *py = sim->py;
     /* A row's cells are consecutive in items: one run of candidates a row
-     * (the same ones in the same order as cell by cell). */
-    for (int32_t cy = cy0; cy <= cy1; cy++) {
+     * (the same ones in the same order as cell by cell).  Each candidate is
+     * written and kept when inside: no branch to mispredict on the test. */
+    for (int32_t cy = cy0; cy <= cy1 && n < max; cy++) {
         int32_t c = cy * g->nx;
-        for (uint32_t k = g->start[c + cx0], end = g->start[c + cx1 + 1]; k < end; k++) {
-            uint32_t j = g->items[k];
-            if (sim->px[j] >= minx && sim->px[j] <= maxx && sim->py[j] >= miny && sim->py[j] <= maxy
-                && n < max) {
-                out[n++] = j;
-            }
+        for (uint32_t k = start[c + cx0], end = start[c + cx1 + 1]; k < end && n < max; k++) {
+            uint32_t j = items[k];
+            float x = px[j], y = py[j];
+            out[n] = j;
+            n += (uint32_t)((x >= minx) & (x <= maxx) & (y >= miny) & (y <= maxy));
         }
     }
     return n;

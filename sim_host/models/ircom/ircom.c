@@ -147,6 +147,7 @@ typedef struct ircom_inbox {
 
 typedef struct ircom {
     const ircom_config_t *cfg;
+    float sensor_rad[HAL_IR_COUNT];   /* hal_ir_bearing_mrad / 1000, rad: the same ring on every robot */
     ircom_out_t *out;
     ircom_inbox_t *inbox;
     hal_ircom_msg_t *queue;      /* robot i's at i x cfg->queue */
@@ -190,6 +191,9 @@ static int ircom_create(sim_t *sim, const void *config, void **self, char err[SI
     }
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_rand_seed(&m->rand[i], sim->seed, i, RAND_IRCOM);
+    }
+    for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+        m->sensor_rad[k] = units_ir_bearing_mrad(k) / 1000.0f;
     }
     return 0;
 }
@@ -250,14 +254,14 @@ static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uin
     uint8_t sensor = 0;
     float best = INFINITY;
     for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-        float off = fabsf(geom_wrap(bearing - hal_ir_bearing_mrad(&r->hal, k) / 1000.0f));
+        float off = fabsf(geom_wrap(bearing - m->sensor_rad[k]));
         if (off < best) {
             best = off;
             sensor = k;
         }
     }
     float est = cfg->quantise_bearing
-        ? hal_ir_bearing_mrad(&r->hal, sensor) / 1000.0f
+        ? m->sensor_rad[sensor]
         : geom_wrap(bearing + cfg->bearing_noise * (float)UNITS_PI / 180.0f * (float)sim_rand_normal(rnd));
     double range = sqrt((double)dx * dx + (double)dy * dy);
     range *= 1.0 + cfg->range_noise_rel * sim_rand_normal(rnd);
@@ -267,7 +271,8 @@ static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uin
         in->dropped++;
         return;
     }
-    hal_ircom_msg_t *msg = &m->queue[(size_t)to * cfg->queue + (in->head + in->count) % cfg->queue];
+    uint32_t slot = (uint32_t)in->head + in->count;   /* below 2 x queue: no division */
+    hal_ircom_msg_t *msg = &m->queue[(size_t)to * cfg->queue + (slot >= cfg->queue ? slot - cfg->queue : slot)];
     msg->value = value;
     msg->sensor = sensor;
     msg->bearing_mrad = (int16_t)lroundf(est * 1000.0f);
@@ -473,7 +478,7 @@ hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
         return HAL_ERR_EMPTY;
     }
     *out = m->queue[(size_t)hal->index * m->cfg->queue + in->head];
-    in->head = (uint8_t)((in->head + 1) % m->cfg->queue);
+    in->head = (uint8_t)(in->head + 1u == m->cfg->queue ? 0u : in->head + 1u);
     in->count--;
     return HAL_OK;
 }
