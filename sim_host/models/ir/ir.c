@@ -142,11 +142,18 @@ float ir_curve(float d, float range)
     return ir_table_v[IR_TABLE_N - 1] * (range - d) / (range - last);
 }
 
+/* Rounded and clamped to 0..HAL_RAW_MAX, the clamp on the integer (no
+ * branch: a lone sensor's reading is its noise alone, negative half the
+ * time, and a branch on its sign would be mispredicted as often).  The
+ * same as clamping v first: v + 0.5 truncates to 0 or less for v <= 0, to
+ * HAL_RAW_MAX or more for v >= HAL_RAW_MAX; |v| stays far below 2^62 (a
+ * reading of at most 4095 and noise of a few sd). */
 static uint16_t to_raw(double v)
 {
-    if (v <= 0.0) return 0;
-    if (v >= HAL_RAW_MAX) return HAL_RAW_MAX;
-    return (uint16_t)(v + 0.5);
+    int64_t k = (int64_t)(v + 0.5);
+    k = k < 0 ? 0 : k;
+    k = k > HAL_RAW_MAX ? HAL_RAW_MAX : k;
+    return (uint16_t)k;
 }
 
 /* The smaller of two distances: fminf without its call (the distances
