@@ -118,7 +118,10 @@ struct sim {
     uint32_t n;                    /**< robots */
     sim_robot_t *robots;
     void **ctrl_blocks;            /**< per group: its robots' controller states */
-    float *px, *py;                /**< robot centres, for the grid */
+    float *px, *py;                /**< robot centres, for the grid: always equal to robots[i].x
+                                        and .y (written together), and where neighbour loops read
+                                        them (sim_robot_at): a gather has just brought them into
+                                        the cache, 4 B a robot where a record is 72 */
     grid_t robot_grid;
     uint32_t *step_order;          /**< robots in the order they step (phase 2) */
 
@@ -233,5 +236,12 @@ sim_scratch_t *sim_robot_scratch(const struct sim *sim, uint32_t i);
 /** Same for robots whose centres lie in the box. */
 uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float maxx, float maxy,
                            uint32_t *out, uint32_t max);
+
+/** Robot i's centre, m (the same values as robots[i].x and .y, read from
+ *  the compact copies that sim_gather_robots reads). */
+static inline vec2_t sim_robot_at(const struct sim *sim, uint32_t i)
+{
+    return v2(sim->px[i], sim->py[i]);
+}
 
 #endif

@@ -312,8 +312,7 @@ uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BL
     uint32_t nocc = 0, counted = 0;
     for (uint32_t j = 0; j < nr; j++) {
         if (rob[j] != i) {
-            int got = disc_interval(&vw, v2(sim->robots[rob[j]].x, sim->robots[rob[j]].y), EPUCK_BODY_RADIUS_M,
-                                    &occ[nocc]);
+            int got = disc_interval(&vw, sim_robot_at(sim, rob[j]), EPUCK_BODY_RADIUS_M, &occ[nocc]);
             nocc += got == 1;
             counted += got != 0;
         }

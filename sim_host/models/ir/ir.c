@@ -238,8 +238,7 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
             cone_t k = geom_cone_dir(p, a, half, cos_half, sin_half);
             for (uint32_t j = 0; j < nr; j++) {
                 if (near_robot[j] != i) {
-                    const sim_robot_t *q = &sim->robots[near_robot[j]];
-                    d = nearer(d, geom_cone_circle(&k, v2(q->x, q->y), EPUCK_BODY_RADIUS_M));
+                    d = nearer(d, geom_cone_circle(&k, sim_robot_at(sim, near_robot[j]), EPUCK_BODY_RADIUS_M));
                 }
             }
             for (uint32_t j = 0; j < no; j++) {

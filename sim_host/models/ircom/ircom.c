@@ -212,8 +212,7 @@ static void ircom_destroy(void *self)
 
 static int blocked(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_t from, uint32_t to)
 {
-    const sim_robot_t *a = &sim->robots[from], *b = &sim->robots[to];
-    vec2_t p = v2(a->x, a->y), q = v2(b->x, b->y);
+    vec2_t p = sim_robot_at(sim, from), q = sim_robot_at(sim, to);
     uint32_t near[IRCOM_MAX_NEAR], n;
     if (sim_obstacles_cut(sim, ws, p, q)) {
         return 1;
@@ -223,8 +222,8 @@ static int blocked(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_
                               fmaxf(p.x, q.x) + EPUCK_BODY_RADIUS_M, fmaxf(p.y, q.y) + EPUCK_BODY_RADIUS_M,
                               near, IRCOM_MAX_NEAR);
         for (uint32_t k = 0; k < n; k++) {
-            const sim_robot_t *c = &sim->robots[near[k]];
-            if (near[k] != from && near[k] != to && geom_segment_hits_circle(p, q, v2(c->x, c->y), EPUCK_BODY_RADIUS_M)) {
+            if (near[k] != from && near[k] != to
+                && geom_segment_hits_circle(p, q, sim_robot_at(sim, near[k]), EPUCK_BODY_RADIUS_M)) {
                 return 1;
             }
         }
@@ -234,14 +233,14 @@ static int blocked(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_
 
 static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uint16_t value)
 {
-    sim_robot_t *r = &sim->robots[to];
-    const sim_robot_t *s = &sim->robots[from];
+    const sim_robot_t *r = &sim->robots[to];
+    vec2_t s = sim_robot_at(sim, from);
     const ircom_config_t *cfg = m->cfg;
     sim_rand_t *rnd = &m->rand[to];
     if (sim_rand_uniform(rnd) < cfg->loss) {
         return;
     }
-    float dx = s->x - r->x, dy = s->y - r->y;
+    float dx = s.x - r->x, dy = s.y - r->y;
     if (cfg->bearing_noise_vec > 0.0f) {
         /* Seed 003: uniform azimuth, Gaussian length. */
         double az = 2.0 * UNITS_PI * sim_rand_uniform(rnd);
@@ -283,8 +282,8 @@ static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uin
 /* Whether robot j hears robot i's frames (range, radios, line of sight). */
 static int reaches(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_t i, uint32_t j, float reach)
 {
-    const sim_robot_t *s = &sim->robots[i], *r = &sim->robots[j];
-    float dx = r->x - s->x, dy = r->y - s->y;
+    vec2_t s = sim_robot_at(sim, i), r = sim_robot_at(sim, j);
+    float dx = r.x - s.x, dy = r.y - s.y;
     return j != i && dx * dx + dy * dy <= reach * reach && !faults_radio_out(sim, j) && !blocked(sim, m, ws, i, j);
 }
 
@@ -374,9 +373,9 @@ static void receive_range(uint32_t begin, uint32_t end, uint32_t worker, void *c
         uint32_t n = sim_gather_robots(sim, r->x - m, r->y - m, r->x + m, r->y + m, from, sim->n), kept = 0;
         for (uint32_t c = 0; c < n; c++) {
             uint32_t i = from[c];
-            const sim_robot_t *s = &sim->robots[i];
-            if (im->out[i].n == 0 || faults_radio_out(sim, i) || r->x < s->x - reach || r->x > s->x + reach
-                || r->y < s->y - reach || r->y > s->y + reach) {
+            vec2_t s = sim_robot_at(sim, i);
+            if (im->out[i].n == 0 || faults_radio_out(sim, i) || r->x < s.x - reach || r->x > s.x + reach
+                || r->y < s.y - reach || r->y > s.y + reach) {
                 continue;
             }
             /* Insert by turn: (i - first) mod n. */

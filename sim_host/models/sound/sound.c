@@ -203,8 +203,8 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
      * square root taken only within a hair of the cutoff. */
     double in2 = cutoff * cutoff * (1.0 - 1e-9), out2 = cutoff * cutoff * (1.0 + 1e-9);
     for (uint32_t c = 0; c < n; c++) {
-        const sim_robot_t *b = &sim->robots[near[c]];
-        double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y, d2 = dx * dx + dy * dy;
+        vec2_t b = sim_robot_at(sim, near[c]);
+        double dx = (double)a->x - (double)b.x, dy = (double)a->y - (double)b.y, d2 = dx * dx + dy * dy;
         if (near[c] == i || d2 > out2 || (d2 >= in2 && sqrt(d2) > cutoff)) {
             continue;
         }
@@ -224,8 +224,8 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
         for (; c < end; c++) {
             double loud = 0.0;
             if (s->played[near[c]]) {
-                const sim_robot_t *b = &sim->robots[near[c]];
-                double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
+                vec2_t b = sim_robot_at(sim, near[c]);
+                double dx = (double)a->x - (double)b.x, dy = (double)a->y - (double)b.y;
                 loud = cfg->a0 * exp(-cfg->alpha * sqrt(dx * dx + dy * dy)) + cfg->ae;
             }
             hear(s, acc, near[c], loud, &next);
