@@ -1,16 +1,5 @@
 #include "swarmsim/geometry.h"
 
-#include "units.h"
-
-#define PI_F ((float)UNITS_PI)
-
-float geom_wrap(float angle)
-{
-    while (angle > PI_F) angle -= 2.0f * PI_F;
-    while (angle <= -PI_F) angle += 2.0f * PI_F;
-    return angle;
-}
-
 cone_t geom_cone(vec2_t p, float angle, float half)
 {
     return geom_cone_dir(p, v2(cosf(angle), sinf(angle)), half, cosf(half), sinf(half));

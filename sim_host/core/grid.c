@@ -125,12 +125,12 @@ uint32_t grid_gather(const grid_t *g, float minx, float miny, float maxx, float 
     int32_t cx0, cy0, cx1, cy1;
     uint32_t n = 0;
     grid_range(g, minx, miny, maxx, maxy, &cx0, &cy0, &cx1, &cy1);
+    /* A row's cells are consecutive in items (binned cell by cell, row by
+     * row): one run a row.  Boxes (grid_build_boxes) are binned the same way. */
     for (int32_t cy = cy0; cy <= cy1; cy++) {
-        for (int32_t cx = cx0; cx <= cx1; cx++) {
-            int32_t c = cy * g->nx + cx;
-            for (uint32_t k = g->start[c]; k < g->start[c + 1] && n < max; k++) {
-                out[n++] = g->items[k];
-            }
+        int32_t c = cy * g->nx;
+        for (uint32_t k = g->start[c + cx0], end = g->start[c + cx1 + 1]; k < end && n < max; k++) {
+            out[n++] = g->items[k];
         }
     }
     return n;

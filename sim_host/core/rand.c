@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 
 static uint64_t splitmix64(uint64_t *x)
 {
@@ -75,6 +76,9 @@ static struct {
     double w[ZIG_LAYERS], f[ZIG_LAYERS];
 } zig;
 static pthread_once_t zig_once = PTHREAD_ONCE_INIT;
+/* Set once the tables are made: a draw checks it with one load instead of
+ * calling pthread_once (16 to 80 draws per robot-step). */
+static atomic_int zig_ready;
 
 static void zig_setup(void)
 {
@@ -92,30 +96,89 @@ static void zig_setup(void)
         zig.f[i] = exp(-0.5 * d * d);
         zig.w[i] = d / ZIG_M;
     }
+    atomic_store_explicit(&zig_ready, 1, memory_order_release);
+}
+
+/* One layer's test of `bits` (a 64-bit draw): the normal, or NAN when the
+ * draw is rejected (then a new one is taken). */
+static double zig_try(sim_rand_t *r, uint64_t bits)
+{
+    int32_t hz = (int32_t)(uint32_t)(bits >> 32);
+    int iz = (int)(bits & (ZIG_LAYERS - 1));
+    double x = hz * zig.w[iz];
+    if (iz == 0) {   /* the tail beyond ZIG_R */
+        double y;
+        do {
+            x = -log(1.0 - sim_rand_uniform(r)) / ZIG_R;
+            y = -log(1.0 - sim_rand_uniform(r));
+        } while (y + y < x * x);
+        return hz > 0 ? ZIG_R + x : -ZIG_R - x;
+    }
+    if (zig.f[iz] + sim_rand_uniform(r) * (zig.f[iz - 1] - zig.f[iz]) < exp(-0.5 * x * x)) {
+        return x;
+    }
+    return NAN;
+}
+
+/* The draws after a first one fell outside its layer's rectangle (about
+ * 1 in 100): out of line, so that the common path saves no registers. */
+static __attribute__((noinline)) double zig_slow(sim_rand_t *r, uint64_t bits)
+{
+    for (;;) {
+        double x = zig_try(r, bits);
+        if (!isnan(x)) {
+            return x;
+        }
+        bits = sim_rand_u64(r);
+        int32_t hz = (int32_t)(uint32_t)(bits >> 32);
+        int iz = (int)(bits & (ZIG_LAYERS - 1));
+        uint32_t mag = hz < 0 ? (uint32_t)(-(int64_t)hz) : (uint32_t)hz;
+        if (mag < zig.k[iz]) {
+            return hz * zig.w[iz];
+        }
+    }
 }
 
 double sim_rand_normal(sim_rand_t *r)
 {
-    pthread_once(&zig_once, zig_setup);
-    for (;;) {
-        uint64_t bits = sim_rand_u64(r);
+    if (!atomic_load_explicit(&zig_ready, memory_order_acquire)) {
+        pthread_once(&zig_once, zig_setup);
+    }
+    uint64_t bits = sim_rand_u64(r);
+    int32_t hz = (int32_t)(uint32_t)(bits >> 32);
+    int iz = (int)(bits & (ZIG_LAYERS - 1));
+    uint32_t mag = hz < 0 ? (uint32_t)(-(int64_t)hz) : (uint32_t)hz;
+    if (mag < zig.k[iz]) {
+        return hz * zig.w[iz];
+    }
+    return zig_slow(r, bits);
+}
+
+void sim_rand_normals(sim_rand_t *r, double *out, uint32_t n)
+{
+    if (!atomic_load_explicit(&zig_ready, memory_order_acquire)) {
+        pthread_once(&zig_once, zig_setup);
+    }
+    uint64_t s0 = r->s[0], s1 = r->s[1];
+    for (uint32_t k = 0; k < n; k++) {
+        /* sim_rand_u64's step, on locals */
+        uint64_t bits = s0 + s1;
+        s1 ^= s0;
+        s0 = rotl(s0, 24) ^ s1 ^ (s1 << 16);
+        s1 = rotl(s1, 37);
         int32_t hz = (int32_t)(uint32_t)(bits >> 32);
         int iz = (int)(bits & (ZIG_LAYERS - 1));
         uint32_t mag = hz < 0 ? (uint32_t)(-(int64_t)hz) : (uint32_t)hz;
-        double x = hz * zig.w[iz];
         if (mag < zig.k[iz]) {
-            return x;
-        }
-        if (iz == 0) {   /* the tail beyond ZIG_R */
-            double y;
-            do {
-                x = -log(1.0 - sim_rand_uniform(r)) / ZIG_R;
-                y = -log(1.0 - sim_rand_uniform(r));
-            } while (y + y < x * x);
-            return hz > 0 ? ZIG_R + x : -ZIG_R - x;
-        }
-        if (zig.f[iz] + sim_rand_uniform(r) * (zig.f[iz - 1] - zig.f[iz]) < exp(-0.5 * x * x)) {
-            return x;
+            out[k] = hz * zig.w[iz];
+        } else {
+            r->s[0] = s0;
+            r->s[1] = s1;
+            out[k] = zig_slow(r, bits);
+            s0 = r->s[0];
+            s1 = r->s[1];
         }
     }
+    r->s[0] = s0;
+    r->s[1] = s1;
 }

@@ -159,11 +159,9 @@ static void step_robots(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
         if (r->ctrl && !sim_robot_halted(sim, i)) {
             r->hal.worker = worker;
             r->def->step(r->ctrl, &r->hal);
-            for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
-                const sim_model_run_t *m = &sim->models[id];
-                if (m->def->after_robot) {
-                    m->def->after_robot(sim, m->self, i);
-                }
+            for (uint32_t h = 0; h < sim->n_after_robot; h++) {
+                const sim_model_run_t *m = &sim->models[sim->after_robot[h]];
+                m->def->after_robot(sim, m->self, i);
             }
             r->hal.worker = 0;
         }
@@ -236,9 +234,9 @@ static void destroy_models(struct sim *sim)
 
 int sim_robot_halted(const struct sim *sim, uint32_t i)
 {
-    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
-        const sim_model_run_t *m = &sim->models[id];
-        if (m->def->halts && m->def->halts(sim, m->self, i)) {
+    for (uint32_t k = 0; k < sim->n_halts; k++) {
+        const sim_model_run_t *m = &sim->models[sim->halts[k]];
+        if (m->def->halts(sim, m->self, i)) {
             return 1;
         }
     }
@@ -246,6 +244,7 @@ int sim_robot_halted(const struct sim *sim, uint32_t i)
 }
 
 typedef enum phase { PHASE_BEGIN, PHASE_BEFORE_CONTROL, PHASE_AFTER_CONTROL, PHASE_DRIVE, PHASE_END } phase_t;
+_Static_assert(PHASE_END + 1 == SIM_PHASES, "SIM_PHASES counts phase_t");
 
 static void (*phase_hook(const model_def_t *d, phase_t p))(sim_t *, void *)
 {
@@ -258,14 +257,31 @@ static void (*phase_hook(const model_def_t *d, phase_t p))(sim_t *, void *)
     }
 }
 
+/* Which models take part in each phase and per-robot hook, in list order. */
+static void find_hooks(struct sim *sim)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const model_def_t *d = sim->models[id].def;
+        for (phase_t p = PHASE_BEGIN; p <= PHASE_END; p++) {
+            if (phase_hook(d, p)) {
+                sim->phase_model[p][sim->n_phase[p]++] = (uint8_t)id;
+            }
+        }
+        if (d->after_robot) {
+            sim->after_robot[sim->n_after_robot++] = (uint8_t)id;
+        }
+        if (d->halts) {
+            sim->halts[sim->n_halts++] = (uint8_t)id;
+        }
+    }
+}
+
 /* One phase's hook of every model that takes part, in list order. */
 static void run_phase(struct sim *sim, phase_t p)
 {
-    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
-        void (*fn)(sim_t *, void *) = phase_hook(sim->models[id].def, p);
-        if (fn) {
-            fn(sim, sim->models[id].self);
-        }
+    for (uint32_t k = 0; k < sim->n_phase[p]; k++) {
+        const sim_model_run_t *m = &sim->models[sim->phase_model[p][k]];
+        phase_hook(m->def, p)(sim, m->self);
     }
 }
 
@@ -453,6 +469,7 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         sim_destroy(sim);
         return NULL;
     }
+    find_hooks(sim);
     for (uint32_t i = 0; i < sim->n; i++) {
         sim->px[i] = sim->robots[i].x;
         sim->py[i] = sim->robots[i].y;
@@ -617,16 +634,18 @@ uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float 
     int32_t cx0, cy0, cx1, cy1;
     uint32_t n = 0;
     grid_range(g, minx, miny, maxx, maxy, &cx0, &cy0, &cx1, &cy1);
-    for (int32_t cy = cy0; cy <= cy1; cy++) {
-        for (int32_t cx = cx0; cx <= cx1; cx++) {
-            int32_t c = cy * g->nx + cx;
-            for (uint32_t k = g->start[c]; k < g->start[c + 1]; k++) {
-                uint32_t j = g->items[k];
-                if (sim->px[j] >= minx && sim->px[j] <= maxx && sim->py[j] >= miny && sim->py[j] <= maxy
-                    && n < max) {
-                    out[n++] = j;
-                }
-            }
+    const uint32_t *items = g->items, *start = g->start;
+    const float *px = sim->px, *py = sim->py;
+    /* A row's cells are consecutive in items: one run of candidates a row
+     * (the same ones in the same order as cell by cell).  Each candidate is
+     * written and kept when inside: no branch to mispredict on the test. */
+    for (int32_t cy = cy0; cy <= cy1 && n < max; cy++) {
+        int32_t c = cy * g->nx;
+        for (uint32_t k = start[c + cx0], end = start[c + cx1 + 1]; k < end && n < max; k++) {
+            uint32_t j = items[k];
+            float x = px[j], y = py[j];
+            out[n] = j;
+            n += (uint32_t)((x >= minx) & (x <= maxx) & (y >= miny) & (y <= maxy));
         }
     }
     return n;

@@ -98,6 +98,9 @@ typedef struct sim_model_run {
     int created;                   /**< its create ran (destroy is due) */
 } sim_model_run_t;
 
+/** Phases of a step that models take part in (sim.c). */
+#define SIM_PHASES 5
+
 /** A running task. */
 typedef struct sim_task_run {
     const task_def_t *def;
@@ -116,7 +119,10 @@ struct sim {
     uint32_t n;                    /**< robots */
     sim_robot_t *robots;
     void **ctrl_blocks;            /**< per group: its robots' controller states */
-    float *px, *py;                /**< robot centres, for the grid */
+    float *px, *py;                /**< robot centres, for the grid: always equal to robots[i].x
+                                        and .y (written together), and where neighbour loops read
+                                        them (sim_robot_at): a gather has just brought them into
+                                        the cache, 4 B a robot where a record is 72 */
     grid_t robot_grid;
     uint32_t *step_order;          /**< robots in the order they step (phase 2) */
 
@@ -148,6 +154,12 @@ struct sim {
     sim_metrics_t metrics;
 
     sim_model_run_t models[SIM_MODEL_COUNT];   /**< in list order (models/model_list.h) */
+    /* The models that take part in each phase of a step (sim.c's phase_t),
+     * that step after each robot, that may halt one: found once, so that
+     * a step does not ask every model about every hook. */
+    uint8_t n_phase[SIM_PHASES], phase_model[SIM_PHASES][SIM_MODEL_COUNT];
+    uint8_t n_after_robot, after_robot[SIM_MODEL_COUNT];
+    uint8_t n_halts, halts[SIM_MODEL_COUNT];
 };
 
 /** Model `id`'s config for this run. */
@@ -225,5 +237,12 @@ sim_scratch_t *sim_robot_scratch(const struct sim *sim, uint32_t i);
 /** Same for robots whose centres lie in the box. */
 uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float maxx, float maxy,
                            uint32_t *out, uint32_t max);
+
+/** Robot i's centre, m (the same values as robots[i].x and .y, read from
+ *  the compact copies that sim_gather_robots reads). */
+static inline vec2_t sim_robot_at(const struct sim *sim, uint32_t i)
+{
+    return v2(sim->px[i], sim->py[i]);
+}
 
 #endif

@@ -27,8 +27,15 @@ static inline float v2_cross(vec2_t a, vec2_t b) { return a.x * b.y - a.y * b.x;
 static inline float v2_len(vec2_t a) { return sqrtf(a.x * a.x + a.y * a.y); }
 static inline vec2_t v2_rot(vec2_t a, float c, float s) { return v2(c * a.x - s * a.y, s * a.x + c * a.y); }
 
-/** Wraps an angle to (-pi, pi]. */
-float geom_wrap(float angle);
+/** Wraps an angle to (-pi, pi].  Inline: a received IR frame wraps nine
+ *  angles (its bearing against each of 8 sensors). */
+static inline float geom_wrap(float angle)
+{
+    const float pi = (float)3.14159265358979323846;   /* UNITS_PI */
+    while (angle > pi) angle -= 2.0f * pi;
+    while (angle <= -pi) angle += 2.0f * pi;
+    return angle;
+}
 
 /** A cone at `p` looking along `angle` with half-angle `half`. */
 cone_t geom_cone(vec2_t p, float angle, float half);

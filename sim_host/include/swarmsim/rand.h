@@ -42,5 +42,9 @@ uint64_t sim_rand_u64(sim_rand_t *r);
 double sim_rand_uniform(sim_rand_t *r);
 /** Standard normal (ziggurat method). */
 double sim_rand_normal(sim_rand_t *r);
+/** `n` standard normals into `out`: the values and the stream's state
+ *  after them are those of n calls of sim_rand_normal, in less time (the
+ *  state stays in registers). */
+void sim_rand_normals(sim_rand_t *r, double *out, uint32_t n);
 
 #endif

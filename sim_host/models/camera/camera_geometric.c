@@ -19,20 +19,38 @@ typedef camera_interval_t interval_t;
 /* What the camera sees from: the lens, its heading (angle and unit vector)
  * and its range; all_round: the panoramic stand-in (fov > 179 deg), which
  * sees behind the robot too. */
-typedef struct view { vec2_t cam; float heading; vec2_t dir; float range; int all_round; } view_t;
+typedef struct view {
+    vec2_t cam;
+    float heading;
+    vec2_t dir;
+    float range;
+    int all_round;
+    vec2_t left, right;   /**< a pinhole camera's field-of-view edges (dir turned by +-half) */
+} view_t;
+
+/* A disc this far (m) outside a field-of-view edge is outside the view:
+ * far above float rounding (about 1e-3 rad at the camera's range). */
+#define FOV_MARGIN 1e-3f
 
 /* Angular interval (robot frame, rad) and nearest distance of a disc, or 0
  * when it cannot matter: the lens inside it, wholly behind the lens (a
  * pinhole camera's field of view is narrower than 180 deg), or farther than
  * the range (then it can neither be seen nor hide anything that can).  The
  * interval's ends may pass +-pi for the all-round camera (lo < hi always,
- * its width below pi). */
+ * its width below pi).  2 when a pinhole camera's disc lies wholly outside
+ * its field of view (beyond the margin from an edge's line): it would get
+ * an interval too, but one that shows nothing and hides nothing within
+ * the view, so its trigonometry is saved and *out left as it was. */
 static int disc_interval(const view_t *vw, vec2_t c, float rad, interval_t *out)
 {
     vec2_t v = v2_sub(c, vw->cam);
     float d = v2_len(v);
     if (d <= rad || (!vw->all_round && v2_dot(v, vw->dir) < -rad) || d - rad > vw->range) {
         return 0;
+    }
+    if (!vw->all_round
+        && (v2_cross(vw->left, v) > rad + FOV_MARGIN || v2_cross(v, vw->right) > rad + FOV_MARGIN)) {
+        return 2;
     }
     float heading = vw->heading;
     float mid = geom_wrap(atan2f(v.y, v.x) - heading), w = asinf(rad / d);
@@ -275,7 +293,8 @@ uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BL
         cam = v2(r->x, r->y);
         vfov = col * cfg->height_px;
     }
-    view_t vw = { cam, heading, dir, range, all_round };
+    view_t vw = { cam, heading, dir, range, all_round, v2_rot(dir, cosf(half), sinf(half)),
+                  v2_rot(dir, cosf(half), -sinf(half)) };
 
     sim_scratch_t *ws = sim_robot_scratch(sim, i);
     camera_scratch_t *cw = sim_model_scratch(sim, SIM_MODEL_camera, sim->robots[i].hal.worker);
@@ -287,22 +306,26 @@ uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BL
     uint32_t nr = sim_gather_robots(sim, cam.x - range - EPUCK_BODY_RADIUS_M, cam.y - range - EPUCK_BODY_RADIUS_M,
                                     cam.x + range + EPUCK_BODY_RADIUS_M, cam.y + range + EPUCK_BODY_RADIUS_M,
                                     rob, CAMERA_MAX_NEAR);
-    /* Everything that can hide something: other robots and all obstacles. */
-    uint32_t nocc = 0;
+    /* Everything that can hide something: other robots and all obstacles.
+     * `counted`: what nocc would be with the discs outside the view kept
+     * too (the items' cap below counts them, as it always did). */
+    uint32_t nocc = 0, counted = 0;
     for (uint32_t j = 0; j < nr; j++) {
-        if (rob[j] != i && disc_interval(&vw, v2(sim->robots[rob[j]].x, sim->robots[rob[j]].y),
-                                         EPUCK_BODY_RADIUS_M, &occ[nocc])) {
-            nocc++;
+        if (rob[j] != i) {
+            int got = disc_interval(&vw, sim_robot_at(sim, rob[j]), EPUCK_BODY_RADIUS_M, &occ[nocc]);
+            nocc += got == 1;
+            counted += got != 0;
         }
     }
     uint32_t first_obstacle = nocc;
     for (uint32_t j = 0; j < no; j++) {
         const obstacle_t *o = &sim->obstacles[obst[j]];
-        int ok = (o->shape == SHAPE_CYLINDER) ? disc_interval(&vw, o->c, o->r, &occ[nocc])
-                                              : box_interval(cam, heading, o, &occ[nocc]);
-        if (ok) {
+        int got = (o->shape == SHAPE_CYLINDER) ? disc_interval(&vw, o->c, o->r, &occ[nocc])
+                                               : box_interval(cam, heading, o, &occ[nocc]);
+        if (got == 1) {
             occ_obj[nocc++] = obst[j];
         }
+        counted += got != 0;
     }
     /* The tasks' items (things on the floor): seen and hiding like any object.
      * An item a robot carries sits just ahead of its lens and fills the view. */
@@ -315,16 +338,19 @@ uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BL
         float m = sqrtf(range * range + 0.01f) + 0.01f;
         const uint32_t *ids;
         uint32_t n_cand = items_near(sim, ws, t, n_items, cam.x - m, cam.y - m, cam.x + m, cam.y + m, &ids);
-        for (uint32_t c = 0; c < n_cand && nocc < 2 * CAMERA_MAX_NEAR; c++) {
+        for (uint32_t c = 0; c < n_cand && counted < 2 * CAMERA_MAX_NEAR; c++) {
             uint32_t k = ids ? ids[c] : c;
             if (k > CAM_ITEM_INDEX) {
                 break;
             }
             const sim_item_t *it = &items[t][k];
             float dx = it->x - cam.x, dy = it->y - cam.y;
-            if (dx * dx + dy * dy <= range * range + 0.01f
-                && disc_interval(&vw, v2(it->x, it->y), it->radius, &occ[nocc])) {
-                occ_obj[nocc++] = CAM_ITEM | (t << CAM_ITEM_TASK_SHIFT) | k;
+            if (dx * dx + dy * dy <= range * range + 0.01f) {
+                int got = disc_interval(&vw, v2(it->x, it->y), it->radius, &occ[nocc]);
+                if (got == 1) {
+                    occ_obj[nocc++] = CAM_ITEM | (t << CAM_ITEM_TASK_SHIFT) | k;
+                }
+                counted += got != 0;
             }
         }
     }

@@ -119,11 +119,19 @@ typedef struct faults {
     fault_run_t *list;
     uint32_t n, cap;
     uint8_t *hit;                  /* n robots: the summary's count (faulty_robots) */
+    uint32_t active;               /* faults active now: with none, what the other
+                                      models ask per robot reads no robot's record */
 } faults_t;
 
 static faults_robot_t *robots(const sim_t *sim)
 {
     return sim_model_array(sim, SIM_MODEL_faults, 0);
+}
+
+static int none_active(const sim_t *sim)
+{
+    const faults_t *fs = sim_model_self(sim, SIM_MODEL_faults);
+    return fs->active == 0;
 }
 
 static void faults_layout(const void *config, const scenario_t *sc, model_layout_t *out)
@@ -238,10 +246,11 @@ uint32_t faults_drawn(const sim_t *sim, const fault_run_t **out)
     return fs->n;
 }
 
-static void set_active(struct sim *sim, fault_run_t *fr, int on)
+static void set_active(struct sim *sim, faults_t *fs, fault_run_t *fr, int on)
 {
     faults_robot_t *r = &robots(sim)[fr->robot];
     fr->active = (uint8_t)on;
+    fs->active = on ? fs->active + 1 : fs->active - 1;
     if (on) {
         r->on[fr->kind]++;
         if (fr->kind == FAULT_WHEEL_DRIFT) r->drift = fr->value;
@@ -262,9 +271,9 @@ static void faults_begin_step(sim_t *sim, void *self)
     for (uint32_t k = 0; k < fs->n; k++) {
         fault_run_t *fr = &fs->list[k];
         if (!fr->active && sim->step == fr->on_step) {
-            set_active(sim, fr, 1);
+            set_active(sim, fs, fr, 1);
         } else if (fr->active && sim->step == fr->off_step) {
-            set_active(sim, fr, 0);
+            set_active(sim, fs, fr, 0);
         }
         if (fr->active && fr->kind == FAULT_RADIO_BURSTS) {
             /* A two-state channel: in a burst it leaves with probability
@@ -281,7 +290,7 @@ static void faults_begin_step(sim_t *sim, void *self)
 
 int faults_stopped(const sim_t *sim, uint32_t i)
 {
-    return robots(sim)[i].on[FAULT_STOP] != 0;
+    return !none_active(sim) && robots(sim)[i].on[FAULT_STOP] != 0;
 }
 
 static int faults_halts(const sim_t *sim, const void *self, uint32_t robot)
@@ -292,14 +301,16 @@ static int faults_halts(const sim_t *sim, const void *self, uint32_t robot)
 
 void faults_wheels(const sim_t *sim, uint32_t i, double *left, double *right)
 {
-    const faults_robot_t *r = &robots(sim)[i];
     (void)right;
+    if (none_active(sim)) return;
+    const faults_robot_t *r = &robots(sim)[i];
     if (r->on[FAULT_WHEEL_DRIFT]) *left *= r->drift;
     if (r->on[FAULT_WHEEL_STALL]) *left = 0.0;
 }
 
 void faults_ir(sim_t *sim, uint32_t i, uint16_t ir[HAL_IR_COUNT])
 {
+    if (none_active(sim)) return;
     faults_robot_t *r = &robots(sim)[i];
     if (r->on[FAULT_IR_FAIL]) {
         memset(ir, 0, HAL_IR_COUNT * sizeof *ir);
@@ -313,11 +324,12 @@ void faults_ir(sim_t *sim, uint32_t i, uint16_t ir[HAL_IR_COUNT])
 
 int faults_camera_blind(const sim_t *sim, uint32_t i)
 {
-    return robots(sim)[i].on[FAULT_CAMERA_FAIL] != 0;
+    return !none_active(sim) && robots(sim)[i].on[FAULT_CAMERA_FAIL] != 0;
 }
 
 int faults_radio_out(const sim_t *sim, uint32_t i)
 {
+    if (none_active(sim)) return 0;
     const faults_robot_t *r = &robots(sim)[i];
     return r->on[FAULT_RADIO_DROPOUT] != 0 || (r->on[FAULT_RADIO_BURSTS] && r->bursting);
 }

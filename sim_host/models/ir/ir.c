@@ -73,6 +73,7 @@ typedef struct ir {
     const ir_config_t *cfg;
     ir_robot_t *robot;
     vec2_t dir[HAL_IR_COUNT];      /* the sensors' bearings as unit vectors, robot frame */
+    float half, cos_half, sin_half;   /* the cone's half-angle, rad, its cosine and sine */
 } ir_t;
 
 static void ir_layout(const void *config, const scenario_t *sc, model_layout_t *out)
@@ -101,6 +102,9 @@ static int ir_create(sim_t *sim, const void *config, void **self, char err[SIM_E
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
         m->dir[s] = v2((float)cos(deg[s] * UNITS_PI / 180.0), (float)sin(deg[s] * UNITS_PI / 180.0));
     }
+    m->half = m->cfg->aperture * (float)UNITS_PI / 180.0f;
+    m->cos_half = cosf(m->half);
+    m->sin_half = sinf(m->half);
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_rand_seed(&m->robot[i].noise, sim->seed, i, RAND_SENSORS);
     }
@@ -138,12 +142,23 @@ float ir_curve(float d, float range)
     return ir_table_v[IR_TABLE_N - 1] * (range - d) / (range - last);
 }
 
+/* Rounded and clamped to 0..HAL_RAW_MAX, the clamp on the integer (no
+ * branch: a lone sensor's reading is its noise alone, negative half the
+ * time, and a branch on its sign would be mispredicted as often).  The
+ * same as clamping v first: v + 0.5 truncates to 0 or less for v <= 0, to
+ * HAL_RAW_MAX or more for v >= HAL_RAW_MAX; |v| stays far below 2^62 (a
+ * reading of at most 4095 and noise of a few sd). */
 static uint16_t to_raw(double v)
 {
-    if (v <= 0.0) return 0;
-    if (v >= HAL_RAW_MAX) return HAL_RAW_MAX;
-    return (uint16_t)(v + 0.5);
+    int64_t k = (int64_t)(v + 0.5);
+    k = k < 0 ? 0 : k;
+    k = k > HAL_RAW_MAX ? HAL_RAW_MAX : k;
+    return (uint16_t)k;
 }
+
+/* The smaller of two distances: fminf without its call (the distances
+ * here are never NaN; of two zeros the reading is the same). */
+static inline float nearer(float d, float e) { return e < d ? e : d; }
 
 static float nearest_obstacle(const obstacle_t *o, const cone_t *k)
 {
@@ -152,12 +167,42 @@ static float nearest_obstacle(const obstacle_t *o, const cone_t *k)
     }
     float d = INFINITY;
     for (int e = 0; e < 4; e++) {
-        d = fminf(d, geom_cone_segment(k, o->corner[e], o->corner[(e + 1) & 3]));
+        d = nearer(d, geom_cone_segment(k, o->corner[e], o->corner[(e + 1) & 3]));
     }
     return d;
 }
 
 #define IR_MAX_NEAR 64
+
+/* An arena wall's inner face: the segment, and the unit normal towards it
+ * from inside along `axis` (0: x, 1: y) with `sign`, at coordinate `at`. */
+typedef struct wall {
+    vec2_t a, b;
+    int axis;
+    float sign, at;
+} wall_t;
+
+/* Margin for the tests that skip a wall (m): far above float rounding. */
+#define WALL_SKIP_MARGIN 1e-3f
+
+/* Non-zero when wall w cannot be nearer than `range` to any point in cone
+ * k, so that leaving it out leaves the sensor's reading as it was (only a
+ * distance below `range` counts): the cone's apex lies at least `range`
+ * from the wall's line, or inside the arena and looking away from the
+ * wall (neither edge has a component towards it; a cone narrower than a
+ * half-plane lies between its edges).  geom_cone_segment would return
+ * INFINITY or a distance of at least `range` then: the cheap test saves
+ * it. */
+static int wall_out_of_reach(const wall_t *w, const cone_t *k, float range, float half)
+{
+    float apex = w->axis ? k->p.y : k->p.x;
+    float gap = w->sign * (w->at - apex);
+    if (gap >= range + WALL_SKIP_MARGIN) {
+        return 1;
+    }
+    float e1 = w->sign * (w->axis ? k->e1.y : k->e1.x), e2 = w->sign * (w->axis ? k->e2.y : k->e2.x);
+    return gap >= WALL_SKIP_MARGIN && half < 1.55f && e1 <= 0.0f && e2 <= 0.0f;
+}
 
 static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t out[HAL_IR_COUNT])
 {
@@ -172,16 +217,19 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
     uint32_t no = sim_gather_obstacles(sim, sim_robot_scratch(sim, i), r->x - reach, r->y - reach, r->x + reach,
                                        r->y + reach, near_obst, IR_MAX_NEAR);
     /* Inner faces of the walls within reach. */
-    vec2_t wall[4][2];
+    wall_t wall[4];
     int nw = 0;
     float hw = sim->hw, hh = sim->hh;
-    if (r->x + reach > hw) { wall[nw][0] = v2(hw, -hh); wall[nw][1] = v2(hw, hh); nw++; }
-    if (r->x - reach < -hw) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(-hw, hh); nw++; }
-    if (r->y + reach > hh) { wall[nw][0] = v2(-hw, hh); wall[nw][1] = v2(hw, hh); nw++; }
-    if (r->y - reach < -hh) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(hw, -hh); nw++; }
+    if (r->x + reach > hw) wall[nw++] = (wall_t){ v2(hw, -hh), v2(hw, hh), 0, 1.0f, hw };
+    if (r->x - reach < -hw) wall[nw++] = (wall_t){ v2(-hw, -hh), v2(-hw, hh), 0, -1.0f, -hw };
+    if (r->y + reach > hh) wall[nw++] = (wall_t){ v2(-hw, hh), v2(hw, hh), 1, 1.0f, hh };
+    if (r->y - reach < -hh) wall[nw++] = (wall_t){ v2(-hw, -hh), v2(hw, -hh), 1, -1.0f, -hh };
 
     float ch = cosf(r->theta), sh = sinf(r->theta);
-    float half = cfg->aperture * (float)UNITS_PI / 180.0f, cos_half = cosf(half), sin_half = sinf(half);
+    float half = m->half, cos_half = m->cos_half, sin_half = m->sin_half;
+    /* Each sensor's two draws (relative, then absolute), in sensor order. */
+    double n[2 * HAL_IR_COUNT];
+    sim_rand_normals(noise, n, 2 * HAL_IR_COUNT);
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
         float d = INFINITY;
         if (nr > 1 || no > 0 || nw > 0) {
@@ -190,20 +238,21 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
             cone_t k = geom_cone_dir(p, a, half, cos_half, sin_half);
             for (uint32_t j = 0; j < nr; j++) {
                 if (near_robot[j] != i) {
-                    const sim_robot_t *q = &sim->robots[near_robot[j]];
-                    d = fminf(d, geom_cone_circle(&k, v2(q->x, q->y), EPUCK_BODY_RADIUS_M));
+                    d = nearer(d, geom_cone_circle(&k, sim_robot_at(sim, near_robot[j]), EPUCK_BODY_RADIUS_M));
                 }
             }
             for (uint32_t j = 0; j < no; j++) {
-                d = fminf(d, nearest_obstacle(&sim->obstacles[near_obst[j]], &k));
+                d = nearer(d, nearest_obstacle(&sim->obstacles[near_obst[j]], &k));
             }
             for (int w = 0; w < nw; w++) {
-                d = fminf(d, geom_cone_segment(&k, wall[w][0], wall[w][1]));
+                if (!wall_out_of_reach(&wall[w], &k, range, half)) {
+                    d = nearer(d, geom_cone_segment(&k, wall[w].a, wall[w].b));
+                }
             }
         }
         double v = (d < range) ? ir_curve(d, range) : 0.0f;
-        v += v * cfg->noise_rel * sim_rand_normal(noise);
-        v += cfg->noise_abs * sim_rand_normal(noise);
+        v += v * cfg->noise_rel * n[2 * s];
+        v += cfg->noise_abs * n[2 * s + 1];
         out[s] = to_raw(v);
     }
 }
@@ -215,6 +264,8 @@ static void sense_ambient(struct sim *sim, const ir_t *m, uint32_t i, uint16_t o
     const ir_config_t *cfg = m->cfg;
     sim_rand_t *noise = &m->robot[i].noise;
     float ch = cosf(r->theta), sh = sinf(r->theta);
+    double n[HAL_IR_COUNT];
+    sim_rand_normals(noise, n, HAL_IR_COUNT);
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
         vec2_t a = v2_rot(m->dir[s], ch, sh);
         vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
@@ -234,7 +285,7 @@ static void sense_ambient(struct sim *sim, const ir_t *m, uint32_t i, uint16_t o
         /* The raw value falls as light rises: dark at e = 0, dark/2 at
          * e = half, towards 0 for bright light. */
         double v = cfg->ambient.dark * cfg->ambient.half / (cfg->ambient.half + e);
-        v += v * cfg->ambient.noise_rel * sim_rand_normal(noise);
+        v += v * cfg->ambient.noise_rel * n[s];
         out[s] = to_raw(v);
     }
 }

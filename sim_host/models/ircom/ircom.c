@@ -147,6 +147,7 @@ typedef struct ircom_inbox {
 
 typedef struct ircom {
     const ircom_config_t *cfg;
+    float sensor_rad[HAL_IR_COUNT];   /* hal_ir_bearing_mrad / 1000, rad: the same ring on every robot */
     ircom_out_t *out;
     ircom_inbox_t *inbox;
     hal_ircom_msg_t *queue;      /* robot i's at i x cfg->queue */
@@ -191,6 +192,9 @@ static int ircom_create(sim_t *sim, const void *config, void **self, char err[SI
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_rand_seed(&m->rand[i], sim->seed, i, RAND_IRCOM);
     }
+    for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+        m->sensor_rad[k] = units_ir_bearing_mrad(k) / 1000.0f;
+    }
     return 0;
 }
 
@@ -208,8 +212,7 @@ static void ircom_destroy(void *self)
 
 static int blocked(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_t from, uint32_t to)
 {
-    const sim_robot_t *a = &sim->robots[from], *b = &sim->robots[to];
-    vec2_t p = v2(a->x, a->y), q = v2(b->x, b->y);
+    vec2_t p = sim_robot_at(sim, from), q = sim_robot_at(sim, to);
     uint32_t near[IRCOM_MAX_NEAR], n;
     if (sim_obstacles_cut(sim, ws, p, q)) {
         return 1;
@@ -219,8 +222,8 @@ static int blocked(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_
                               fmaxf(p.x, q.x) + EPUCK_BODY_RADIUS_M, fmaxf(p.y, q.y) + EPUCK_BODY_RADIUS_M,
                               near, IRCOM_MAX_NEAR);
         for (uint32_t k = 0; k < n; k++) {
-            const sim_robot_t *c = &sim->robots[near[k]];
-            if (near[k] != from && near[k] != to && geom_segment_hits_circle(p, q, v2(c->x, c->y), EPUCK_BODY_RADIUS_M)) {
+            if (near[k] != from && near[k] != to
+                && geom_segment_hits_circle(p, q, sim_robot_at(sim, near[k]), EPUCK_BODY_RADIUS_M)) {
                 return 1;
             }
         }
@@ -230,14 +233,14 @@ static int blocked(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_
 
 static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uint16_t value)
 {
-    sim_robot_t *r = &sim->robots[to];
-    const sim_robot_t *s = &sim->robots[from];
+    const sim_robot_t *r = &sim->robots[to];
+    vec2_t s = sim_robot_at(sim, from);
     const ircom_config_t *cfg = m->cfg;
     sim_rand_t *rnd = &m->rand[to];
     if (sim_rand_uniform(rnd) < cfg->loss) {
         return;
     }
-    float dx = s->x - r->x, dy = s->y - r->y;
+    float dx = s.x - r->x, dy = s.y - r->y;
     if (cfg->bearing_noise_vec > 0.0f) {
         /* Seed 003: uniform azimuth, Gaussian length. */
         double az = 2.0 * UNITS_PI * sim_rand_uniform(rnd);
@@ -250,14 +253,14 @@ static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uin
     uint8_t sensor = 0;
     float best = INFINITY;
     for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-        float off = fabsf(geom_wrap(bearing - hal_ir_bearing_mrad(&r->hal, k) / 1000.0f));
+        float off = fabsf(geom_wrap(bearing - m->sensor_rad[k]));
         if (off < best) {
             best = off;
             sensor = k;
         }
     }
     float est = cfg->quantise_bearing
-        ? hal_ir_bearing_mrad(&r->hal, sensor) / 1000.0f
+        ? m->sensor_rad[sensor]
         : geom_wrap(bearing + cfg->bearing_noise * (float)UNITS_PI / 180.0f * (float)sim_rand_normal(rnd));
     double range = sqrt((double)dx * dx + (double)dy * dy);
     range *= 1.0 + cfg->range_noise_rel * sim_rand_normal(rnd);
@@ -267,7 +270,8 @@ static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uin
         in->dropped++;
         return;
     }
-    hal_ircom_msg_t *msg = &m->queue[(size_t)to * cfg->queue + (in->head + in->count) % cfg->queue];
+    uint32_t slot = (uint32_t)in->head + in->count;   /* below 2 x queue: no division */
+    hal_ircom_msg_t *msg = &m->queue[(size_t)to * cfg->queue + (slot >= cfg->queue ? slot - cfg->queue : slot)];
     msg->value = value;
     msg->sensor = sensor;
     msg->bearing_mrad = (int16_t)lroundf(est * 1000.0f);
@@ -278,8 +282,8 @@ static void receive(struct sim *sim, ircom_t *m, uint32_t to, uint32_t from, uin
 /* Whether robot j hears robot i's frames (range, radios, line of sight). */
 static int reaches(struct sim *sim, const ircom_t *m, sim_scratch_t *ws, uint32_t i, uint32_t j, float reach)
 {
-    const sim_robot_t *s = &sim->robots[i], *r = &sim->robots[j];
-    float dx = r->x - s->x, dy = r->y - s->y;
+    vec2_t s = sim_robot_at(sim, i), r = sim_robot_at(sim, j);
+    float dx = r.x - s.x, dy = r.y - s.y;
     return j != i && dx * dx + dy * dy <= reach * reach && !faults_radio_out(sim, j) && !blocked(sim, m, ws, i, j);
 }
 
@@ -369,9 +373,9 @@ static void receive_range(uint32_t begin, uint32_t end, uint32_t worker, void *c
         uint32_t n = sim_gather_robots(sim, r->x - m, r->y - m, r->x + m, r->y + m, from, sim->n), kept = 0;
         for (uint32_t c = 0; c < n; c++) {
             uint32_t i = from[c];
-            const sim_robot_t *s = &sim->robots[i];
-            if (im->out[i].n == 0 || faults_radio_out(sim, i) || r->x < s->x - reach || r->x > s->x + reach
-                || r->y < s->y - reach || r->y > s->y + reach) {
+            vec2_t s = sim_robot_at(sim, i);
+            if (im->out[i].n == 0 || faults_radio_out(sim, i) || r->x < s.x - reach || r->x > s.x + reach
+                || r->y < s.y - reach || r->y > s.y + reach) {
                 continue;
             }
             /* Insert by turn: (i - first) mod n. */
@@ -473,7 +477,7 @@ hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
         return HAL_ERR_EMPTY;
     }
     *out = m->queue[(size_t)hal->index * m->cfg->queue + in->head];
-    in->head = (uint8_t)((in->head + 1) % m->cfg->queue);
+    in->head = (uint8_t)(in->head + 1u == m->cfg->queue ? 0u : in->head + 1u);
     in->count--;
     return HAL_OK;
 }

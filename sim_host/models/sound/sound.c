@@ -144,27 +144,41 @@ static void sound_destroy(void *self) { free(self); }
 
 /* ---------------------------------------------------------------- the field */
 
-/* One term of listener i's sum in band k, with its eq 4 noise drawn from
- * i's own stream. */
-static void add_term(sound_t *s, uint32_t i, uint8_t k, double a, double noise)
+/* How many eq 4 draws listener terms from source `src` take: one per band
+ * it adds a term to (hear), none without noise. */
+static uint32_t draws_of(const sound_t *s, uint32_t src)
 {
-    s->acc[i][k] += noise > 0.0 ? a * (1.0 - noise * sim_rand_normal(&s->rand[i])) : a;
+    if (!(s->cfg->noise > 0.0)) {
+        return 0;
+    }
+    return s->cfg->silent_robots == SOUND_SILENT_AMBIENT ? HAL_SOUND_BANDS - 1u : (s->played[src] ? 1u : 0u);
 }
 
-/* What source `src` adds to every band of listener `dst`: per band, a term
- * when the source is in that band's sum (`loud`: its eq 1 term). */
-static void hear(sound_t *s, uint32_t dst, uint32_t src, double loud)
+/* One term of a listener's sum (*acc), with its eq 4 noise: the next of
+ * the listener's own draws (*z, taken from its stream in order). */
+static void add_term(double *acc, double a, double noise, const double **z)
+{
+    *acc += noise > 0.0 ? a * (1.0 - noise * *(*z)++) : a;
+}
+
+/* What source `src` adds to every band of a listener's sums `acc`: per
+ * band, a term when the source is in that band's sum (`loud`: its eq 1
+ * term); `z`: the draws_of(src) draws of the listener's stream for them. */
+static void hear(const sound_t *s, sums_t acc, uint32_t src, double loud, const double **z)
 {
     const sound_config_t *cfg = s->cfg;
     int ambient = cfg->silent_robots == SOUND_SILENT_AMBIENT;
     for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
         if (s->played[src] == k) {
-            add_term(s, dst, k, loud, cfg->noise);
+            add_term(&acc[k], loud, cfg->noise, z);
         } else if (ambient) {
-            add_term(s, dst, k, cfg->ae, cfg->noise);
+            add_term(&acc[k], cfg->ae, cfg->noise, z);
         }
     }
 }
+
+/* Draws are taken this many at a time (sim_rand_normals). */
+#define SOUND_DRAW_BLOCK 96u
 
 /* cutoff > 0: listener i's sums from the robot grid.  Robots within the
  * cutoff, in id order, as the all-pairs loop meets them (same terms, same
@@ -172,7 +186,9 @@ static void hear(sound_t *s, uint32_t dst, uint32_t src, double loud)
  * when it emits in that band), so their m terms ae (1 - noise N_j) sum to
  * m ae - ae noise sqrt(m) N: one draw per band, the same distribution
  * (a sum of independent Gaussians), and work per listener bounded by the
- * robots within the cutoff, not by the swarm. */
+ * robots within the cutoff, not by the swarm.  The near ones are found
+ * first (then sorted: fewer to sort), so that their draws are taken in
+ * blocks, exactly as many as the terms use. */
 static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t i,
                         const uint32_t emitters[HAL_SOUND_BANDS])
 {
@@ -183,24 +199,37 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
     uint32_t *near = ws->robots;
     uint32_t n = sim_gather_robots(sim, a->x - box, a->y - box, a->x + box, a->y + box, near, sim->n);
     uint32_t near_emit[HAL_SOUND_BANDS] = { 0 }, n_near = 0;
-    grid_sort_ids(near, n);
-    for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
-        s->acc[i][k] = 0.0;
-    }
+    /* d > cutoff as the all-pairs loop tests it (sqrt in double), the
+     * square root taken only within a hair of the cutoff. */
+    double in2 = cutoff * cutoff * (1.0 - 1e-9), out2 = cutoff * cutoff * (1.0 + 1e-9);
     for (uint32_t c = 0; c < n; c++) {
-        const sim_robot_t *b = &sim->robots[near[c]];
-        if (near[c] == i) {
+        vec2_t b = sim_robot_at(sim, near[c]);
+        double dx = (double)a->x - (double)b.x, dy = (double)a->y - (double)b.y, d2 = dx * dx + dy * dy;
+        if (near[c] == i || d2 > out2 || (d2 >= in2 && sqrt(d2) > cutoff)) {
             continue;
         }
-        double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
-        double d = sqrt(dx * dx + dy * dy);
-        if (d > cutoff) {
-            continue;
-        }
-        n_near++;
         near_emit[s->played[near[c]]]++;
-        double loud = s->played[near[c]] ? cfg->a0 * exp(-cfg->alpha * d) + cfg->ae : 0.0;
-        hear(s, i, near[c], loud);
+        near[n_near++] = near[c];
+    }
+    grid_sort_ids(near, n_near);
+    sums_t acc = { 0.0 };
+    double z[SOUND_DRAW_BLOCK];
+    for (uint32_t c = 0; c < n_near;) {
+        uint32_t end = c, draws = 0;
+        while (end < n_near && draws + draws_of(s, near[end]) <= SOUND_DRAW_BLOCK) {
+            draws += draws_of(s, near[end++]);
+        }
+        sim_rand_normals(&s->rand[i], z, draws);
+        const double *next = z;
+        for (; c < end; c++) {
+            double loud = 0.0;
+            if (s->played[near[c]]) {
+                vec2_t b = sim_robot_at(sim, near[c]);
+                double dx = (double)a->x - (double)b.x, dy = (double)a->y - (double)b.y;
+                loud = cfg->a0 * exp(-cfg->alpha * sqrt(dx * dx + dy * dy)) + cfg->ae;
+            }
+            hear(s, acc, near[c], loud, &next);
+        }
     }
     int ambient = cfg->silent_robots == SOUND_SILENT_AMBIENT;
     for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
@@ -213,7 +242,10 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
         if (cfg->noise > 0.0) {
             sum -= cfg->ae * cfg->noise * sqrt((double)m) * sim_rand_normal(&s->rand[i]);
         }
-        s->acc[i][k] += sum;
+        acc[k] += sum;
+    }
+    for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
+        s->acc[i][k] = acc[k];
     }
 }
 
@@ -286,11 +318,16 @@ static void update_all_pairs(struct sim *sim, sound_t *s)
                 double d = sqrt(dx * dx + dy * dy);
                 loud = cfg->a0 * exp(-cfg->alpha * d) + cfg->ae;
             }
+            double z[HAL_SOUND_BANDS];
+            const double *next = z;
             if (a_hears) {
-                hear(s, i, j, loud);
+                sim_rand_normals(&s->rand[i], z, draws_of(s, j));
+                hear(s, s->acc[i], j, loud, &next);
             }
+            next = z;
             if (b_hears) {
-                hear(s, j, i, loud);
+                sim_rand_normals(&s->rand[j], z, draws_of(s, i));
+                hear(s, s->acc[j], i, loud, &next);
             }
         }
     }

@@ -1,0 +1,18 @@
+# floor_bench.mk - the simulator against its floor (tools/bench/floor_bench.c):
+# CPU time per robot-step of Box2D alone stepping the random walk's world,
+# beside the random walk and full sensing, interleaved in one process.
+#   make bench-floor   20 to 100,000 robots, 1 and 2 threads (about 10 min)
+#   make bench-guard   the short regression guard: 20 and 2,000 robots, one
+#                      thread (about 1 min); its multiples of the floor are
+#                      recorded in docs/development/benchmarks.md per commit
+#                      that changes stepping
+# BENCH_FLOOR_ARGS: e.g. "--counts 2000:50 --threads 1 --reps 9".
+.PHONY: bench-floor bench-guard
+$(BUILD)/floor_bench: tools/bench/floor_bench.c $(BUILD)/libswarm.a
+	$(call show,CC,$@)$(CC) $(SIM_CFLAGS) -o $@ $< $(BUILD)/libswarm.a $(LDLIBS_SIM)
+
+bench-floor: $(BUILD)/floor_bench
+	$(BUILD)/floor_bench $(BENCH_FLOOR_ARGS)
+
+bench-guard: $(BUILD)/floor_bench
+	$(BUILD)/floor_bench --counts 20:2000,2000:50 --threads 1 --reps 15 $(BENCH_FLOOR_ARGS)
