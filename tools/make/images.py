@@ -49,11 +49,15 @@ constant) is an error naming the file and line; nothing is written then.
 usage: images.py list IMAGES.LIST [--platform DIR] [--fields KEY ...]
        images.py generate IMAGES.LIST --out DIR [--platform DIR] [--set NAME=VALUE ...]
        images.py platform-value PLATFORM_DIR NAME
+       images.py list-file PLATFORM_DIR
 
 `list` prints one word per image, NAME:VALUE:VALUE... with the values of
 --fields (yes/no keys print yes or no).  `platform-value` prints NAME of the
 platform's platform.py, one item a line (tests/firmware/hygiene.sh reads
-HYGIENE_COMPILERS so).  `generate` writes DIR/<image>_main.c,
+HYGIENE_COMPILERS so).  `list-file` prints the platform's image list: its
+images.list, or the list its platform.py names as IMAGES (the emulated
+ATmega2560 runs the e-puck1's images), nothing for a platform without
+images.  `generate` writes DIR/<image>_main.c,
 replacing a file only when its text changes (make rebuilds nothing else).
 Standard library only.
 """
@@ -247,6 +251,7 @@ def render(image, platform_dir, platform_keys):
     w('')
     w(f'#include "{header}"')
     w('')
+    w(f'#define IMAGE_NAME "{image.name}"')
     w(f'#define IMAGE_CONTROLLER {ctrl}')
     w(f'#define IMAGE_CONTROLLER_NAME {ctrl.upper()}_NAME')
     w(f"#define IMAGE_TELEMETRY {1 if image.get('telemetry') == 'yes' else 0}")
@@ -310,6 +315,18 @@ def write_if_changed(path, text):
     return True
 
 
+def image_list(platform_dir):
+    """The image list of a platform: its images.list, or the one its
+    platform.py names as IMAGES (an emulator of another platform's robot
+    runs that robot's images); None for a platform without images."""
+    own = os.path.join(platform_dir, 'images.list')
+    if os.path.exists(os.path.join(ROOT, own)):
+        return own
+    if not os.path.exists(os.path.join(ROOT, platform_dir, 'platform.py')):
+        return None
+    return getattr(load_platform(platform_dir), 'IMAGES', None)
+
+
 def platform_value(platform_dir, name):
     value = getattr(load_platform(platform_dir), name, None)
     if value is None:
@@ -320,6 +337,16 @@ def platform_value(platform_dir, name):
 def main(argv=None):
     if argv is None:
         argv = sys.argv[1:]
+    if argv[:1] == ['list-file']:
+        if len(argv) != 2:
+            print('usage: images.py list-file PLATFORM_DIR', file=sys.stderr)
+            return 2
+        try:
+            print(image_list(argv[1]) or '')
+        except DeclarationError as e:
+            print(f'images.py: {e}', file=sys.stderr)
+            return 1
+        return 0
     if argv[:1] == ['platform-value']:
         if len(argv) != 3:
             print('usage: images.py platform-value PLATFORM_DIR NAME', file=sys.stderr)
