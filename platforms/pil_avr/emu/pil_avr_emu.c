@@ -44,9 +44,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include <sim_avr.h>
-#include <sim_elf.h>
-#include <sim_io.h>
+#include <simavr/sim_avr.h>
+#include <simavr/sim_elf.h>
+#include <simavr/sim_io.h>
 
 #include "pil/pil_frame.h"
 #include "pil/pil_msg.h"

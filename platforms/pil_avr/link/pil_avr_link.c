@@ -97,11 +97,19 @@ void pil_avr_link_close(pil_avr_link_t *l)
     l->pid = -1;
 }
 
-/* Why the emulator is gone, for an error: its exit status. */
+/* Why the emulator is gone, for an error: its exit status (a process whose
+ * output has closed is exiting: waited for up to a second). */
 static void gone(pil_avr_link_t *l, char *err, const char *what)
 {
     int status = 0;
-    pid_t r = waitpid(l->pid, &status, WNOHANG);
+    pid_t r = 0;
+    for (int k = 0; k < 100 && r == 0; k++) {
+        r = waitpid(l->pid, &status, WNOHANG);
+        if (r == 0) {
+            struct timespec ten_ms = { 0, 10000000 };
+            nanosleep(&ten_ms, NULL);
+        }
+    }
     if (r == l->pid) {
         l->pid = -1;
         if (WIFSIGNALED(status)) {

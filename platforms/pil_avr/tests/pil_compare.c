@@ -10,16 +10,20 @@
  *
  *   pil_compare --emu EMU --avr IMAGE.elf [--host IMAGE_EXE] [--steps N]
  *               [--seed S] [--robot ID] [--frames] [--budget CYCLES]
- *               [--corrupt STEP:KIND] [--expect TEXT] [--json FILE]
+ *               [--corrupt STEP:KIND] [--kill-at STEP] [--stop-at STEP]
+ *               [--timeout MS] [--expect TEXT] [--json FILE]
  *
  * --corrupt damages the simulator's STEP frame of that step before the
  * AVR gets it (KIND crc, version, type, seq, length): the robot must
  * answer FAULT and the run stop with an error naming robot and step.
+ * --kill-at kills the emulator (SIGKILL) before that step, --stop-at stops
+ * it (SIGSTOP: a hung emulator, caught by the wall-time bound --timeout).
  * --expect TEXT: the run must fail, with TEXT in its error (exit 0 then).
  * --json: the measurement, one object.
  */
 #include <errno.h>
 #include <inttypes.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -84,7 +88,8 @@ static int damaging_recv(void *ctx, uint8_t *buf, uint16_t cap, uint16_t *len, p
 static void usage(void)
 {
     fprintf(stderr, "usage: pil_compare --emu EMU --avr IMAGE.elf [--host IMAGE_EXE] [--steps N] [--seed S] "
-                    "[--robot ID] [--frames] [--budget CYCLES] [--corrupt STEP:KIND] [--expect TEXT] [--json FILE]\n");
+                    "[--robot ID] [--frames] [--budget CYCLES] [--corrupt STEP:KIND] [--kill-at STEP] [--stop-at STEP] "
+                    "[--timeout MS] [--expect TEXT] [--json FILE]\n");
     exit(2);
 }
 
@@ -135,7 +140,7 @@ static int step(side_t *s, char *err)
 int main(int argc, char **argv)
 {
     const char *emu = NULL, *avr = NULL, *host = NULL, *expect = NULL, *json = NULL;
-    long steps = 200, seed = 1, robot = 3, budget = 0;
+    long steps = 200, seed = 1, robot = 3, budget = 0, kill_at = -1, stop_at = -1, timeout = 0;
     int frames = 0;
     corrupt_t corrupt = { .step = -1 };
     for (int i = 1; i < argc; i++) {
@@ -150,6 +155,9 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--seed")) seed = number(argv[++i]);
         else if (!strcmp(a, "--robot")) robot = number(argv[++i]);
         else if (!strcmp(a, "--budget")) budget = number(argv[++i]);
+        else if (!strcmp(a, "--kill-at")) kill_at = number(argv[++i]);
+        else if (!strcmp(a, "--stop-at")) stop_at = number(argv[++i]);
+        else if (!strcmp(a, "--timeout")) timeout = number(argv[++i]);
         else if (!strcmp(a, "--frames")) frames = 1;
         else if (!strcmp(a, "--expect")) expect = argv[++i];
         else if (!strcmp(a, "--json")) json = argv[++i];
@@ -177,6 +185,9 @@ int main(int argc, char **argv)
     def.image = avr;
     if (budget > 0) {
         def.budget = (uint64_t)budget;
+    }
+    if (timeout > 0) {
+        def.timeout_ms = (int)timeout;
     }
     char e[PIL_HOST_ERR];
     if (pil_avr_link_open(&a->link, &def, e) != 0) {
@@ -213,6 +224,9 @@ int main(int argc, char **argv)
         failed = 1;
     }
     for (; !failed && done < steps; done++) {
+        if (done == kill_at || done == stop_at) {
+            kill(a->link.pid, done == kill_at ? SIGKILL : SIGSTOP);
+        }
         if (step(a, err) != 0 || (h && step(h, err) != 0)) {
             failed = 1;
             break;

@@ -1,0 +1,104 @@
+# platforms/pil_avr/platform.mk - the emulated ATmega2560 of
+# processor-in-the-loop (docs/reference/pil.md): the e-puck1's images built
+# for it with avr-gcc, the simavr emulator program that runs them (GPL-3, a
+# program of its own: emu/), the host build of every image for the
+# step-by-step comparison, and the tests.  Included by tools/make/firmware.mk
+# for the line `pil_avr` of platforms/platforms.list.
+#
+#   make pil-avr          every image's ELF (build/firmware/pil_avr/avr/<image>.elf),
+#                         the emulator and the comparison driver
+#   make pil-avr-tests    each image on the AVR beside its host build (-funsigned-char,
+#                         UBSan with the alignment check), step by step over a
+#                         scripted world, some with camera frames; every protocol
+#                         error and every way an MCU fails, each an error naming robot
+#                         and step.  Part of make firmware-check (make test).
+#   make pil-avr-compare  the same comparison, longer (PIL_COMPARE_STEPS, 3000), and the
+#                         measured cycles and stack per image into
+#                         build/firmware/pil_avr/cpu.md (docs/hardware/footprint.md)
+PIL_AVR := platforms/pil_avr
+PIL_AVR_GEN := $(FW_GEN)/pil_avr
+PIL_AVR_OUT := $(FW_OUT)/pil_avr
+PIL_AVR_EMU := $(PIL_AVR_OUT)/pil_avr_emu
+PIL_AVR_COMPARE := $(PIL_AVR_OUT)/pil_compare
+PIL_AVR_INC := -Ihal -Iwire -Ifirmware -I$(PIL_AVR)/hal -I$(PIL_AVR)/run -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
+PIL_COMPARE_STEPS ?= 3000
+
+.PHONY: pil-avr pil-avr-images pil-avr-tests pil-avr-errors pil-avr-compare
+FW_IMAGE_TARGETS += pil-avr-images
+PLATFORM_CHECKS += pil-avr-tests
+
+pil-avr-images:
+	@$(call fw_generate,pil_avr)
+$(PIL_AVR_GEN)/%_main.c: pil-avr-images ;
+
+# What every image links (--gc-sections keeps what it uses): the
+# controllers, hal/ and wire/ (FW_SRC), this platform's HAL and run loop's
+# telemetry, and lcm-gen's C of the two types a robot sends.
+PIL_AVR_LIB_SRC := $(FW_SRC) $(PIL_AVR)/hal/hal_pil.c $(PIL_AVR)/run/image_telemetry.c
+PIL_AVR_HDRS := $(wildcard hal/*.h wire/*/*.h firmware/*/*.h $(PIL_AVR)/hal/*.h $(PIL_AVR)/run/*.h)
+
+# The AVR build: avr-gcc for the ATmega2560, -Os as on an 8-bit part.
+PIL_AVR_CC := avr-gcc
+PIL_AVR_CFLAGS := -mmcu=atmega2560 -std=c99 -pedantic $(WARN) -Os -g -ffunction-sections -fdata-sections $(PIL_AVR_INC)
+PIL_AVR_LDFLAGS := -mmcu=atmega2560 -Wl,--gc-sections
+PIL_AVR_OBJ := $(patsubst %.c,$(PIL_AVR_OUT)/avr/obj/%.o,$(PIL_AVR_LIB_SRC) $(PIL_AVR)/hal/pil_port_avr.c $(FW_LCM_SRC))
+$(PIL_AVR_OUT)/avr/obj/%.o: %.c $(PIL_AVR_HDRS) $(FW_LCM_STAMP) | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,AVR-CC,$<)$(PIL_AVR_CC) $(PIL_AVR_CFLAGS) -c $< -o $@
+$(PIL_AVR_OUT)/avr/libpil.a: $(PIL_AVR_OBJ)
+	$(call show,AR,$@)rm -f $@ && avr-ar rcs $@ $^
+$(PIL_AVR_OUT)/avr/%.elf: $(PIL_AVR_GEN)/%_main.c $(PIL_AVR_OUT)/avr/libpil.a
+	$(call show,AVR-LD,$@)$(PIL_AVR_CC) $(PIL_AVR_CFLAGS) -I$(PIL_AVR_GEN) $(PIL_AVR_LDFLAGS) -o $@ $< \
+	  $(PIL_AVR_OUT)/avr/libpil.a -lm
+$(PIL_AVR_OUT)/avr/misbehave.elf: $(PIL_AVR)/tests/misbehave_main.c $(PIL_AVR_OUT)/avr/libpil.a
+	$(call show,AVR-LD,$@)$(PIL_AVR_CC) $(PIL_AVR_CFLAGS) $(PIL_AVR_LDFLAGS) -o $@ $< $(PIL_AVR_OUT)/avr/libpil.a
+
+# The host build of the same images, for the comparison: -funsigned-char
+# (ARM's char, which the AVR cannot show) and UBSan with its alignment
+# check (the dsPIC traps on a misaligned 16-bit access; the AVR does not).
+PIL_HOST_CFLAGS := -std=c99 -pedantic $(WARN) -O1 -g -funsigned-char -ffunction-sections -fdata-sections -fno-sanitize-recover=all \
+  -fsanitize=undefined,alignment -D_POSIX_C_SOURCE=200809L $(PIL_AVR_INC)
+PIL_HOST_OBJ := $(patsubst %.c,$(PIL_AVR_OUT)/host/obj/%.o,$(PIL_AVR_LIB_SRC) $(PIL_AVR)/tests/host_port.c $(FW_LCM_SRC))
+$(PIL_AVR_OUT)/host/obj/%.o: %.c $(PIL_AVR_HDRS) $(FW_LCM_STAMP) | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,CC,$<)$(CC) $(PIL_HOST_CFLAGS) -c $< -o $@
+$(PIL_AVR_OUT)/host/libpil.a: $(PIL_HOST_OBJ)
+	$(call show,AR,$@)rm -f $@ && ar rcs $@ $^
+$(PIL_AVR_OUT)/host/%: $(PIL_AVR_GEN)/%_main.c $(PIL_AVR_OUT)/host/libpil.a
+	$(call show,LD,$@)$(CC) $(PIL_HOST_CFLAGS) -I$(PIL_AVR_GEN) -Wl,--gc-sections -o $@ $< $(PIL_AVR_OUT)/host/libpil.a -lm
+
+# The emulator: the one program that links libsimavr (GPL-3; emu/COPYING).
+PIL_WIRE_SRC := wire/pil/pil_frame.c wire/pil/pil_msg.c wire/telemetry/telemetry_frame.c
+$(PIL_AVR_EMU): $(PIL_AVR)/emu/pil_avr_emu.c $(PIL_WIRE_SRC) $(wildcard wire/pil/*.h) $(PIL_AVR)/hal/pil_port_avr.h | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,CC,$<)$(CC) -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -O2 -g -Ihal -Iwire -I$(PIL_AVR)/hal \
+	  -o $@ $(PIL_AVR)/emu/pil_avr_emu.c $(PIL_WIRE_SRC) -lsimavr
+
+# The comparison driver, and the simulator's end of the pipe it uses.
+PIL_COMPARE_SRC := $(PIL_AVR)/tests/pil_compare.c $(PIL_AVR)/tests/pil_script.c $(PIL_AVR)/link/pil_avr_link.c \
+  wire/pil/pil_host.c $(PIL_WIRE_SRC)
+$(PIL_AVR_COMPARE): $(PIL_COMPARE_SRC) $(wildcard wire/pil/*.h $(PIL_AVR)/link/*.h $(PIL_AVR)/tests/*.h) | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,CC,$<)$(CC) -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -O1 -g $(ASAN) -Ihal -Iwire \
+	  -I$(PIL_AVR)/hal -I$(PIL_AVR)/link -I$(PIL_AVR)/tests -o $@ $(PIL_COMPARE_SRC)
+
+# Every image's AVR ELF and host build, named from the declarations when
+# the goal runs (not at parse time).
+pil_avr_names = $(foreach r,$(call fw_images,pil_avr,telemetry),$(call fw_field,$(r),1))
+pil-avr: pil-avr-images lcm-types
+	@$(MAKE) --no-print-directory pil-avr-build PIL_NAMES='$(pil_avr_names)'
+.PHONY: pil-avr-build
+pil-avr-build: $(PIL_AVR_EMU) $(PIL_AVR_COMPARE) $(PIL_AVR_OUT)/avr/misbehave.elf \
+    $(foreach i,$(PIL_NAMES),$(PIL_AVR_OUT)/avr/$(i).elf $(PIL_AVR_OUT)/host/$(i))
+	@:
+
+# PIL_IMAGES_FRAMES: the images that also run with camera frames (blob_detect on the MCU).
+PIL_IMAGES_FRAMES := forager repatt
+PIL_TEST_STEPS ?= 150
+pil-avr-tests: pil-avr
+	@PIL_OUT=$(PIL_AVR_OUT) STEPS=$(PIL_TEST_STEPS) IMAGES='$(pil_avr_names)' FRAMES='$(PIL_IMAGES_FRAMES)' \
+	  bash $(PIL_AVR)/tests/pil_tests.sh
+
+pil-avr-compare: pil-avr
+	@PIL_OUT=$(PIL_AVR_OUT) STEPS=$(PIL_COMPARE_STEPS) IMAGES='$(pil_avr_names)' FRAMES='$(PIL_IMAGES_FRAMES)' \
+	  REPORT=$(PIL_AVR_OUT)/cpu.md bash $(PIL_AVR)/tests/pil_tests.sh
