@@ -28,7 +28,7 @@ WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 # Layering: firmware sees only hal/, wire/ and firmware/ (tests/firmware/hygiene.sh
 # compiles each layer with only what it may include); the simulator sees everything.
 FW_INC := -Ihal -Iwire -Ifirmware
-SIM_INC := $(FW_INC) -Isim_host
+SIM_INC := $(FW_INC) -Isim_host -Isim_host/include
 CFLAGS_COMMON := $(WARN) -g -O2 -fno-strict-aliasing -ffp-contract=off
 # Firmware and HAL helpers are C99; the simulator may use C11.
 FW_CFLAGS := -std=c99 -pedantic $(FW_INC) $(CFLAGS_COMMON)
@@ -42,7 +42,7 @@ FW_DIRS := $(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c))))
 # The wire protocols (wire/<protocol>/*.c: telemetry framing, the host
 # link's messages) are linked with them.
 FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c)) $(sort $(wildcard wire/*/*.c))
-SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/tasks/*/*.c)))
+SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/models/*/*.c sim_host/tasks/*/*.c)))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 
 # $(call objs,VARIANT,SOURCES)

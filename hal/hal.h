@@ -127,6 +127,23 @@ uint8_t hal_camera_widest(hal_t *hal, uint8_t colour, hal_blob_t *widest);
 hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px);
 
 /* ------------------------------------------------------------------ */
+/* Ground sensors (the ground-sensor module, an extension)             */
+/* ------------------------------------------------------------------ */
+
+/** Number of ground sensors: three IR emitter/receivers under the front
+ *  of the robot looking down, 10 mm apart: GS0 left, GS1 centre, GS2
+ *  right. */
+#define HAL_GROUND_COUNT 3u
+
+/** How much IR the floor under ground sensor `index` (0..2) reflects, in
+ *  raw counts 0..4095 into *reflected: larger is a lighter floor (about
+ *  1000 over white paper, near 0 over black; coloured paper reads nearly
+ *  as white).  Returns HAL_OK; HAL_ERR_RANGE for a sensor that does not
+ *  exist; HAL_ERR_UNAVAILABLE on a robot without the module (or an image
+ *  built without it), with *reflected 0 either way. */
+hal_status_t hal_ground(hal_t *hal, uint8_t index, uint16_t *reflected);
+
+/* ------------------------------------------------------------------ */
 /* Microphones and speaker                                             */
 /* ------------------------------------------------------------------ */
 

@@ -13,6 +13,7 @@
 #include <stddef.h>
 
 #include "epuck_lib.h"
+#include "epuck_lib_i2c.h"
 #include "epuck_lib_sound.h"
 #include "tone_detect.h"
 
@@ -39,6 +40,7 @@ void hal_epuck_default_config(hal_epuck_config_t *cfg)
     cfg->randb_range_mm_per_unit = 10u;
     cfg->sound = 0u;
     cfg->ircom_tx_per_period = 1u;
+    cfg->ground = 0u;
 }
 
 /* The window is the sensor's full width (the whole field of view) and
@@ -138,6 +140,9 @@ void hal_epuck_start(hal_t *hal, void (*tick)(void))
     if (hal->cfg.sound != 0u) {
         e_init_sound();
     }
+    if (hal->cfg.ground != 0u) {
+        e_i2cp_init();
+    }
     hal->ticks_seen = hal->ticks;
     (void)e_activate_agenda(tick, (int)(hal->cfg.period_ms * AGENDA_TICKS_PER_MS));
     e_start_agendas_processing();
@@ -182,6 +187,7 @@ void hal_epuck_begin_step(hal_t *hal)
     hal->steps_right = (int16_t)e_get_steps_right();
     hal->blobs_step_valid = 0u;
     hal->mic_valid = 0u;
+    hal->ground_valid = 0u;
 }
 
 uint16_t hal_epuck_tone_samples(uint16_t period_ms)
@@ -432,6 +438,36 @@ hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *leve
         return HAL_ERR_UNAVAILABLE;
     }
     *level = hal->mic_level[mic][band - 1u];
+    return HAL_OK;
+}
+
+/* The ground-sensor module (cfg.ground): registers 0..5 of its I2C
+ * device hold the three sensors' values, high byte first, read once a
+ * step at the first call: seven single-byte reads, the first a dummy read
+ * of register 0 as GCtronic's advanced sercom makes [?]. */
+hal_status_t hal_ground(hal_t *hal, uint8_t index, uint16_t *reflected)
+{
+    *reflected = 0;
+    if (index >= HAL_GROUND_COUNT) {
+        return HAL_ERR_RANGE;
+    }
+    if (hal->cfg.ground == 0u) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    if (hal->ground_valid == 0u) {
+        uint8_t k;
+        e_i2cp_enable();
+        (void)e_i2cp_read((char)EPL_GROUND_I2C_ADDRESS, 0);
+        for (k = 0; k < HAL_GROUND_COUNT; k++) {
+            uint8_t hi = (uint8_t)e_i2cp_read((char)EPL_GROUND_I2C_ADDRESS, (char)(2u * k));
+            uint8_t lo = (uint8_t)e_i2cp_read((char)EPL_GROUND_I2C_ADDRESS, (char)(2u * k + 1u));
+            uint16_t v = (uint16_t)(((uint16_t)hi << 8) | lo);
+            hal->ground[k] = v > HAL_RAW_MAX ? (uint16_t)HAL_RAW_MAX : v;
+        }
+        e_i2cp_disable();
+        hal->ground_valid = 1u;
+    }
+    *reflected = hal->ground[index];
     return HAL_OK;
 }
 

@@ -132,6 +132,11 @@ typedef struct hal_epuck_config {
                                         control period, 1..HAL_EPUCK_TX_MAX (1);
                                         sent one after another after the step.
                                         The simulator's ircom.tx_per_period */
+    uint8_t ground;                /**< 1: the ground-sensor module is fitted
+                                        (hal_ground reads it over I2C at its
+                                        first call of a step; 0: HAL_ERR_UNAVAILABLE).
+                                        Never probed: reading a missing module
+                                        hangs (0) */
 } hal_epuck_config_t;
 
 /** The robot.  Fields are private to platforms/epuck1/hal; an image only defines one
@@ -188,6 +193,10 @@ struct hal {
     uint8_t mic_ok;              /**< bit m: ... and the A/D gave samples */
     uint16_t spk_plays;          /**< tones started (wraps) */
     uint32_t mic_level[HAL_MIC_COUNT][SOUND_BAND_COUNT];   /**< level counts */
+
+    /* Ground sensors (cfg.ground). */
+    uint8_t ground_valid;        /**< ground[] read in this step */
+    uint16_t ground[HAL_GROUND_COUNT];
 
     /* Telemetry: the buffer the UART driver reads while it sends. */
     uint8_t tx[HAL_EPUCK_TX_BYTES];

@@ -148,6 +148,56 @@ static void test_sensors_sampled_once_per_step(void)
     CHECK(hal_epuck_seed(&robot) != 0u);
 }
 
+/* The ground-sensor module: unavailable unless the image declares it (a
+ * read of a missing module would hang); declared, its registers are read
+ * at the first call of a step, high byte first, clamped to 4095, once. */
+static void test_ground_sensors(void)
+{
+    hal_epuck_config_t cfg;
+    uint16_t v = 77u;
+    int reads;
+    start(1u, 0u);
+    idle_step();
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ground(&robot, 0, &v) == HAL_ERR_UNAVAILABLE && v == 0u);
+    CHECK(epuck_stub.i2c_reads == 0);
+    hal_epuck_end_step(&robot);
+
+    epuck_stub_reset();
+    hal_epuck_default_config(&cfg);
+    cfg.camera = 0u;
+    cfg.ground = 1u;
+    CHECK(hal_epuck_init(&robot, &cfg, NULL, 0u) == 0);
+    hal_epuck_start(&robot, tick);
+    CHECK(epuck_stub.i2c_inits == 1);
+    epuck_stub.ground_reg[0] = 0x03u;   /* GS0 1000 */
+    epuck_stub.ground_reg[1] = 0xE8u;
+    epuck_stub.ground_reg[2] = 0x00u;   /* GS1 17 */
+    epuck_stub.ground_reg[3] = 0x11u;
+    epuck_stub.ground_reg[4] = 0xFFu;   /* GS2 past the range: 4095 */
+    epuck_stub.ground_reg[5] = 0xFFu;
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ground(&robot, 3, &v) == HAL_ERR_RANGE && v == 0u);
+    CHECK(hal_ground(&robot, 0, &v) == HAL_OK && v == 1000u);
+    reads = epuck_stub.i2c_reads;
+    CHECK(reads == 7 && epuck_stub.i2c_enabled == 0);
+    CHECK(hal_ground(&robot, 1, &v) == HAL_OK && v == 17u);
+    CHECK(hal_ground(&robot, 2, &v) == HAL_OK && v == 4095u);
+    epuck_stub.ground_reg[3] = 0x22u;
+    CHECK(hal_ground(&robot, 1, &v) == HAL_OK && v == 17u);   /* once a step */
+    CHECK(epuck_stub.i2c_reads == reads);
+    hal_epuck_end_step(&robot);
+    hal_epuck_tick(&robot);
+    CHECK(hal_epuck_step_due(&robot));
+    hal_epuck_begin_step(&robot);
+    CHECK(hal_ground(&robot, 1, &v) == HAL_OK && v == 0x22u);
+    hal_epuck_end_step(&robot);
+}
+
 static void test_actuators_applied_at_end_of_step(void)
 {
     int calls, led_calls, speed_calls;
@@ -601,6 +651,7 @@ int main(void)
 {
     test_start_and_clock();
     test_sensors_sampled_once_per_step();
+    test_ground_sensors();
     test_actuators_applied_at_end_of_step();
     test_telemetry_never_blocks();
     test_camera_double_buffer();

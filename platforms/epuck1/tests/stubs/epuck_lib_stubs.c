@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "epuck_lib.h"
+#include "epuck_lib_i2c.h"
 #include "epuck_lib_sound.h"
 #include "epuck_stubs.h"
 #include "hal_epuck.h"
@@ -127,3 +128,17 @@ void e_play_sound(int sound_offset, int sound_length)
 int getselector(void) { return epuck_stub.selector; }
 
 uint16_t hal_epuck_flash_robot_id(void) { return (uint16_t)epuck_stub.flash_id; }
+
+void e_i2cp_init(void) { epuck_stub.i2c_inits++; }
+void e_i2cp_enable(void) { epuck_stub.i2c_enabled = 1; }
+void e_i2cp_disable(void) { epuck_stub.i2c_enabled = 0; }
+
+char e_i2cp_read(char device_add, char reg)
+{
+    unsigned r = (unsigned char)reg;
+    epuck_stub.i2c_reads++;
+    if ((unsigned char)device_add != EPL_GROUND_I2C_ADDRESS || !epuck_stub.i2c_enabled || r >= 6u) {
+        return 0;
+    }
+    return (char)epuck_stub.ground_reg[r];
+}

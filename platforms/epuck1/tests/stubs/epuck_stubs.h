@@ -73,6 +73,9 @@ typedef struct epuck_stub_state {
     int play_offset, play_len;
     /* program memory word 0x17F36 */
     unsigned flash_id;
+    /* I2C: registers of device 0xC0 (the ground-sensor module) */
+    unsigned char ground_reg[6];
+    int i2c_inits, i2c_reads, i2c_enabled;
 } epuck_stub_state_t;
 
 extern epuck_stub_state_t epuck_stub;

@@ -24,6 +24,10 @@ typedef struct grid {
 int grid_init(grid_t *g, float x0, float y0, float w, float h, float cell);
 void grid_free(grid_t *g);
 
+/** Makes room for `n` items, so that binning up to `n` never allocates (a
+ *  step cannot fail: reserve when the run is built).  Returns 0 or -1. */
+int grid_reserve(grid_t *g, uint32_t n);
+
 /** Bins `n` points (robot centres, items).  A point with a NaN coordinate
  *  is left out (an item out of play).  Returns 0 or -1 (out of memory). */
 int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n);

@@ -15,6 +15,8 @@
 
 #include <stdint.h>
 
+#include "swarmsim/base.h"
+
 struct sim;
 
 typedef struct camera_render camera_render_t;
@@ -29,14 +31,14 @@ typedef struct camera_render camera_render_t;
 void camera_render_set_threads(void);
 
 /** A renderer of width x height pixel frames (1..160 each).  NULL with a
- *  message in err (256 bytes) when OSMesa cannot make one. */
-camera_render_t *camera_render_create(uint16_t width, uint16_t height, char err[256]);
+ *  message in err when OSMesa cannot make one. */
+camera_render_t *camera_render_create(uint16_t width, uint16_t height, char err[SIM_ERR_MAX]);
 void camera_render_destroy(camera_render_t *cr);
 
 /** Draws robot i's view of the current state of `sim` into rgb (width x
  *  height x 3 bytes, 8-bit RGB, the top row first, column 0 the left edge
  *  as the robot looks ahead).  Only reads the simulation.  0, or -1 with a
- *  message in err (256 bytes). */
-int camera_render_view(camera_render_t *cr, struct sim *sim, uint32_t i, uint8_t *rgb, char err[256]);
+ *  message in err. */
+int camera_render_view(camera_render_t *cr, struct sim *sim, uint32_t i, uint8_t *rgb, char err[SIM_ERR_MAX]);
 
 #endif

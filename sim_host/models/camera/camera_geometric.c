@@ -1,160 +1,20 @@
 /*
- * sensors.c - geometric sensor models of the e-puck, calibrated to the
- * facts of hal/units.h and the measurements cited below.  Each is
- * computed at most once per control step per robot, and only when the
- * controller asks (see sim_hal.c).
+ * camera_geometric.c - the camera's geometric model (camera.model
+ * geometric): blobs from the angles the other robots, the obstacles and the
+ * tasks' items cover as seen from the lens, each cut by whatever is nearer
+ * in front of it, sized in the robot image's pixels.  Fast, and the
+ * default; the rendered model (camera_render.c) is its check.
  */
 #include <math.h>
 #include <stdlib.h>
 
-#include "sim_internal.h"
+#include "camera_internal.h"
 #include "units.h"
 
-/* Where the IR sensors and the camera are: hal/units.h. */
-#define IR_MOUNT_RADIUS EPUCK_IR_MOUNT_RADIUS_M
-#define SENSOR_HEIGHT EPUCK_IR_HEIGHT_M
+/* Where the camera is: hal/units.h. */
 #define CAMERA_HEIGHT EPUCK_CAMERA_HEIGHT_M
 
-void sensors_init(struct sim *sim)
-{
-    /* The sensors' bearings as unit vectors in the robot frame, from the
-     * one table of bearings (units.h). */
-    static const int deg[HAL_IR_COUNT] = EPUCK_IR_BEARINGS_DEG;
-    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
-        sim->ir_dir[s] = v2((float)cos(deg[s] * UNITS_PI / 180.0), (float)sin(deg[s] * UNITS_PI / 180.0));
-    }
-}
-
-/* Proximity (raw counts) against distance from the sensor to a surface,
- * measured on a real e-puck (the calibration of Webots' e-puck
- * model, taken on the robot). */
-static const float ir_table_m[] = { 0.000f, 0.005f, 0.010f, 0.015f, 0.020f,
-                                    0.030f, 0.040f, 0.050f, 0.060f, 0.070f };
-static const float ir_table_v[] = { 4095, 2133, 1466, 601, 384, 235, 158, 120, 104, 67 };
-#define IR_TABLE_N (sizeof ir_table_m / sizeof ir_table_m[0])
-
-/** Calibrated proximity without noise at distance d (m).  Beyond the last
- *  measured point (70 mm: 67) the value fades linearly to 0 at `range`:
- *  an assumption, documented in the README. */
-float sensors_ir_curve(float d, float range)
-{
-    if (d <= 0.0f) {
-        return ir_table_v[0];
-    }
-    for (size_t k = 1; k < IR_TABLE_N; k++) {
-        if (d <= ir_table_m[k]) {
-            float u = (d - ir_table_m[k - 1]) / (ir_table_m[k] - ir_table_m[k - 1]);
-            return ir_table_v[k - 1] + u * (ir_table_v[k] - ir_table_v[k - 1]);
-        }
-    }
-    float last = ir_table_m[IR_TABLE_N - 1];
-    if (d >= range || range <= last) {
-        return 0.0f;
-    }
-    return ir_table_v[IR_TABLE_N - 1] * (range - d) / (range - last);
-}
-
-static uint16_t to_raw(double v)
-{
-    if (v <= 0.0) return 0;
-    if (v >= HAL_RAW_MAX) return HAL_RAW_MAX;
-    return (uint16_t)(v + 0.5);
-}
-
-static float nearest_obstacle(const obstacle_t *o, const cone_t *k)
-{
-    if (o->shape == SHAPE_CYLINDER) {
-        return geom_cone_circle(k, o->c, o->r);
-    }
-    float d = INFINITY;
-    for (int e = 0; e < 4; e++) {
-        d = fminf(d, geom_cone_segment(k, o->corner[e], o->corner[(e + 1) & 3]));
-    }
-    return d;
-}
-
-#define IR_MAX_NEAR 64
-
-void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
-{
-    sim_robot_t *r = &sim->robots[i];
-    const scenario_t *sc = sim->sc;
-    float range = sc->ir.range;
-    float reach = IR_MOUNT_RADIUS + range;
-    uint32_t near_robot[IR_MAX_NEAR], near_obst[IR_MAX_NEAR];
-    float R = reach + EPUCK_BODY_RADIUS_M;
-    uint32_t nr = sim_gather_robots(sim, r->x - R, r->y - R, r->x + R, r->y + R, near_robot, IR_MAX_NEAR);
-    uint32_t no = sim_gather_obstacles(sim, sim_robot_scratch(sim, i), r->x - reach, r->y - reach, r->x + reach,
-                                       r->y + reach, near_obst, IR_MAX_NEAR);
-    /* Inner faces of the walls within reach. */
-    vec2_t wall[4][2];
-    int nw = 0;
-    float hw = sim->hw, hh = sim->hh;
-    if (r->x + reach > hw) { wall[nw][0] = v2(hw, -hh); wall[nw][1] = v2(hw, hh); nw++; }
-    if (r->x - reach < -hw) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(-hw, hh); nw++; }
-    if (r->y + reach > hh) { wall[nw][0] = v2(-hw, hh); wall[nw][1] = v2(hw, hh); nw++; }
-    if (r->y - reach < -hh) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(hw, -hh); nw++; }
-
-    float ch = cosf(r->theta), sh = sinf(r->theta);
-    float half = sc->ir.aperture * (float)UNITS_PI / 180.0f, cos_half = cosf(half), sin_half = sinf(half);
-    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
-        float d = INFINITY;
-        if (nr > 1 || no > 0 || nw > 0) {
-            vec2_t a = v2_rot(sim->ir_dir[s], ch, sh);
-            vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
-            cone_t k = geom_cone_dir(p, a, half, cos_half, sin_half);
-            for (uint32_t j = 0; j < nr; j++) {
-                if (near_robot[j] != i) {
-                    const sim_robot_t *q = &sim->robots[near_robot[j]];
-                    d = fminf(d, geom_cone_circle(&k, v2(q->x, q->y), EPUCK_BODY_RADIUS_M));
-                }
-            }
-            for (uint32_t j = 0; j < no; j++) {
-                d = fminf(d, nearest_obstacle(&sim->obstacles[near_obst[j]], &k));
-            }
-            for (int w = 0; w < nw; w++) {
-                d = fminf(d, geom_cone_segment(&k, wall[w][0], wall[w][1]));
-            }
-        }
-        double v = (d < range) ? sensors_ir_curve(d, range) : 0.0f;
-        v += v * sc->ir.noise_rel * sim_rand_normal(&r->noise);
-        v += sc->ir.noise_abs * sim_rand_normal(&r->noise);
-        out[s] = to_raw(v);
-    }
-}
-
-void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT])
-{
-    sim_robot_t *r = &sim->robots[i];
-    const scenario_t *sc = sim->sc;
-    float ch = cosf(r->theta), sh = sinf(r->theta);
-    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
-        vec2_t a = v2_rot(sim->ir_dir[s], ch, sh);
-        vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
-        /* Irradiance on the sensor: intensity * cos(incidence) / d^2 from
-         * each lamp, in 3D (lamps hang above the floor).  Shadows cast by
-         * robots and obstacles are not modelled. */
-        double e = 0.0;
-        for (uint32_t l = 0; l < sc->light_count; l++) {
-            const light_def_t *L = &sc->lights[l];
-            double hx = L->x - p.x, hy = L->y - p.y, dz = L->height - SENSOR_HEIGHT;
-            double d2 = hx * hx + hy * hy + dz * dz;
-            double along = (hx * a.x + hy * a.y) / sqrt(d2);
-            if (along > 0.0 && d2 > 1e-12) {
-                e += L->intensity * along / d2;
-            }
-        }
-        /* The raw value falls as light rises: dark at e = 0, dark/2 at
-         * e = half, towards 0 for bright light. */
-        double v = sc->ambient.dark * sc->ambient.half / (sc->ambient.half + e);
-        v += v * sc->ambient.noise_rel * sim_rand_normal(&r->noise);
-        out[s] = to_raw(v);
-    }
-}
-
-/* ------------------------------------------------------------- camera */
-
-typedef sim_interval_t interval_t;
+typedef camera_interval_t interval_t;
 
 /* What the camera sees from: the lens, its heading (angle and unit vector)
  * and its range; all_round: the panoramic stand-in (fov > 179 deg), which
@@ -302,7 +162,7 @@ static int all_round_pieces(const interval_t *occ, uint32_t nocc, uint32_t t, fl
 
 /* What one camera needs to turn an interval into a blob. */
 typedef struct camera_frame {
-    const scenario_t *sc;
+    const camera_config_t *cfg;
     const sim_item_t *const *items;   /**< per task */
     const interval_t *occ;
     const uint32_t *occ_obj;
@@ -326,7 +186,7 @@ static float rows_of(const camera_frame_t *fr, float near, float height)
 {
     float dist = near > 0.001f ? near : 0.001f;
     float vang = atanf(fmaxf(height - CAMERA_HEIGHT, 0.0f) / dist) + atanf(CAMERA_HEIGHT / dist);
-    return fminf(vang, fr->vfov) / (fr->vfov / fr->sc->camera.height_px);
+    return fminf(vang, fr->vfov) / (fr->vfov / fr->cfg->height_px);
 }
 
 /* The blob of interval t (an obstacle or an item), or 0 when it shows
@@ -391,41 +251,42 @@ static float pixel_bound(const struct sim *sim, const camera_frame_t *fr, uint32
 /* Candidates by their bound, most first, then by index. */
 static int by_bound(const void *a, const void *b)
 {
-    const sim_cam_candidate_t *x = a, *y = b;
+    const camera_candidate_t *x = a, *y = b;
     if (x->bound != y->bound) return x->bound < y->bound ? 1 : -1;
     return (x->index > y->index) - (x->index < y->index);
 }
 
-uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
+uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
 {
-    const scenario_t *sc = sim->sc;
-    sim_robot_t *r = &sim->robots[i];
-    float heading = r->theta, range = sc->camera.range;
-    float half = sc->camera.fov * (float)UNITS_PI / 360.0f;
-    float col = 2.0f * half / sc->camera.width_px;        /* rad per column */
-    float vfov = 2.0f * half * sc->camera.height_px / sc->camera.width_px;
+    const camera_config_t *cfg = sim_model_config(sim, SIM_MODEL_camera);
+    const sim_robot_t *r = &sim->robots[i];
+    float heading = r->theta, range = cfg->range;
+    float half = cfg->fov * (float)UNITS_PI / 360.0f;
+    float col = 2.0f * half / cfg->width_px;        /* rad per column */
+    float vfov = 2.0f * half * cfg->height_px / cfg->width_px;
     vec2_t dir = v2(cosf(heading), sinf(heading));
     vec2_t cam = v2(r->x + EPUCK_BODY_RADIUS_M * dir.x, r->y + EPUCK_BODY_RADIUS_M * dir.y);
     /* The all-round stand-in (fov > 179 deg): a panoramic (cylindrical)
      * image of `fov` degrees centred ahead, its lens on the robot's axis
      * (as the e-puck's omnidirectional turret sits on top of the body),
      * pixels square in angle: col rad per column and per row. */
-    int all_round = sc->camera.fov > SCENARIO_CAMERA_PINHOLE_MAX_DEG;
+    int all_round = cfg->fov > CAMERA_PINHOLE_MAX_DEG;
     if (all_round) {
         cam = v2(r->x, r->y);
-        vfov = col * sc->camera.height_px;
+        vfov = col * cfg->height_px;
     }
     view_t vw = { cam, heading, dir, range, all_round };
 
     sim_scratch_t *ws = sim_robot_scratch(sim, i);
-    uint32_t *obst = ws->cam.obstacles, *rob = ws->cam.robots;
-    uint32_t *occ_obj = ws->cam.occluder_object;
-    interval_t *occ = (interval_t *)ws->cam.intervals;
+    camera_scratch_t *cw = sim_model_scratch(sim, SIM_MODEL_camera, sim->robots[i].hal.worker);
+    uint32_t *obst = cw->obstacles, *rob = cw->robots;
+    uint32_t *occ_obj = cw->occluder_object;
+    interval_t *occ = cw->intervals;
     uint32_t no = sim_gather_obstacles(sim, ws, cam.x - range, cam.y - range, cam.x + range, cam.y + range,
-                                       obst, SIM_CAMERA_MAX_NEAR);
+                                       obst, CAMERA_MAX_NEAR);
     uint32_t nr = sim_gather_robots(sim, cam.x - range - EPUCK_BODY_RADIUS_M, cam.y - range - EPUCK_BODY_RADIUS_M,
                                     cam.x + range + EPUCK_BODY_RADIUS_M, cam.y + range + EPUCK_BODY_RADIUS_M,
-                                    rob, SIM_CAMERA_MAX_NEAR);
+                                    rob, CAMERA_MAX_NEAR);
     /* Everything that can hide something: other robots and all obstacles. */
     uint32_t nocc = 0;
     for (uint32_t j = 0; j < nr; j++) {
@@ -454,7 +315,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         float m = sqrtf(range * range + 0.01f) + 0.01f;
         const uint32_t *ids;
         uint32_t n_cand = items_near(sim, ws, t, n_items, cam.x - m, cam.y - m, cam.x + m, cam.y + m, &ids);
-        for (uint32_t c = 0; c < n_cand && nocc < 2 * SIM_CAMERA_MAX_NEAR; c++) {
+        for (uint32_t c = 0; c < n_cand && nocc < 2 * CAMERA_MAX_NEAR; c++) {
             uint32_t k = ids ? ids[c] : c;
             if (k > CAM_ITEM_INDEX) {
                 break;
@@ -468,7 +329,7 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
         }
     }
 
-    camera_frame_t fr = { sc, items, occ, occ_obj, nocc, half, col, vfov, range, all_round };
+    camera_frame_t fr = { cfg, items, occ, occ_obj, nocc, half, col, vfov, range, all_round };
     hal_blob_t blobs[CAM_MAX_BLOBS];
     uint32_t nb = 0;
     if (!all_round) {
@@ -484,12 +345,12 @@ uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS
          * they could show (their whole interval), stopping once HAL_MAX_BLOBS
          * blobs are larger than anything left can be (the robot gets only
          * those).  The result is the one the full scan gives. */
-        sim_cam_candidate_t *cand = ws->cam.candidates;
+        camera_candidate_t *cand = cw->candidates;
         uint32_t m = 0;
         for (uint32_t t = first_obstacle; t < nocc; t++) {
             float bd = pixel_bound(sim, &fr, t);
             if (bd > 0.0f) {
-                cand[m++] = (sim_cam_candidate_t){ bd, t };
+                cand[m++] = (camera_candidate_t){ bd, t };
             }
         }
         qsort(cand, m, sizeof cand[0], by_bound);

@@ -1,11 +1,24 @@
 /*
  * sim.h - one simulation run: a Box2D world of e-pucks in groups, each
- * robot running its firmware controller through the simulator's hal_t, and
- * the scenario's tasks around them (task.h says how one step runs).
+ * robot running its firmware controller through the simulator's hal_t, the
+ * sensor and actuator models, and the scenario's tasks around them (task.h
+ * and sim_host/models/model.h say how one step runs).
+ *
+ * The simulator's public API, for tasks, tools, tests and bindings alike:
+ *   create    scenario_load (scenario.h: a file and --set overrides, errors
+ *             with file and line), then sim_create / sim_create_threads;
+ *   step      sim_step, sim_done;
+ *   read      robots' poses, wheels, LEDs, controllers' states and
+ *             observables (below), every per-robot field as a strided
+ *             array (sim_field), the run's ground truth (sim_metrics);
+ *   metrics   metrics_sample (time series) and metrics_final (the summary's
+ *             metrics, the tasks' included: metrics.h), sim_state_hash;
+ *   destroy   sim_destroy, then scenario_free.
+ * The internals (sim_host/core/, sim_host/models/) are not part of it.
  *
  * Ownership: the scenario must outlive the sim.  Not thread-safe: one sim
- * is stepped by one thread, but different sims run concurrently without
- * sharing anything.
+ * is stepped by one thread (which may spread a step over the run's own
+ * threads), but different sims run concurrently without sharing anything.
  */
 #ifndef SIM_SIM_H
 #define SIM_SIM_H
@@ -31,13 +44,27 @@ typedef struct sim_metrics {
 
 /** Builds the world for run seed `seed`.  Returns NULL with a message in
  *  `err` (e.g. robots that cannot be placed). */
-sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256]);
+sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[SIM_ERR_MAX]);
 /** The same run stepped on `threads` threads (1 .. 64): the controllers and
  *  their sensors, IR delivery, the sound field with a cutoff and Box2D's
  *  solver spread over them.  The results are those of sim_create, byte for
  *  byte, at any thread count. */
-sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[256]);
+sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[SIM_ERR_MAX]);
 void sim_destroy(sim_t *sim);
+
+/** What a run of a scenario needs, estimated from the scenario alone,
+ *  before anything is allocated: the core's arrays and grids, each
+ *  model's arrays and run state (model.h), the controllers' states, the
+ *  tasks' (task_def_t.memory), and Box2D's bodies and shapes (a measured
+ *  constant per body: sim.c).  Within about 25 % of what a run's resident
+ *  memory grows by (test_sim).  The loader refuses a scenario whose
+ *  estimate passes its `memory_limit_mb`. */
+typedef struct sim_memory {
+    uint64_t total;            /**< bytes of one run on `threads` threads */
+    uint64_t per_robot;        /**< bytes each robot adds, on average */
+    uint32_t robots;
+} sim_memory_t;
+void sim_memory_estimate(const scenario_t *sc, uint32_t threads, sim_memory_t *out);
 
 /** One control period (task.h lists its phases). */
 void sim_step(sim_t *sim);
@@ -66,8 +93,41 @@ void *sim_robot_controller(sim_t *sim, uint32_t i);
 const void *sim_robot_controller_const(const sim_t *sim, uint32_t i);
 /** The current state name of its controller. */
 const char *sim_robot_state_name(const sim_t *sim, uint32_t i);
+/** The value of observable `name` (the controller's observable.h table:
+ *  "threshold", "oae", ...) of robot `i` into *value, scaled as telemetry
+ *  reports it: 0, or -1 when its controller declares none of that name. */
+int sim_robot_observable(const sim_t *sim, uint32_t i, const char *name, float *value);
 /** The hal_t of robot `i`, to drive a robot from a test. */
 hal_t *sim_robot_hal(sim_t *sim, uint32_t i);
+
+/** Types of a per-robot field's values (sim_field_t). */
+typedef enum sim_field_type {
+    SIM_FIELD_U8, SIM_FIELD_I8, SIM_FIELD_U16, SIM_FIELD_I16, SIM_FIELD_U32, SIM_FIELD_I32, SIM_FIELD_U64,
+    SIM_FIELD_F32, SIM_FIELD_F64
+} sim_field_type_t;
+
+/** A per-robot value of the run, where it lives: robot i's `count` values
+ *  of `type` start at (const char *)base + i * stride.  What the core keeps
+ *  of every robot ("pose.x", "pose.y", "pose.theta", "leds", "group") and
+ *  what each model exposes ("wheels.cmd_left", "sound.level", ...; --help
+ *  lists them).  Valid until the sim is destroyed; the values are those of
+ *  the current step.  For bindings that read robots as arrays without a
+ *  copy per robot (a strided view). */
+typedef struct sim_field {
+    const char *name;
+    const char *unit;       /**< "" when it has none */
+    const char *doc;
+    sim_field_type_t type;
+    const void *base;       /**< robot 0's first value (NULL when the run has no robots) */
+    size_t stride;          /**< bytes from one robot's values to the next */
+    uint32_t count;         /**< values per robot */
+} sim_field_t;
+
+/** The field called `name`: 0, or -1 when the run has none of that name
+ *  (a model that allocated nothing for this run, such as sound when off). */
+int sim_field(const sim_t *sim, const char *name, sim_field_t *out);
+/** The k-th field of the run (0, 1, ...): 0, or -1 past the last. */
+int sim_field_at(const sim_t *sim, uint32_t k, sim_field_t *out);
 
 /** Pose of robot `i`: m, m, rad (CCW from +x). */
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta);
@@ -82,6 +142,8 @@ uint16_t sim_robot_leds(const sim_t *sim, uint32_t i);
  *  standing in for a robot, e.g. ideal information).  Returns 0, or -1 when
  *  the inbox is full. */
 int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg);
+/** How far an IR message reaches, centre to centre, m (`ircom.range`). */
+float sim_ircom_range_m(const sim_t *sim);
 
 /* ---------------------------------------------------------------- world */
 
@@ -137,9 +199,10 @@ const struct robot_link *sim_robot_link(const sim_t *sim, uint32_t i);
  *  Returns 0, or -1 when `robot` is not a robot or `dir` too long. */
 int sim_camera_record(sim_t *sim, uint32_t robot, const char *dir);
 
-/** NULL, or what went wrong with the camera (a renderer that could not be
- *  made, a picture that could not be written): the run must stop. */
-const char *sim_camera_error(const sim_t *sim);
+/** NULL, or what went wrong in a model during the last step (a camera
+ *  renderer that could not be made, a picture that could not be written):
+ *  the run must stop. */
+const char *sim_error(const sim_t *sim);
 
 /** FNV-1a hash of every robot's pose bits and counters: equal hashes mean
  *  bit-identical runs. */

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render.h"
+#include "core/render.h"
 #include "units.h"
 
 static void put(uint8_t *img, int W, int H, int x, int y, uint32_t rgb)
@@ -29,12 +29,12 @@ static uint32_t class_rgb(uint8_t c)
 }
 
 int camera_picture_png(const char *path, const uint8_t *rgb, uint16_t w, uint16_t h, float fov_deg,
-                       const hal_blob_t *blobs, uint8_t n, char err[256])
+                       const hal_blob_t *blobs, uint8_t n, char err[SIM_ERR_MAX])
 {
     const int S = CAMERA_PICTURE_SCALE, W = w * S, H = h * S;
     uint8_t *img = malloc((size_t)W * (size_t)H * 3u);
     if (!img) {
-        snprintf(err, 256, "%s: out of memory", path);
+        snprintf(err, SIM_ERR_MAX, "%s: out of memory", path);
         return -1;
     }
     for (int y = 0; y < H; y++) {

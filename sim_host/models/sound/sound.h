@@ -39,31 +39,42 @@
  * each robot set in the step before).  Read between steps (tests), the
  * field is the one the next step's controllers will see.
  */
-#ifndef SIM_SOUND_H
-#define SIM_SOUND_H
+#ifndef SIM_MODELS_SOUND_H
+#define SIM_MODELS_SOUND_H
 
 #include <stdint.h>
 
-#include "scenario.h"
+#include "models/model.h"
 
-struct sim;
+/** What a robot silent in a band adds to that band's sum (silent_robots). */
+typedef enum sound_silent {
+    SOUND_SILENT_AMBIENT = 0,    /**< its ambient term ae (eq 2 over every other robot) */
+    SOUND_SILENT_NONE = 1        /**< nothing: only emitters are in the sum */
+} sound_silent_t;
+
+/** Section `sound` (seed 002's eqs 1-4).  Disabled: hal_mic_level and
+ *  hal_speaker_set answer HAL_ERR_UNAVAILABLE and nothing is drawn. */
+typedef struct sound_config {
+    uint8_t enabled;
+    double a0;                 /**< eq 1's level at the source (0 m), units */
+    double alpha;              /**< eq 1's attenuation, 1/m (at the scenario's scale) */
+    double ae;                 /**< eq 1's ambient term, units, once per source */
+    double noise;              /**< eq 4's relative sd per pair (0.06: N100, 0: N0) */
+    int silent_robots;         /**< sound_silent_t */
+    uint8_t self_masking;      /**< a robot whose speaker played hears nothing (HAL_ERR_BUSY) */
+    double cutoff;             /**< m; > 0: sources farther away give only ae (0: exact) */
+} sound_config_t;
+
+MODEL_CONFIG_ACCESSORS(sound, sound_config_t)
 
 /** Eq 1 without noise: what robot j at distance d_m (m) adds to one band of
  *  robot i's sum, in units: a0 e^(-alpha d) + ae when j emits in that band
  *  (only ae beyond a cutoff > 0), ae when it is silent in it and
  *  silent_robots is ambient, else 0. */
-double sound_term(const scenario_t *sc, double d_m, int emits);
+double sound_term(const sound_config_t *cfg, double d_m, int emits);
 
 /** Level counts of a sum of units: round(1000 x units), 0 for a sum <= 0
  *  (or NaN), UINT32_MAX above it. */
 uint32_t sound_counts(double units);
-
-/** Every robot's levels for the period just ended, unless already computed
- *  for this step; nothing when the scenario's sound is disabled. */
-void sound_update(struct sim *sim);
-
-/** At the end of a step: what each robot set this step is what played
- *  during the period that follows. */
-void sound_end_step(struct sim *sim);
 
 #endif

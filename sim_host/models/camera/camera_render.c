@@ -40,8 +40,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render.h"
-#include "sim_internal.h"
+#include "camera.h"
+#include "core/render.h"
+#include "core/sim_internal.h"
 #include "units.h"
 
 /* Objects farther than this from the lens are not drawn: an e-puck there
@@ -91,18 +92,18 @@ void camera_render_set_threads(void)
     pthread_once(&threads_once, set_threads_once);
 }
 
-camera_render_t *camera_render_create(uint16_t width, uint16_t height, char err[256])
+camera_render_t *camera_render_create(uint16_t width, uint16_t height, char err[SIM_ERR_MAX])
 {
     camera_render_set_threads();
-    if (width < 1 || height < 1 || width > SCENARIO_CAMERA_RENDERED_MAX_PX || height > SCENARIO_CAMERA_RENDERED_MAX_PX) {
-        snprintf(err, 256, "camera: frame %ux%u px is out of range (1..%u each)", width, height,
-                 SCENARIO_CAMERA_RENDERED_MAX_PX);
+    if (width < 1 || height < 1 || width > CAMERA_RENDERED_MAX_PX || height > CAMERA_RENDERED_MAX_PX) {
+        snprintf(err, SIM_ERR_MAX, "camera: frame %ux%u px is out of range (1..%u each)", width, height,
+                 CAMERA_RENDERED_MAX_PX);
         return NULL;
     }
     camera_render_t *cr = calloc(1, sizeof *cr);
     if (!cr || !(cr->rgba = calloc((size_t)width * height, 4))) {
         free(cr);
-        snprintf(err, 256, "camera: out of memory");
+        snprintf(err, SIM_ERR_MAX, "camera: out of memory");
         return NULL;
     }
     cr->w = width;
@@ -111,7 +112,7 @@ camera_render_t *camera_render_create(uint16_t width, uint16_t height, char err[
      * what is behind it. */
     cr->gl = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, NULL);
     if (!cr->gl || !OSMesaMakeCurrent(cr->gl, cr->rgba, GL_UNSIGNED_BYTE, width, height)) {
-        snprintf(err, 256, "camera: cannot create an OSMesa context of %ux%u px", width, height);
+        snprintf(err, SIM_ERR_MAX, "camera: cannot create an OSMesa context of %ux%u px", width, height);
         camera_render_destroy(cr);
         return NULL;
     }
@@ -354,14 +355,14 @@ static void draw_scene(struct sim *sim, uint32_t i, vec2_t eye, vec2_t dir)
     }
 }
 
-int camera_render_view(camera_render_t *cr, struct sim *sim, uint32_t i, uint8_t *rgb, char err[256])
+int camera_render_view(camera_render_t *cr, struct sim *sim, uint32_t i, uint8_t *rgb, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
     const sim_robot_t *r = &sim->robots[i];
     vec2_t dir = v2(cosf(r->theta), sinf(r->theta));
     vec2_t eye = v2(r->x + EPUCK_BODY_RADIUS_M * dir.x, r->y + EPUCK_BODY_RADIUS_M * dir.y);
     if (!OSMesaMakeCurrent(cr->gl, cr->rgba, GL_UNSIGNED_BYTE, cr->w, cr->h)) {
-        snprintf(err, 256, "camera: OSMesaMakeCurrent failed");
+        snprintf(err, SIM_ERR_MAX, "camera: OSMesaMakeCurrent failed");
         return -1;
     }
     for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {
@@ -379,7 +380,7 @@ int camera_render_view(camera_render_t *cr, struct sim *sim, uint32_t i, uint8_t
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);   /* nothing there: over the walls */
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-    float half = sc->camera.fov * (float)UNITS_PI / 360.0f;
+    float half = ((const camera_config_t *)sim_model_config(sim, SIM_MODEL_camera))->fov * (float)UNITS_PI / 360.0f;
     float xr = NEAR_M * tanf(half), yt = xr * (float)cr->h / (float)cr->w;
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();
@@ -391,7 +392,7 @@ int camera_render_view(camera_render_t *cr, struct sim *sim, uint32_t i, uint8_t
     GLenum gl_err = glGetError();
     OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
     if (gl_err != GL_NO_ERROR) {
-        snprintf(err, 256, "camera: OpenGL error 0x%04x", (unsigned)gl_err);
+        snprintf(err, SIM_ERR_MAX, "camera: OpenGL error 0x%04x", (unsigned)gl_err);
         return -1;
     }
     for (uint16_t y = 0; y < cr->h; y++) {   /* GL's bottom row first; ours top first */

@@ -26,6 +26,9 @@
  *   5. physics: wheels drive the bodies, Box2D resolves contacts;
  *   6. after_physics of every task (serial): it sees the new poses;
  *   7. the step count advances, then the run asks done().
+ * The models (the sensors and actuators, sim_host/models/model.h) take part
+ * around these: their sensing in step 2, IR delivery as step 3, the wheels
+ * in step 5; model.h lists the phases of both in one order.
  * Hooks may be NULL.
  */
 #ifndef SIM_TASK_H
@@ -72,7 +75,7 @@ typedef struct task_def {
 
     /** Cross-checks after loading.  Returns 0, or -1 with the key (relative
      *  to the section, "nest.diameter"; "" for the section) and a message. */
-    int (*check)(const void *config, const scenario_t *sc, char key[64], char msg[256]);
+    int (*check)(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX]);
 
     /** Tells robots of `group` what a real robot would be built with:
      *  fills the task's part of `params`, the group's controller's params
@@ -80,8 +83,12 @@ typedef struct task_def {
     void (*configure)(const void *config, const scenario_t *sc, const robot_group_t *group,
                       void *params);
 
+    /** About how many bytes its create allocates for a run of `sc`, for
+     *  the loader's memory estimate (sim_memory_estimate); NULL: a few. */
+    size_t (*memory)(const void *config, const scenario_t *sc);
+
     /** Its state for one run; NULL with a message in `err` on failure. */
-    void *(*create)(sim_t *sim, const void *config, char err[256]);
+    void *(*create)(sim_t *sim, const void *config, char err[SIM_ERR_MAX]);
     void (*destroy)(void *self);
 
     void (*before_control)(void *self, sim_t *sim);

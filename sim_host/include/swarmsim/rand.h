@@ -25,6 +25,12 @@ enum {
     RAND_CAMERA = 12    /**< its camera's frame phase and pixel noise (camera.fps > 0, camera.noise) */
 };
 
+/** A purpose from a name, for streams of a model or task added after the
+ *  numbered ones above (a model's name): a pure function of the name, so
+ *  the stream does not move when other models are listed before it, and
+ *  in [128, 255], so it meets none of the numbered ones. */
+uint64_t sim_rand_purpose(const char *name);
+
 /** Seeds a stream from the run seed, an index (robot id) and a purpose. */
 void sim_rand_seed(sim_rand_t *r, uint64_t seed, uint64_t index, uint64_t purpose);
 
