@@ -175,6 +175,11 @@ static int answer(pil_host_t *h, const pil_request_t *q, const pil_host_ops_t *o
         hal_status_t st = ops->host_receive(ops->ctx, bytes, cap, &len);
         return pil_reply_host(p, ROOM, st, bytes, st == HAL_OK ? len : 0u);
     }
+    case PIL_WHAT_GROUND: {
+        uint16_t g[HAL_GROUND_COUNT] = { 0u, 0u, 0u };
+        hal_status_t st = ops->ground(ops->ctx, g);
+        return pil_reply_ground(p, ROOM, st, g);
+    }
     case PIL_WHAT_TELEMETRY: {
         uint8_t copy[PIL_TELEMETRY_MAX];
         memcpy(copy, q->bytes, q->len);   /* the reply is written over them */

@@ -51,6 +51,8 @@ typedef struct pil_host_ops {
     hal_status_t (*pose)(void *ctx, hal_pose_t *out);
     hal_status_t (*ircom_receive)(void *ctx, hal_ircom_msg_t *out);
     hal_status_t (*host_receive)(void *ctx, uint8_t *buf, uint8_t cap, uint8_t *len);
+    /** The ground sensors: HAL_OK, or HAL_ERR_UNAVAILABLE (no module). */
+    hal_status_t (*ground)(void *ctx, uint16_t out[HAL_GROUND_COUNT]);
     /** Telemetry bytes for the sink: how many it took. */
     uint16_t (*telemetry)(void *ctx, const uint8_t *bytes, uint16_t len);
 } pil_host_ops_t;

@@ -181,7 +181,7 @@ uint16_t pil_request_encode(uint8_t *p, uint16_t cap, const pil_request_t *m)
 
 int8_t pil_request_decode(const uint8_t *p, uint16_t n, pil_request_t *m)
 {
-    if (n < 2u || p[0] < PIL_WHAT_IR || p[0] > PIL_WHAT_TELEMETRY) {
+    if (n < 2u || p[0] < PIL_WHAT_IR || p[0] > PIL_WHAT_GROUND) {
         return -1;
     }
     m->what = p[0];
@@ -453,5 +453,33 @@ int8_t pil_read_accepted(const uint8_t *p, uint16_t n, uint16_t *accepted)
         return -1;
     }
     *accepted = pil_get_u16(p + 1);
+    return 0;
+}
+
+uint16_t pil_reply_ground(uint8_t *p, uint16_t cap, hal_status_t st, const uint16_t v[HAL_GROUND_COUNT])
+{
+    uint8_t k;
+    if (cap < 2u + 2u * HAL_GROUND_COUNT) {
+        return 0u;
+    }
+    p[0] = PIL_WHAT_GROUND;
+    p[1] = (uint8_t)st;
+    for (k = 0u; k < HAL_GROUND_COUNT; k++) {
+        pil_put_u16(p + 2u + 2u * k, v[k]);
+    }
+    return 2u + 2u * HAL_GROUND_COUNT;
+}
+
+int8_t pil_read_ground(const uint8_t *p, uint16_t n, hal_status_t *st, uint16_t out[HAL_GROUND_COUNT])
+{
+    uint8_t k;
+    if (n != 2u + 2u * HAL_GROUND_COUNT || p[0] != PIL_WHAT_GROUND
+        || ((int8_t)p[1] != HAL_OK && (int8_t)p[1] != HAL_ERR_UNAVAILABLE)) {
+        return -1;
+    }
+    *st = (hal_status_t)p[1];
+    for (k = 0u; k < HAL_GROUND_COUNT; k++) {
+        out[k] = pil_get_u16(p + 2u + 2u * k);
+    }
     return 0;
 }

@@ -55,6 +55,7 @@
  *                           range u16
  *              HOST         1 status i8, len u8, len bytes
  *              TELEMETRY    1 accepted u16
+ *              GROUND       1 status i8, three u16
  *   ACT      0 wheel_left i16, 2 wheel_right i16, 4 leds u16, 6 speaker u8,
  *            7 tx_count u8, 8 tx_count u16 values, then telemetry_len u16
  *            and the bytes
@@ -76,6 +77,7 @@
 #define PIL_HAS_SOUND 0x02u       /**< sound yes: microphones and speaker */
 #define PIL_HAS_HOST_LINK 0x04u   /**< host_link yes: a pose and host messages */
 #define PIL_HAS_TELEMETRY 0x08u   /**< telemetry yes: it writes telemetry bytes */
+#define PIL_HAS_GROUND 0x10u      /**< the ground-sensor module (hal_ground) */
 
 /** CONFIG flags: what the simulator gives this robot. */
 #define PIL_SIM_SOUND 0x01u       /**< the scenario has a sound field */
@@ -101,7 +103,8 @@ typedef enum pil_what {
     PIL_WHAT_POSE = 4,       /**< the tracker's pose (hal_pose) */
     PIL_WHAT_RX = 5,         /**< one IR message popped (hal_ircom_receive) */
     PIL_WHAT_HOST = 6,       /**< one host message (hal_host_receive), arg = room */
-    PIL_WHAT_TELEMETRY = 7   /**< bytes for the telemetry sink, before ACT's */
+    PIL_WHAT_TELEMETRY = 7,  /**< bytes for the telemetry sink, before ACT's */
+    PIL_WHAT_GROUND = 8      /**< the 3 ground sensors (hal_ground) */
 } pil_what_t;
 
 /** A FAULT's code: the robot could not use the simulator's last frame. */
@@ -213,6 +216,7 @@ uint16_t pil_reply_pose(uint8_t *p, uint16_t cap, hal_status_t st, const hal_pos
 uint16_t pil_reply_rx(uint8_t *p, uint16_t cap, hal_status_t st, const hal_ircom_msg_t *msg);
 uint16_t pil_reply_host(uint8_t *p, uint16_t cap, hal_status_t st, const uint8_t *bytes, uint8_t len);
 uint16_t pil_reply_accepted(uint8_t *p, uint16_t cap, uint16_t accepted);
+uint16_t pil_reply_ground(uint8_t *p, uint16_t cap, hal_status_t st, const uint16_t v[HAL_GROUND_COUNT]);
 /** FRAME: the `bytes` of the frame after the `what` byte (the caller
  *  writes them at p + 1, often straight from the renderer). */
 uint16_t pil_reply_frame(uint8_t *p, uint16_t cap, uint16_t bytes);
@@ -225,6 +229,7 @@ int8_t pil_read_pose(const uint8_t *p, uint16_t n, hal_status_t *st, hal_pose_t 
 int8_t pil_read_rx(const uint8_t *p, uint16_t n, hal_status_t *st, hal_ircom_msg_t *out);
 int8_t pil_read_host(const uint8_t *p, uint16_t n, hal_status_t *st, uint8_t *buf, uint8_t cap, uint8_t *len);
 int8_t pil_read_accepted(const uint8_t *p, uint16_t n, uint16_t *accepted);
+int8_t pil_read_ground(const uint8_t *p, uint16_t n, hal_status_t *st, uint16_t out[HAL_GROUND_COUNT]);
 /** FRAME: where the frame's `bytes` start in the payload, or 0. */
 const uint8_t *pil_read_frame(const uint8_t *p, uint16_t n, uint16_t bytes);
 

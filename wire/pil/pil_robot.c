@@ -229,6 +229,37 @@ hal_status_t pil_robot_frame_size(pil_robot_t *r, uint16_t *width_px, uint16_t *
     return HAL_OK;
 }
 
+hal_status_t pil_robot_ground(pil_robot_t *r, uint8_t index, uint16_t *reflected)
+{
+    *reflected = 0u;
+    if (index >= HAL_GROUND_COUNT) {
+        return HAL_ERR_RANGE;
+    }
+    if (!(r->image_flags & PIL_HAS_GROUND)) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    if (!(r->have & PIL_HAVE_GROUND)) {
+        int16_t n;
+        uint8_t k;
+        r->have |= PIL_HAVE_GROUND;
+        r->ground_status = HAL_ERR_UNAVAILABLE;
+        n = request(r, PIL_WHAT_GROUND, 0u, (const uint8_t *)0, 0u);
+        if (n < 0 || pil_read_ground(PAYLOAD(r), (uint16_t)n, &r->ground_status, r->ground) != 0) {
+            if (n >= 0) {
+                bad_reply(r);
+            }
+            r->ground_status = HAL_ERR_UNAVAILABLE;
+            for (k = 0u; k < HAL_GROUND_COUNT; k++) {
+                r->ground[k] = 0u;
+            }
+        }
+    }
+    if (r->ground_status == HAL_OK) {
+        *reflected = r->ground[index];
+    }
+    return r->ground_status;
+}
+
 hal_status_t pil_robot_mic_level(pil_robot_t *r, uint8_t mic, uint8_t band, uint32_t *level)
 {
     const pil_mic_cell_t *c;

@@ -40,6 +40,7 @@
 #define PIL_HAVE_AMBIENT 0x02u
 #define PIL_HAVE_CAMERA 0x04u
 #define PIL_HAVE_POSE 0x08u
+#define PIL_HAVE_GROUND 0x10u
 
 /** Largest payload a robot sends: an ACT with every IR message and a full
  *  telemetry buffer. */
@@ -68,6 +69,8 @@ typedef struct pil_robot {
     uint8_t blob_count;
     hal_status_t pose_status;
     hal_pose_t pose;
+    hal_status_t ground_status;
+    uint16_t ground[HAL_GROUND_COUNT];
     /* The actuators, kept across steps as the robot's are. */
     int16_t wheel_left, wheel_right;
     uint16_t leds;
@@ -106,6 +109,7 @@ uint16_t pil_robot_ir(pil_robot_t *r, uint8_t index);
 uint16_t pil_robot_ambient(pil_robot_t *r, uint8_t index);
 uint8_t pil_robot_blobs(pil_robot_t *r, hal_blob_t *out, uint8_t max);
 hal_status_t pil_robot_frame_size(pil_robot_t *r, uint16_t *width_px, uint16_t *height_px);
+hal_status_t pil_robot_ground(pil_robot_t *r, uint8_t index, uint16_t *reflected);
 hal_status_t pil_robot_mic_level(pil_robot_t *r, uint8_t mic, uint8_t band, uint32_t *level);
 hal_status_t pil_robot_speaker_set(pil_robot_t *r, uint8_t band);
 uint8_t pil_robot_ircom_bits(pil_robot_t *r);

@@ -42,6 +42,11 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return pil_robot_frame_size(&hal->link, width_px, height_px);
 }
 
+hal_status_t hal_ground(hal_t *hal, uint8_t index, uint16_t *reflected)
+{
+    return pil_robot_ground(&hal->link, index, reflected);
+}
+
 hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 {
     return pil_robot_mic_level(&hal->link, mic, band, level);

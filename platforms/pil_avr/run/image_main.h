@@ -16,6 +16,8 @@
  *   IMAGE_SOUND                1: band levels and the speaker (0)
  *   IMAGE_IRCOM_TX_PER_PERIOD  IR messages a period may send (1)
  *   IMAGE_HOST_LINK            1: the pose and host messages (0)
+ *   IMAGE_GROUND               1: the ground-sensor module (0; the e-puck1
+ *                              declares none yet)
  *   IMAGE_IR_RANDB, IMAGE_IR_LIBIRCOM   16- or 8-bit IR messages
  * and those of every platform (images.py).  The simulator checks at HELLO
  * that its scenario gives the robot what the image was built for (period,
@@ -44,6 +46,9 @@
 #endif
 #ifndef IMAGE_HOST_LINK
 #define IMAGE_HOST_LINK 0
+#endif
+#ifndef IMAGE_GROUND
+#define IMAGE_GROUND 0
 #endif
 #if defined(IMAGE_IRCOM_TX_PER_PERIOD) && (IMAGE_IRCOM_TX_PER_PERIOD < 1 || IMAGE_IRCOM_TX_PER_PERIOD > PIL_TX_MAX)
 #error "ircom_tx_per_period: 1..PIL_TX_MAX messages a period"
@@ -105,7 +110,8 @@ static void app_setup(void)
     cfg.tx_per_period = IMAGE_IRCOM_TX_PER_PERIOD;
 #endif
     cfg.flags = (uint8_t)((IMAGE_CAMERA ? PIL_HAS_CAMERA : 0u) | (IMAGE_SOUND ? PIL_HAS_SOUND : 0u)
-                          | (IMAGE_HOST_LINK ? PIL_HAS_HOST_LINK : 0u) | (IMAGE_TELEMETRY ? PIL_HAS_TELEMETRY : 0u));
+                          | (IMAGE_HOST_LINK ? PIL_HAS_HOST_LINK : 0u) | (IMAGE_TELEMETRY ? PIL_HAS_TELEMETRY : 0u)
+                          | (IMAGE_GROUND ? PIL_HAS_GROUND : 0u));
     hal_pil_init(&app_hal, &cfg, app_mailbox, (uint16_t)sizeof app_mailbox);
 
     for (k = 0u; k < PIL_NAME_MAX && image[k] != '\0'; k++) {

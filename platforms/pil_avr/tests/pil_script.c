@@ -257,6 +257,16 @@ static hal_status_t host(void *ctx, uint8_t *buf, uint8_t cap, uint8_t *len)
     return HAL_OK;
 }
 
+static hal_status_t ground(void *ctx, uint16_t out[HAL_GROUND_COUNT])
+{
+    pil_script_t *s = ctx;
+    for (uint8_t k = 0; k < HAL_GROUND_COUNT; k++) {
+        out[k] = (uint16_t)(h(s, 'G', k) % 1100u);
+    }
+    logf_(s, "GROUND %u %u %u\n", out[0], out[1], out[2]);
+    return HAL_OK;
+}
+
 static uint16_t telemetry(void *ctx, const uint8_t *bytes, uint16_t len)
 {
     pil_script_t *s = ctx;
@@ -276,7 +286,7 @@ pil_host_ops_t pil_script_ops(pil_script_t *s)
 {
     pil_host_ops_t o = {
         .ctx = s, .ir = ir, .ambient = ambient, .blobs = blobs, .frame = frame, .pose = pose,
-        .ircom_receive = rx, .host_receive = host, .telemetry = telemetry,
+        .ircom_receive = rx, .host_receive = host, .ground = ground, .telemetry = telemetry,
     };
     return o;
 }
