@@ -39,7 +39,7 @@ PIL_AVR_HDRS := $(wildcard hal/*.h wire/*/*.h firmware/*/*.h $(PIL_AVR)/hal/*.h 
 
 # The AVR build: avr-gcc for the ATmega2560, -Os as on an 8-bit part.
 PIL_AVR_CC := avr-gcc
-PIL_AVR_CFLAGS := -mmcu=atmega2560 -std=c99 -pedantic $(WARN) -Os -g -ffunction-sections -fdata-sections $(PIL_AVR_INC)
+PIL_AVR_CFLAGS := -mmcu=atmega2560 -std=c99 -pedantic $(WARN) -Os -gdwarf-4 -ffunction-sections -fdata-sections $(PIL_AVR_INC)
 PIL_AVR_LDFLAGS := -mmcu=atmega2560 -Wl,--gc-sections
 PIL_AVR_OBJ := $(patsubst %.c,$(PIL_AVR_OUT)/avr/obj/%.o,$(PIL_AVR_LIB_SRC) $(PIL_AVR)/hal/pil_port_avr.c $(FW_LCM_SRC))
 $(PIL_AVR_OUT)/avr/obj/%.o: %.c $(PIL_AVR_HDRS) $(FW_LCM_STAMP) | $(BUILD)/config.mk
@@ -89,7 +89,7 @@ pil-avr: pil-avr-images lcm-types
 	@$(MAKE) --no-print-directory pil-avr-build PIL_NAMES='$(pil_avr_names)'
 .PHONY: pil-avr-build
 pil-avr-build: $(PIL_AVR_EMU) $(PIL_AVR_COMPARE) $(PIL_AVR_OUT)/avr/misbehave.elf \
-    $(foreach i,$(PIL_NAMES),$(PIL_AVR_OUT)/avr/$(i).elf $(PIL_AVR_OUT)/host/$(i))
+    $(foreach i,$(PIL_NAMES),$(PIL_AVR_OUT)/avr/$(i).elf $(PIL_AVR_OUT)/host/$(i) $(PIL_AVR_OUT)/avr/$(i).map)
 	@:
 
 # PIL_IMAGES_FRAMES: the images that also run with camera frames (blob_detect on the MCU).
@@ -102,3 +102,32 @@ pil-avr-tests: pil-avr
 pil-avr-compare: pil-avr
 	@PIL_OUT=$(PIL_AVR_OUT) STEPS=$(PIL_COMPARE_STEPS) IMAGES='$(pil_avr_names)' FRAMES='$(PIL_IMAGES_FRAMES)' \
 	  REPORT=$(PIL_AVR_OUT)/cpu.md bash $(PIL_AVR)/tests/pil_tests.sh
+
+# ------------------------------------------------ the simulator's end
+# The simulator's model of PIL robots (sim_host/models/pil/) reads the
+# images' table generated from the same declarations and constants
+# (tools/make/images.py host-list: each image's parameters as its run loop
+# makes them) and starts the emulator through link/ (linked into libswarm;
+# the emulator itself never is).
+PIL_IMAGE_LIST := $(BUILD)/gen/pil_image_list.h
+.PHONY: pil-image-list
+pil-image-list:
+	@mkdir -p $(dir $(PIL_IMAGE_LIST))
+	@$(FW_IMAGES_PY) host-list $(call fw_image_list,pil_avr) --platform $(PIL_AVR) --out $(PIL_IMAGE_LIST) \
+	  $(foreach v,$(FW_CONSTANTS),--set $(v)='$($(v))')
+$(PIL_IMAGE_LIST): pil-image-list ;
+$(BUILD)/obj/sim_host/models/pil/pil_images.o $(BUILD)/asan/sim_host/models/pil/pil_images.o: $(PIL_IMAGE_LIST)
+$(BUILD)/obj/sim_host/models/pil/%.o $(BUILD)/asan/sim_host/models/pil/%.o: SIM_CFLAGS += -I$(BUILD)/gen -I$(PIL_AVR)/link
+SIM_EXTRA_OBJ += $(BUILD)/obj/$(PIL_AVR)/link/pil_avr_link.o
+SIM_EXTRA_OBJ_ASAN += $(BUILD)/asan/$(PIL_AVR)/link/pil_avr_link.o
+$(BUILD)/obj/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,CC,$<)$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/asan/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,CC-ASAN,$<)$(CC) $(SIM_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+
+# Each image's state map (state_map.py: its controller state's fields on the
+# AVR and here, from both builds' DWARF), beside its ELF.
+$(PIL_AVR_OUT)/avr/%.map: $(PIL_AVR_OUT)/avr/%.elf $(PIL_AVR_OUT)/host/% $(PIL_AVR)/state_map.py
+	$(call show,MAP,$@)$(PYTHON) $(PIL_AVR)/state_map.py $< $(PIL_AVR_OUT)/host/$* $@

@@ -57,7 +57,10 @@ typedef enum pil_type {
     PIL_CONFIG = 0x81,    /**< simulator: the answer to HELLO (pil_config_t) */
     PIL_STEP = 0x82,      /**< simulator: run one control step (pil_step_t) */
     PIL_REPLY = 0x83,     /**< simulator: the answer to a REQUEST (pil_reply_t) */
-    PIL_EMU = 0xC0        /**< emulator: how the MCU ran since it was last resumed (pil_emu_t) */
+    PIL_EMU = 0xC0,       /**< emulator: how the MCU ran since it was last resumed (pil_emu_t) */
+    PIL_PEEK = 0xC1,      /**< simulator to emulator: send this much of the MCU's RAM (a debugger's
+                               read, while the core is stopped: pil_peek_t) */
+    PIL_MEMORY = 0xC2     /**< emulator: those bytes */
 } pil_type_t;
 
 /** What pil_frame_check found. */

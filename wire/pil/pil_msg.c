@@ -483,3 +483,23 @@ int8_t pil_read_ground(const uint8_t *p, uint16_t n, hal_status_t *st, uint16_t 
     }
     return 0;
 }
+
+uint16_t pil_peek_encode(uint8_t *p, uint16_t cap, const pil_peek_t *m)
+{
+    if (cap < 6u) {
+        return 0u;
+    }
+    pil_put_u32(p, m->addr);
+    pil_put_u16(p + 4, m->len);
+    return 6u;
+}
+
+int8_t pil_peek_decode(const uint8_t *p, uint16_t n, pil_peek_t *m)
+{
+    if (n != 6u) {
+        return -1;
+    }
+    m->addr = pil_get_u32(p);
+    m->len = pil_get_u16(p + 4);
+    return m->len > PIL_MAX_PAYLOAD ? -1 : 0;
+}

@@ -60,6 +60,8 @@
  *            7 tx_count u8, 8 tx_count u16 values, then telemetry_len u16
  *            and the bytes
  *   FAULT    0 code u8 (pil_fault_code_t), 1 the frame type it was reading
+ *   PEEK     0 addr u32 (the MCU's data address), 4 len u16
+ *   MEMORY   the len bytes
  *   EMU      0 event u8 (pil_emu_event_t), 1 cycles u32 (since resumed),
  *            5 total u64 as two u32 (low first), 13 stack_max u16 (bytes
  *            used at most, by painting), 15 pc u32 (byte address)
@@ -190,6 +192,16 @@ typedef struct pil_emu {
     uint16_t stack_max;            /**< bytes of stack ever used (painting) */
     uint32_t pc;
 } pil_emu_t;
+
+/** A debugger's read of the MCU's RAM (the emulator answers, the core stays
+ *  stopped): the simulator mirrors the controller's state so. */
+typedef struct pil_peek {
+    uint32_t addr;
+    uint16_t len;
+} pil_peek_t;
+
+uint16_t pil_peek_encode(uint8_t *p, uint16_t cap, const pil_peek_t *m);
+int8_t pil_peek_decode(const uint8_t *p, uint16_t n, pil_peek_t *m);
 
 /* Encoders: write the payload at `p` (room for `cap`) and return its
  * length, 0 when it does not fit. */

@@ -24,7 +24,10 @@
  * outside RAM, the PC past the flash), jumps to the reset vector, halts
  * (sleep with interrupts off) or its stack runs into its static data, the
  * EMU frame says which, no MCU frame follows, and the program exits 3.  At
- * the end of its input it exits 0.  Its own errors (no image, a bad
+ * the end of its input it exits 0.  While the core is stopped the simulator
+ * may read its RAM (a PEEK frame, answered with a MEMORY frame: a
+ * debugger's read, which costs the core nothing): it mirrors the
+ * controller's state so.  Its own errors (no image, a bad
  * option) are a line on standard error and exit 2.
  *
  * The stack is painted: every byte between the end of the image's static
@@ -209,24 +212,46 @@ static void hand_over(emu_t *e, uint64_t cycles, uint16_t *mailbox, uint16_t *ca
     write_all(e->out, avr->data + *mailbox, len);
 }
 
+/* A PEEK: the bytes asked for (those inside RAM), in a MEMORY frame. */
+static void peek(emu_t *e, const pil_frame_t *f)
+{
+    pil_peek_t q;
+    uint8_t *out = e->frame;
+    const avr_t *avr = e->avr;
+    uint16_t n = 0;
+    if (pil_peek_decode(f->payload, f->len, &q) == 0 && q.addr <= avr->ramend) {
+        n = (uint16_t)(q.addr + q.len > avr->ramend + 1u ? avr->ramend + 1u - q.addr : q.len);
+        memmove(out + PIL_HEADER_BYTES, avr->data + q.addr, n);
+    }
+    write_all(e->out, out, pil_frame_seal(out, sizeof e->frame, PIL_MEMORY, 0u, n));
+}
+
 /* The simulator's next frame into the mailbox: as many bytes as its header
  * says (only the header when that is not a frame's: the MCU will say so),
- * at most the mailbox's.  0 at the end of the input. */
+ * at most the mailbox's; PEEKs before it are answered.  0 at the end of
+ * the input. */
 static int take_answer(emu_t *e, uint16_t mailbox, uint16_t cap)
 {
     uint8_t *f = e->frame;
-    if (!read_all(f, PIL_HEADER_BYTES)) {
-        return 0;
+    for (;;) {
+        if (!read_all(f, PIL_HEADER_BYTES)) {
+            return 0;
+        }
+        uint16_t n = pil_frame_size(f);
+        if (n > PIL_HEADER_BYTES && !read_all(f + PIL_HEADER_BYTES, (size_t)(n - PIL_HEADER_BYTES))) {
+            die("the simulator's input ended inside a frame");
+        }
+        if (n < PIL_HEADER_BYTES) {
+            n = PIL_HEADER_BYTES;
+        }
+        pil_frame_t pf;
+        if (f[2] == PIL_PEEK && pil_frame_check(f, n, &pf) == PIL_FRAME_OK) {
+            peek(e, &pf);
+            continue;
+        }
+        memcpy(e->avr->data + mailbox, f, n < cap ? n : cap);
+        return 1;
     }
-    uint16_t n = pil_frame_size(f);
-    if (n > PIL_HEADER_BYTES && !read_all(f + PIL_HEADER_BYTES, (size_t)(n - PIL_HEADER_BYTES))) {
-        die("the simulator's input ended inside a frame");
-    }
-    if (n < PIL_HEADER_BYTES) {
-        n = PIL_HEADER_BYTES;
-    }
-    memcpy(e->avr->data + mailbox, f, n < cap ? n : cap);
-    return 1;
 }
 
 static uint64_t number(const char *opt, const char *s)

@@ -227,6 +227,25 @@ static int link_recv(void *ctx, uint8_t *buf, uint16_t cap, uint16_t *len, pil_e
     return read_frame(l, buf, cap, len, deadline, err);
 }
 
+int pil_avr_link_peek(pil_avr_link_t *l, uint32_t addr, uint16_t len, uint8_t *out, char err[PIL_HOST_ERR])
+{
+    uint8_t buf[PIL_FRAME_MAX];
+    pil_peek_t q = { addr, len };
+    pil_frame_t f;
+    uint16_t n = pil_peek_encode(buf + PIL_HEADER_BYTES, 32u, &q);
+    n = pil_frame_seal(buf, sizeof buf, PIL_PEEK, 0u, n);
+    if (link_send(l, buf, n, err) != 0 || read_frame(l, buf, sizeof buf, &n, now_ms() + l->timeout_ms, err) != 0) {
+        return -1;
+    }
+    if (pil_frame_check(buf, n, &f) != PIL_FRAME_OK || f.type != PIL_MEMORY || f.len != len) {
+        snprintf(err, PIL_HOST_ERR, "its emulator did not answer a read of %u bytes at 0x%04" PRIx32 " (is the "
+                 "emulator this build's?)", len, addr);
+        return -1;
+    }
+    memcpy(out, f.payload, len);
+    return 0;
+}
+
 pil_host_io_t pil_avr_link_io(pil_avr_link_t *l)
 {
     pil_host_io_t io = { .ctx = l, .send = link_send, .recv = link_recv };

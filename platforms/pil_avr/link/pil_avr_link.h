@@ -43,6 +43,11 @@ int pil_avr_link_open(pil_avr_link_t *l, const pil_avr_link_def_t *def, char err
 /** Kills and reaps the emulator (a link never opened: nothing). */
 void pil_avr_link_close(pil_avr_link_t *l);
 
+/** Reads `len` bytes of the stopped MCU's RAM at `addr` into `out` (a
+ *  debugger's read: between a frame the MCU handed over and the answer
+ *  to it): 0, or -1 with `err`. */
+int pil_avr_link_peek(pil_avr_link_t *l, uint32_t addr, uint16_t len, uint8_t *out, char err[PIL_HOST_ERR]);
+
 /** The transport over this link. */
 pil_host_io_t pil_avr_link_io(pil_avr_link_t *l);
 
