@@ -49,6 +49,8 @@ static const param_desc_t group_params[] = {
       .doc = "what runs the robots: host (built in) or pil_avr (the image on an emulated ATmega2560)" },
     { .key = "image", PARAM_STRING_FIELD(G, image),
       .doc = "the robot image they run (platforms/epuck1/images.list): its parameters and seed" },
+    { .key = "platform_robots", PARAM_FIELD(G, platform_robots, uint32_t), .min = 0, .max = 100000,
+      .doc = "how many of the group's robots (its first) run on the platform (0: all; the rest host-built)" },
     { .key = "selector", PARAM_FIELD(G, selector, uint8_t), .min = 0, .max = 15,
       .doc = "the selector switch's position at power-on (an image with a selector)" },
     PARAM_END
@@ -114,6 +116,17 @@ static int pil_check(const void *config, const scenario_t *sc, char path[SCHEMA_
             snprintf(msg, SIM_ERR_MAX, "image %s runs controller %s (%s), not the group's %s", im->name,
                      im->controller, im->where, grp->def->name);
             return -1;
+        }
+        if (grp->def->default_params && grp->def->params_size <= sizeof(scenario_params_t)) {
+            scenario_params_t defaults;
+            memset(&defaults, 0, sizeof defaults);
+            grp->def->default_params(defaults.bytes);
+            if (memcmp(defaults.bytes, grp->params.bytes, grp->def->params_size) != 0 || grp->policy_index != 0) {
+                snprintf(path, SCHEMA_PATH_MAX, "robots.%u.image", g);
+                snprintf(msg, SIM_ERR_MAX, "a group that runs image %s takes its parameters and policy from the "
+                         "image's declaration (%s): give it no params or policy", im->name, im->where);
+                return -1;
+            }
         }
         if (im->params_size != grp->def->params_size) {
             snprintf(path, SCHEMA_PATH_MAX, "robots.%u.image", g);
@@ -461,7 +474,7 @@ static int pil_create(sim_t *sim, const void *config, void **self, char err[SIM_
             if (r->ctrl) {
                 r->def->init(r->ctrl, params.bytes, image_seed(sim, im, i));
             }
-            if (gc->platform == PIL_PLATFORM_HOST) {
+            if (gc->platform == PIL_PLATFORM_HOST || (gc->platform_robots && k >= gc->platform_robots)) {
                 continue;
             }
             pil_mcu_t *m = calloc(1, sizeof *m);

@@ -9,6 +9,8 @@
  *   robots:
  *     - {count: 3, controller: forager, image: forager, platform: pil_avr}
  *     - {count: 17, controller: forager, image: forager}      # host-built
+ *     - {count: 20, controller: forager, image: forager, platform: pil_avr,
+ *        platform_robots: 3}           # its first 3 on MCUs, 17 host-built
  *
  * `image` names a robot image (platforms/epuck1/images.list, pil_images.h):
  * its robots start with the parameters and the seed its declaration gives
@@ -63,6 +65,7 @@ typedef struct pil_model_config {
 typedef struct pil_group_config {
     int platform;             /**< pil_platform_t */
     char image[32];           /**< an image's name, or "" */
+    uint32_t platform_robots; /**< how many of its robots (its first) run on the platform; 0: all */
     uint8_t selector;         /**< the selector switch's position (images with a selector) */
 } pil_group_config_t;
 
