@@ -131,3 +131,6 @@ $(BUILD)/asan/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
 # AVR and here, from both builds' DWARF), beside its ELF.
 $(PIL_AVR_OUT)/avr/%.map: $(PIL_AVR_OUT)/avr/%.elf $(PIL_AVR_OUT)/host/% $(PIL_AVR)/state_map.py
 	$(call show,MAP,$@)$(PYTHON) $(PIL_AVR)/state_map.py $< $(PIL_AVR_OUT)/host/$* $@
+
+# The simulator's PIL test (tests/cli/pil.sh) runs the images beside swarmsim.
+cli-tests: pil-avr

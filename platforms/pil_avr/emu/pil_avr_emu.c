@@ -13,6 +13,10 @@
  *
  *   pil_avr_emu [--budget CYCLES] [--boot-budget CYCLES] IMAGE.elf
  *
+ * --boot-budget bounds each exchange until the first STEP (reset to HELLO,
+ * CONFIG to READY: the C runtime and the controller's init), --budget each
+ * one after (a step's, or a request's within it).
+ *
  * The image's frames (wire/pil/pil_frame.h) pass through unchanged: when
  * the MCU rings its doorbell (platforms/pil_avr/hal/pil_port_avr.c) the
  * core stops before its next instruction; this program writes an EMU frame
@@ -69,6 +73,7 @@ typedef struct emu {
     uint64_t budget, boot_budget;
     uint16_t heap_start;      /**< first byte above the static data */
     int rang;
+    int stepping;             /**< a STEP has been delivered: the step budget applies, not the boot's */
     uint8_t frame[PIL_FRAME_MAX];
 } emu_t;
 
@@ -250,6 +255,7 @@ static int take_answer(emu_t *e, uint16_t mailbox, uint16_t cap)
             continue;
         }
         memcpy(e->avr->data + mailbox, f, n < cap ? n : cap);
+        e->stepping |= f[2] == PIL_STEP;
         return 1;
     }
 }
@@ -333,6 +339,6 @@ int main(int argc, char **argv)
             return 0;
         }
         mark = e.avr->cycle;
-        run(&e, e.budget);
+        run(&e, e.stepping ? e.budget : e.boot_budget);
     }
 }

@@ -113,15 +113,16 @@ static void gone(pil_avr_link_t *l, char *err, const char *what)
     if (r == l->pid) {
         l->pid = -1;
         if (WIFSIGNALED(status)) {
-            snprintf(err, PIL_HOST_ERR, "its emulator was killed by signal %d %s", WTERMSIG(status), what);
+            snprintf(err, PIL_HOST_ERR, "its emulator was killed by signal %d%s%s", WTERMSIG(status), *what ? " " : "",
+                     what);
         } else if (WEXITSTATUS(status) == 127) {
             snprintf(err, PIL_HOST_ERR, "its emulator could not be started");
         } else {
-            snprintf(err, PIL_HOST_ERR, "its emulator exited (status %d) %s (its messages are on standard error)",
-                     WEXITSTATUS(status), what);
+            snprintf(err, PIL_HOST_ERR, "its emulator exited (status %d)%s%s (its messages are on standard error)",
+                     WEXITSTATUS(status), *what ? " " : "", what);
         }
     } else {
-        snprintf(err, PIL_HOST_ERR, "its emulator closed its output %s", what);
+        snprintf(err, PIL_HOST_ERR, "its emulator closed its output%s%s", *what ? " " : "", what);
     }
 }
 

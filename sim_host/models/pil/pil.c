@@ -3,6 +3,7 @@
  */
 #include "pil.h"
 
+#include <errno.h>
 #include <inttypes.h>
 #include <limits.h>
 #include <stdio.h>
@@ -456,6 +457,12 @@ static int pil_create(sim_t *sim, const void *config, void **self, char err[SIM_
         if (im && gc->platform != PIL_PLATFORM_HOST) {
             char map[PATH_MAX + 16];
             if (pil_dir(p->cfg, dir, sizeof dir, err) != 0) {
+                return -1;
+            }
+            snprintf(map, sizeof map, "%.3000s/pil_avr_emu", dir);
+            if (access(map, X_OK) != 0) {
+                snprintf(err, SIM_ERR_MAX, "robots.%u: the AVR emulator %.300s: %s (make pil-avr builds it; it "
+                         "needs simavr: Debian's libsimavr-dev; pil.dir says where it is)", g, map, strerror(errno));
                 return -1;
             }
             snprintf(map, sizeof map, "%.3000s/avr/%.32s.map", dir, im->name);
