@@ -50,7 +50,9 @@ $(PIL_AVR_OUT)/avr/libpil.a: $(PIL_AVR_OBJ)
 $(PIL_AVR_OUT)/avr/%.elf: $(PIL_AVR_GEN)/%_main.c $(PIL_AVR_OUT)/avr/libpil.a
 	$(call show,AVR-LD,$@)$(PIL_AVR_CC) $(PIL_AVR_CFLAGS) -I$(PIL_AVR_GEN) $(PIL_AVR_LDFLAGS) -o $@ $< \
 	  $(PIL_AVR_OUT)/avr/libpil.a -lm
-$(PIL_AVR_OUT)/avr/misbehave.elf: $(PIL_AVR)/tests/misbehave_main.c $(PIL_AVR_OUT)/avr/libpil.a
+# The tests' own images: one that misbehaves on cue, one that times the detectors.
+$(PIL_AVR_OUT)/avr/misbehave.elf $(PIL_AVR_OUT)/avr/detect.elf: $(PIL_AVR_OUT)/avr/%.elf: $(PIL_AVR)/tests/%_main.c \
+    $(PIL_AVR_OUT)/avr/libpil.a
 	$(call show,AVR-LD,$@)$(PIL_AVR_CC) $(PIL_AVR_CFLAGS) $(PIL_AVR_LDFLAGS) -o $@ $< $(PIL_AVR_OUT)/avr/libpil.a
 
 # The host build of the same images, for the comparison: -funsigned-char
@@ -88,7 +90,7 @@ pil_avr_names = $(foreach r,$(call fw_images,pil_avr,telemetry),$(call fw_field,
 pil-avr: pil-avr-images lcm-types
 	@$(MAKE) --no-print-directory pil-avr-build PIL_NAMES='$(pil_avr_names)'
 .PHONY: pil-avr-build
-pil-avr-build: $(PIL_AVR_EMU) $(PIL_AVR_COMPARE) $(PIL_AVR_OUT)/avr/misbehave.elf \
+pil-avr-build: $(PIL_AVR_EMU) $(PIL_AVR_COMPARE) $(PIL_AVR_OUT)/avr/misbehave.elf $(PIL_AVR_OUT)/avr/detect.elf \
     $(foreach i,$(PIL_NAMES),$(PIL_AVR_OUT)/avr/$(i).elf $(PIL_AVR_OUT)/host/$(i) $(PIL_AVR_OUT)/avr/$(i).map)
 	@:
 

@@ -62,8 +62,16 @@ static int recv_frame(pil_host_t *h, uint8_t want, uint8_t seq, pil_frame_t *f, 
     pil_frame_error_t fe;
     h->emu.event = PIL_EMU_FRAME;
     h->emu.cycles = 0u;
+    h->emu.first_mark = h->emu.last_mark = PIL_NO_MARK;
     if (h->io.recv(h->io.ctx, h->buf, (uint16_t)sizeof h->buf, &n, &h->emu, err) != 0) {
         return -1;
+    }
+    if (h->emu.first_mark != PIL_NO_MARK && !h->marked) {
+        h->mark_begin = h->step_cycles + h->emu.first_mark;
+        h->marked = 1u;
+    }
+    if (h->emu.last_mark != PIL_NO_MARK) {
+        h->mark_end = h->step_cycles + h->emu.last_mark;
     }
     h->step_cycles += h->emu.cycles;
     fe = pil_frame_check(h->buf, n, f);
@@ -197,6 +205,8 @@ int pil_host_step(pil_host_t *h, const pil_step_t *step, const pil_host_ops_t *o
     pil_frame_t f;
     uint16_t n = pil_step_encode(h->buf + PAYLOAD, ROOM, step);
     h->step_cycles = 0u;
+    h->control_cycles = 0u;
+    h->marked = 0u;
     h->requests = 0u;
     if (n == 0u) {
         snprintf(err, PIL_HOST_ERR, "a STEP frame that does not encode (%u microphone cells)", step->mic_count);
@@ -233,6 +243,7 @@ int pil_host_step(pil_host_t *h, const pil_step_t *step, const pil_host_ops_t *o
                  h->config.tx_per_period);
         return -1;
     }
+    h->control_cycles = h->marked && h->mark_end >= h->mark_begin ? h->mark_end - h->mark_begin : h->step_cycles;
     memcpy(h->act_telemetry, act->telemetry, act->telemetry_len);
     act->telemetry = h->act_telemetry;
     return 0;

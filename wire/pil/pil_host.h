@@ -63,8 +63,14 @@ typedef struct pil_host {
     pil_config_t config;           /**< what it was told */
     pil_emu_t emu;                 /**< the emulator's last report */
     uint64_t step_cycles;          /**< cycles of the last step (its exchanges' sum) */
+    uint64_t control_cycles;       /**< of them, between the robot's first and last mark: its
+                                        controller's step with the requests it made (not the
+                                        STEP's decoding, its telemetry, the ACT); step_cycles
+                                        when it marks nothing */
+    uint64_t mark_begin, mark_end; /**< where this step's marks fell, in step_cycles' count */
     uint64_t boot_cycles;          /**< cycles from reset to READY */
     uint32_t requests;             /**< requests in the last step */
+    uint8_t marked;                /**< this step's first mark was seen */
     uint8_t act_telemetry[PIL_TELEMETRY_MAX];   /**< the last ACT's bytes (act.telemetry points here) */
     uint8_t buf[PIL_FRAME_MAX];
 } pil_host_t;

@@ -6,7 +6,7 @@
 #define STEP_FIXED 15u
 #define MIC_CELL_BYTES 5u
 #define ACT_FIXED 8u
-#define EMU_BYTES 19u
+#define EMU_BYTES 27u
 #define BLOB_BYTES 7u
 
 static uint16_t put_name(uint8_t *p, const char *s)
@@ -252,6 +252,8 @@ uint16_t pil_emu_encode(uint8_t *p, uint16_t cap, const pil_emu_t *m)
     pil_put_u32(p + 9, (uint32_t)(m->total >> 16 >> 16));
     pil_put_u16(p + 13, m->stack_max);
     pil_put_u32(p + 15, m->pc);
+    pil_put_u32(p + 19, m->first_mark);
+    pil_put_u32(p + 23, m->last_mark);
     return EMU_BYTES;
 }
 
@@ -265,6 +267,8 @@ int8_t pil_emu_decode(const uint8_t *p, uint16_t n, pil_emu_t *m)
     m->total = (uint64_t)pil_get_u32(p + 5) | ((uint64_t)pil_get_u32(p + 9) << 16 << 16);
     m->stack_max = pil_get_u16(p + 13);
     m->pc = pil_get_u32(p + 15);
+    m->first_mark = pil_get_u32(p + 19);
+    m->last_mark = pil_get_u32(p + 23);
     return 0;
 }
 

@@ -64,7 +64,9 @@
  *   MEMORY   the len bytes
  *   EMU      0 event u8 (pil_emu_event_t), 1 cycles u32 (since resumed),
  *            5 total u64 as two u32 (low first), 13 stack_max u16 (bytes
- *            used at most, by painting), 15 pc u32 (byte address)
+ *            used at most, by painting), 15 pc u32 (byte address),
+ *            19 first_mark u32, 23 last_mark u32 (cycles from the resume to
+ *            the robot's first and last mark, PIL_NO_MARK when it made none)
  */
 #ifndef FW_PIL_MSG_H
 #define FW_PIL_MSG_H
@@ -185,12 +187,17 @@ typedef struct pil_act {
     const uint8_t *telemetry;      /**< in the frame's buffer (decoded) or the robot's (encoded) */
 } pil_act_t;
 
+/** EMU's mark when the robot made none in that run. */
+#define PIL_NO_MARK 0xFFFFFFFFu
+
 typedef struct pil_emu {
     uint8_t event;                 /**< pil_emu_event_t */
     uint32_t cycles;               /**< since the MCU was last resumed */
     uint64_t total;                /**< since reset */
     uint16_t stack_max;            /**< bytes of stack ever used (painting) */
     uint32_t pc;
+    uint32_t first_mark;           /**< cycles from the resume to the robot's first mark (pil_port_mark) */
+    uint32_t last_mark;            /**< ... and to its last */
 } pil_emu_t;
 
 /** A debugger's read of the MCU's RAM (the emulator answers, the core stays

@@ -88,6 +88,12 @@ typedef struct pil_robot {
  *  is there (the mailbox holds `cap` bytes). */
 void pil_port_exchange(uint8_t *mailbox, uint16_t cap, uint16_t len);
 
+/** The platform's mark, called by a run loop just before its controller's
+ *  step and just after: an emulator notes the cycles (so that a step's
+ *  controller is told apart from the protocol's frames and the image's
+ *  telemetry); elsewhere it does nothing. */
+void pil_port_mark(void);
+
 /** Binds the robot to its mailbox and the image's declaration: its
  *  PIL_HAS_* flags, its IR message bits and messages per period. */
 void pil_robot_init(pil_robot_t *r, uint8_t *mailbox, uint16_t cap, uint8_t image_flags, uint8_t ircom_bits,

@@ -22,7 +22,9 @@
  * core stops before its next instruction; this program writes an EMU frame
  * (pil_msg.h: why the core stopped, the cycles it ran since it was
  * resumed, the stack it has used, by painting) and then the MCU's frame to
- * standard output, reads the simulator's next frame from standard input
+ * standard output (the EMU frame also says when the robot marked the end of
+ * its controller's step, a write of PIL_AVR_MARK that does not stop it),
+ * reads the simulator's next frame from standard input
  * into the mailbox and resumes the core.  When the core runs past its
  * cycle budget without ringing, crashes (simavr's crashed state: an access
  * outside RAM, the PC past the flash), jumps to the reset vector, halts
@@ -73,6 +75,8 @@ typedef struct emu {
     uint64_t budget, boot_budget;
     uint16_t heap_start;      /**< first byte above the static data */
     int rang;
+    uint64_t resumed;         /**< the cycle the core was last resumed at */
+    uint64_t first_mark, last_mark;   /**< the cycles of its first and last mark since, 0: none */
     int stepping;             /**< a STEP has been delivered: the step budget applies, not the boot's */
     uint8_t frame[PIL_FRAME_MAX];
 } emu_t;
@@ -102,6 +106,9 @@ static void bell(avr_t *avr, avr_io_addr_t addr, uint8_t v, void *param)
     avr->data[addr] = v;
     if (v == PIL_AVR_BELL) {
         e->rang = 1;
+    } else if (v == PIL_AVR_MARK) {
+        e->first_mark = e->first_mark ? e->first_mark : avr->cycle;
+        e->last_mark = avr->cycle;
     }
 }
 
@@ -159,6 +166,8 @@ static void report(emu_t *e, uint8_t event, uint64_t cycles)
     m.total = e->avr->cycle;
     m.stack_max = stack_max(e);
     m.pc = e->avr->pc;
+    m.first_mark = e->first_mark ? (uint32_t)(e->first_mark - e->resumed) : PIL_NO_MARK;
+    m.last_mark = e->last_mark ? (uint32_t)(e->last_mark - e->resumed) : PIL_NO_MARK;
     uint16_t n = pil_emu_encode(buf + PIL_HEADER_BYTES, 32u, &m);
     write_all(e->out, buf, pil_frame_seal(buf, sizeof buf, PIL_EMU, 0u, n));
 }
@@ -175,6 +184,8 @@ static void run(emu_t *e, uint64_t budget)
     avr_t *avr = e->avr;
     uint64_t start = avr->cycle;
     e->rang = 0;
+    e->resumed = start;
+    e->first_mark = e->last_mark = 0;
     while (!e->rang) {
         int state = avr_run(avr);
         uint64_t ran = avr->cycle - start;

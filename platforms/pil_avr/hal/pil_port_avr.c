@@ -37,3 +37,8 @@ void pil_port_exchange(uint8_t *mailbox, uint16_t cap, uint16_t len)
     /* The answer is in the mailbox now: nothing read before the bell. */
     __asm__ __volatile__("" ::: "memory");
 }
+
+void pil_port_mark(void)
+{
+    PIL_AVR_REG(PIL_AVR_GPIOR0) = PIL_AVR_MARK;
+}

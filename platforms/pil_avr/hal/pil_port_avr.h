@@ -7,6 +7,9 @@
 
 /** The value written to GPIOR0 to hand a frame over. */
 #define PIL_AVR_BELL 0xB5u
+/** The value written to GPIOR0 to mark where the controller's step begins
+ *  and ends (the emulator notes the cycle and does not stop). */
+#define PIL_AVR_MARK 0x4Du
 /** Data-space addresses of GPIOR0, GPIOR1 and GPIOR2 on the ATmega2560. */
 #define PIL_AVR_GPIOR0 0x3Eu
 #define PIL_AVR_GPIOR1 0x4Au

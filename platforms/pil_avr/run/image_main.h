@@ -158,11 +158,14 @@ static void app_setup(void)
     hal_pil_ready(&app_hal);
 }
 
-/* One control step: the controller's, its telemetry, then ACT (which
- * returns with the next step's STEP). */
+/* One control step: the controller's (between two marks: the emulator
+ * times it), its telemetry, then ACT (which returns with the next step's
+ * STEP). */
 static void app_loop_once(void)
 {
+    pil_port_mark();
     IMAGE_FN(_step)(&app_ctrl, &app_hal);
+    pil_port_mark();
 #if IMAGE_TELEMETRY
     app_send_telemetry();
 #endif

@@ -46,6 +46,8 @@ void pil_port_exchange(uint8_t *mailbox, uint16_t cap, uint16_t len)
     pil_emu_t m;
     memset(&m, 0, sizeof m);
     m.event = PIL_EMU_FRAME;
+    m.first_mark = PIL_NO_MARK;
+    m.last_mark = PIL_NO_MARK;
     uint16_t n = pil_emu_encode(rep + PIL_HEADER_BYTES, 32u, &m);
     put(rep, pil_frame_seal(rep, sizeof rep, PIL_EMU, 0u, n));
     put(mailbox, len);
@@ -62,4 +64,8 @@ void pil_port_exchange(uint8_t *mailbox, uint16_t cap, uint16_t len)
         memcpy(mailbox + PIL_HEADER_BYTES, rest,
                (size_t)((size < cap ? size : cap) > PIL_HEADER_BYTES ? (size < cap ? size : cap) - PIL_HEADER_BYTES : 0));
     }
+}
+
+void pil_port_mark(void)
+{
 }

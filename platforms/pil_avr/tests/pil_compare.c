@@ -11,7 +11,7 @@
  *   pil_compare --emu EMU --avr IMAGE.elf [--host IMAGE_EXE] [--steps N]
  *               [--seed S] [--robot ID] [--frames] [--budget CYCLES]
  *               [--corrupt STEP:KIND] [--kill-at STEP] [--stop-at STEP]
- *               [--timeout MS] [--expect TEXT] [--json FILE]
+ *               [--timeout MS] [--expect TEXT] [--json FILE] [--cycles FILE.csv]
  *
  * --corrupt damages the simulator's STEP frame of that step before the
  * AVR gets it (KIND crc, version, type, seq, length): the robot must
@@ -19,7 +19,8 @@
  * --kill-at kills the emulator (SIGKILL) before that step, --stop-at stops
  * it (SIGSTOP: a hung emulator, caught by the wall-time bound --timeout).
  * --expect TEXT: the run must fail, with TEXT in its error (exit 0 then).
- * --json: the measurement, one object.
+ * --json: the measurement, one object; --cycles: each step's cycles, and
+ * those of its controller's step (to the run loop's mark), as CSV.
  */
 #include <errno.h>
 #include <inttypes.h>
@@ -89,7 +90,7 @@ static void usage(void)
 {
     fprintf(stderr, "usage: pil_compare --emu EMU --avr IMAGE.elf [--host IMAGE_EXE] [--steps N] [--seed S] "
                     "[--robot ID] [--frames] [--budget CYCLES] [--corrupt STEP:KIND] [--kill-at STEP] [--stop-at STEP] "
-                    "[--timeout MS] [--expect TEXT] [--json FILE]\n");
+                    "[--timeout MS] [--expect TEXT] [--json FILE] [--cycles FILE.csv]\n");
     exit(2);
 }
 
@@ -139,7 +140,7 @@ static int step(side_t *s, char *err)
 
 int main(int argc, char **argv)
 {
-    const char *emu = NULL, *avr = NULL, *host = NULL, *expect = NULL, *json = NULL;
+    const char *emu = NULL, *avr = NULL, *host = NULL, *expect = NULL, *json = NULL, *cycles_path = NULL;
     long steps = 200, seed = 1, robot = 3, budget = 0, kill_at = -1, stop_at = -1, timeout = 0;
     int frames = 0;
     corrupt_t corrupt = { .step = -1 };
@@ -161,6 +162,7 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--frames")) frames = 1;
         else if (!strcmp(a, "--expect")) expect = argv[++i];
         else if (!strcmp(a, "--json")) json = argv[++i];
+        else if (!strcmp(a, "--cycles")) cycles_path = argv[++i];
         else if (!strcmp(a, "--corrupt")) {
             const char *c = argv[++i], *colon = strchr(c, ':');
             if (!colon || strlen(colon + 1) >= sizeof corrupt.kind) usage();
@@ -214,8 +216,16 @@ int main(int argc, char **argv)
         pil_host_init(&h->host, &hio);
     }
 
-    uint64_t cycles_sum = 0, cycles_max = 0, requests = 0;
+    uint64_t cycles_sum = 0, cycles_max = 0, requests = 0, control_sum = 0, control_max = 0;
     long done = 0;
+    FILE *csv = cycles_path ? fopen(cycles_path, "w") : NULL;
+    if (cycles_path && !csv) {
+        fprintf(stderr, "pil_compare: %s: %s\n", cycles_path, strerror(errno));
+        return 2;
+    }
+    if (csv) {
+        fprintf(csv, "step,cycles,control_cycles\n");
+    }
     failed = boot(a, err) != 0 || (h && boot(h, err) != 0);
     if (!failed && h && (memcmp(&a->host.hello, &h->host.hello, sizeof a->host.hello) != 0
                          && (strcmp(a->host.hello.name, h->host.hello.name)
@@ -234,11 +244,19 @@ int main(int argc, char **argv)
         cycles_sum += a->host.step_cycles;
         cycles_max = a->host.step_cycles > cycles_max ? a->host.step_cycles : cycles_max;
         requests += a->host.requests;
+        control_sum += a->host.control_cycles;
+        control_max = a->host.control_cycles > control_max ? a->host.control_cycles : control_max;
+        if (csv) {
+            fprintf(csv, "%ld,%" PRIu64 ",%" PRIu64 "\n", done, a->host.step_cycles, a->host.control_cycles);
+        }
         if (h && (a->script.log_len != h->script.log_len || memcmp(a->script.log, h->script.log, a->script.log_len))) {
             snprintf(err, sizeof err, "image %s robot %ld, step %ld: the AVR and the host build differ\n"
                      "--- host\n%s--- avr\n%s", a->host.hello.name, robot, done, h->script.log, a->script.log);
             failed = 1;
         }
+    }
+    if (csv) {
+        fclose(csv);
     }
     pil_avr_link_close(&a->link);
     if (h) {
@@ -269,10 +287,12 @@ int main(int argc, char **argv)
             return 1;
         }
         fprintf(f, "{\"image\": \"%s\", \"controller\": \"%s\", \"frames\": %d, \"steps\": %ld, "
-                   "\"cycles_mean\": %.1f, \"cycles_max\": %" PRIu64 ", \"boot_cycles\": %" PRIu64 ", "
+                   "\"cycles_mean\": %.1f, \"cycles_max\": %" PRIu64 ", \"control_mean\": %.1f, "
+                   "\"control_max\": %" PRIu64 ", \"boot_cycles\": %" PRIu64 ", "
                    "\"stack_bytes\": %u, \"requests_per_step\": %.3f}\n",
                 a->host.hello.name, a->host.hello.controller, frames, done,
-                done ? (double)cycles_sum / (double)done : 0.0, cycles_max, a->host.boot_cycles,
+                done ? (double)cycles_sum / (double)done : 0.0, cycles_max,
+                done ? (double)control_sum / (double)done : 0.0, control_max, a->host.boot_cycles,
                 a->host.emu.stack_max, done ? (double)requests / (double)done : 0.0);
         fclose(f);
     }

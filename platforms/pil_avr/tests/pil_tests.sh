@@ -96,7 +96,16 @@ else
 fi
 
 if [ -n "${REPORT:-}" ]; then
-    python3 "$(dirname "$0")/pil_report.py" "$out/measure" > "$REPORT.tmp" && mv "$REPORT.tmp" "$REPORT" \
+    for d in blobs:0 tones:1; do
+        if "$cmp" --emu "$emu" --avr "$out/avr/detect.elf" --robot "${d#*:}" --steps 30 \
+               --json "$out/measure/detect_${d%:*}.json" --cycles "$out/measure/detect_${d%:*}.csv" > /dev/null; then
+            ok
+        else
+            bad "the detector image (${d%:*})"
+        fi
+    done
+    python3 "$(dirname "$0")/pil_report.py" "$out/measure" --cpu "$out/../cpu.md" \
+        --footprint "$out/../epuck1/footprint.md" > "$REPORT.tmp" && mv "$REPORT.tmp" "$REPORT" \
         && { ok; echo "pil-avr: measured cycles and stack: $REPORT"; } || bad "the report"
 fi
 echo "pil-avr: $pass passed, $fail failed"
