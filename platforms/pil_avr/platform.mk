@@ -103,7 +103,7 @@ pil-avr-tests: pil-avr
 
 pil-avr-compare: pil-avr
 	@PIL_OUT=$(PIL_AVR_OUT) STEPS=$(PIL_COMPARE_STEPS) IMAGES='$(pil_avr_names)' FRAMES='$(PIL_IMAGES_FRAMES)' \
-	  REPORT=$(PIL_AVR_OUT)/cpu.md bash $(PIL_AVR)/tests/pil_tests.sh
+	  LONG=1 REPORT=$(PIL_AVR_OUT)/cpu.md bash $(PIL_AVR)/tests/pil_tests.sh
 
 # ------------------------------------------------ the simulator's end
 # The simulator's model of PIL robots (sim_host/models/pil/) reads the

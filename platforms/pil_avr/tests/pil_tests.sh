@@ -23,7 +23,7 @@ rm -f "$out"/measure/*.json
 compare() {   # IMAGE ROBOT SEED [--frames]
     local img=$1 robot=$2 seed=$3; shift 3
     local tag=$img${1:+_frames}
-    if msg=$("$cmp" --emu "$emu" --avr "$out/avr/$img.elf" --host "$out/host/$img" --steps "$steps" \
+    if msg=$("$cmp" --emu "$emu" --avr "$out/avr/$img.elf" --host "$out/host/$img" --steps "${steps:-150}" \
                  --robot "$robot" --seed "$seed" --json "$out/measure/${tag}_$robot.json" "$@" 2>&1); then
         ok; echo "$msg" | tail -1
     else
@@ -31,13 +31,19 @@ compare() {   # IMAGE ROBOT SEED [--frames]
     fi
 }
 
+# A second robot and seed, and the camera frames' runs, when LONG is set
+# (make pil-avr-compare); make test's short run: one robot, frames for 60 steps.
 for img in $IMAGES; do
     compare "$img" 3 1
-    compare "$img" 11 7
+    [ -n "${LONG:-}" ] && compare "$img" 11 7
 done
 for img in $FRAMES; do
-    compare "$img" 3 1 --frames
-    compare "$img" 11 7 --frames
+    if [ -n "${LONG:-}" ]; then
+        compare "$img" 3 1 --frames
+        compare "$img" 11 7 --frames
+    else
+        steps=60 compare "$img" 3 1 --frames
+    fi
 done
 
 # Errors: each run must fail with the expected words in its error, which
