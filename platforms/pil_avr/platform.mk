@@ -14,7 +14,11 @@
 #                         and step.  Part of make firmware-check (make test).
 #   make pil-avr-compare  the same comparison, longer (PIL_COMPARE_STEPS, 3000), and the
 #                         measured cycles and stack per image into
-#                         build/firmware/pil_avr/cpu.md (docs/hardware/footprint.md)
+#                         build/firmware/pil_avr/cpu.md
+#   make readme-pil-cpu   that, then the table into docs/hardware/footprint.md
+#                         (between its pil-cpu markers)
+#   make pil-avr-bench    the cost of a PIL robot-step, and how many PIL robots one
+#                         core keeps at real time (tools/bench/pil.sh)
 PIL_AVR := platforms/pil_avr
 PIL_AVR_GEN := $(FW_GEN)/pil_avr
 PIL_AVR_OUT := $(FW_OUT)/pil_avr
@@ -23,7 +27,7 @@ PIL_AVR_COMPARE := $(PIL_AVR_OUT)/pil_compare
 PIL_AVR_INC := -Ihal -Iwire -Ifirmware -I$(PIL_AVR)/hal -I$(PIL_AVR)/run -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
 PIL_COMPARE_STEPS ?= 3000
 
-.PHONY: pil-avr pil-avr-images pil-avr-tests pil-avr-errors pil-avr-compare
+.PHONY: pil-avr pil-avr-images pil-avr-tests pil-avr-errors pil-avr-compare readme-pil-cpu pil-avr-bench
 FW_IMAGE_TARGETS += pil-avr-images
 PLATFORM_CHECKS += pil-avr-tests
 
@@ -73,6 +77,8 @@ $(PIL_AVR_OUT)/host/%: $(PIL_AVR_GEN)/%_main.c $(PIL_AVR_OUT)/host/libpil.a
 PIL_WIRE_SRC := wire/pil/pil_frame.c wire/pil/pil_msg.c wire/telemetry/telemetry_frame.c
 $(PIL_AVR_EMU): $(PIL_AVR)/emu/pil_avr_emu.c $(PIL_WIRE_SRC) $(wildcard wire/pil/*.h) $(PIL_AVR)/hal/pil_port_avr.h | $(BUILD)/config.mk
 	@mkdir -p $(@D)
+	@printf '#include <simavr/sim_avr.h>\n' | $(CC) -E -x c - > /dev/null 2>&1 || \
+	  { echo "pil_avr: no libsimavr: install the Debian package libsimavr-dev (make deps does, as root)" >&2; exit 1; }
 	$(call show,CC,$<)$(CC) -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -O2 -g -Ihal -Iwire -I$(PIL_AVR)/hal \
 	  -o $@ $(PIL_AVR)/emu/pil_avr_emu.c $(PIL_WIRE_SRC) -lsimavr
 
@@ -96,7 +102,7 @@ pil-avr-build: $(PIL_AVR_EMU) $(PIL_AVR_COMPARE) $(PIL_AVR_OUT)/avr/misbehave.el
 
 # PIL_IMAGES_FRAMES: the images that also run with camera frames (blob_detect on the MCU).
 PIL_IMAGES_FRAMES := forager repatt
-PIL_TEST_STEPS ?= 150
+PIL_TEST_STEPS ?= 60
 pil-avr-tests: pil-avr
 	@PIL_OUT=$(PIL_AVR_OUT) STEPS=$(PIL_TEST_STEPS) IMAGES='$(pil_avr_names)' FRAMES='$(PIL_IMAGES_FRAMES)' \
 	  bash $(PIL_AVR)/tests/pil_tests.sh
@@ -104,6 +110,13 @@ pil-avr-tests: pil-avr
 pil-avr-compare: pil-avr
 	@PIL_OUT=$(PIL_AVR_OUT) STEPS=$(PIL_COMPARE_STEPS) IMAGES='$(pil_avr_names)' FRAMES='$(PIL_IMAGES_FRAMES)' \
 	  LONG=1 REPORT=$(PIL_AVR_OUT)/cpu.md bash $(PIL_AVR)/tests/pil_tests.sh
+
+readme-pil-cpu: pil-avr-compare
+	@$(PYTHON) $(PIL_AVR)/tests/pil_report.py $(PIL_AVR_OUT)/measure --cpu $(FW_OUT)/cpu.md \
+	  --footprint $(FW_OUT)/epuck1/footprint.md --page docs/hardware/footprint.md
+
+pil-avr-bench: pil-avr $(BUILD)/swarmsim
+	bash tools/bench/pil.sh $(BUILD)/swarmsim
 
 # ------------------------------------------------ the simulator's end
 # The simulator's model of PIL robots (sim_host/models/pil/) reads the
@@ -134,5 +147,6 @@ $(BUILD)/asan/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
 $(PIL_AVR_OUT)/avr/%.map: $(PIL_AVR_OUT)/avr/%.elf $(PIL_AVR_OUT)/host/% $(PIL_AVR)/state_map.py
 	$(call show,MAP,$@)$(PYTHON) $(PIL_AVR)/state_map.py $< $(PIL_AVR_OUT)/host/$* $@
 
-# The simulator's PIL test (tests/cli/pil.sh) runs the images beside swarmsim.
-cli-tests: pil-avr
+# The simulator's PIL test (tests/cli/pil.sh) and the PIL page's runnable
+# example (docs/reference/pil.md) run the images beside swarmsim.
+cli-tests docs-tests: pil-avr

@@ -156,7 +156,7 @@ def walk(a, h, ao, ho, path, out):
                 raise MapError(f'{path}: a union of {size_of(a)} bytes on the AVR, {size_of(h)} on the host')
             out.append(('copy', ao, ho, size_of(a), path))
             return
-        for x, y in zip(am, hm):
+        for x, y in zip(am, hm, strict=True):
             if 'DW_AT_bit_size' in x.attributes:
                 raise MapError(f'{path}.{name_of(x)}: a bit-field')
             walk(x.get_DIE_from_attribute('DW_AT_type'), y.get_DIE_from_attribute('DW_AT_type'),

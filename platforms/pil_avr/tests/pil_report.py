@@ -5,6 +5,11 @@ build/firmware/pil_avr/cpu.md; docs/hardware/footprint.md shows it).
 
     pil_report.py MEASURE_DIR [--cpu build/firmware/cpu.md]
                   [--footprint build/firmware/epuck1/footprint.md]
+                  [--page docs/hardware/footprint.md]
+
+It prints the report; with --page it writes it into PAGE between the two
+marker lines PAGE_BEGIN and PAGE_END instead (make readme-pil-cpu), the
+page replaced whole or not at all.
 
 MEASURE_DIR holds what pil_tests.sh measured: <image>_<robot>.json and
 <image>_frames_<robot>.json from pil_compare --json (each image beside its
@@ -43,8 +48,11 @@ import json
 import os
 import re
 import sys
+import tempfile
 
 HZ = 16_000_000
+PAGE_BEGIN = '<!-- pil-cpu: measured by make pil-avr-compare; make readme-pil-cpu writes it -->'
+PAGE_END = '<!-- /pil-cpu -->'
 # Which of the CPU report's rows (build/firmware/cpu.md) estimates each
 # controller's step.
 CPU_ROW = {'forager': 'forager', 'nest_beacon': 'nest_beacon', 'random_walk': 'random_walk', 'repatt': 'repatt'}
@@ -69,7 +77,7 @@ def read_table(path, key_col, want):
             if head is None:
                 head = cells
             elif not set(line.strip()) <= set('|-: '):
-                rows[cells[key_col]] = {h: c for h, c in zip(head, cells) if any(w in h for w in want)}
+                rows[cells[key_col]] = {h: c for h, c in zip(head, cells, strict=False) if any(w in h for w in want)}
     return rows
 
 
@@ -110,16 +118,10 @@ def ms(cycles):
     return f'{cycles / HZ * 1000:.2f}'
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    ap.add_argument('measure')
-    ap.add_argument('--cpu', default='build/firmware/cpu.md')
-    ap.add_argument('--footprint', default='build/firmware/epuck1/footprint.md')
-    args = ap.parse_args(argv)
-    images = load(args.measure)
-    if not images:
-        print(f'pil_report.py: {args.measure}: no measurements', file=sys.stderr)
-        return 1
+def render(args, images, page=False):
+    """The report's lines, without its title (for a page, without the
+    closing paragraph on the method: the page says it)."""
+    lines = []
     blob = detector(args.measure, 'blobs')
     tone = detector(args.measure, 'tones')
     cpu = read_table(args.cpu, 0, ('dsPIC',))
@@ -135,9 +137,7 @@ def main(argv=None):
                 flags[cur] = set()
             elif cur and re.match(r'^\s+(camera|sound)\s+yes', line):
                 flags[cur].add(line.split()[0])
-    w = print
-    w('# PIL: measured cycles and stack on the emulated ATmega2560')
-    w('')
+    w = lines.append
     w('| image | controller step, cycles mean / max | whole step max (frames, telemetry) | '
       '+ detectors, max (ms at 16 MHz) | stack by painting | stack estimate | dsPIC estimate, max |')
     w('|---|---|---|---|---|---|---|')
@@ -164,16 +164,54 @@ def main(argv=None):
         w(f'| {name} | {fmt(cmean)} / {fmt(cmax)} ({ms(cmax)} ms) | {fmt(whole)} | {with_det} | {st} | '
           f'{est_stack} | {ds} |')
     w('')
-    if blob:
+    if blob and tone:
         w(f'Detectors alone: the blob detector over a 40 x 20 RGB565 frame, {fmt(blob[0])} cycles '
           f'({ms(blob[0])} ms at 16 MHz), stack {blob[1]} bytes with the PIL run loop; the tone detector over '
           f'96 samples of each of 3 microphones, {fmt(tone[0])} cycles ({ms(tone[0])} ms), stack {tone[1]} bytes. '
           '(The CPU report\'s dsPIC estimates: blob_detect and tone_detect rows.)')
+    if page:
+        return lines
     w('')
     w('Measured by simavr\'s cycle counter (exact for the AVR) over each image\'s run beside its host build '
       '(pil_compare, a scripted world; frames: RGB565 camera frames, blob_detect on the MCU); stack by '
       'painting RAM above the static data before reset.  An upper bound for the dsPIC (the AVR is an 8-bit '
       'core), not a gate.')
+    return lines
+
+
+def write_page(page, lines):
+    """Put lines between the page's markers, atomically."""
+    with open(page, encoding='utf-8') as fh:
+        text = fh.read()
+    a, b = text.find(PAGE_BEGIN), text.find(PAGE_END)
+    if a < 0 or b < a:
+        sys.exit(f'pil_report.py: {page}: no lines {PAGE_BEGIN} and {PAGE_END} to write between')
+    body = text[:a] + PAGE_BEGIN + '\n' + '\n'.join(lines) + '\n' + text[b:]
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(page)), prefix='.pil_report.')
+    with os.fdopen(fd, 'w', encoding='utf-8') as fh:
+        fh.write(body)
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, page)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('measure')
+    ap.add_argument('--cpu', default='build/firmware/cpu.md')
+    ap.add_argument('--footprint', default='build/firmware/epuck1/footprint.md')
+    ap.add_argument('--page', help='write the report into this page, between its markers')
+    args = ap.parse_args(argv)
+    images = load(args.measure)
+    if not images:
+        print(f'pil_report.py: {args.measure}: no measurements', file=sys.stderr)
+        return 1
+    lines = render(args, images, page=bool(args.page))
+    if args.page:
+        write_page(args.page, lines)
+        print(f'pil_report.py: {args.page}: {len(images)} images')
+    else:
+        print('# PIL: measured cycles and stack on the emulated ATmega2560\n')
+        print('\n'.join(lines))
     return 0
 
 
