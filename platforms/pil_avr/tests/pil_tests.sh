@@ -4,7 +4,8 @@
 #  1. every image (IMAGES) on the AVR beside its host build, STEPS steps over
 #     a scripted world, compared request by request and frame by frame; the
 #     images of FRAMES once more with RGB565 camera frames (blob_detect on the
-#     MCU), each over two robots and seeds;
+#     MCU) for 60 steps; with LONG set (make pil-avr-compare), each over two
+#     robots and seeds, the frames' runs for STEPS too;
 #  2. every protocol error and every way an MCU fails (a damaged frame from
 #     the simulator, the misbehaving test image, a killed or hung emulator):
 #     each must be an error naming the robot and the step, within bounds;
