@@ -131,8 +131,11 @@ pil-image-list:
 	@$(FW_IMAGES_PY) host-list $(call fw_image_list,pil_avr) --platform $(PIL_AVR) --out $(PIL_IMAGE_LIST) \
 	  $(foreach v,$(FW_CONSTANTS),--set $(v)='$($(v))')
 $(PIL_IMAGE_LIST): pil-image-list ;
-$(BUILD)/obj/sim_host/models/pil/pil_images.o $(BUILD)/asan/sim_host/models/pil/pil_images.o: $(PIL_IMAGE_LIST)
-$(BUILD)/obj/sim_host/models/pil/%.o $(BUILD)/asan/sim_host/models/pil/%.o: SIM_CFLAGS += -I$(BUILD)/gen -I$(PIL_AVR)/link
+# Every variant of the library (obj, asan, and tools/make/tsan.mk's and
+# fuzz.mk's, named here literally: those fragments are read after this one).
+PIL_MODEL_VARIANTS := $(BUILD)/obj $(BUILD)/asan $(BUILD)/tsan $(BUILD)/fuzz/obj
+$(addsuffix /sim_host/models/pil/pil_images.o,$(PIL_MODEL_VARIANTS)): $(PIL_IMAGE_LIST)
+$(addsuffix /sim_host/models/pil/%.o,$(PIL_MODEL_VARIANTS)): SIM_CFLAGS += -I$(BUILD)/gen -I$(PIL_AVR)/link
 SIM_EXTRA_OBJ += $(BUILD)/obj/$(PIL_AVR)/link/pil_avr_link.o
 SIM_EXTRA_OBJ_ASAN += $(BUILD)/asan/$(PIL_AVR)/link/pil_avr_link.o
 $(BUILD)/obj/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
@@ -141,6 +144,12 @@ $(BUILD)/obj/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
 $(BUILD)/asan/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(call show,CC-ASAN,$<)$(CC) $(SIM_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+# The fuzz harnesses' library (tools/make/fuzz.mk) links the link too
+# (libswarm's PIL model calls it), built with clang as the rest of it.
+$(BUILD)/fuzz/libswarm.a: $(BUILD)/fuzz/obj/$(PIL_AVR)/link/pil_avr_link.o
+$(BUILD)/fuzz/obj/$(PIL_AVR)/link/%.o: $(PIL_AVR)/link/%.c | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(SIM_CFLAGS) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
 
 # Each image's state map (state_map.py: its controller state's fields on the
 # AVR and here, from both builds' DWARF), beside its ELF.
