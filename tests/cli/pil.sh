@@ -4,7 +4,8 @@
 #     robots on emulated ATmega2560s running their images' machine code,
 #     ends in the same state hash as the same scenario host-built (every
 #     group's platform set to host); the foragers' LCM log, their images'
-#     own telemetry frames included, is the same bytes;
+#     own telemetry frames included, is the same bytes; on 3 run threads
+#     the same hash as on 1;
 #  2. what can go wrong is an error naming the robot and the step, exit 1
 #     and no run folder (a step past its cycle budget, an emulator that
 #     stops answering, exits or hangs, a stale image), or a setup error
@@ -50,6 +51,13 @@ for f in tests/pil/*.yaml; do
         bad "$name: state hash $a with ${robots:-no} robots on the AVR, $b host-built"
     fi
 done
+# The PIL robots' steps on the run's worker threads: the same hash on 3.
+if "$sim" tests/pil/walk.yaml --quiet --threads 1 --run-threads 3 --out "$tmp/walk.t3" > "$tmp/walk.t3.log" 2>&1 \
+    && [ -n "$(hash_of "$tmp/walk.pil")" ] && [ "$(hash_of "$tmp/walk.t3")" = "$(hash_of "$tmp/walk.pil")" ]; then
+    ok
+else
+    bad "walk on 3 run threads: state hash $(hash_of "$tmp/walk.t3"), on 1: $(hash_of "$tmp/walk.pil")"
+fi
 if cmp -s "$tmp"/forage.pil/run_*/telemetry.lcmlog "$tmp"/forage.host/run_*/telemetry.lcmlog \
     && grep -qa FW_ROBOT_STATE "$tmp"/forage.pil/run_*/telemetry.lcmlog; then
     ok
