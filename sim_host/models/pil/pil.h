@@ -4,12 +4,13 @@
  * (docs/reference/pil.md).  A model (model.h) of its own: the platform
  * binding of its robots.
  *
- * A group says what its robots run and on what:
+ * A group says what its robots run and on what (C a controller, I an
+ * image of it):
  *
  *   robots:
- *     - {count: 3, controller: forager, image: forager, platform: pil_avr}
- *     - {count: 17, controller: forager, image: forager}      # host-built
- *     - {count: 20, controller: forager, image: forager, platform: pil_avr,
+ *     - {count: 3, controller: C, image: I, platform: pil_avr}
+ *     - {count: 17, controller: C, image: I}        # host-built
+ *     - {count: 20, controller: C, image: I, platform: pil_avr,
  *        platform_robots: 3}           # its first 3 on MCUs, 17 host-built
  *
  * `image` names a robot image (platforms/epuck1/images.list, pil_images.h):
