@@ -489,7 +489,8 @@ static void test_unknown_keys(void **state)
         { "duraton: 5\n", 1, "duraton: unknown key 'duraton' (did you mean 'duration'?)" },
         { RW "    zzzzzz: 1\n", 3,
           "robots[0].zzzzzz: unknown key 'zzzzzz' (valid keys: name, count, controller, policy, "
-          "heading, min_spacing, moves, placement, faults, ground_sensors, params)" },
+          "heading, min_spacing, moves, placement, faults, ground_sensors, platform, image, platform_robots, "
+          "selector, params)" },
         { RW "    placement: {shape: circle, radius: 1, centre: 0}\n", 3,
           "robots[0].placement.centre: unknown key 'centre' (valid keys: shape, x, y," },
         { "objects:\n  - radius: 0.1\n  - radius: 0.1\n    colur: red\n", 4,

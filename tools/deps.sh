@@ -40,6 +40,7 @@ check_all() {
     need libglib2.0-0     glib_runtime      # liblcm.a (the lcm wheel) calls GLib
     need valgrind         command -v valgrind   # firmware CPU report (callgrind)
     need ffmpeg           command -v ffmpeg     # swarmsim --video (and ffprobe for its tests)
+    need libsimavr-dev    simavr_links          # the emulated ATmega2560 of processor-in-the-loop (platforms/pil_avr/emu/)
     # The fuzz harnesses (tests/fuzz/, tools/make/fuzz.mk): clang, its
     # sanitizer and libFuzzer runtime (a separate package named after
     # clang's major version, so it is looked for once clang is there), and
@@ -63,6 +64,7 @@ libfuzzer_links() {
         | clang -fsanitize=fuzzer,address,undefined -x c - -o /dev/null
 }
 glib_runtime() { { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | grep -q 'libglib-2.0.so.0'; }
+simavr_links() { printf '#include <simavr/sim_avr.h>\nint main(void) { return avr_make_mcu_by_name("atmega2560") == 0; }\n' | cc -x c - -lsimavr -o /dev/null; }
 hdr_avr() { printf '#include <stdint.h>\n' | avr-gcc -mmcu=atmega128 -E -x c - >/dev/null; }
 hdr_arm() { printf '#include <string.h>\n' | arm-none-eabi-gcc -mcpu=cortex-m4 -E -x c - >/dev/null; }
 

@@ -81,6 +81,7 @@ static int build_robots(struct sim *sim, char err[SIM_ERR_MAX])
             r->id = (uint16_t)i;
             r->group = g;
             r->def = def;
+            r->step = def->step;
             r->moves = grp->moves;
             r->ctrl = stride ? (uint8_t *)sim->ctrl_blocks[g] + (size_t)k * stride : NULL;
             if (r->ctrl) {
@@ -158,7 +159,7 @@ static void step_robots(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
         sim_robot_t *r = &sim->robots[i];
         if (r->ctrl && !sim_robot_halted(sim, i)) {
             r->hal.worker = worker;
-            r->def->step(r->ctrl, &r->hal);
+            r->step(r->ctrl, &r->hal);
             for (uint32_t h = 0; h < sim->n_after_robot; h++) {
                 const sim_model_run_t *m = &sim->models[sim->after_robot[h]];
                 m->def->after_robot(sim, m->self, i);

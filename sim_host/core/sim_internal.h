@@ -34,6 +34,11 @@ typedef struct sim_robot {
     uint32_t group;                /**< index into the scenario's groups */
     const controller_def_t *def;   /**< what runs on this robot */
     void *ctrl;                    /**< controller state, or NULL when it has none */
+    /** What steps it: def->step, or its platform binding's (a robot on an
+     *  emulated MCU: models/pil/pil.h), which keeps ctrl in step. */
+    void (*step)(void *ctrl, hal_t *hal);
+    uint8_t own_telemetry;         /**< its image sends its own telemetry bytes (a PIL robot):
+                                        the UART model does not run the sender for it */
     uint8_t moves;                 /**< 0: a static body */
     uint8_t escaped;
     uint16_t id;                   /**< hal_robot_id: the index unless set (sim_set_robot_id) */

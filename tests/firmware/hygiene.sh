@@ -173,7 +173,7 @@ done < <(units)
 # statics but the documented ones.
 nimg=0
 for p in $platforms; do
-    [ -f "platforms/$p/images.list" ] || continue
+    [ -n "$(python3 tools/make/images.py list-file "platforms/$p")" ] || continue
     mains=$(ls "$gen/$p"/*_main.c 2>/dev/null)
     if [ -z "$mains" ]; then bad "$gen/$p has no generated mains: run make firmware-images"; continue; fi
     for src in $mains; do

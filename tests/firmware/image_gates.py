@@ -386,7 +386,7 @@ def load_platform(platform_dir):
     declarations), or an exit naming what is wrong."""
     try:
         mod = image_decls.load_platform(platform_dir)
-        images = image_decls.read_images(os.path.join(platform_dir, 'images.list'), mod.IMAGE_KEYS)
+        images = image_decls.read_images(image_decls.image_list(platform_dir), mod.IMAGE_KEYS)
     except image_decls.DeclarationError as e:
         sys.exit(f'image_gates: {e}')
     if not hasattr(mod, 'GATES'):

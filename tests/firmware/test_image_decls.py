@@ -156,10 +156,10 @@ class Declarations(unittest.TestCase):
         names = [n for n in names if n]
         self.assertIn('epuck1', names)
         for p in names:
-            lst = os.path.join('platforms', p, 'images.list')
+            lst = images.image_list(os.path.join('platforms', p))
             self.assertTrue(os.path.isdir(os.path.join(ROOT, 'platforms', p)), p)
             self.assertTrue(os.path.exists(os.path.join(ROOT, 'platforms', p, 'platform.mk')), p)
-            if not os.path.exists(os.path.join(ROOT, lst)):
+            if lst is None:
                 continue
             keys = images.load_platform(os.path.join('platforms', p)).IMAGE_KEYS
             decls = images.read_images(lst, keys)

@@ -44,8 +44,11 @@ FW_GEN := $(FW_OUT)/gen
 # The image declarations' reader; stdlib Python, also at parse time (the
 # image lists), before the virtualenv exists.
 FW_IMAGES_PY := python3 tools/make/images.py
+# $(call fw_image_list,PLATFORM): its images.list, or the one its
+# platform.py names as IMAGES (an emulated robot runs that robot's images).
+fw_image_list = $(shell $(FW_IMAGES_PY) list-file platforms/$(1))
 # $(call fw_images,PLATFORM,KEYS): NAME:VALUE... for each image of the platform.
-fw_images = $(shell $(FW_IMAGES_PY) list platforms/$(1)/images.list --fields $(2))
+fw_images = $(shell $(FW_IMAGES_PY) list $(call fw_image_list,$(1)) --platform platforms/$(1) --fields $(2))
 fw_field = $(word $(2),$(subst :, ,$(1)))
 
 # Images with telemetry send robot_state_t and schema_t
@@ -68,7 +71,7 @@ EXTRA_TESTS += firmware-check
 FW_HOST := $(FW_OUT)/host
 # $(call fw_generate,PLATFORM): writes the platform's mains (only those whose
 # text changes) from its declarations and the build's constants.
-fw_generate = $(FW_IMAGES_PY) generate platforms/$(1)/images.list --out $(FW_GEN)/$(1) \
+fw_generate = $(FW_IMAGES_PY) generate $(call fw_image_list,$(1)) --platform platforms/$(1) --out $(FW_GEN)/$(1) \
   $(foreach v,$(FW_CONSTANTS),--set $(v)='$($(v))')
 
 include $(foreach p,$(PLATFORMS),platforms/$(p)/platform.mk)

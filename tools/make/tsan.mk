@@ -5,7 +5,8 @@
 # Box2D's solver through our pool), then swarmsim built with it runs one
 # scenario of each seed whole on 3 threads in chunks of a few robots
 # (SWARMSIM_POOL_CHUNK=1, pool.h).  A data race fails the group
-# (halt_on_error).  About 40 s.  Box2D and the generated LCM code are not
+# (halt_on_error); and the PIL walk, its emulated robots stepped on those
+# threads.  About 40 s.  Box2D and the generated LCM code are not
 # instrumented: a race inside them would not be seen.
 TSAN_SCENARIOS := foraging_base repatt_quick eaipp_square
 TSAN := -fsanitize=thread -fno-omit-frame-pointer
@@ -48,12 +49,15 @@ $(BUILD)/tsan/swarmsim: $(BUILD)/tsan/sim_host/main.o $(BUILD)/libswarm-tsan.a
 	$(CC) $(TSAN) -o $@ $^ $(LDLIBS_SIM)
 
 .PHONY: tsan-tests
-tsan-tests: $(BUILD)/tests/tsan/test_sim $(BUILD)/tsan/swarmsim
+tsan-tests: $(BUILD)/tests/tsan/test_sim $(BUILD)/tsan/swarmsim pil-avr
 	@echo "== $< (ThreadSanitizer)"
 	@cd tests && TSAN_OPTIONS=halt_on_error=1 ../$<
 	@set -e; out=$$(mktemp -d); trap 'rm -rf "$$out"' EXIT; for s in $(TSAN_SCENARIOS); do \
 	  echo "== sim_host/scenarios/$$s.yaml on 3 threads (ThreadSanitizer)"; \
 	  SWARMSIM_POOL_CHUNK=1 TSAN_OPTIONS=halt_on_error=1 $(BUILD)/tsan/swarmsim sim_host/scenarios/$$s.yaml \
-	    --lcm off --quiet --threads 1 --run-threads 3 --out "$$out/$$s"; done
+	    --lcm off --quiet --threads 1 --run-threads 3 --out "$$out/$$s"; done; \
+	  echo "== tests/pil/walk.yaml on 3 threads, 4 robots on emulated MCUs (ThreadSanitizer)"; \
+	  SWARMSIM_POOL_CHUNK=1 TSAN_OPTIONS=halt_on_error=1 $(BUILD)/tsan/swarmsim tests/pil/walk.yaml \
+	    --lcm off --quiet --threads 1 --run-threads 3 --set pil.dir=$(abspath $(PIL_AVR_OUT)) --out "$$out/pil_walk"
 
 -include $(shell find $(BUILD)/tsan -name '*.d' 2>/dev/null)

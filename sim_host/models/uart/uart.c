@@ -93,10 +93,10 @@ static void uart_before_control(sim_t *sim, void *self)
  * run is the same with it or without it. */
 static void uart_after_robot(sim_t *sim, void *self, uint32_t i)
 {
-    if (!self) {
-        return;
-    }
     sim_robot_t *r = &sim->robots[i];
+    if (!self || r->own_telemetry) {
+        return;   /* off, or the robot's image sends its own (a PIL robot) */
+    }
     robot_telemetry_t *tx = &senders(sim)[i];
     robot_telemetry_platform_t p;
     const robot_telemetry_platform_t *due = NULL;

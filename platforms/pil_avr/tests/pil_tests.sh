@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# pil_tests.sh - the emulated ATmega2560's tests (platform.mk's pil-avr-tests
+# and pil-avr-compare):
+#  1. every image (IMAGES) on the AVR beside its host build, STEPS steps over
+#     a scripted world, compared request by request and frame by frame; the
+#     images of FRAMES once more with RGB565 camera frames (blob_detect on the
+#     MCU) for 60 steps; with LONG set (make pil-avr-compare), each over two
+#     robots and seeds, the frames' runs for STEPS too;
+#  2. every protocol error and every way an MCU fails (a damaged frame from
+#     the simulator, the misbehaving test image, a killed or hung emulator):
+#     each must be an error naming the robot and the step, within bounds;
+#  3. with REPORT set, the measured cycles and stack per image, as a table.
+set -u
+out=${PIL_OUT:?}
+steps=${STEPS:-150}
+cmp=$out/pil_compare
+emu=$out/pil_avr_emu
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+mkdir -p "$out/measure"
+rm -f "$out"/measure/*.json
+
+compare() {   # IMAGE ROBOT SEED [--frames]
+    local img=$1 robot=$2 seed=$3; shift 3
+    local tag=$img${1:+_frames}
+    if msg=$("$cmp" --emu "$emu" --avr "$out/avr/$img.elf" --host "$out/host/$img" --steps "${steps:-150}" \
+                 --robot "$robot" --seed "$seed" --json "$out/measure/${tag}_$robot.json" "$@" 2>&1); then
+        ok; echo "$msg" | tail -1
+    else
+        bad "$img (robot $robot, seed $seed $*): $msg"
+    fi
+}
+
+# A second robot and seed, and the camera frames' runs, when LONG is set
+# (make pil-avr-compare); make test's short run: one robot, frames for 60 steps.
+for img in $IMAGES; do
+    compare "$img" 3 1
+    [ -n "${LONG:-}" ] && compare "$img" 11 7
+done
+for img in $FRAMES; do
+    if [ -n "${LONG:-}" ]; then
+        compare "$img" 3 1 --frames
+        compare "$img" 11 7 --frames
+    else
+        steps=60 compare "$img" 3 1 --frames
+    fi
+done
+
+# Errors: each run must fail with the expected words in its error, which
+# names the robot and the step.
+expect() {   # WORDS ARGS...
+    local words=$1; shift
+    if msg=$("$cmp" --emu "$emu" --steps 20 "$@" --expect "$words" 2>&1); then
+        case $msg in
+            *"robot "*", step "*) ok ;;
+            *) bad "error without robot and step ($*): $msg" ;;
+        esac
+    else
+        bad "$*: $msg"
+    fi
+}
+mis=$out/avr/misbehave.elf
+rw=$out/avr/random_walk.elf
+expect "step 3: its MCU crashed" --avr "$mis" --robot 1
+expect "step 3: its MCU ran past its cycle budget" --avr "$mis" --robot 2 --budget 200000
+expect "step 3: its MCU reset" --avr "$mis" --robot 3
+expect "step 3: its MCU overflowed its stack" --avr "$mis" --robot 4
+expect "step 3: sent a frame with a bad CRC" --avr "$mis" --robot 5
+expect "step 3: its MCU halted" --avr "$mis" --robot 6
+expect "step 3: sent a REQUEST that does not decode" --avr "$mis" --robot 7
+expect "step 3: sent 2 IR messages in one period" --avr "$mis" --robot 8
+expect "step 3: sent a ACT frame of step" --avr "$mis" --robot 9
+for kind in crc version type seq length; do
+    expect "step 5: could not read the simulator's last frame (FAULT" --avr "$rw" --corrupt "5:$kind"
+done
+expect "step 4: its emulator was killed by signal 9" --avr "$rw" --kill-at 4
+expect "step 4: its emulator gave no answer within 300 ms" --avr "$rw" --stop-at 4 --timeout 300
+# A well-behaved robot of the misbehaving image runs to the end.
+if "$cmp" --emu "$emu" --avr "$mis" --robot 0 --steps 20 > /dev/null 2>&1; then ok; else bad "misbehave robot 0 failed"; fi
+# No emulator outlives the simulator: kill the driver mid-run (SIGKILL, no
+# clean-up of its own) and wait for its emulator to go (PR_SET_PDEATHSIG).
+emu_abs=$(realpath "$emu")
+"$cmp" --emu "$emu_abs" --avr "$rw" --steps 100000000 > /dev/null 2>&1 &
+driver=$!
+child=""
+for _ in $(seq 200); do
+    child=$(pgrep -P "$driver" 2>/dev/null | head -1)
+    [ -n "$child" ] && break
+    sleep 0.05
+done
+if [ -z "$child" ]; then
+    bad "the driver started no emulator"
+    kill -9 "$driver" 2>/dev/null
+else
+    kill -9 "$driver"
+    wait "$driver" 2>/dev/null
+    for _ in $(seq 200); do
+        kill -0 "$child" 2>/dev/null || break
+        sleep 0.05
+    done
+    if kill -0 "$child" 2>/dev/null; then bad "the emulator outlived its simulator"; kill -9 "$child"; else ok; fi
+fi
+
+if [ -n "${REPORT:-}" ]; then
+    for d in blobs:0 tones:1; do
+        if "$cmp" --emu "$emu" --avr "$out/avr/detect.elf" --robot "${d#*:}" --steps 30 \
+               --json "$out/measure/detect_${d%:*}.json" --cycles "$out/measure/detect_${d%:*}.csv" > /dev/null; then
+            ok
+        else
+            bad "the detector image (${d%:*})"
+        fi
+    done
+    python3 "$(dirname "$0")/pil_report.py" "$out/measure" --cpu "$out/../cpu.md" \
+        --footprint "$out/../epuck1/footprint.md" > "$REPORT.tmp" && mv "$REPORT.tmp" "$REPORT" \
+        && { ok; echo "pil-avr: measured cycles and stack: $REPORT"; } || bad "the report"
+fi
+echo "pil-avr: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
