@@ -31,9 +31,17 @@
  *   RETURN [S_R]  A(t) = 0: random walk; A(t) = 1 when the nest light is
  *                  seen (some ambient reading below light_detect): steer to
  *                  the brightest sensor, turning in place when it is behind.
- *                  A beacon frame from closer than nest_radius - nest_margin
- *                  means the nest: DEPOSIT.  No wide red blob for lost_steps
- *                  steps means the token was lost: SEARCH.
+ *                  nest_confirm beacon frames in a row from closer than
+ *                  nest_radius - nest_margin mean the nest: PARK.  No wide red
+ *                  blob for lost_steps steps means the token was lost: SEARCH.
+ *   PARK   [S_R]  drives on toward the lamp, round obstacles, for park_steps
+ *                  steps (counting the arrival step), then DEPOSIT: the
+ *                  "search for a place in the nest" of ARGoS's foraging
+ *                  example (minimum_search_for_place_in_nest_time), so that
+ *                  the robots resting in the nest do not ring its rim, which
+ *                  every robot leaving or coming home must cross.  Losing the
+ *                  token here is as in RETURN.  park_steps = 0: DEPOSIT at
+ *                  arrival.
  *   DEPOSIT [S_R] backs straight out at -speed for deposit_steps steps: a
  *                  passive gripper lets go when the robot backs off (the
  *                  simulator releases a carried token when both wheels are
@@ -99,6 +107,8 @@ typedef struct forager_params {
     uint16_t leave_max_steps;    /**< give up turning away after this many steps (300) */
     uint8_t grasp_confirm;       /**< steps a wide red blob must stay centred, after an
                                       approach, to count as a token grasped (3) */
+    uint16_t park_steps;         /**< after arriving in the nest, steps of driving on toward
+                                      the lamp before depositing and resting (50 = 5 s) */
     random_walk_params_t walk;   /**< A(t) = 0 motion and obstacle avoidance; its
                                       speed_steps_s is replaced by speed_steps_s */
 } forager_params_t;
@@ -107,7 +117,8 @@ typedef enum forager_state {
     FORAGER_WAIT = 0,      /**< S_W */
     FORAGER_SEARCH = 1,    /**< S_S */
     FORAGER_RETURN = 2,    /**< S_R, looking for the nest */
-    FORAGER_DEPOSIT = 3    /**< S_R, backing out of the token in the nest */
+    FORAGER_DEPOSIT = 3,   /**< S_R, backing out of the token in the nest */
+    FORAGER_PARK = 4       /**< S_R, driving on into the nest before depositing */
 } forager_state_t;
 
 /** Bits of forager_t.beacon_known: which beacon quantities were heard. */
@@ -146,7 +157,8 @@ typedef struct forager {
 
     uint8_t carrying;            /**< a wide red blob was seen this step */
     uint8_t lost;                /**< RETURN: steps without the held token */
-    uint16_t timer;              /**< DEPOSIT: steps backed (up to 2 * deposit_steps) */
+    uint16_t timer;              /**< DEPOSIT: steps backed (up to 2 * deposit_steps);
+                                      PARK: steps parked */
     uint8_t report_oaes;         /**< next report: 0 deposits, 1 OAEs */
 
     uint8_t leaving;             /**< SEARCH: still turning away from the lamp */
@@ -165,7 +177,7 @@ typedef struct forager {
  *                   3.3 by default; ARTM, FRTM: theta0), n drawn afresh,
  *                   the walk reset (OAE count 0);
  *   step            one control step;
- *   state_name      "wait", "search", "return", "deposit". */
+ *   state_name      "wait", "search", "return", "park", "deposit". */
 CONTROLLER_API(forager);
 
 /** Seed 000's name of a forager_state_t: 'W', 'S' or 'R' ('?' if unknown). */

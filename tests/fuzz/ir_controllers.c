@@ -133,7 +133,7 @@ static void check_beacon(uint32_t sent_before, uint8_t kind)
 static void check_forager(const beacon_seen_t *seen, uint32_t sent_before, uint32_t deposits_before)
 {
     nest_link_frame_t f;
-    FUZZ_CHECK(F.state <= FORAGER_DEPOSIT);
+    FUZZ_CHECK(F.state <= FORAGER_PARK);
     FUZZ_CHECK(F.beacon_known == seen->known);
     if (seen->known & FORAGER_KNOWS_FOOD) {
         FUZZ_CHECK(F.beacon_food_q4 == seen->food_q4);
