@@ -65,7 +65,7 @@ def write_run(folder, seed, steps=100, policy="drtm", robots=20, every=10,
         "static_contacts": oae // 10, "distance_per_robot_m": dist / robots,
         "mean_speed_mm_s": 42.0, "min_wall_clearance_mm": 3.5, "escaped": 0,
         "V_f": rng.uniform(1, 20), "E_e": rng.uniform(-0.2, 0.3),
-        "M_T": oae, "M_v": oae / robots, "food_collected": food_c,
+        "food_collected": food_c,
         "food_net": food, "food_dropped": 0,
     }
     summary = {"scenario": scenario, "scenario_file": f"sim_host/scenarios/{scenario}.yaml",
@@ -99,7 +99,7 @@ def synthetic_results(conditions=("base", "nr30"), policies=sd.POLICIES, reps=50
             for seed in range(1, reps + 1):
                 m = {"V_f": 2.5 + i + rng.normal(0, 0.5), "E_e": 0.12 - 0.02 * i + rng.normal(0, 0.01),
                      "food_collected": 170 + rng.normal(0, 10), "food_net": 20 - 2 * i + rng.normal(0, 3),
-                     "M_T": 900 + 200 * i + rng.normal(0, 150), "M_v": 45 + 10 * i}
+                     "oae_total": 900 + 200 * i + rng.normal(0, 150), "oae_per_robot": 45 + 10 * i}
                 runs.append({"seed": seed, "steps": steps, "robots": 20, "state_hash": "x",
                              "metrics": m})
             c["policies"][p] = {"wall_s": 1.0, "runs": runs, "series": {
@@ -217,17 +217,17 @@ class TestReaders(unittest.TestCase):
         with self.assertRaisesRegex(sd.StudyError, "garbled JSON") as cm:
             sd.read_summary(path)
         self.assertIn(str(path), str(cm.exception))
-        del doc["metrics"]["M_T"]
+        del doc["metrics"]["oae_total"]
         path.write_text(json.dumps(doc))
-        with self.assertRaisesRegex(sd.StudyError, "lack M_T"):
+        with self.assertRaisesRegex(sd.StudyError, "lack oae_total"):
             sd.read_summary(path)
-        doc["metrics"]["M_T"] = "many"
+        doc["metrics"]["oae_total"] = "many"
         path.write_text(json.dumps(doc))
         with self.assertRaisesRegex(sd.StudyError, "not a number"):
             sd.read_summary(path)
-        doc["metrics"]["M_T"] = None                 # null -> NaN
+        doc["metrics"]["oae_total"] = None                 # null -> NaN
         path.write_text(json.dumps(doc))
-        self.assertTrue(math.isnan(sd.read_summary(path)["metrics"]["M_T"]))
+        self.assertTrue(math.isnan(sd.read_summary(path)["metrics"]["oae_total"]))
         path.write_text("[]")
         with self.assertRaisesRegex(sd.StudyError, "no \"metrics\""):
             sd.read_summary(path)
@@ -310,8 +310,8 @@ class TestRendering(unittest.TestCase):
         res = synthetic_results(conditions=("l3",))
         rows = sd.compute_ttests(res, "artm")
         self.assertEqual([r["name"] for r in rows], ["F_t", "M_T"])
-        d = [r["metrics"]["M_T"] for r in res["conditions"]["l3"]["policies"]["drtm"]["runs"]]
-        a = [r["metrics"]["M_T"] for r in res["conditions"]["l3"]["policies"]["artm"]["runs"]]
+        d = [r["metrics"]["oae_total"] for r in res["conditions"]["l3"]["policies"]["drtm"]["runs"]]
+        a = [r["metrics"]["oae_total"] for r in res["conditions"]["l3"]["policies"]["artm"]["runs"]]
         ref = stats.ttest_ind(a, d, equal_var=True)      # other - DRTM for OAEs
         self.assertAlmostEqual(rows[1]["t"], float(ref.statistic), places=10)
         self.assertAlmostEqual(rows[1]["p"], float(ref.pvalue), places=12)
