@@ -54,6 +54,7 @@ void forager_default_params(forager_params_t *params)
     params->leave_max_steps = 300u;   /* 30 s: the nest's radius twice over at 0.05 m/s */
     params->grasp_confirm = 3u;
     params->park_steps = 0u;
+    params->report_steps = 1u;
     random_walk_default_params(&params->walk);
     params->walk.speed_steps_s = params->speed_steps_s;
     /* Search: a tumble every 20 s on average, a 1 m run at 0.05 m/s (a
@@ -111,6 +112,7 @@ void forager_reset(forager_t *self)
     self->approach = 0u;
     self->grasp_steps = 0u;
     self->out_timer = 0u;
+    self->wait_timer = 0u;
 }
 
 /* ------------------------------------------------------------ sensing */
@@ -307,13 +309,19 @@ static void send_oae_report(forager_t *self, hal_t *hal)
     self->out_timer++;
 }
 
+/* In the nest: a report every report_steps steps, staggered by id, so
+ * that a nest full of robots does not send the beacon more frames a step
+ * than its receive queue holds. */
 static void send_report(forager_t *self, hal_t *hal)
 {
     uint16_t id = hal_robot_id(hal);
+    uint8_t every = self->params.report_steps > 0u ? self->params.report_steps : 1u;
     uint16_t frame = (self->report_oaes != 0u)
                      ? nest_link_encode_oaes(id, self->walk.oae_count)
                      : nest_link_encode_deposits(id, self->deposits);
-    if (hal_ircom_send(hal, frame) == HAL_OK) {
+    uint8_t due = (uint8_t)((uint16_t)(self->wait_timer + id) % every == 0u);
+    self->wait_timer = (uint8_t)((self->wait_timer + 1u) % every);
+    if (due != 0u && hal_ircom_send(hal, frame) == HAL_OK) {
         self->report_oaes ^= 1u;
     }
 }

@@ -5,8 +5,9 @@
  * States (paper names in brackets):
  *   WAIT    [S_W]  in the nest, wheels stopped.  Reads the nest beacon's
  *                  frames (nest_link.h: F(t), N_W, M_A and its range) and
- *                  sends one report per step, alternating its deposit total
- *                  and its OAE total.  After T1 steps it decides (eqs 2-7):
+ *                  sends a report every report_steps steps (staggered by
+ *                  id), alternating its deposit total and its OAE total.
+ *                  After T1 steps it decides (eqs 2-7):
  *                  P_s from the policy's threshold and its own n, then a
  *                  roulette draw: SEARCH, or wait; with decide_each_step
  *                  (T1 is the paper's "minimum waiting time") it draws
@@ -109,6 +110,11 @@ typedef struct forager_params {
                                       approach, to count as a token grasped (3) */
     uint16_t park_steps;         /**< after arriving in the nest, steps of driving on toward
                                       the lamp before depositing and resting (50 = 5 s) */
+    uint8_t report_steps;        /**< in the nest, a report every this many steps, staggered
+                                      by id (1: every step); a deposit report goes every
+                                      2 report_steps, so the beacon's wait_timeout_steps
+                                      must exceed that (4 report_steps + 1 survives one
+                                      lost report; nest_beacon.h) */
     random_walk_params_t walk;   /**< A(t) = 0 motion and obstacle avoidance; its
                                       speed_steps_s is replaced by speed_steps_s */
 } forager_params_t;
@@ -167,6 +173,7 @@ typedef struct forager {
     uint8_t approach;            /**< steps left in which a grasp may follow an approach */
     uint8_t grasp_steps;         /**< steps in a row with a wide, centred red blob */
     uint16_t out_timer;          /**< steps out of the nest, for the OAE reports' cadence */
+    uint8_t wait_timer;          /**< steps in the nest, for the reports' cadence (mod report_steps) */
 } forager_t;
 
 /* The controller contract (controller.h):

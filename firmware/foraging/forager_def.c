@@ -60,6 +60,8 @@ static const param_desc_t forager_params[] = {
     { .key = "park_steps", PARAM_FIELD(FP, park_steps, uint16_t), .min = 0, .max = 60000,
       .doc = "after arriving in the nest, steps of driving on toward the lamp before depositing "
              "and resting (ARGoS's foraging example: 50)" },
+    { .key = "report_steps", PARAM_FIELD(FP, report_steps, uint8_t), .min = 1, .max = 50,
+      .doc = "in the nest, a report to the beacon every this many steps, staggered by id" },
     RANDOM_WALK_TUNING_PARAMS(FP, walk.),
     PARAM_END
 };
