@@ -214,6 +214,10 @@ METRIC_ROWS: tuple[tuple[str, str, float, int], ...] = (
     ("food_net", "net food F(T) (tokens)", 1.0, 2),
     ("oae_total", "M_T, total OAEs (oae_total)", 1.0, 2),
     ("oae_per_robot", "M_v = M_T / N_r, OAEs per robot (oae_per_robot)", 1.0, 2),
+    ("tau_s", "tau, robot-seconds of foraging per delivered token (tau_s)", 1.0, 1),
+    ("active_mean", "mean robots foraging, in S_S or S_R (active_mean)", 1.0, 2),
+    ("oae_at_nest", "OAEs within 0.1 m of the nest or in it (oae_at_nest)", 1.0, 0),
+    ("wait_radius_m", "mean distance of the waiting robots from the nest centre, m", 1.0, 2),
 )
 REQUIRED_METRICS: tuple[str, ...] = tuple(k for k, *_ in METRIC_ROWS)
 
@@ -250,6 +254,28 @@ PAPER_MEANS: dict[str, dict[str, dict[str, float]]] = {
                  "food_net": 15.22, "oae_total": 1882.32, "oae_per_robot": 94.12},
     },
 }
+
+# The paper's trip economics, solved from its printed means with its energy
+# balance (section 2.3): F(T) = F(0) + collected - C T - (1 unit x robot-steps
+# foraging + E_a M_T) / 1500, with F(0) = 5, C = 2 tokens/min, T = 20 min.
+PAPER_F0, PAPER_C_PER_MIN, PAPER_MINUTES, PAPER_TOKEN_UNITS = 5.0, 2.0, 20.0, 1500.0
+PAPER_E_A = {"base": 10.0, "nf25": 10.0, "ea20": 20.0, "nr30": 10.0, "l3": 10.0}
+PAPER_STEP_S = 0.1
+
+
+def paper_trip_economics(means: dict[str, float], e_a: float) -> dict[str, float]:
+    """tau_s and active_mean that the paper's F(T), collected and M_T imply."""
+    collected = means["food_collected"]
+    energy = PAPER_TOKEN_UNITS * (PAPER_F0 + collected - PAPER_C_PER_MIN * PAPER_MINUTES
+                                  - means["food_net"])
+    robot_steps = energy - e_a * means["oae_total"]
+    steps = PAPER_MINUTES * 60.0 / PAPER_STEP_S
+    return {"tau_s": robot_steps * PAPER_STEP_S / collected, "active_mean": robot_steps / steps}
+
+
+for _cond, _arms in PAPER_MEANS.items():
+    for _means in _arms.values():
+        _means.update(paper_trip_economics(_means, PAPER_E_A[_cond]))
 
 # The t-tests compared: (metric key, name in the paper, +1 if larger is better)
 TESTS: tuple[tuple[str, str, int], ...] = (
@@ -711,7 +737,13 @@ def render_markdown(results: dict[str, Any], figures: dict[str, list[str]] | Non
             "V_f: mean |F_d - F(t)| over the run (eq 8); E_e = E_n / E_T (eq 9), in percent; "
             "food collected: tokens delivered to the nest; net food F(T): tokens in the nest "
             "at the end (collected minus consumed); M_T: total obstacle-avoidance events "
-            "(the summary's oae_total); M_v = M_T / N_r (eq 10, oae_per_robot).", ""]
+            "(the summary's oae_total); M_v = M_T / N_r (eq 10, oae_per_robot). "
+            "tau: robot-seconds spent foraging (S_S or S_R) per token delivered, and the mean "
+            "number of robots foraging; the paper's are solved from its printed F(T), "
+            "collected and M_T with its energy balance (F(0) = 5, 2 tokens/min, 20 min, "
+            "1 unit per foraging robot per step, E_a per OAE, 1500 units per token). "
+            "OAEs at the nest and the waiting robots' distance from its centre show where "
+            "the nest's traffic is (not in the paper).", ""]
     for cond in conds:
         out += render_condition_table(results, cond)
 

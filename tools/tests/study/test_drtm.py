@@ -67,6 +67,9 @@ def write_run(folder, seed, steps=100, policy="drtm", robots=20, every=10,
         "V_f": rng.uniform(1, 20), "E_e": rng.uniform(-0.2, 0.3),
         "food_collected": food_c,
         "food_net": food, "food_dropped": 0,
+        "tau_s": rng.uniform(60, 110), "tau_search_s": rng.uniform(40, 80),
+        "active_mean": rng.uniform(5, 15), "oae_at_nest": oae // 2,
+        "wait_radius_m": rng.uniform(0.3, 0.7),
     }
     summary = {"scenario": scenario, "scenario_file": f"sim_host/scenarios/{scenario}.yaml",
                "seed": seed,
@@ -99,7 +102,9 @@ def synthetic_results(conditions=("base", "nr30"), policies=sd.POLICIES, reps=50
             for seed in range(1, reps + 1):
                 m = {"V_f": 2.5 + i + rng.normal(0, 0.5), "E_e": 0.12 - 0.02 * i + rng.normal(0, 0.01),
                      "food_collected": 170 + rng.normal(0, 10), "food_net": 20 - 2 * i + rng.normal(0, 3),
-                     "oae_total": 900 + 200 * i + rng.normal(0, 150), "oae_per_robot": 45 + 10 * i}
+                     "oae_total": 900 + 200 * i + rng.normal(0, 150), "oae_per_robot": 45 + 10 * i,
+                     "tau_s": 90 + rng.normal(0, 5), "active_mean": 12 + rng.normal(0, 1),
+                     "oae_at_nest": 400 + rng.normal(0, 50), "wait_radius_m": 0.5}
                 runs.append({"seed": seed, "steps": steps, "robots": 20, "state_hash": "x",
                              "metrics": m})
             c["policies"][p] = {"wall_s": 1.0, "runs": runs, "series": {
@@ -146,6 +151,17 @@ class TestStatistics(unittest.TestCase):
             self.assertAlmostEqual(r["t"], float(ref.statistic), places=10)
             self.assertAlmostEqual(r["p"], float(ref.pvalue), places=12)
             self.assertEqual(r["df"], na + nb - 2)
+
+    def test_paper_trip_economics(self):
+        # The paper's base DRTM row: F(T) 20.84, collected 173.76, M_T 925.96, E_a 10:
+        # 1500 (5 + 173.76 - 40 - 20.84) - 9259.6 = 167,620.4 robot-steps foraging.
+        m = sd.PAPER_MEANS["base"]["drtm"]
+        self.assertAlmostEqual(m["active_mean"], 167620.4 / 12000.0, places=6)
+        self.assertAlmostEqual(m["tau_s"], 16762.04 / 173.76, places=6)
+        # Every row of the paper, both policies: tau 90-112 s.
+        for arms in sd.PAPER_MEANS.values():
+            for means in arms.values():
+                self.assertTrue(90.0 < means["tau_s"] < 112.0, means)
 
     def test_paper_df(self):
         r = sd.pooled_t_test(range(50), range(1, 51))
