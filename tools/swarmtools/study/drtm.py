@@ -157,7 +157,8 @@ SPEED_SWEEP_FILE = REPO_ROOT / "studies" / "drtm_speed.yaml"
 SPEED_KEY = "foraging.robot_speed"
 SPEED_ROWS: tuple[tuple[str, str, float, int], ...] = (
     ("V_f", "V_f", 1.0, 2), ("E_e", "E_e %", 100.0, 2), ("food_collected", "collected", 1.0, 1),
-    ("food_net", "F(T)", 1.0, 2), ("oae_total", "M_T", 1.0, 0))
+    ("food_net", "F(T)", 1.0, 2), ("oae_total", "M_T", 1.0, 0), ("tau_s", "tau (s)", 1.0, 1),
+    ("active_mean", "robots foraging", 1.0, 2))
 POLICY_KEY = "robots.0.policy"     # the foragers are the scenarios' first group
 ALPHA = 0.05
 

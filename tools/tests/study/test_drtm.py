@@ -445,6 +445,8 @@ class TestEndToEnd(unittest.TestCase):
         self.assertIn("| l3 | Table 4, 5.4 | M_T |", md)
         self.assertIn("## Sensitivity to the robot's speed (base condition)", md)
         self.assertIn("| 0.1 | ARTM |", md)
+        self.assertIn("| tau, robot-seconds of foraging per delivered token (tau_s) |", md)
+        self.assertIn("| v (m/s) | arm | V_f | E_e % | collected | F(T) | M_T | tau (s) | robots foraging |", md)
         res = json.loads((self.dir / "out" / "results.json").read_text())
         self.assertEqual(list(res["conditions"]), ["base", "l3"])
         self.assertEqual(list(res["conditions"]["l3"]["policies"]), ["drtm", "artm"])
