@@ -10,7 +10,7 @@
  *   |(W - 1) N - 2 S|    <= (W - 1) N          = 4,070,400 (uint32_t)
  *   columns * fov            <= 160 * 6283       = 1,005,280 (int32_t)
  *
- * Cost on the dsPIC (16-bit, no FPU; see README "CPU per control step"):
+ * Cost on the dsPIC (16-bit, no FPU; see docs/hardware/footprint.md, "CPU per control step"):
  * the per-pixel loop uses only 8- and 16-bit operations and, with the
  * default thresholds, two table lookups instead of the classifier; the
  * per-blob arithmetic uses no 32-bit division (XC16 turns a 32-bit '/' or

@@ -1,5 +1,5 @@
 /*
- * test_examples.c - the README's walkthrough example: the phototaxis
+ * test_examples.c - the tutorials' example: the phototaxis
  * controller (firmware/examples/) and the gather task
  * (sim_host/tasks/gather/) on their scenario: the robots gather, the run
  * stops on the task's condition, its summary says when; no stop without

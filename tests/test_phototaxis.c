@@ -1,5 +1,5 @@
 /*
- * test_phototaxis.c - the README's example controller on a fake HAL: it
+ * test_phototaxis.c - the tutorial's example controller on a fake HAL: it
  * steers towards the brightest ambient sensor, stops under the light with
  * its body LED on (counting the arrival), seeks again when the light fades
  * past the hysteresis, and turns away from an obstacle.

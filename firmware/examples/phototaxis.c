@@ -1,4 +1,4 @@
-/* The README's example controller (phototaxis.h). */
+/* The tutorial's example controller (phototaxis.h; docs/tutorials/first-controller.md). */
 #include "phototaxis.h"
 
 #include "units.h"

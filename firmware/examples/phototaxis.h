@@ -1,5 +1,5 @@
 /*
- * phototaxis.h - the example controller of the README's "Write your own
+ * phototaxis.h - the example controller of the tutorial "Your first
  * controller": drive to the brightest light, stop under it.
  *
  * States:

@@ -35,7 +35,7 @@ CONTROLLER_ADAPTERS(phototaxis)
 
 const controller_def_t phototaxis_def = {
     .name = PHOTOTAXIS_NAME,
-    .doc = "example: drive to the brightest light and stop under it (README)",
+    .doc = "example: drive to the brightest light and stop under it (docs: Your first controller)",
     CONTROLLER_FUNCS(phototaxis),
     .params = phototaxis_params,
     .observables = phototaxis_observables,

@@ -9,7 +9,8 @@
  * origin, x straight ahead at the start, y to the start's left, heading
  * counter-clockwise from x.  The counters count commanded motor steps, so
  * a wheel that slips or is blocked (pushing another robot) still counts:
- * the error grows with every collision; the README gives its size.
+ * the error grows with every collision (hence the unloading radius,
+ * home_radius_mm).
  *
  * One wheel step is pi x 41 mm / 1000 = 0.12881 mm; the wheels are 53 mm
  * apart (hal/units.h).  Position in micrometres, heading in microradians

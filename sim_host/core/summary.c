@@ -70,6 +70,21 @@ static void write_head(FILE *f, const scenario_t *sc, const provenance_t *pv)
     fputs(",\n", f);
 }
 
+/* Each metric's unit and one-line meaning, as the task or model declared it
+ * (metrics_put), so that tools label a metric without a table of their own. */
+static void write_metric_docs(FILE *f, const metric_list_t *m)
+{
+    fputs("  \"metric_docs\": {\n", f);
+    for (unsigned k = 0; k < m->count; k++) {
+        fprintf(f, "    \"%s\": {\"unit\": ", m->name[k]);
+        json_string(f, m->unit[k] ? m->unit[k] : "");
+        fputs(", \"doc\": ", f);
+        json_string(f, m->doc[k] ? m->doc[k] : "");
+        fputs(k + 1 < m->count ? "},\n" : "}\n", f);
+    }
+    fputs("  }\n", f);
+}
+
 void summary_write_run(FILE *f, const scenario_t *sc, const provenance_t *pv, const sim_t *sim,
                        uint64_t seed, uint64_t steps, uint64_t state_hash, const metric_list_t *m)
 {
@@ -88,7 +103,9 @@ void summary_write_run(FILE *f, const scenario_t *sc, const provenance_t *pv, co
         json_number(f, m->value[k]);
         fputs(k + 1 < m->count ? ",\n" : "\n", f);
     }
-    fputs("  }\n}\n", f);
+    fputs("  },\n", f);
+    write_metric_docs(f, m);
+    fputs("}\n", f);
 }
 
 void summary_write_aggregate(FILE *f, const scenario_t *sc, const provenance_t *pv,
@@ -124,7 +141,14 @@ void summary_write_aggregate(FILE *f, const scenario_t *sc, const provenance_t *
         json_number(f, hi);
         fputs(k + 1 < count ? "},\n" : "}\n", f);
     }
-    fputs("  }\n}\n", f);
+    fputs("  }", f);
+    if (n) {
+        fputs(",\n", f);
+        write_metric_docs(f, done[0]);
+    } else {
+        fputc('\n', f);
+    }
+    fputs("}\n", f);
 }
 
 /* ------------------------------------------------------------ reading */

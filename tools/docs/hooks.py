@@ -1,7 +1,7 @@
 """hooks.py - MkDocs hooks of the site (mkdocs.yml `hooks:`): adds the pages
 that are generated from the programs and sources at every build, so that
 they are never typed twice (gen_reference.py), and the LCM types page from
-lcm_types/; and writes the studies' costs (swarmtools.study.costs) where a
+lcm_types/; the HAL reference from hal/hal.h (gen_hal.py); and writes the studies' costs (swarmtools.study.costs) where a
 page says `<!-- generated: study costs -->`.  SWARMSIM and VENV name the simulator and the virtualenv
 (default build/swarmsim and .venv, as `make docs` sets them)."""
 
@@ -13,7 +13,8 @@ from mkdocs.exceptions import PluginError
 from mkdocs.structure.files import File
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gen_reference  # noqa: E402  (beside this file)
+import gen_hal  # noqa: E402  (beside this file)
+import gen_reference  # noqa: E402
 
 
 def lcm_types_page():
@@ -50,6 +51,11 @@ def study_costs_table():
 def on_page_markdown(markdown, page, config, files):
     if COSTS_MARK in markdown:
         markdown = markdown.replace(COSTS_MARK, study_costs_table())
+    if gen_hal.MARK in markdown:
+        try:
+            markdown = markdown.replace(gen_hal.MARK, gen_hal.page())
+        except (OSError, gen_hal.HalHeaderError) as e:
+            raise PluginError(f'cannot generate {page.file.src_path} from hal/hal.h: {e}') from None
     return markdown
 
 

@@ -3,10 +3,11 @@
 #   make docs         build it into build/site/ (mkdocs build --strict: a broken
 #                     link or anchor, a missing page or one left out of the nav
 #                     fails it); the reference pages are generated from
-#                     build/swarmsim --help and the tools' --help
+#                     build/swarmsim --help, the tools' --help and hal/hal.h
 #   make docs-serve   serve it at http://127.0.0.1:$(DOCS_PORT)/, rebuilt on every edit
 #   make docs-tests   the build, then every command of the pages' runnable
-#                     blocks (tests/docs/runnable.py); part of make test
+#                     blocks (tests/docs/runnable.py) and the HAL page holding
+#                     every call of hal/hal.h (tests/docs/hal_page.py); part of make test
 
 DOCS_PORT ?= 8000
 DOCS_ENV = NO_MKDOCS_2_WARNING=1 SWARMSIM=$(BUILD)/swarmsim VENV=$(VENV)
@@ -20,5 +21,6 @@ docs-serve: deps $(BUILD)/swarmsim
 
 docs-tests: docs
 	@$(PYTHON) tests/docs/runnable.py
+	@$(PYTHON) tests/docs/hal_page.py
 
 EXTRA_TESTS += docs-tests

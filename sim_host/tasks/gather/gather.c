@@ -1,4 +1,4 @@
-/* The README's example task (gather.h). */
+/* The tutorial's example task (gather.h; docs/tutorials/first-task.md). */
 #include "gather.h"
 
 #include <math.h>
@@ -168,7 +168,7 @@ static size_t gather_memory(const void *config, const scenario_t *sc)
 
 const task_def_t gather_task = {
     .name = "gather",
-    .doc = "example: robots in a goal circle; ends the run when enough are in (README)",
+    .doc = "example: robots in a goal circle; ends the run when enough are in (docs: Your first task)",
     .config_size = sizeof(gather_config_t),
     .memory = gather_memory,
     .params = gather_params,

@@ -1,5 +1,5 @@
 /*
- * gather.h - the example task of the README's "Write your own task": how
+ * gather.h - the example task of the tutorial "Your first task": how
  * many robots are inside a goal circle, and a run that ends when enough of
  * them are.  Scenario section `gather:`.
  *

@@ -13,10 +13,31 @@ from .spec import SweepError
 from .store import atomic_write
 
 
+def metric_label(metric: str, runs: Path | None) -> str:
+    """An axis label for a summary metric: its meaning and unit as the
+    simulator declared them (summary.json's metric_docs, read from the first
+    run under `runs` that has them), then the metric's name."""
+    import json
+
+    for summary in sorted(runs.glob("*/run_*/summary.json")) if runs else []:
+        try:
+            docs = json.loads(summary.read_text()).get("metric_docs", {})
+        except (OSError, ValueError):
+            continue
+        d = docs.get(metric) if isinstance(docs, dict) else None
+        if isinstance(d, dict) and d.get("doc"):
+            unit = f", {d['unit']}" if d.get("unit") else ""
+            return f"{d['doc']}{unit} ({metric})"     # as keydocs.label writes a key
+        if docs:
+            break                      # the runs' metrics are the same: this one has no doc
+    return metric
+
+
 def plot_metric(table: Path, x: str, y: str, by: str | None, out: Path, title: str = "",
                 sim: Path | None = None) -> None:
     """The figure; with `sim`, the x axis and the legend name the keys by
-    their documented meaning and unit (swarmtools.keydocs)."""
+    their documented meaning and unit (swarmtools.keydocs), and the y axis
+    names the metric by the runs' own metric_docs (beside `table`, runs/)."""
     import io
 
     import matplotlib
@@ -45,7 +66,7 @@ def plot_metric(table: Path, x: str, y: str, by: str | None, out: Path, title: s
         label = None if by is None else f"{(meaning(by, sim) if sim else None) or by} = {key}"
         ax.errorbar(s.index, s["mean"], yerr=half.fillna(0), marker="o", capsize=3, label=label)
     ax.set_xlabel(key_label(x, sim) if sim else x)
-    ax.set_ylabel(f"{y} (mean, 95 % CI)")
+    ax.set_ylabel(f"{metric_label(y, table.parent / 'runs')}\nmean, 95 % CI")
     ax.set_title(title)
     ax.grid(alpha=0.3)
     if by is not None or failed:

@@ -7,7 +7,7 @@ and the events of a step in the same instant (about 30 messages at once
 for 20 robots, when RUN_INFO and the schemas are due too), faster than a
 Python handler takes them, so with LCM's default a listener loses robot
 states and, in the last burst of a run, the summary (measured with
-tools/bench/udp_loss.py; the README gives the figures).  The tools
+tools/bench/udp_loss.py; docs/reference/telemetry.md gives the figures).  The tools
 therefore subscribe with a long queue, and ask the kernel for a larger
 receive buffer on udpm:// sockets (LCM's `recv_buf_size`; the kernel caps
 it at net.core.rmem_max, which is the machine's setting, not ours).

@@ -1,4 +1,4 @@
-"""The README's picture of the live view, taken by the tests' headless
+"""The docs' picture of the live view, taken by the tests' headless
 browser (make live-figure):
 
     .venv/bin/python -m tools.tests.live.screenshot LOG OUT.png [--at SECONDS]
