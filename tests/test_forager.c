@@ -333,6 +333,49 @@ static void test_return_to_deposit_in_nest(void **state)
     assert_int_equal(H.right, -SPEED);
 }
 
+/* park_steps: on arrival the robot drives on toward the lamp (PARK, paper
+ * state S_R) for park_steps steps, the arrival step the first, then
+ * deposits; a token lost meanwhile sends it back to SEARCH. */
+static void test_park_then_deposit(void **state)
+{
+    forager_params_t p;
+    uint32_t i;
+    (void)state;
+    forager_default_params(&p);
+    p.drtm_theta = (uint8_t)TA_THETA_RAW;
+    p.leave_nest = 0u;
+    p.park_steps = 4u;
+    start_with(&p, 42u);
+    wait_steps(T1, FOOD_Q4(5), 20u);
+    assert_int_equal(F.state, FORAGER_SEARCH);
+    grasp();
+    hear_beacon_steps(3u, 600u);                 /* arrival */
+    assert_int_equal(F.state, FORAGER_PARK);
+    assert_int_equal(forager_paper_state(F.state), 'R');
+    assert_string_equal(forager_state_name(&F), "park");
+    assert_true(H.left > 0 || H.right > 0);      /* driving on, not backing out */
+    for (i = 0; i < 3u; i++) {
+        hear_beacon_steps(1u, 300u);
+        assert_int_equal(F.state, FORAGER_PARK);
+    }
+    hear_beacon_steps(1u, 300u);
+    assert_int_equal(F.state, FORAGER_DEPOSIT);
+    assert_int_equal(H.left, -SPEED);
+
+    /* The token gone while parking: lost_steps later, SEARCH. */
+    start_with(&p, 42u);
+    wait_steps(T1, FOOD_Q4(5), 20u);
+    grasp();
+    hear_beacon_steps(3u, 600u);
+    assert_int_equal(F.state, FORAGER_PARK);
+    fake_hal_clear_blobs(&H);
+    for (i = 0; i < F.params.lost_steps; i++) {
+        assert_int_equal(F.state, FORAGER_PARK);
+        hear_beacon_steps(1u, 300u);
+    }
+    assert_int_equal(F.state, FORAGER_SEARCH);
+}
+
 static void test_deposit_backs_then_waits(void **state)
 {
     uint32_t i;
@@ -472,6 +515,33 @@ static void test_reports_alternate(void **state)
         assert_int_equal(f.robot_id, 6);
         assert_int_equal(f.value, (type == NL_DEPOSITS) ? 2 : 44);
     }
+}
+
+/* report_steps = 3: one report every third step, on the steps where
+ * (step + id) % 3 == 0, still alternating deposits and OAEs. */
+static void test_report_steps_staggered(void **state)
+{
+    forager_params_t p;
+    nest_link_frame_t f;
+    uint32_t i, first, sent = 0u;
+    (void)state;
+    forager_default_params(&p);
+    p.report_steps = 3u;
+    start_with(&p, 3u);
+    H.id = 4u;
+    first = H.out_count;
+    for (i = 0; i < 12u; i++) {
+        uint32_t before = H.out_count;
+        step();
+        assert_int_equal(H.out_count - before, ((i + 4u) % 3u == 0u) ? 1 : 0);
+    }
+    assert_int_equal(H.out_count - first, 4);
+    for (i = 0; i < 4u; i++) {
+        uint8_t type = nest_link_decode(H.outbox[first + i], &f);
+        assert_int_equal(type, (i % 2u == 0u) ? NL_DEPOSITS : NL_OAES);
+        sent++;
+    }
+    assert_int_equal(sent, 4);
 }
 
 /* Out of the nest a robot sends only its OAE total, every 5 steps (for a
@@ -750,12 +820,14 @@ int main(void)
         cmocka_unit_test(test_search_obstacle_vs_token_echo),
         cmocka_unit_test(test_search_keeps_oae_count),
         cmocka_unit_test(test_return_to_deposit_in_nest),
+        cmocka_unit_test(test_park_then_deposit),
         cmocka_unit_test(test_deposit_backs_then_waits),
         cmocka_unit_test(test_deposit_gives_up_when_token_stays),
         cmocka_unit_test(test_return_to_search_when_token_lost),
         cmocka_unit_test(test_return_phototaxis),
         cmocka_unit_test(test_inbox_drained_while_searching),
         cmocka_unit_test(test_reports_alternate),
+        cmocka_unit_test(test_report_steps_staggered),
         cmocka_unit_test(test_oae_reports_out_of_the_nest),
         cmocka_unit_test(test_artm_theta_follows_stimulus),
         cmocka_unit_test(test_frtm_theta_fixed),

@@ -53,6 +53,8 @@ void forager_default_params(forager_params_t *params)
     params->leave_nest = 1u;
     params->leave_max_steps = 300u;   /* 30 s: the nest's radius twice over at 0.05 m/s */
     params->grasp_confirm = 3u;
+    params->park_steps = 0u;
+    params->report_steps = 1u;
     random_walk_default_params(&params->walk);
     params->walk.speed_steps_s = params->speed_steps_s;
     /* Search: a tumble every 20 s on average, a 1 m run at 0.05 m/s (a
@@ -110,6 +112,7 @@ void forager_reset(forager_t *self)
     self->approach = 0u;
     self->grasp_steps = 0u;
     self->out_timer = 0u;
+    self->wait_timer = 0u;
 }
 
 /* ------------------------------------------------------------ sensing */
@@ -306,13 +309,19 @@ static void send_oae_report(forager_t *self, hal_t *hal)
     self->out_timer++;
 }
 
+/* In the nest: a report every report_steps steps, staggered by id, so
+ * that a nest full of robots does not send the beacon more frames a step
+ * than its receive queue holds. */
 static void send_report(forager_t *self, hal_t *hal)
 {
     uint16_t id = hal_robot_id(hal);
+    uint8_t every = self->params.report_steps > 0u ? self->params.report_steps : 1u;
     uint16_t frame = (self->report_oaes != 0u)
                      ? nest_link_encode_oaes(id, self->walk.oae_count)
                      : nest_link_encode_deposits(id, self->deposits);
-    if (hal_ircom_send(hal, frame) == HAL_OK) {
+    uint8_t due = (uint8_t)((uint16_t)(self->wait_timer + id) % every == 0u);
+    self->wait_timer = (uint8_t)((self->wait_timer + 1u) % every);
+    if (due != 0u && hal_ircom_send(hal, frame) == HAL_OK) {
         self->report_oaes ^= 1u;
     }
 }
@@ -404,7 +413,9 @@ static void search_step(forager_t *self, hal_t *hal)
     }
 }
 
-static void return_step(forager_t *self, hal_t *hal)
+/* RETURN and PARK: is the token still in the gripper?  No wide red blob
+ * for lost_steps steps in a row means it was lost: SEARCH, and 0. */
+static uint8_t still_held(forager_t *self, hal_t *hal)
 {
     hal_blob_t blob;
     const forager_params_t *p = &self->params;
@@ -415,18 +426,63 @@ static void return_step(forager_t *self, hal_t *hal)
         self->lost++;
         if (self->lost >= p->lost_steps) {
             self->state = FORAGER_SEARCH;   /* dropped it: search on, mid-walk */
-            return;
+            return 0u;
         }
     } else {
         self->lost = 0u;
     }
-    if (self->nest_frames >= p->nest_confirm) {
-        enter_deposit(self, hal);
-    } else if (random_walk_front_proximity(hal) > p->walk.avoid_enter
-               || self->walk.state == RW_AVOID) {
+    return 1u;
+}
+
+/* Toward the lamp, round obstacles (the walk's avoidance and its OAE
+ * count); the walk itself while the lamp is out of sight. */
+static void home_step(forager_t *self, hal_t *hal)
+{
+    if (random_walk_front_proximity(hal) > self->params.walk.avoid_enter
+        || self->walk.state == RW_AVOID) {
         random_walk_step(&self->walk, hal);
     } else if (phototaxis(self, hal, 0u) == 0u) {
         random_walk_step(&self->walk, hal);
+    }
+}
+
+/* Parking: a step of driving on toward the lamp; after park_steps of them
+ * (the arrival step the first), the deposit.  park_steps = 0 deposits at
+ * arrival. */
+static void park_or_deposit(forager_t *self, hal_t *hal)
+{
+    if (self->timer >= self->params.park_steps) {
+        enter_deposit(self, hal);
+        return;
+    }
+    self->timer++;
+    home_step(self, hal);
+}
+
+static void enter_park(forager_t *self, hal_t *hal)
+{
+    self->state = FORAGER_PARK;
+    self->timer = 0u;
+    park_or_deposit(self, hal);
+}
+
+static void park_step(forager_t *self, hal_t *hal)
+{
+    if (still_held(self, hal) == 0u) {
+        return;
+    }
+    park_or_deposit(self, hal);
+}
+
+static void return_step(forager_t *self, hal_t *hal)
+{
+    if (still_held(self, hal) == 0u) {
+        return;
+    }
+    if (self->nest_frames >= self->params.nest_confirm) {
+        enter_park(self, hal);
+    } else {
+        home_step(self, hal);
     }
 }
 
@@ -467,6 +523,9 @@ void forager_step(forager_t *self, hal_t *hal)
     case FORAGER_RETURN:
         return_step(self, hal);
         break;
+    case FORAGER_PARK:
+        park_step(self, hal);
+        break;
     case FORAGER_DEPOSIT:
         deposit_step(self, hal);
         break;
@@ -486,6 +545,7 @@ char forager_paper_state(uint8_t state)
     case FORAGER_SEARCH: return 'S';
     case FORAGER_RETURN: return 'R';
     case FORAGER_DEPOSIT: return 'R';
+    case FORAGER_PARK: return 'R';
     default: return '?';
     }
 }
@@ -497,6 +557,7 @@ const char *forager_state_name(const forager_t *self)
     case FORAGER_SEARCH: return "search";
     case FORAGER_RETURN: return "return";
     case FORAGER_DEPOSIT: return "deposit";
+    case FORAGER_PARK: return "park";
     default: return "?";
     }
 }

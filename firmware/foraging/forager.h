@@ -5,8 +5,9 @@
  * States (paper names in brackets):
  *   WAIT    [S_W]  in the nest, wheels stopped.  Reads the nest beacon's
  *                  frames (nest_link.h: F(t), N_W, M_A and its range) and
- *                  sends one report per step, alternating its deposit total
- *                  and its OAE total.  After T1 steps it decides (eqs 2-7):
+ *                  sends a report every report_steps steps (staggered by
+ *                  id), alternating its deposit total and its OAE total.
+ *                  After T1 steps it decides (eqs 2-7):
  *                  P_s from the policy's threshold and its own n, then a
  *                  roulette draw: SEARCH, or wait; with decide_each_step
  *                  (T1 is the paper's "minimum waiting time") it draws
@@ -31,9 +32,17 @@
  *   RETURN [S_R]  A(t) = 0: random walk; A(t) = 1 when the nest light is
  *                  seen (some ambient reading below light_detect): steer to
  *                  the brightest sensor, turning in place when it is behind.
- *                  A beacon frame from closer than nest_radius - nest_margin
- *                  means the nest: DEPOSIT.  No wide red blob for lost_steps
- *                  steps means the token was lost: SEARCH.
+ *                  nest_confirm beacon frames in a row from closer than
+ *                  nest_radius - nest_margin mean the nest: PARK.  No wide red
+ *                  blob for lost_steps steps means the token was lost: SEARCH.
+ *   PARK   [S_R]  drives on toward the lamp, round obstacles, for park_steps
+ *                  steps (counting the arrival step), then DEPOSIT: the
+ *                  "search for a place in the nest" of ARGoS's foraging
+ *                  example (minimum_search_for_place_in_nest_time), so that
+ *                  the robots resting in the nest do not ring its rim, which
+ *                  every robot leaving or coming home must cross.  Losing the
+ *                  token here is as in RETURN.  park_steps = 0: DEPOSIT at
+ *                  arrival.
  *   DEPOSIT [S_R] backs straight out at -speed for deposit_steps steps: a
  *                  passive gripper lets go when the robot backs off (the
  *                  simulator releases a carried token when both wheels are
@@ -99,6 +108,13 @@ typedef struct forager_params {
     uint16_t leave_max_steps;    /**< give up turning away after this many steps (300) */
     uint8_t grasp_confirm;       /**< steps a wide red blob must stay centred, after an
                                       approach, to count as a token grasped (3) */
+    uint16_t park_steps;         /**< after arriving in the nest, steps of driving on toward
+                                      the lamp before depositing and resting (50 = 5 s) */
+    uint8_t report_steps;        /**< in the nest, a report every this many steps, staggered
+                                      by id (1: every step); a deposit report goes every
+                                      2 report_steps, so the beacon's wait_timeout_steps
+                                      must exceed that (4 report_steps + 1 survives one
+                                      lost report; nest_beacon.h) */
     random_walk_params_t walk;   /**< A(t) = 0 motion and obstacle avoidance; its
                                       speed_steps_s is replaced by speed_steps_s */
 } forager_params_t;
@@ -107,7 +123,8 @@ typedef enum forager_state {
     FORAGER_WAIT = 0,      /**< S_W */
     FORAGER_SEARCH = 1,    /**< S_S */
     FORAGER_RETURN = 2,    /**< S_R, looking for the nest */
-    FORAGER_DEPOSIT = 3    /**< S_R, backing out of the token in the nest */
+    FORAGER_DEPOSIT = 3,   /**< S_R, backing out of the token in the nest */
+    FORAGER_PARK = 4       /**< S_R, driving on into the nest before depositing */
 } forager_state_t;
 
 /** Bits of forager_t.beacon_known: which beacon quantities were heard. */
@@ -146,7 +163,8 @@ typedef struct forager {
 
     uint8_t carrying;            /**< a wide red blob was seen this step */
     uint8_t lost;                /**< RETURN: steps without the held token */
-    uint16_t timer;              /**< DEPOSIT: steps backed (up to 2 * deposit_steps) */
+    uint16_t timer;              /**< DEPOSIT: steps backed (up to 2 * deposit_steps);
+                                      PARK: steps parked */
     uint8_t report_oaes;         /**< next report: 0 deposits, 1 OAEs */
 
     uint8_t leaving;             /**< SEARCH: still turning away from the lamp */
@@ -155,6 +173,7 @@ typedef struct forager {
     uint8_t approach;            /**< steps left in which a grasp may follow an approach */
     uint8_t grasp_steps;         /**< steps in a row with a wide, centred red blob */
     uint16_t out_timer;          /**< steps out of the nest, for the OAE reports' cadence */
+    uint8_t wait_timer;          /**< steps in the nest, for the reports' cadence (mod report_steps) */
 } forager_t;
 
 /* The controller contract (controller.h):
@@ -165,7 +184,7 @@ typedef struct forager {
  *                   3.3 by default; ARTM, FRTM: theta0), n drawn afresh,
  *                   the walk reset (OAE count 0);
  *   step            one control step;
- *   state_name      "wait", "search", "return", "deposit". */
+ *   state_name      "wait", "search", "return", "park", "deposit". */
 CONTROLLER_API(forager);
 
 /** Seed 000's name of a forager_state_t: 'W', 'S' or 'R' ('?' if unknown). */

@@ -57,6 +57,11 @@ static const param_desc_t forager_params[] = {
       .doc = "stop turning away from the lamp after this many steps" },
     { .key = "grasp_confirm", PARAM_FIELD(FP, grasp_confirm, uint8_t), .min = 1, .max = 255,
       .doc = "steps a wide red blob must stay centred after an approach to count as grasped" },
+    { .key = "park_steps", PARAM_FIELD(FP, park_steps, uint16_t), .min = 0, .max = 60000,
+      .doc = "after arriving in the nest, steps of driving on toward the lamp before depositing "
+             "and resting (ARGoS's foraging example: 50)" },
+    { .key = "report_steps", PARAM_FIELD(FP, report_steps, uint8_t), .min = 1, .max = 50,
+      .doc = "in the nest, a report to the beacon every this many steps, staggered by id" },
     RANDOM_WALK_TUNING_PARAMS(FP, walk.),
     PARAM_END
 };

@@ -27,8 +27,10 @@
  * robot restarted mid-run would report from 0 again and be credited a
  * bogus difference; restart the beacon with the swarm.)
  *
- * N_W = ids heard within the last `wait_timeout_steps` steps: foragers
- * report every step while waiting in the nest and only then.  (A robot the
+ * N_W = ids whose deposit report was heard within the last
+ * `wait_timeout_steps` steps: foragers send those only while waiting in the
+ * nest, one every 2 report_steps steps (forager.h), so the timeout must
+ * exceed that (5 for report_steps = 1; 4 report_steps + 1 in general).  (A robot the
  * beacon cannot hear counts as foraging; so does every robot in the first
  * step, before any report has arrived.)
  *
@@ -74,7 +76,7 @@ typedef struct nest_beacon_params {
     uint16_t e_a;                          /**< E_a, units per OAE (10) */
     uint16_t t2_steps;                     /**< T2, OAE window, steps (400; 10..640) */
     uint8_t wait_timeout_steps;            /**< a robot counts as waiting this many steps
-                                                after its last report (5; 1..254) */
+                                                after its last deposit report (5; 1..254) */
     uint8_t min_deposit_steps;             /**< a robot is credited at most one deposit
                                                 per this many steps (20: 2 s; >= 1) */
 } nest_beacon_params_t;

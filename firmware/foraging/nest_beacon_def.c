@@ -1,11 +1,18 @@
 /*
  * nest_beacon_def.c - seed 000's nest beacon as the simulator runs it.  Its
  * constants (N_r, F(0), the ledger's costs, T2) come from the foraging
- * task's section, as a real beacon is built with them; it has no keys.
+ * task's section, as a real beacon is built with them; its one key is how
+ * long a robot's report keeps it counted as waiting.
  */
 #include "foraging/nest_beacon.h"
 
-static const param_desc_t nest_beacon_params[] = { PARAM_END };
+#define BP nest_beacon_params_t
+static const param_desc_t nest_beacon_params[] = {
+    { .key = "wait_timeout_steps", PARAM_FIELD(BP, wait_timeout_steps, uint8_t), .min = 1, .max = 254,
+      .doc = "a robot counts as waiting this many steps after its last deposit report" },
+    PARAM_END
+};
+#undef BP
 
 const observable_t nest_beacon_observables[] = {
     { .name = "nest_food", OBS_FIELD(nest_beacon_t, food_q4, int32_t), .scale = 1.0f / (float)NL_FOOD_PER_TOKEN,

@@ -26,11 +26,11 @@ trap 'rm -rf "$tmp"' EXIT
 # scenario (sim_host/scenarios/)  state hash after its full duration
 pins=(
     "random_walk     8f5ca44c91abbef0"
-    "foraging_base   b8e767ffdb74ec44"
-    "foraging_nf25   2a76c8d12c26450a"
-    "foraging_ea20   f3419c08359699b8"
-    "foraging_nr30   4b08d66c5e212824"
-    "foraging_l3     a791c3465f7b9f49"
+    "foraging_base   3612aed75c9cb1e9"
+    "foraging_nf25   538fbc0a86a9c927"
+    "foraging_ea20   6dd789f2d1833d61"
+    "foraging_nr30   4e05db17b5966227"
+    "foraging_l3     ea65abb4ca2f12a3"
     "phototaxis_gather f8ae7bdce4060218"
     "repatt_quick    94a07694c9647671"
     "repatt_one50    a8cc8989d1efc480"

@@ -133,7 +133,7 @@ static void check_beacon(uint32_t sent_before, uint8_t kind)
 static void check_forager(const beacon_seen_t *seen, uint32_t sent_before, uint32_t deposits_before)
 {
     nest_link_frame_t f;
-    FUZZ_CHECK(F.state <= FORAGER_DEPOSIT);
+    FUZZ_CHECK(F.state <= FORAGER_PARK);
     FUZZ_CHECK(F.beacon_known == seen->known);
     if (seen->known & FORAGER_KNOWS_FOOD) {
         FUZZ_CHECK(F.beacon_food_q4 == seen->food_q4);
@@ -174,6 +174,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fake_hal_init(&HB, 99u);
     forager_default_params(&fp);
     fp.policy = (ta_policy_t)(setup % 3u);
+    if (setup & 16u) {  /* parking and the report cadence; 0 is read as 1 */
+        fp.park_steps = fuzz_u8(&in);
+        fp.report_steps = (uint8_t)(fuzz_u8(&in) % 51u);
+    }
     forager_init(&F, &fp, 1u + setup);
     nest_beacon_default_params(&bp);
     if (setup & 8u) {   /* the documented ranges: T2 10..640 steps, timeout 1..254 */

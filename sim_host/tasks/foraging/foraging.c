@@ -60,6 +60,12 @@ typedef struct foraging {
     uint64_t delivered;      /**< tokens deposited in the nest */
     uint64_t dropped;        /**< tokens let go outside the nest */
     uint64_t forage_steps;   /**< robot-steps spent in S_S or S_R */
+    uint64_t search_steps;   /**< of them, in S_S */
+    uint64_t oae_at_nest;    /**< OAEs counted by foragers at the nest (nest_reach) */
+    uint32_t *last_oae;      /**< per robot: its OAE count after the last step */
+    double wait_radius_sum;  /**< sum over steps and waiting foragers of their distance from
+                                  the nest centre, m */
+    uint64_t wait_steps;     /**< robot-steps in S_W */
     uint64_t oae_seen;       /**< OAEs already charged */
     double nest_units;       /**< energy the nest consumed, units */
     double food;             /**< F(t), tokens */
@@ -245,6 +251,16 @@ static int in_nest(const foraging_t *f, float x, float y)
     return dx * dx + dy * dy < r * r;
 }
 
+/* An OAE counts as at the nest when the robot's centre is within this of
+ * the nest's rim or inside it (a robot avoiding another at the rim from
+ * outside is a body length out), m. */
+#define NEST_REACH 0.1f
+
+static double nest_distance(const foraging_t *f, double x, double y)
+{
+    return hypot(x - f->cfg->nest.x, y - f->cfg->nest.y);
+}
+
 /* A free spot for token k: inside the walls, outside the nest, off the
  * obstacles.  Returns 0, or -1 when the arena has no room. */
 static int place_token(foraging_t *f, const sim_t *sim, uint32_t k)
@@ -280,6 +296,7 @@ static void foraging_destroy(void *self)
     free(f->is_forager);
     free(f->task);
     free(f->leave_step);
+    free(f->last_oae);
     free(f->tokens);
     free(f->carrier);
     free(f->carried);
@@ -307,6 +324,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[SIM_ERR_MA
     f->is_forager = calloc(n1, 1);
     f->task = calloc(n1, 1);
     f->leave_step = malloc(n1 * sizeof *f->leave_step);
+    f->last_oae = calloc(n1, sizeof *f->last_oae);
     f->tokens = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->tokens);
     f->carrier = calloc(f->n_tokens ? f->n_tokens : 1, sizeof *f->carrier);
     f->carried = malloc(n1 * sizeof *f->carried);
@@ -323,7 +341,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[SIM_ERR_MA
      * and at seed 000's density (20 tokens on 16 m^2) a cell holds ~0.3. */
     int grid_bad = grid_init(&f->token_grid, -hw, -hh, 2 * hw, 2 * hh, 0.5f) != 0
                    || grid_reserve(&f->token_grid, nt) != 0;
-    if (!f->is_forager || !f->task || !f->leave_step || !f->tokens || !f->carrier || !f->carried
+    if (!f->is_forager || !f->task || !f->leave_step || !f->last_oae || !f->tokens || !f->carrier || !f->carried
         || !f->oae_window || !f->floor_x || !f->floor_y || !f->near || grid_bad) {
         snprintf(err, SIM_ERR_MAX, "out of memory for %u food tokens", f->n_tokens);
         foraging_destroy(f);
@@ -469,7 +487,17 @@ static void foraging_update(void *self, sim_t *sim)
         }
         const forager_t *fs = sim_robot_controller(sim, i);
         char st = forager_paper_state(fs->state);
+        double x, y, th;
+        sim_robot_pose(sim, i, &x, &y, &th);
         oae += fs->walk.oae_count;
+        if (nest_distance(f, x, y) < nest_radius(f) + NEST_REACH) {
+            f->oae_at_nest += fs->walk.oae_count - f->last_oae[i];
+        }
+        f->last_oae[i] = fs->walk.oae_count;
+        if (st == 'W') {
+            f->wait_radius_sum += nest_distance(f, x, y);
+            f->wait_steps++;
+        }
         f->waiting += st == 'W';
         f->searching += st == 'S';
         f->returning += st == 'R';
@@ -478,8 +506,6 @@ static void foraging_update(void *self, sim_t *sim)
         }
         /* Leaving the nest: from choosing S_S inside it to the body's
          * centre outside the nest disk (or to the next state change). */
-        double x, y, th;
-        sim_robot_pose(sim, i, &x, &y, &th);
         if (f->task[i] == 'W' && st == 'S' && in_nest(f, (float)x, (float)y)) {
             f->leave_step[i] = (int64_t)sim_step_count(sim);
         } else if (f->leave_step[i] >= 0 && (st != 'S' || !in_nest(f, (float)x, (float)y))) {
@@ -493,6 +519,7 @@ static void foraging_update(void *self, sim_t *sim)
     }
     /* One unit per step per robot in S_S or S_R (seed 000, 3.1). */
     f->forage_steps += f->searching + f->returning;
+    f->search_steps += f->searching;
 
     uint32_t new_oae = (uint32_t)(oae - f->oae_seen);
     f->oae_seen = oae;
@@ -596,14 +623,17 @@ static void foraging_sample(const void *self, const sim_t *sim, double *v)
 static const metric_desc_t foraging_summary[] = {
     { "V_f", "tokens", "eq 8: mean |F_d - F(t)| over the steps" },
     { "E_e", "", "eq 9: E_n / E_T = F(T) / collected (a fraction; the paper prints %)" },
-    { "M_T", "events", "total obstacle-avoidance events of the foragers" },
-    { "M_v", "events/robot", "eq 10: M_T / N_r" },
     { "food_collected", "tokens", "tokens delivered" },
     { "food_net", "tokens", "F(T)" },
     { "food_dropped", "tokens", "tokens let go outside the nest" },
     { "exit_time_s", "s", "mean time from choosing to forage in the nest to leaving its disk" },
     { "beacon_error_mean", "tokens", "mean |F_beacon - F| over the steps (none with global information)" },
     { "beacon_error_max", "tokens", "largest |F_beacon - F|" },
+    { "tau_s", "s", "robot-seconds of foraging (S_S or S_R) per token delivered" },
+    { "tau_search_s", "s", "of tau_s, the robot-seconds in S_S (leaving the nest included)" },
+    { "active_mean", "robots", "mean number of foragers in S_S or S_R over the steps" },
+    { "oae_at_nest", "events", "OAEs of foragers whose centre was in the nest or within 0.1 m of its rim" },
+    { "wait_radius_m", "m", "mean distance of the waiting foragers (S_W) from the nest centre" },
     { NULL, NULL, NULL }
 };
 
@@ -612,18 +642,21 @@ static void foraging_final(const void *self, const sim_t *sim, double *v)
 {
     const foraging_t *f = self;
     double steps = (double)sim_step_count(sim);
-    double n = f->n_foragers ? f->n_foragers : 1;
+    double dt = sim_scenario(sim)->control_period_ms / 1000.0;
+    double per_token = f->delivered ? dt / (double)f->delivered : NAN;
     v[0] = steps > 0 ? f->deviation_sum / steps : 0.0;
     v[1] = f->delivered ? f->food / (double)f->delivered : 0.0;
-    v[2] = (double)f->oae_seen;
-    v[3] = (double)f->oae_seen / n;
-    v[4] = (double)f->delivered;
-    v[5] = f->food;
-    v[6] = (double)f->dropped;
-    v[7] = f->exits ? (double)f->exit_steps / (double)f->exits * sim_scenario(sim)->control_period_ms / 1000.0
-                    : NAN;
-    v[8] = f->beacon >= 0 && steps > 0 ? f->beacon_error_sum / steps : NAN;
-    v[9] = f->beacon >= 0 ? f->beacon_error_max : NAN;
+    v[2] = (double)f->delivered;
+    v[3] = f->food;
+    v[4] = (double)f->dropped;
+    v[5] = f->exits ? (double)f->exit_steps / (double)f->exits * dt : NAN;
+    v[6] = f->beacon >= 0 && steps > 0 ? f->beacon_error_sum / steps : NAN;
+    v[7] = f->beacon >= 0 ? f->beacon_error_max : NAN;
+    v[8] = (double)f->forage_steps * per_token;
+    v[9] = (double)f->search_steps * per_token;
+    v[10] = steps > 0 ? (double)f->forage_steps / steps : NAN;
+    v[11] = (double)f->oae_at_nest;
+    v[12] = f->wait_steps ? f->wait_radius_sum / (double)f->wait_steps : NAN;
 }
 
 static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)

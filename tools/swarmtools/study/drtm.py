@@ -50,7 +50,8 @@ Metrics are the simulator's (seed 000's eqs 8-10): V_f, the average deviation
 |F_d - F(t)| of the net food from the desired level; E_e = E_n / E_T, the
 energy efficiency (a fraction in summary.json, printed here in percent, as
 the paper does); ``food_collected``, the tokens delivered to the nest;
-``food_net`` = F(T); M_T, the total OAEs; M_v = M_T / N_r.
+``food_net`` = F(T); ``oae_total``, the total OAEs (the paper's M_T);
+``oae_per_robot`` = M_T / N_r (its M_v).
 
 Outputs (in ``--out``, default ``out/study_drtm``)
 --------------------------------------------------
@@ -156,7 +157,8 @@ SPEED_SWEEP_FILE = REPO_ROOT / "studies" / "drtm_speed.yaml"
 SPEED_KEY = "foraging.robot_speed"
 SPEED_ROWS: tuple[tuple[str, str, float, int], ...] = (
     ("V_f", "V_f", 1.0, 2), ("E_e", "E_e %", 100.0, 2), ("food_collected", "collected", 1.0, 1),
-    ("food_net", "F(T)", 1.0, 2), ("M_T", "M_T", 1.0, 0))
+    ("food_net", "F(T)", 1.0, 2), ("oae_total", "M_T", 1.0, 0), ("tau_s", "tau (s)", 1.0, 1),
+    ("active_mean", "robots foraging", 1.0, 2))
 POLICY_KEY = "robots.0.policy"     # the foragers are the scenarios' first group
 ALPHA = 0.05
 
@@ -211,8 +213,12 @@ METRIC_ROWS: tuple[tuple[str, str, float, int], ...] = (
     ("E_e", "E_e, energy efficiency (%)", 100.0, 2),
     ("food_collected", "food collected (tokens)", 1.0, 2),
     ("food_net", "net food F(T) (tokens)", 1.0, 2),
-    ("M_T", "M_T, total OAEs", 1.0, 2),
-    ("M_v", "M_v = M_T / N_r, OAEs per robot", 1.0, 2),
+    ("oae_total", "M_T, total OAEs (oae_total)", 1.0, 2),
+    ("oae_per_robot", "M_v = M_T / N_r, OAEs per robot (oae_per_robot)", 1.0, 2),
+    ("tau_s", "tau, robot-seconds of foraging per delivered token (tau_s)", 1.0, 1),
+    ("active_mean", "mean robots foraging, in S_S or S_R (active_mean)", 1.0, 2),
+    ("oae_at_nest", "OAEs within 0.1 m of the nest or in it (oae_at_nest)", 1.0, 0),
+    ("wait_radius_m", "mean distance of the waiting robots from the nest centre, m", 1.0, 2),
 )
 REQUIRED_METRICS: tuple[str, ...] = tuple(k for k, *_ in METRIC_ROWS)
 
@@ -220,55 +226,77 @@ REQUIRED_METRICS: tuple[str, ...] = tuple(k for k, *_ in METRIC_ROWS)
 PAPER_MEANS: dict[str, dict[str, dict[str, float]]] = {
     "base": {
         "drtm": {"V_f": 2.55, "E_e": 11.99, "food_collected": 173.76,
-                 "food_net": 20.84, "M_T": 925.96, "M_v": 46.30},
+                 "food_net": 20.84, "oae_total": 925.96, "oae_per_robot": 46.30},
         "artm": {"V_f": 4.74, "E_e": 9.99, "food_collected": 183.46,
-                 "food_net": 18.34, "M_T": 1148.44, "M_v": 57.42},
+                 "food_net": 18.34, "oae_total": 1148.44, "oae_per_robot": 57.42},
     },
     "nf25": {
         "drtm": {"V_f": 2.90, "E_e": 13.31, "food_collected": 156.90,
-                 "food_net": 20.88, "M_T": 760.22, "M_v": 38.01},
+                 "food_net": 20.88, "oae_total": 760.22, "oae_per_robot": 38.01},
         "artm": {"V_f": 2.92, "E_e": 11.06, "food_collected": 150.44,
-                 "food_net": 16.63, "M_T": 1053.20, "M_v": 52.66},
+                 "food_net": 16.63, "oae_total": 1053.20, "oae_per_robot": 52.66},
     },
     "ea20": {
         "drtm": {"V_f": 3.06, "E_e": 10.78, "food_collected": 189.14,
-                 "food_net": 20.39, "M_T": 912.06, "M_v": 45.60},
+                 "food_net": 20.39, "oae_total": 912.06, "oae_per_robot": 45.60},
         "artm": {"V_f": 5.18, "E_e": 8.45, "food_collected": 189.32,
-                 "food_net": 15.99, "M_T": 1152.26, "M_v": 57.61},
+                 "food_net": 15.99, "oae_total": 1152.26, "oae_per_robot": 57.61},
     },
     "nr30": {
         "drtm": {"V_f": 3.17, "E_e": 8.72, "food_collected": 229.44,
-                 "food_net": 19.99, "M_T": 1203.32, "M_v": 40.11},
+                 "food_net": 19.99, "oae_total": 1203.32, "oae_per_robot": 40.11},
         "artm": {"V_f": 4.94, "E_e": 6.67, "food_collected": 236.40,
-                 "food_net": 15.77, "M_T": 1612.26, "M_v": 53.74},
+                 "food_net": 15.77, "oae_total": 1612.26, "oae_per_robot": 53.74},
     },
     "l3": {
         "drtm": {"V_f": 2.35, "E_e": 10.74, "food_collected": 165.32,
-                 "food_net": 17.75, "M_T": 1423.08, "M_v": 71.15},
+                 "food_net": 17.75, "oae_total": 1423.08, "oae_per_robot": 71.15},
         "artm": {"V_f": 4.61, "E_e": 8.91, "food_collected": 170.90,
-                 "food_net": 15.22, "M_T": 1882.32, "M_v": 94.12},
+                 "food_net": 15.22, "oae_total": 1882.32, "oae_per_robot": 94.12},
     },
 }
+
+# The paper's trip economics, solved from its printed means with its energy
+# balance (section 2.3): F(T) = F(0) + collected - C T - (1 unit x robot-steps
+# foraging + E_a M_T) / 1500, with F(0) = 5, C = 2 tokens/min, T = 20 min.
+PAPER_F0, PAPER_C_PER_MIN, PAPER_MINUTES, PAPER_TOKEN_UNITS = 5.0, 2.0, 20.0, 1500.0
+PAPER_E_A = {"base": 10.0, "nf25": 10.0, "ea20": 20.0, "nr30": 10.0, "l3": 10.0}
+PAPER_STEP_S = 0.1
+
+
+def paper_trip_economics(means: dict[str, float], e_a: float) -> dict[str, float]:
+    """tau_s and active_mean that the paper's F(T), collected and M_T imply."""
+    collected = means["food_collected"]
+    energy = PAPER_TOKEN_UNITS * (PAPER_F0 + collected - PAPER_C_PER_MIN * PAPER_MINUTES
+                                  - means["food_net"])
+    robot_steps = energy - e_a * means["oae_total"]
+    steps = PAPER_MINUTES * 60.0 / PAPER_STEP_S
+    return {"tau_s": robot_steps * PAPER_STEP_S / collected, "active_mean": robot_steps / steps}
+
+
+for _cond, _arms in PAPER_MEANS.items():
+    for _means in _arms.values():
+        _means.update(paper_trip_economics(_means, PAPER_E_A[_cond]))
 
 # The t-tests compared: (metric key, name in the paper, +1 if larger is better)
 TESTS: tuple[tuple[str, str, int], ...] = (
     ("food_net", "F_t", +1),
-    ("M_T", "M_T", -1),
+    ("oae_total", "M_T", -1),
 )
 
 # Tables 2 and 4, DRTM vs ARTM: (t, two-tailed p, p as printed); all
 # "YES" (significant) in the paper.
 PAPER_TTESTS: dict[str, dict[str, tuple[float, float, str]]] = {
     "base": {"food_net": (3.1918, 0.0019, "0.0019"),
-             "M_T": (2.2899, 0.0242, "0.0242")},
+             "oae_total": (2.2899, 0.0242, "0.0242")},
     "nf25": {"food_net": (4.9663, 2.89e-6, "2.89e-06"),
-             "M_T": (2.7761, 6.59e-3, "6.59e-03")},
+             "oae_total": (2.7761, 6.59e-3, "6.59e-03")},
     "ea20": {"food_net": (3.2744, 1.46e-3, "1.46e-03"),
-             "M_T": (2.3803, 0.0192, "0.0192")},
+             "oae_total": (2.3803, 0.0192, "0.0192")},
     "nr30": {"food_net": (4.7869, 6.00e-6, "6.00e-06"),
-             "M_T": (3.9267, 1.60e-4, "1.60e-04")},
+             "oae_total": (3.9267, 1.60e-4, "1.60e-04")},
     "l3": {"food_net": (2.1899, 0.0310, "0.0310"),
-           "M_T": (2.6984, 8.21e-3, "8.21e-03")},
+           "oae_total": (2.6984, 8.21e-3, "8.21e-03")},
 }
 PAPER_REPS = 50
 PAPER_STEPS = 12000
@@ -709,8 +737,14 @@ def render_markdown(results: dict[str, Any], figures: dict[str, list[str]] | Non
             "transcribed from the text of its sections 3.1 and 4.1-4.4. "
             "V_f: mean |F_d - F(t)| over the run (eq 8); E_e = E_n / E_T (eq 9), in percent; "
             "food collected: tokens delivered to the nest; net food F(T): tokens in the nest "
-            "at the end (collected minus consumed); M_T: total obstacle-avoidance events; "
-            "M_v = M_T / N_r (eq 10).", ""]
+            "at the end (collected minus consumed); M_T: total obstacle-avoidance events "
+            "(the summary's oae_total); M_v = M_T / N_r (eq 10, oae_per_robot). "
+            "tau: robot-seconds spent foraging (S_S or S_R) per token delivered, and the mean "
+            "number of robots foraging; the paper's are solved from its printed F(T), "
+            "collected and M_T with its energy balance (F(0) = 5, 2 tokens/min, 20 min, "
+            "1 unit per foraging robot per step, E_a per OAE, 1500 units per token). "
+            "OAEs at the nest and the waiting robots' distance from its centre show where "
+            "the nest's traffic is (not in the paper).", ""]
     for cond in conds:
         out += render_condition_table(results, cond)
 
@@ -1106,7 +1140,7 @@ def results_from_table(rows: list[dict[str, str]], sweep_dir: Path, args: argpar
             c["policies"][policy] = {"wall_s": round(sum(float(r["wall_s"] or 0) for r in cell), 3),
                                      "runs": runs, "series": _series_to_json(agg)}
             fn = [r["metrics"]["food_net"] for r in runs]
-            mt = [r["metrics"]["M_T"] for r in runs]
+            mt = [r["metrics"]["oae_total"] for r in runs]
             print(f"  {cond:5s} {policy}: F(T) {fmt_mean_sd(fn)}, M_T {fmt_mean_sd(mt, decimals=0)}",
                   flush=True)
     results["wall_time_s"] = wall

@@ -4,7 +4,7 @@ engine and writes out/study_faults/results.md.
 Per condition (healthy; 10 % or 30 % of the foragers stopping at a uniformly
 random time; one lying forager for the whole run or from 100 s to 400 s):
 runs that finished, mean +- sd over the seeds of the food collected, the net
-food F(T), V_f, M_T and the robots that failed, and the beacon's ledger:
+food F(T), V_f, the OAEs (oae_total) and the robots that failed, and the beacon's ledger:
 its largest belief max F_beacon(t) (the broadcast saturates at 128 tokens),
 and how far it is from the truth at the end, |F_beacon(T) - F(T)|, and 100 s
 after a lie stops.
@@ -47,7 +47,7 @@ LABELS = {
     "[{kind: liar, fraction: 0.05, at: 0}]": "1 liar, whole run",
     "[{kind: liar, fraction: 0.05, at: 100, duration: 300}]": "1 liar, 100-400 s",
 }
-METRICS = (("food_collected", "collected"), ("food_net", "F(T)"), ("V_f", "V_f"), ("M_T", "M_T"),
+METRICS = (("food_collected", "collected"), ("food_net", "F(T)"), ("V_f", "V_f"), ("oae_total", "OAEs"),
            ("faulty_robots", "failed robots"))
 
 

@@ -19,7 +19,7 @@ A sweep file is YAML::
           - {scenario: ../sim_host/scenarios/foraging_base.yaml}
     repetitions: 10                # seeds 1..10; or seeds: [3, 7] or
                                    # seeds: {first: 100, count: 10}
-    metrics: [food_net, M_T]       # optional; default every summary metric
+    metrics: [food_net, oae_total] # optional; default every summary metric
     max_attempts: 3                # a failed run is retried on a rerun, this
                                    # many attempts in all (default 3)
     run_timeout: 600               # s; a run taking longer fails (0: none)

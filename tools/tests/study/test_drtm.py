@@ -65,8 +65,11 @@ def write_run(folder, seed, steps=100, policy="drtm", robots=20, every=10,
         "static_contacts": oae // 10, "distance_per_robot_m": dist / robots,
         "mean_speed_mm_s": 42.0, "min_wall_clearance_mm": 3.5, "escaped": 0,
         "V_f": rng.uniform(1, 20), "E_e": rng.uniform(-0.2, 0.3),
-        "M_T": oae, "M_v": oae / robots, "food_collected": food_c,
+        "food_collected": food_c,
         "food_net": food, "food_dropped": 0,
+        "tau_s": rng.uniform(60, 110), "tau_search_s": rng.uniform(40, 80),
+        "active_mean": rng.uniform(5, 15), "oae_at_nest": oae // 2,
+        "wait_radius_m": rng.uniform(0.3, 0.7),
     }
     summary = {"scenario": scenario, "scenario_file": f"sim_host/scenarios/{scenario}.yaml",
                "seed": seed,
@@ -99,7 +102,9 @@ def synthetic_results(conditions=("base", "nr30"), policies=sd.POLICIES, reps=50
             for seed in range(1, reps + 1):
                 m = {"V_f": 2.5 + i + rng.normal(0, 0.5), "E_e": 0.12 - 0.02 * i + rng.normal(0, 0.01),
                      "food_collected": 170 + rng.normal(0, 10), "food_net": 20 - 2 * i + rng.normal(0, 3),
-                     "M_T": 900 + 200 * i + rng.normal(0, 150), "M_v": 45 + 10 * i}
+                     "oae_total": 900 + 200 * i + rng.normal(0, 150), "oae_per_robot": 45 + 10 * i,
+                     "tau_s": 90 + rng.normal(0, 5), "active_mean": 12 + rng.normal(0, 1),
+                     "oae_at_nest": 400 + rng.normal(0, 50), "wait_radius_m": 0.5}
                 runs.append({"seed": seed, "steps": steps, "robots": 20, "state_hash": "x",
                              "metrics": m})
             c["policies"][p] = {"wall_s": 1.0, "runs": runs, "series": {
@@ -146,6 +151,17 @@ class TestStatistics(unittest.TestCase):
             self.assertAlmostEqual(r["t"], float(ref.statistic), places=10)
             self.assertAlmostEqual(r["p"], float(ref.pvalue), places=12)
             self.assertEqual(r["df"], na + nb - 2)
+
+    def test_paper_trip_economics(self):
+        # The paper's base DRTM row: F(T) 20.84, collected 173.76, M_T 925.96, E_a 10:
+        # 1500 (5 + 173.76 - 40 - 20.84) - 9259.6 = 167,620.4 robot-steps foraging.
+        m = sd.PAPER_MEANS["base"]["drtm"]
+        self.assertAlmostEqual(m["active_mean"], 167620.4 / 12000.0, places=6)
+        self.assertAlmostEqual(m["tau_s"], 16762.04 / 173.76, places=6)
+        # Every row of the paper, both policies: tau 90-112 s.
+        for arms in sd.PAPER_MEANS.values():
+            for means in arms.values():
+                self.assertTrue(90.0 < means["tau_s"] < 112.0, means)
 
     def test_paper_df(self):
         r = sd.pooled_t_test(range(50), range(1, 51))
@@ -217,17 +233,17 @@ class TestReaders(unittest.TestCase):
         with self.assertRaisesRegex(sd.StudyError, "garbled JSON") as cm:
             sd.read_summary(path)
         self.assertIn(str(path), str(cm.exception))
-        del doc["metrics"]["M_T"]
+        del doc["metrics"]["oae_total"]
         path.write_text(json.dumps(doc))
-        with self.assertRaisesRegex(sd.StudyError, "lack M_T"):
+        with self.assertRaisesRegex(sd.StudyError, "lack oae_total"):
             sd.read_summary(path)
-        doc["metrics"]["M_T"] = "many"
+        doc["metrics"]["oae_total"] = "many"
         path.write_text(json.dumps(doc))
         with self.assertRaisesRegex(sd.StudyError, "not a number"):
             sd.read_summary(path)
-        doc["metrics"]["M_T"] = None                 # null -> NaN
+        doc["metrics"]["oae_total"] = None                 # null -> NaN
         path.write_text(json.dumps(doc))
-        self.assertTrue(math.isnan(sd.read_summary(path)["metrics"]["M_T"]))
+        self.assertTrue(math.isnan(sd.read_summary(path)["metrics"]["oae_total"]))
         path.write_text("[]")
         with self.assertRaisesRegex(sd.StudyError, "no \"metrics\""):
             sd.read_summary(path)
@@ -310,8 +326,8 @@ class TestRendering(unittest.TestCase):
         res = synthetic_results(conditions=("l3",))
         rows = sd.compute_ttests(res, "artm")
         self.assertEqual([r["name"] for r in rows], ["F_t", "M_T"])
-        d = [r["metrics"]["M_T"] for r in res["conditions"]["l3"]["policies"]["drtm"]["runs"]]
-        a = [r["metrics"]["M_T"] for r in res["conditions"]["l3"]["policies"]["artm"]["runs"]]
+        d = [r["metrics"]["oae_total"] for r in res["conditions"]["l3"]["policies"]["drtm"]["runs"]]
+        a = [r["metrics"]["oae_total"] for r in res["conditions"]["l3"]["policies"]["artm"]["runs"]]
         ref = stats.ttest_ind(a, d, equal_var=True)      # other - DRTM for OAEs
         self.assertAlmostEqual(rows[1]["t"], float(ref.statistic), places=10)
         self.assertAlmostEqual(rows[1]["p"], float(ref.pvalue), places=12)
@@ -429,6 +445,8 @@ class TestEndToEnd(unittest.TestCase):
         self.assertIn("| l3 | Table 4, 5.4 | M_T |", md)
         self.assertIn("## Sensitivity to the robot's speed (base condition)", md)
         self.assertIn("| 0.1 | ARTM |", md)
+        self.assertIn("| tau, robot-seconds of foraging per delivered token (tau_s) |", md)
+        self.assertIn("| v (m/s) | arm | V_f | E_e % | collected | F(T) | M_T | tau (s) | robots foraging |", md)
         res = json.loads((self.dir / "out" / "results.json").read_text())
         self.assertEqual(list(res["conditions"]), ["base", "l3"])
         self.assertEqual(list(res["conditions"]["l3"]["policies"]), ["drtm", "artm"])
