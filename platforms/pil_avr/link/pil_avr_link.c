@@ -33,7 +33,10 @@ int pil_avr_link_open(pil_avr_link_t *l, const pil_avr_link_def_t *def, char err
     l->to = l->from = -1;
     l->timeout_ms = def->timeout_ms > 0 ? def->timeout_ms : 20000;
     snprintf(l->image, sizeof l->image, "%s", def->image);
-    if (access(def->emulator, X_OK) != 0) {
+    snprintf(l->what, sizeof l->what, "%s", def->what ? def->what : "pil_avr_emu");
+    if (def->argv) {
+        /* Found on PATH by execvp; one that is not there exits 127. */
+    } else if (access(def->emulator, X_OK) != 0) {
         snprintf(err, PIL_HOST_ERR, "the AVR emulator %s: %s (make pil-avr builds it; it needs simavr: "
                  "Debian's libsimavr-dev)", def->emulator, strerror(errno));
         return -1;
@@ -69,7 +72,11 @@ int pil_avr_link_open(pil_avr_link_t *l, const pil_avr_link_def_t *def, char err
         }
         dup2(in[0], 0);
         dup2(out[1], 1);
-        execl(def->emulator, def->emulator, "--budget", budget, "--boot-budget", boot, def->image, (char *)NULL);
+        if (def->argv) {
+            execvp(def->argv[0], (char *const *)def->argv);
+        } else {
+            execl(def->emulator, def->emulator, "--budget", budget, "--boot-budget", boot, def->image, (char *)NULL);
+        }
         _exit(127);
     }
     close(in[0]);
@@ -116,7 +123,7 @@ static void gone(pil_avr_link_t *l, char *err, const char *what)
             snprintf(err, PIL_HOST_ERR, "its emulator was killed by signal %d%s%s", WTERMSIG(status), *what ? " " : "",
                      what);
         } else if (WEXITSTATUS(status) == 127) {
-            snprintf(err, PIL_HOST_ERR, "its emulator could not be started");
+            snprintf(err, PIL_HOST_ERR, "its emulator %s could not be started (is it installed?)", l->what);
         } else {
             snprintf(err, PIL_HOST_ERR, "its emulator exited (status %d)%s%s (its messages are on standard error)",
                      WEXITSTATUS(status), *what ? " " : "", what);
@@ -216,7 +223,7 @@ static int link_recv(void *ctx, uint8_t *buf, uint16_t cap, uint16_t *len, pil_e
     if (pil_frame_check(buf, *len, &f) != PIL_FRAME_OK || f.type != PIL_EMU
         || pil_emu_decode(f.payload, f.len, emu) != 0) {
         snprintf(err, PIL_HOST_ERR, "its emulator sent something that is not its report (is %s this build's?)",
-                 "pil_avr_emu");
+                 l->what);
         return -1;
     }
     if (emu->event != PIL_EMU_FRAME) {

@@ -22,6 +22,7 @@ typedef struct pil_avr_link {
     int to, from;            /**< the emulator's standard input and output */
     int timeout_ms;
     char image[256];         /**< for errors */
+    char what[64];           /**< the emulator's name, for errors */
 } pil_avr_link_t;
 
 /** The emulator's options. */
@@ -31,6 +32,12 @@ typedef struct pil_avr_link_def {
     uint64_t budget;         /**< cycles a step's exchange may take */
     uint64_t boot_budget;    /**< cycles from reset to HELLO */
     int timeout_ms;          /**< wall time a read may wait */
+    /** Another emulator that speaks the same frames on its standard input
+     *  and output (QEMU for platforms/pil_m4/): its program, looked for
+     *  on PATH, and its arguments, NULL-terminated; `emulator` and the
+     *  budgets are then not used, and `what` names it in errors. */
+    const char *const *argv;
+    const char *what;
 } pil_avr_link_def_t;
 
 /** Defaults: 1,600,000 cycles a step (100 ms at 16 MHz), 16,000,000 to

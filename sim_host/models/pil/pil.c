@@ -18,6 +18,7 @@
 #include "models/sound/sound.h"
 #include "pil/pil_host.h"
 #include "pil_avr_link.h"
+#include "pil_m4_link.h"
 #include "pil_images.h"
 #include "pil_mirror.h"
 
@@ -26,18 +27,20 @@
 
 /* ---------------------------------------------------------------- keys */
 
-static const char *const platform_names[] = { "host", "pil_avr", NULL };
+static const char *const platform_names[] = { "host", "pil_avr", "pil_m4", NULL };
+/* What each platform counts per step (the AVR its cycles, QEMU instructions). */
+static const char *const count_names[] = { "", "cycles", "instructions", NULL };
 
 #define P pil_model_config_t
 static const param_desc_t pil_params[] = {
     { .key = "cycle_budget", PARAM_FIELD(P, cycle_budget, uint32_t), .min = 0, .max = 4000000000.0,
-      .doc = "cycles a control step may take on an emulated MCU (0: the control period at 16 MHz)" },
+      .doc = "cycles a control step may take on an emulated MCU (instructions on pil_m4; 0: the control period at 16 MHz, or of pil_m4's emulated time: 1 ns an instruction)" },
     { .key = "boot_budget", PARAM_FIELD(P, boot_budget, uint32_t), .min = 1000, .max = 4000000000.0,
       .doc = "cycles an MCU may take from reset to its first frame" },
     { .key = "timeout_s", PARAM_FIELD(P, timeout_s, float), .min = 0.1, .max = 3600,
       .doc = "wall time an emulator may take to answer, s (a hung one is an error)" },
     { .key = "dir", PARAM_STRING_FIELD(P, dir),
-      .doc = "folder of the emulator and the images (default: firmware/pil_avr beside swarmsim)" },
+      .doc = "folder of the AVR emulator and images (default: firmware/pil_avr beside swarmsim; pil_m4's images are in its sibling pil_m4)" },
     PARAM_END
 };
 #undef P
@@ -47,7 +50,7 @@ MODEL_ONE_SECTION(pil_schema, "pil", pil_params, NULL,
 #define G pil_group_config_t
 static const param_desc_t group_params[] = {
     { .key = "platform", PARAM_ENUM_FIELD(G, platform, platform_names),
-      .doc = "what runs the robots: host (built in) or pil_avr (the image on an emulated ATmega2560)" },
+      .doc = "what runs the robots: host (built in), pil_avr (the image on an emulated ATmega2560) or pil_m4 (on an emulated Cortex-M4F, QEMU)" },
     { .key = "image", PARAM_STRING_FIELD(G, image),
       .doc = "the robot image they run (platforms/epuck1/images.list): its parameters and seed" },
     { .key = "platform_robots", PARAM_FIELD(G, platform_robots, uint32_t), .min = 0, .max = 100000,
@@ -154,6 +157,7 @@ typedef struct pil_mcu {
     const pil_image_t *image;
     const pil_mirror_t *mirror;
     pil_avr_link_t link;
+    int platform;            /* pil_platform_t */
     uint8_t failed;
     uint64_t cycles_sum, cycles_max, steps;
     char err[SIM_ERR_MAX];
@@ -192,10 +196,10 @@ static void pil_layout(const void *config, const scenario_t *sc, model_layout_t 
 static pil_robot_t *robots(const sim_t *sim) { return sim_model_array(sim, SIM_MODEL_pil, 0); }
 
 /* The folder of the emulator and the images. */
-static int pil_dir(const pil_model_config_t *c, char *out, size_t cap, char err[SIM_ERR_MAX])
+static int pil_dir(const pil_model_config_t *c, int platform, char *out, size_t cap, char err[SIM_ERR_MAX])
 {
     if (c->dir[0]) {
-        snprintf(out, cap, "%s", c->dir);
+        snprintf(out, cap, "%s%s", c->dir, platform == PIL_PLATFORM_M4 ? "/../pil_m4" : "");
         return 0;
     }
     char exe[PATH_MAX];
@@ -209,7 +213,7 @@ static int pil_dir(const pil_model_config_t *c, char *out, size_t cap, char err[
     if (slash) {
         *slash = '\0';
     }
-    snprintf(out, cap, "%.*s/firmware/pil_avr", (int)(cap - 20), exe);
+    snprintf(out, cap, "%.*s/firmware/%s", (int)(cap - 20), exe, platform_names[platform]);
     return 0;
 }
 
@@ -282,8 +286,8 @@ static uint16_t telemetry_room(const sim_t *sim, uint32_t i)
 
 static void fail(pil_mcu_t *m, uint64_t step, const char *what)
 {
-    snprintf(m->err, sizeof m->err, "robot %u (image %s on pil_avr), step %" PRIu64 ": %s", m->robot,
-             m->image->name, step, what);
+    snprintf(m->err, sizeof m->err, "robot %u (image %s on %s), step %" PRIu64 ": %s", m->robot,
+             m->image->name, platform_names[m->platform], step, what);
     m->failed = 1;
 }
 
@@ -375,15 +379,27 @@ static int boot(sim_t *sim, pil_t *p, pil_mcu_t *m, const char *dir, uint32_t g,
     const pil_model_config_t *c = p->cfg;
     const ircom_config_t *ic = ircom_config(sc);
     char emu[PATH_MAX], elf[PATH_MAX], e[PIL_HOST_ERR];
-    snprintf(emu, sizeof emu, "%.3000s/pil_avr_emu", dir);
-    snprintf(elf, sizeof elf, "%.3000s/avr/%.32s.elf", dir, m->image->name);
-    pil_avr_link_def_t def = pil_avr_link_default_def();
-    def.emulator = emu;
-    def.image = elf;
-    def.budget = c->cycle_budget ? c->cycle_budget : (uint64_t)sc->control_period_ms * (PIL_AVR_HZ / 1000u);
-    def.boot_budget = c->boot_budget;
-    def.timeout_ms = (int)(c->timeout_s * 1000.0f);
-    if (pil_avr_link_open(&m->link, &def, e) != 0) {
+    int opened;
+    if (m->platform == PIL_PLATFORM_M4) {
+        /* One instruction, one emulated ns: the control period is
+         * period_ms * 10^6 instructions. */
+        snprintf(elf, sizeof elf, "%.3000s/m4/%.32s.elf", dir, m->image->name);
+        pil_m4_link_def_t def = { .image = elf, .boot_budget = c->boot_budget,
+                                  .timeout_ms = (int)(c->timeout_s * 1000.0f) };
+        def.budget = c->cycle_budget ? c->cycle_budget : (uint64_t)sc->control_period_ms * 1000000u;
+        opened = pil_m4_link_open(&m->link, &def, e);
+    } else {
+        snprintf(emu, sizeof emu, "%.3000s/pil_avr_emu", dir);
+        snprintf(elf, sizeof elf, "%.3000s/avr/%.32s.elf", dir, m->image->name);
+        pil_avr_link_def_t def = pil_avr_link_default_def();
+        def.emulator = emu;
+        def.image = elf;
+        def.budget = c->cycle_budget ? c->cycle_budget : (uint64_t)sc->control_period_ms * (PIL_AVR_HZ / 1000u);
+        def.boot_budget = c->boot_budget;
+        def.timeout_ms = (int)(c->timeout_s * 1000.0f);
+        opened = pil_avr_link_open(&m->link, &def, e);
+    }
+    if (opened != 0) {
         snprintf(err, SIM_ERR_MAX, "robot %u (robots.%u, image %s): %s", m->robot, g, m->image->name, e);
         return -1;
     }
@@ -407,11 +423,11 @@ static int boot(sim_t *sim, pil_t *p, pil_mcu_t *m, const char *dir, uint32_t g,
                  "ircom.tx_per_period is %u", h->tx_per_period, ic->tx_per_period);
     } else if (h->state_size != m->mirror->avr_size || m->mirror->host_size > sim->robots[m->robot].def->state_size) {
         snprintf(what, sizeof what, "its controller state (%u bytes) is not its state map's (%u): rebuild with "
-                 "make pil-avr", h->state_size, m->mirror->avr_size);
+                 "make %s", h->state_size, m->mirror->avr_size, m->platform == PIL_PLATFORM_M4 ? "pil-m4" : "pil-avr");
     }
     if (wrong || what[0]) {
-        snprintf(err, SIM_ERR_MAX, "robot %u (robots.%u, image %s on pil_avr), boot: %s", m->robot, g,
-                 m->image->name, wrong ? wrong : what);
+        snprintf(err, SIM_ERR_MAX, "robot %u (robots.%u, image %s on %s), boot: %s", m->robot, g,
+                 m->image->name, platform_names[m->platform], wrong ? wrong : what);
         return -1;
     }
     const camera_config_t *cam = camera_config(sc);
@@ -426,8 +442,8 @@ static int boot(sim_t *sim, pil_t *p, pil_mcu_t *m, const char *dir, uint32_t g,
     m->host.config.fov_mrad = (uint16_t)(cam->fov * 3.14159265358979 / 180.0 * 1000.0 + 0.5);
     m->host.config.selector = group_cfg(&sc->groups[g])->selector;
     if (pil_host_config(&m->host, e) != 0 || mirror(m, sim->robots[m->robot].ctrl, e) != 0) {
-        snprintf(err, SIM_ERR_MAX, "robot %u (robots.%u, image %s on pil_avr), boot: %s", m->robot, g,
-                 m->image->name, e);
+        snprintf(err, SIM_ERR_MAX, "robot %u (robots.%u, image %s on %s), boot: %s", m->robot, g,
+                 m->image->name, platform_names[m->platform], e);
         return -1;
     }
     return 0;
@@ -456,16 +472,17 @@ static int pil_create(sim_t *sim, const void *config, void **self, char err[SIM_
         const pil_image_t *im = gc->image[0] ? pil_image_find(gc->image) : NULL;
         if (im && gc->platform != PIL_PLATFORM_HOST) {
             char map[PATH_MAX + 16];
-            if (pil_dir(p->cfg, dir, sizeof dir, err) != 0) {
+            if (pil_dir(p->cfg, gc->platform, dir, sizeof dir, err) != 0) {
                 return -1;
             }
             snprintf(map, sizeof map, "%.3000s/pil_avr_emu", dir);
-            if (access(map, X_OK) != 0) {
+            if (gc->platform == PIL_PLATFORM_AVR && access(map, X_OK) != 0) {
                 snprintf(err, SIM_ERR_MAX, "robots.%u: the AVR emulator %.300s: %s (make pil-avr builds it; it "
                          "needs simavr: Debian's libsimavr-dev; pil.dir says where it is)", g, map, strerror(errno));
                 return -1;
             }
-            snprintf(map, sizeof map, "%.3000s/avr/%.32s.map", dir, im->name);
+            snprintf(map, sizeof map, "%.3000s/%s/%.32s.map", dir, gc->platform == PIL_PLATFORM_M4 ? "m4" : "avr",
+                     im->name);
             if (pil_mirror_load(&p->mirror[g], map, err) != 0) {
                 return -1;
             }
@@ -495,6 +512,7 @@ static int pil_create(sim_t *sim, const void *config, void **self, char err[SIM_
             m->robot = i;
             m->image = im;
             m->mirror = &p->mirror[g];
+            m->platform = gc->platform;
             m->link.pid = -1;
             m->link.to = m->link.from = -1;
             if (boot(sim, p, m, dir, g, err) != 0) {
@@ -549,20 +567,40 @@ static void pil_write_json(const sim_t *sim, const void *self, FILE *f)
     if (!p || p->n_mcu == 0) {
         return;
     }
-    uint64_t sum = 0, steps = 0, max = 0;
-    uint16_t stack = 0;
-    for (uint32_t i = 0; i < p->n; i++) {
-        const pil_mcu_t *m = p->mcu[i];
-        if (m) {
-            sum += m->cycles_sum;
-            steps += m->steps;
-            max = m->cycles_max > max ? m->cycles_max : max;
-            stack = m->host.emu.stack_max > stack ? m->host.emu.stack_max : stack;
+    /* Per platform: the AVR's cycles, the M4's instructions (a mixed run
+     * has one line of figures for each). */
+    fprintf(f, "  \"pil\": {\"robots\": %u", p->n_mcu);
+    int first = 1;
+    for (int pf = PIL_PLATFORM_AVR; pf <= PIL_PLATFORM_M4; pf++) {
+        uint64_t sum = 0, steps = 0, max = 0;
+        uint16_t stack = 0;
+        uint32_t n = 0;
+        for (uint32_t i = 0; i < p->n; i++) {
+            const pil_mcu_t *m = p->mcu[i];
+            if (m && m->platform == pf) {
+                n++;
+                sum += m->cycles_sum;
+                steps += m->steps;
+                max = m->cycles_max > max ? m->cycles_max : max;
+                stack = m->host.emu.stack_max > stack ? m->host.emu.stack_max : stack;
+            }
         }
+        if (n == 0) {
+            continue;
+        }
+        /* The first platform's figures at the top (as with one platform),
+         * any other's in an object of its own. */
+        const char *k = count_names[pf];
+        if (first) {
+            fprintf(f, ", \"platform\": \"%s\", ", platform_names[pf]);
+        } else {
+            fprintf(f, ", \"%s\": {\"robots\": %u, ", platform_names[pf], n);
+        }
+        fprintf(f, "\"%s_per_step_mean\": %.1f, \"%s_per_step_max\": %" PRIu64 ", \"stack_bytes_max\": %u%s", k,
+                steps ? (double)sum / (double)steps : 0.0, k, max, stack, first ? "" : "}");
+        first = 0;
     }
-    fprintf(f, "  \"pil\": {\"robots\": %u, \"platform\": \"pil_avr\", \"cycles_per_step_mean\": %.1f, "
-               "\"cycles_per_step_max\": %" PRIu64 ", \"stack_bytes_max\": %u},\n",
-            p->n_mcu, steps ? (double)sum / (double)steps : 0.0, max, stack);
+    fprintf(f, "},\n");
 }
 
 static const char *const pil_hal_calls[] = { NULL };

@@ -51,7 +51,8 @@
 /** Which platform runs a group's robots. */
 typedef enum pil_platform {
     PIL_PLATFORM_HOST = 0,    /**< built into the simulator */
-    PIL_PLATFORM_AVR = 1      /**< an emulated ATmega2560 (simavr) */
+    PIL_PLATFORM_AVR = 1,     /**< an emulated ATmega2560 (simavr) */
+    PIL_PLATFORM_M4 = 2       /**< an emulated Cortex-M4F (QEMU's netduinoplus2) */
 } pil_platform_t;
 
 /** Section `pil`. */

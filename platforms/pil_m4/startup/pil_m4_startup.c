@@ -1,0 +1,115 @@
+/*
+ * pil_m4_startup.c - bare-metal start of a PIL image on QEMU's
+ * netduinoplus2 (Cortex-M4F): the vector table, the reset handler (paint
+ * the stack, copy .data, zero .bss, enable the FPU, set up USART1 and the
+ * NVIC, start the SysTick on the boot budget, call main) and the handlers
+ * of what can go wrong, each of which tells the simulator in an EMU frame
+ * (pil_msg.h) and halts: a fault (PIL_EMU_CRASH, with the faulting PC), the
+ * SysTick reaching zero (PIL_EMU_BUDGET: the exchange ran past its
+ * budget), main returning (PIL_EMU_HALT).  Our own code, no vendor
+ * start-up file: the e-puck2's port builds on it.
+ */
+#include <stdint.h>
+
+#include "pil/pil_msg.h"
+#include "pil_m4.h"
+
+extern uint32_t pil_m4_stack_bottom[], pil_m4_stack_top[];
+extern uint32_t pil_m4_data_start[], pil_m4_data_end[], pil_m4_data_load[];
+extern uint32_t pil_m4_bss_start[], pil_m4_bss_end[];
+
+int main(void);
+void pil_m4_reset(void);
+void pil_m4_report(uint8_t event, uint32_t pc);
+void pil_m4_fault(void);
+void pil_m4_fault_c(const uint32_t *frame);
+void pil_m4_systick(void);
+void pil_m4_unexpected(void);
+
+/* The FPU's coprocessors CP10 and CP11: full access. */
+#define PIL_M4_CPACR_FPU (0xFu << 20)
+
+void pil_m4_fatal(uint8_t event, uint32_t pc)
+{
+    PIL_M4_SYST_CSR = 0u;
+    pil_m4_report(event, pc);
+    __asm__ __volatile__("cpsid i" ::: "memory");
+    for (;;) {
+        __asm__ __volatile__("wfi");
+    }
+}
+
+/* A fault: the stacked frame's PC (the frame is on the main stack; a
+ * stack that ran off the SRAM locks the core up instead, and the
+ * simulator's wall-time bound names it). */
+__attribute__((naked)) void pil_m4_fault(void)
+{
+    __asm__ __volatile__("mrs r0, msp\n\tb pil_m4_fault_c");
+}
+
+void pil_m4_fault_c(const uint32_t *frame)
+{
+    uint32_t pc = ((uintptr_t)frame >= (uintptr_t)pil_m4_stack_bottom && (uintptr_t)frame + 32u <= (uintptr_t)pil_m4_stack_top)
+                      ? frame[6] : 0u;
+    pil_m4_fatal(PIL_EMU_CRASH, pc);
+}
+
+void pil_m4_systick(void)
+{
+    pil_m4_fatal(PIL_EMU_BUDGET, 0u);
+}
+
+void pil_m4_unexpected(void)
+{
+    pil_m4_fatal(PIL_EMU_CRASH, 0u);
+}
+
+void pil_m4_reset(void)
+{
+    /* Paint the stack below this function's own frame. */
+    volatile uint32_t *p = pil_m4_stack_bottom;
+    volatile uint32_t *here = (volatile uint32_t *)__builtin_frame_address(0) - 16;
+    while (p < here) {
+        *p++ = PIL_M4_PAINT;
+    }
+    for (uint32_t *d = pil_m4_data_start, *s = pil_m4_data_load; d < pil_m4_data_end;) {
+        *d++ = *s++;
+    }
+    for (uint32_t *d = pil_m4_bss_start; d < pil_m4_bss_end;) {
+        *d++ = 0u;
+    }
+    for (uint32_t w = PIL_M4_STEPPING; w < PIL_M4_SCRATCH_WORDS; w++) {
+        PIL_M4_SCRATCH(w) = 0u;
+    }
+    PIL_M4_CPACR |= PIL_M4_CPACR_FPU;
+    __asm__ __volatile__("dsb\n\tisb" ::: "memory");
+    /* USART1 on; its interrupt wakes WFI but is never taken (priority
+     * 0xF0 under BASEPRI 0x80); the SysTick's (priority 0) always is. */
+    PIL_M4_USART_CR1 = PIL_M4_USART_ON;
+    PIL_M4_NVIC_IPR8(PIL_M4_USART1_IRQ) = 0xF0u;
+    PIL_M4_SHPR3 &= 0x00FFFFFFu;
+    __asm__ __volatile__("msr basepri, %0\n\tcpsie i" ::"r"(0x80u) : "memory");
+    PIL_M4_NVIC_ISER(PIL_M4_USART1_IRQ / 32u) = 1u << (PIL_M4_USART1_IRQ % 32u);
+    pil_m4_resume();
+    (void)main();
+    pil_m4_fatal(PIL_EMU_HALT, 0u);
+}
+
+/* The vector table: the initial stack pointer, then the handlers (ARMv7-M's
+ * 16 system vectors, then room for the STM32F405's 82 interrupts: none is
+ * ever taken, USART1's only wakes WFI). */
+typedef void (*pil_m4_vector_t)(void);
+#define PIL_M4_VECTORS (16u + 82u)
+__attribute__((section(".vectors"), used)) static const pil_m4_vector_t pil_m4_vectors[PIL_M4_VECTORS] = {
+    [0] = (pil_m4_vector_t)(uintptr_t)pil_m4_stack_top,
+    [1] = pil_m4_reset,
+    [2] = pil_m4_unexpected,   /* NMI */
+    [3] = pil_m4_fault,        /* HardFault */
+    [4] = pil_m4_fault,        /* MemManage */
+    [5] = pil_m4_fault,        /* BusFault */
+    [6] = pil_m4_fault,        /* UsageFault */
+    [11] = pil_m4_unexpected,  /* SVCall */
+    [12] = pil_m4_unexpected,  /* DebugMon */
+    [14] = pil_m4_unexpected,  /* PendSV */
+    [15] = pil_m4_systick,
+};
