@@ -41,6 +41,7 @@ check_all() {
     need valgrind         command -v valgrind   # firmware CPU report (callgrind)
     need ffmpeg           command -v ffmpeg     # swarmsim --video (and ffprobe for its tests)
     need libsimavr-dev    simavr_links          # the emulated ATmega2560 of processor-in-the-loop (platforms/pil_avr/emu/)
+    need qemu-system-arm  qemu_netduino         # the emulated Cortex-M4F of processor-in-the-loop (platforms/pil_m4/)
     # The fuzz harnesses (tests/fuzz/, tools/make/fuzz.mk): clang, its
     # sanitizer and libFuzzer runtime (a separate package named after
     # clang's major version, so it is looked for once clang is there), and
@@ -65,6 +66,7 @@ libfuzzer_links() {
 }
 glib_runtime() { { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | grep -q 'libglib-2.0.so.0'; }
 simavr_links() { printf '#include <simavr/sim_avr.h>\nint main(void) { return avr_make_mcu_by_name("atmega2560") == 0; }\n' | cc -x c - -lsimavr -o /dev/null; }
+qemu_netduino() { qemu-system-arm -machine help | grep -q '^netduinoplus2 '; }
 hdr_avr() { printf '#include <stdint.h>\n' | avr-gcc -mmcu=atmega128 -E -x c - >/dev/null; }
 hdr_arm() { printf '#include <string.h>\n' | arm-none-eabi-gcc -mcpu=cortex-m4 -E -x c - >/dev/null; }
 

@@ -82,13 +82,14 @@ $(PIL_AVR_EMU): $(PIL_AVR)/emu/pil_avr_emu.c $(PIL_WIRE_SRC) $(wildcard wire/pil
 	$(call show,CC,$<)$(CC) -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -O2 -g -Ihal -Iwire -I$(PIL_AVR)/hal \
 	  -o $@ $(PIL_AVR)/emu/pil_avr_emu.c $(PIL_WIRE_SRC) -lsimavr
 
-# The comparison driver, and the simulator's end of the pipe it uses.
+# The comparison driver, and the simulator's end of the pipe it uses (and
+# platforms/pil_m4/'s, which adds its link to PIL_COMPARE_SRC and PIL_COMPARE_INC).
 PIL_COMPARE_SRC := $(PIL_AVR)/tests/pil_compare.c $(PIL_AVR)/tests/pil_script.c $(PIL_AVR)/link/pil_avr_link.c \
   wire/pil/pil_host.c $(PIL_WIRE_SRC)
 $(PIL_AVR_COMPARE): $(PIL_COMPARE_SRC) $(wildcard wire/pil/*.h $(PIL_AVR)/link/*.h $(PIL_AVR)/tests/*.h) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(call show,CC,$<)$(CC) -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -O1 -g $(ASAN) -Ihal -Iwire \
-	  -I$(PIL_AVR)/hal -I$(PIL_AVR)/link -I$(PIL_AVR)/tests -o $@ $(PIL_COMPARE_SRC)
+	  -I$(PIL_AVR)/hal -I$(PIL_AVR)/link -I$(PIL_AVR)/tests $(PIL_COMPARE_INC) -o $@ $(PIL_COMPARE_SRC)
 
 # Every image's AVR ELF and host build, named from the declarations when
 # the goal runs (not at parse time).

@@ -61,3 +61,23 @@ $(BUILD)/fuzz/obj/$(PIL_M4)/link/%.o: $(PIL_M4)/link/%.c | $(BUILD)/config.mk
 
 # The simulator's PIL test and the PIL page's example run M4 robots too.
 cli-tests docs-tests: pil-m4
+
+# The comparison driver (platforms/pil_avr/tests/pil_compare.c) runs M4
+# images too (--m4): this link is linked into it.
+PIL_COMPARE_SRC += $(PIL_M4)/link/pil_m4_link.c
+PIL_COMPARE_INC += -I$(PIL_M4)/link -I$(PIL_M4)/hal
+$(PIL_AVR_COMPARE): $(PIL_M4)/link/pil_m4_link.c $(wildcard $(PIL_M4)/link/*.h $(PIL_M4)/hal/*.h)
+
+# Every image on the M4 beside its host build, step by step (the AVR's
+# comparison script, platforms/pil_avr/tests/pil_tests.sh, with M4_OUT),
+# the camera frames' images once more with frames; the protocol's errors,
+# the budget, a killed or hung QEMU, and no QEMU outliving its driver.
+.PHONY: pil-m4-tests pil-m4-compare
+PLATFORM_CHECKS += pil-m4-tests
+pil-m4-tests: pil-m4 pil-avr
+	@PIL_OUT=$(PIL_AVR_OUT) M4_OUT=$(PIL_M4_OUT) STEPS=$(PIL_TEST_STEPS) IMAGES='$(pil_avr_names)' \
+	  FRAMES='$(PIL_IMAGES_FRAMES)' bash $(PIL_AVR)/tests/pil_tests.sh
+# The same, longer (PIL_COMPARE_STEPS): two robots and seeds per image.
+pil-m4-compare: pil-m4 pil-avr
+	@PIL_OUT=$(PIL_AVR_OUT) M4_OUT=$(PIL_M4_OUT) STEPS=$(PIL_COMPARE_STEPS) IMAGES='$(pil_avr_names)' \
+	  FRAMES='$(PIL_IMAGES_FRAMES)' LONG=1 bash $(PIL_AVR)/tests/pil_tests.sh

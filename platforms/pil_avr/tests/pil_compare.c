@@ -8,11 +8,13 @@
  * what the emulator measured: cycles per step and the stack's high-water
  * mark (painting).
  *
- *   pil_compare --emu EMU --avr IMAGE.elf [--host IMAGE_EXE] [--steps N]
+ *   pil_compare (--emu EMU --avr IMAGE.elf | --m4 IMAGE.elf) [--host IMAGE_EXE] [--steps N]
  *               [--seed S] [--robot ID] [--frames] [--budget CYCLES]
  *               [--corrupt STEP:KIND] [--kill-at STEP] [--stop-at STEP]
  *               [--timeout MS] [--expect TEXT] [--json FILE] [--cycles FILE.csv]
  *
+ * --m4 runs the image's Cortex-M4F build on QEMU (platforms/pil_m4/) in
+ * place of the AVR's; its counts are then instructions, not cycles.
  * --corrupt damages the simulator's STEP frame of that step before the
  * AVR gets it (KIND crc, version, type, seq, length): the robot must
  * answer FAULT and the run stop with an error naming robot and step.
@@ -31,6 +33,7 @@
 
 #include "pil/pil_host.h"
 #include "pil_avr_link.h"
+#include "pil_m4_link.h"
 #include "pil_script.h"
 
 typedef struct side {
@@ -88,7 +91,7 @@ static int damaging_recv(void *ctx, uint8_t *buf, uint16_t cap, uint16_t *len, p
 
 static void usage(void)
 {
-    fprintf(stderr, "usage: pil_compare --emu EMU --avr IMAGE.elf [--host IMAGE_EXE] [--steps N] [--seed S] "
+    fprintf(stderr, "usage: pil_compare (--emu EMU --avr IMAGE.elf | --m4 IMAGE.elf) [--host IMAGE_EXE] [--steps N] [--seed S] "
                     "[--robot ID] [--frames] [--budget CYCLES] [--corrupt STEP:KIND] [--kill-at STEP] [--stop-at STEP] "
                     "[--timeout MS] [--expect TEXT] [--json FILE] [--cycles FILE.csv]\n");
     exit(2);
@@ -140,7 +143,7 @@ static int step(side_t *s, char *err)
 
 int main(int argc, char **argv)
 {
-    const char *emu = NULL, *avr = NULL, *host = NULL, *expect = NULL, *json = NULL, *cycles_path = NULL;
+    const char *emu = NULL, *avr = NULL, *m4 = NULL, *host = NULL, *expect = NULL, *json = NULL, *cycles_path = NULL;
     long steps = 200, seed = 1, robot = 3, budget = 0, kill_at = -1, stop_at = -1, timeout = 0;
     int frames = 0;
     corrupt_t corrupt = { .step = -1 };
@@ -151,6 +154,7 @@ int main(int argc, char **argv)
         }
         if (!strcmp(a, "--emu")) emu = argv[++i];
         else if (!strcmp(a, "--avr")) avr = argv[++i];
+        else if (!strcmp(a, "--m4")) m4 = argv[++i];
         else if (!strcmp(a, "--host")) host = argv[++i];
         else if (!strcmp(a, "--steps")) steps = number(argv[++i]);
         else if (!strcmp(a, "--seed")) seed = number(argv[++i]);
@@ -172,7 +176,7 @@ int main(int argc, char **argv)
             snprintf(corrupt.kind, sizeof corrupt.kind, "%s", colon + 1);
         } else usage();
     }
-    if (!emu || !avr) {
+    if ((!emu || !avr) == !m4) {
         usage();
     }
     static side_t sides[2];
@@ -181,7 +185,8 @@ int main(int argc, char **argv)
     int failed = 0;
     damaging_io_t dio;
 
-    a->name = "avr";
+    a->name = m4 ? "m4" : "avr";
+    const char *mcu = m4 ? "the M4" : "the AVR";
     pil_avr_link_def_t def = pil_avr_link_default_def();
     def.emulator = emu;
     def.image = avr;
@@ -192,7 +197,9 @@ int main(int argc, char **argv)
         def.timeout_ms = (int)timeout;
     }
     char e[PIL_HOST_ERR];
-    if (pil_avr_link_open(&a->link, &def, e) != 0) {
+    pil_m4_link_def_t m4def = { .image = m4, .budget = budget > 0 ? (uint64_t)budget : 100000000u,
+                                .boot_budget = 0u, .timeout_ms = def.timeout_ms };
+    if ((m4 ? pil_m4_link_open(&a->link, &m4def, e) : pil_avr_link_open(&a->link, &def, e)) != 0) {
         fprintf(stderr, "pil_compare: %s\n", e);
         return 2;
     }
@@ -250,8 +257,9 @@ int main(int argc, char **argv)
             fprintf(csv, "%ld,%" PRIu64 ",%" PRIu64 "\n", done, a->host.step_cycles, a->host.control_cycles);
         }
         if (h && (a->script.log_len != h->script.log_len || memcmp(a->script.log, h->script.log, a->script.log_len))) {
-            snprintf(err, sizeof err, "image %s robot %ld, step %ld: the AVR and the host build differ\n"
-                     "--- host\n%s--- avr\n%s", a->host.hello.name, robot, done, h->script.log, a->script.log);
+            snprintf(err, sizeof err, "image %s robot %ld, step %ld: %s and the host build differ\n"
+                     "--- host\n%s--- %s\n%s", a->host.hello.name, robot, done, mcu, h->script.log, a->name,
+                     a->script.log);
             failed = 1;
         }
     }
@@ -274,10 +282,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "pil_compare: %s\n", err);
         return 1;
     }
-    printf("image %-12s %ld steps%s: %s; cycles per step mean %.0f max %" PRIu64 " (boot %" PRIu64
+    printf("image %-12s %ld steps%s: %s; %s per step mean %.0f max %" PRIu64 " (boot %" PRIu64
            "), stack %u bytes, %.2f requests per step, %" PRIu64 " telemetry bytes\n",
            a->host.hello.name, done, frames ? " (camera frames)" : "",
-           h ? "identical on the AVR and the host build" : "ran on the AVR",
+           h ? (m4 ? "identical on the M4 and the host build" : "identical on the AVR and the host build")
+             : (m4 ? "ran on the M4" : "ran on the AVR"), m4 ? "instructions" : "cycles",
            done ? (double)cycles_sum / (double)done : 0.0, cycles_max, a->host.boot_cycles, a->host.emu.stack_max,
            done ? (double)requests / (double)done : 0.0, a->script.telemetry_bytes);
     if (json) {

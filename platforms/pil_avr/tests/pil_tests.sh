@@ -10,22 +10,32 @@
 #     the simulator, the misbehaving test image, a killed or hung emulator):
 #     each must be an error naming the robot and the step, within bounds;
 #  3. with REPORT set, the measured cycles and stack per image, as a table.
+# With M4_OUT set (platforms/pil_m4/platform.mk: pil-m4-tests), the same on
+# the emulated Cortex-M4F (QEMU): every image's M4 ELF in M4_OUT/m4/ beside
+# the same host build, its counts instructions; the misbehaving image is
+# the AVR's only (its faults are AVR code).
 set -u
 out=${PIL_OUT:?}
+m4=${M4_OUT:-}
+chip=$([ -n "$m4" ] && echo pil-m4 || echo pil-avr)
 steps=${STEPS:-150}
 cmp=$out/pil_compare
 emu=$out/pil_avr_emu
 pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-mkdir -p "$out/measure"
-rm -f "$out"/measure/*.json
+measure=${m4:-$out}/measure
+mkdir -p "$measure"
+rm -f "$measure"/*.json
+# mcu IMAGE: the driver's options that run the image on this chip.
+mcu() { if [ -n "$m4" ]; then echo "--m4 $m4/m4/$1.elf"; else echo "--emu $emu --avr $out/avr/$1.elf"; fi; }
 
 compare() {   # IMAGE ROBOT SEED [--frames]
     local img=$1 robot=$2 seed=$3; shift 3
     local tag=$img${1:+_frames}
-    if msg=$("$cmp" --emu "$emu" --avr "$out/avr/$img.elf" --host "$out/host/$img" --steps "${steps:-150}" \
-                 --robot "$robot" --seed "$seed" --json "$out/measure/${tag}_$robot.json" "$@" 2>&1); then
+    # shellcheck disable=SC2046
+    if msg=$("$cmp" $(mcu "$img") --host "$out/host/$img" --steps "${steps:-150}" \
+                 --robot "$robot" --seed "$seed" --json "$measure/${tag}_$robot.json" "$@" 2>&1); then
         ok; echo "$msg" | tail -1
     else
         bad "$img (robot $robot, seed $seed $*): $msg"
@@ -51,7 +61,7 @@ done
 # names the robot and the step.
 expect() {   # WORDS ARGS...
     local words=$1; shift
-    if msg=$("$cmp" --emu "$emu" --steps 20 "$@" --expect "$words" 2>&1); then
+    if msg=$("$cmp" --steps 20 "$@" --expect "$words" 2>&1); then
         case $msg in
             *"robot "*", step "*) ok ;;
             *) bad "error without robot and step ($*): $msg" ;;
@@ -60,28 +70,31 @@ expect() {   # WORDS ARGS...
         bad "$*: $msg"
     fi
 }
-mis=$out/avr/misbehave.elf
-rw=$out/avr/random_walk.elf
-expect "step 3: its MCU crashed" --avr "$mis" --robot 1
-expect "step 3: its MCU ran past its cycle budget" --avr "$mis" --robot 2 --budget 200000
-expect "step 3: its MCU reset" --avr "$mis" --robot 3
-expect "step 3: its MCU overflowed its stack" --avr "$mis" --robot 4
-expect "step 3: sent a frame with a bad CRC" --avr "$mis" --robot 5
-expect "step 3: its MCU halted" --avr "$mis" --robot 6
-expect "step 3: sent a REQUEST that does not decode" --avr "$mis" --robot 7
-expect "step 3: sent 2 IR messages in one period" --avr "$mis" --robot 8
-expect "step 3: sent a ACT frame of step" --avr "$mis" --robot 9
-for kind in crc version type seq length; do
-    expect "step 5: could not read the simulator's last frame (FAULT" --avr "$rw" --corrupt "5:$kind"
-done
-expect "step 4: its emulator was killed by signal 9" --avr "$rw" --kill-at 4
-expect "step 4: its emulator gave no answer within 300 ms" --avr "$rw" --stop-at 4 --timeout 300
+read -r -a rw <<< "$(mcu random_walk)"
+if [ -n "$m4" ]; then
+    expect "step 0: its MCU ran past its cycle budget" "${rw[@]}" --budget 2000
+else
+mis=(--emu "$emu" --avr "$out/avr/misbehave.elf")
+expect "step 3: its MCU crashed" "${mis[@]}" --robot 1
+expect "step 3: its MCU ran past its cycle budget" "${mis[@]}" --robot 2 --budget 200000
+expect "step 3: its MCU reset" "${mis[@]}" --robot 3
+expect "step 3: its MCU overflowed its stack" "${mis[@]}" --robot 4
+expect "step 3: sent a frame with a bad CRC" "${mis[@]}" --robot 5
+expect "step 3: its MCU halted" "${mis[@]}" --robot 6
+expect "step 3: sent a REQUEST that does not decode" "${mis[@]}" --robot 7
+expect "step 3: sent 2 IR messages in one period" "${mis[@]}" --robot 8
+expect "step 3: sent a ACT frame of step" "${mis[@]}" --robot 9
 # A well-behaved robot of the misbehaving image runs to the end.
-if "$cmp" --emu "$emu" --avr "$mis" --robot 0 --steps 20 > /dev/null 2>&1; then ok; else bad "misbehave robot 0 failed"; fi
+if "$cmp" "${mis[@]}" --robot 0 --steps 20 > /dev/null 2>&1; then ok; else bad "misbehave robot 0 failed"; fi
+fi
+for kind in crc version type seq length; do
+    expect "step 5: could not read the simulator's last frame (FAULT" "${rw[@]}" --corrupt "5:$kind"
+done
+expect "step 4: its emulator was killed by signal 9" "${rw[@]}" --kill-at 4
+expect "step 4: its emulator gave no answer within 300 ms" "${rw[@]}" --stop-at 4 --timeout 300
 # No emulator outlives the simulator: kill the driver mid-run (SIGKILL, no
 # clean-up of its own) and wait for its emulator to go (PR_SET_PDEATHSIG).
-emu_abs=$(realpath "$emu")
-"$cmp" --emu "$emu_abs" --avr "$rw" --steps 100000000 > /dev/null 2>&1 &
+"$cmp" "${rw[@]}" --steps 100000000 > /dev/null 2>&1 &
 driver=$!
 child=""
 for _ in $(seq 200); do
@@ -102,7 +115,7 @@ else
     if kill -0 "$child" 2>/dev/null; then bad "the emulator outlived its simulator"; kill -9 "$child"; else ok; fi
 fi
 
-if [ -n "${REPORT:-}" ]; then
+if [ -n "${REPORT:-}" ] && [ -z "$m4" ]; then
     for d in blobs:0 tones:1; do
         if "$cmp" --emu "$emu" --avr "$out/avr/detect.elf" --robot "${d#*:}" --steps 30 \
                --json "$out/measure/detect_${d%:*}.json" --cycles "$out/measure/detect_${d%:*}.csv" > /dev/null; then
@@ -115,5 +128,5 @@ if [ -n "${REPORT:-}" ]; then
         --footprint "$out/../epuck1/footprint.md" > "$REPORT.tmp" && mv "$REPORT.tmp" "$REPORT" \
         && { ok; echo "pil-avr: measured cycles and stack: $REPORT"; } || bad "the report"
 fi
-echo "pil-avr: $pass passed, $fail failed"
+echo "$chip: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
