@@ -11,9 +11,13 @@
 #     stops answering, exits or hangs, a stale image), or a setup error
 #     (exit 2, nothing written: no emulator, an image that is not the one
 #     named, an image built for other IR messages);
-#  3. no emulator outlives a killed simulator.
-# The emulated robots need make pil-avr's build (build/firmware/pil_avr/,
-# beside swarmsim: make cli-tests builds it).  (About 25 s.)
+#  3. no emulator outlives a killed simulator;
+#  4. mixed swarms: some robots on the AVR, some on the emulated Cortex-M4F
+#     (QEMU, platforms/pil_m4/), the rest host-built: the host-built hash;
+#     the M4's errors (its budget, no QEMU) name robot and step.
+# The emulated robots need make pil-avr's and pil-m4's builds
+# (build/firmware/pil_avr/ and pil_m4/, beside swarmsim: make cli-tests
+# builds them).  (About 40 s.)
 #
 # usage (from the repository root): bash tests/cli/pil.sh build/swarmsim
 set -u
@@ -65,6 +69,29 @@ else
     bad "the foragers' LCM log (their images' own FW_ROBOT_STATE frames) differs between the AVR and the host build"
 fi
 
+# ---- 1, mixed (4 above): AVR, M4 and host-built robots in one run
+for mix in "walk robots.1.platform=pil_m4" "forage robots.1.platform=pil_m4"; do
+    set -- $mix
+    name=$1
+    if ! "$sim" "tests/pil/$name.yaml" --quiet --threads 1 --out "$tmp/$name.mix" --set "$2" > "$tmp/$name.mix.log" 2>&1; then
+        bad "$name mixed (AVR, M4, host): $(tail -2 "$tmp/$name.mix.log")"
+        continue
+    fi
+    a=$(hash_of "$tmp/$name.mix") b=$(hash_of "$tmp/$name.host")
+    m4=$(sed -n 's/.*"pil_m4": {"robots": \([0-9]*\).*/\1/p' "$tmp/$name.mix"/run_*/summary.json)
+    if [ -n "$a" ] && [ "$a" = "$b" ] && [ "${m4:-0}" -gt 0 ]; then
+        ok
+        echo "pil: $name: AVR, ${m4} on the M4 and host-built robots, state hash $a as host-built"
+    else
+        bad "$name mixed: state hash $a with ${m4:-no} robots on the M4, $b host-built"
+    fi
+done
+if [ "$name" = forage ] && cmp -s "$tmp"/forage.mix/run_*/telemetry.lcmlog "$tmp"/forage.host/run_*/telemetry.lcmlog; then
+    ok
+else
+    bad "the mixed foragers' LCM log differs from the host build's"
+fi
+
 # ---- 2. errors: robot and step named, nothing written
 fails() {   # WHAT STATUS WORDS ARGS... : swarmsim exits STATUS with WORDS, no run folder
     local what=$1 status=$2 words=$3; shift 3
@@ -105,11 +132,19 @@ fails "an image that is another" 2 "its ELF says it is image phototaxis" "$walk"
 fails "no emulator" 2 "the AVR emulator $tmp/none/pil_avr_emu" "$walk" --set "pil.dir=$tmp/none"
 fails "an image built for other IR messages" 2 "the image sends 8-bit IR messages, the scenario's ircom.payload_bits is 16" \
     "$walk" --set ircom.payload_bits=16
+fails "an M4 step past its budget" 1 "robot 0 (image random_walk on pil_m4), step 0: its MCU ran past its cycle budget without answering after 3000 instructions" \
+    "$walk" --set robots.0.platform=pil_m4 --set pil.cycle_budget=3000
+printf '#!/bin/sh\nPATH=/nonexistent exec "%s" "$@"\n' "$sim" > "$tmp/noqemu" && chmod +x "$tmp/noqemu"
+sim_real=$sim sim=$tmp/noqemu
+fails "no QEMU" 2 "robot 0 (robots.0, image random_walk on pil_m4), boot: its emulator qemu-system-arm (Debian's qemu-system-arm) could not be started" \
+    "$walk" --set robots.0.platform=pil_m4
+sim=$sim_real
 fails "a PIL group without an image" 2 "runs a robot image: give image: NAME" \
     sim_host/scenarios/random_walk.yaml --set robots.0.platform=pil_avr
 
-# ---- 3. no emulator outlives the simulator
-"$sim" "$walk" --quiet --threads 1 --lcm off --steps 1000000000 --out "$tmp/killed" > /dev/null 2>&1 &
+# ---- 3. no emulator outlives the simulator (AVR emulators and QEMUs)
+"$sim" "$walk" --quiet --threads 1 --lcm off --steps 1000000000 --out "$tmp/killed" --set robots.1.platform=pil_m4 \
+    > /dev/null 2>&1 &
 run=$!
 children=""
 for _ in $(seq 400); do

@@ -34,6 +34,7 @@ int pil_avr_link_open(pil_avr_link_t *l, const pil_avr_link_def_t *def, char err
     l->timeout_ms = def->timeout_ms > 0 ? def->timeout_ms : 20000;
     snprintf(l->image, sizeof l->image, "%s", def->image);
     snprintf(l->what, sizeof l->what, "%s", def->what ? def->what : "pil_avr_emu");
+    snprintf(l->unit, sizeof l->unit, "%s", def->unit ? def->unit : "cycles");
     if (def->argv) {
         /* Found on PATH by execvp; one that is not there exits 127. */
     } else if (access(def->emulator, X_OK) != 0) {
@@ -227,9 +228,9 @@ static int link_recv(void *ctx, uint8_t *buf, uint16_t cap, uint16_t *len, pil_e
         return -1;
     }
     if (emu->event != PIL_EMU_FRAME) {
-        snprintf(err, PIL_HOST_ERR, "its MCU %s after %" PRIu32 " cycles (pc 0x%05" PRIx32 ", %" PRIu64
-                 " cycles since reset, %u bytes of stack used)", pil_emu_event_name(emu->event), emu->cycles,
-                 emu->pc, emu->total, emu->stack_max);
+        snprintf(err, PIL_HOST_ERR, "its MCU %s after %" PRIu32 " %s (pc 0x%05" PRIx32 ", %" PRIu64
+                 " %s since reset, %u bytes of stack used)", pil_emu_event_name(emu->event), emu->cycles, l->unit,
+                 emu->pc, emu->total, l->unit, emu->stack_max);
         return -1;
     }
     return read_frame(l, buf, cap, len, deadline, err);

@@ -23,6 +23,7 @@ typedef struct pil_avr_link {
     int timeout_ms;
     char image[256];         /**< for errors */
     char what[64];           /**< the emulator's name, for errors */
+    char unit[16];           /**< what its counts count, for errors */
 } pil_avr_link_t;
 
 /** The emulator's options. */
@@ -38,6 +39,7 @@ typedef struct pil_avr_link_def {
      *  budgets are then not used, and `what` names it in errors. */
     const char *const *argv;
     const char *what;
+    const char *unit;        /**< what its EMU frames count ("cycles", the default) */
 } pil_avr_link_def_t;
 
 /** Defaults: 1,600,000 cycles a step (100 ms at 16 MHz), 16,000,000 to

@@ -83,7 +83,8 @@ void pil_m4_report(uint8_t event, uint32_t pc)
     pil_emu_t m;
     uint32_t cvr = PIL_M4_SYST_CVR;
     PIL_M4_SYST_CSR = 0u;                 /* stopped until the answer */
-    uint32_t insns = PIL_M4_TICKS_TO_INSNS(ticks_since(cvr));
+    /* Past the budget, the SysTick has wrapped: it ran its whole reload. */
+    uint32_t insns = PIL_M4_TICKS_TO_INSNS(event == PIL_EMU_BUDGET ? PIL_M4_SYST_RVR + 1u : ticks_since(cvr));
     uint64_t total = ((uint64_t)PIL_M4_SCRATCH(PIL_M4_TOTAL_HI) << 32 | PIL_M4_SCRATCH(PIL_M4_TOTAL_LO)) + insns;
     PIL_M4_SCRATCH(PIL_M4_TOTAL_LO) = (uint32_t)total;
     PIL_M4_SCRATCH(PIL_M4_TOTAL_HI) = (uint32_t)(total >> 32);
