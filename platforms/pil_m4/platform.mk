@@ -2,7 +2,7 @@
 # processor-in-the-loop (docs/reference/pil.md): the e-puck1's images (as
 # platforms/pil_avr/ generates them: the same run loop and HAL) built with
 # the e-puck2's flags for QEMU's netduinoplus2 (an STM32F405), over this
-# platform's port (USART1, SysTick) and bare-metal start.  QEMU itself
+# platform's port (a semihosting mailbox, SysTick) and bare-metal start.  QEMU itself
 # (Debian's qemu-system-arm) is the emulator: one process per robot.
 #
 #   make pil-m4           every image's ELF (build/firmware/pil_m4/m4/<image>.elf)

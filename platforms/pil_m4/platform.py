@@ -6,7 +6,7 @@ platform.mk).
 It runs the e-puck1's images as pil_avr generates them (the same
 declarations over the same PIL run loop and HAL: platforms/pil_avr/run/ and
 hal/, portable C over wire/pil/), built with the e-puck2's flags; only its
-port (hal/pil_port_m4.c: USART1 and the SysTick) and its bare-metal start
+port (hal/pil_port_m4.c: a semihosting mailbox and the SysTick) and its bare-metal start
 (startup/) are its own.  So it declares no images of its own.
 """
 

@@ -1,7 +1,9 @@
 /*
  * pil_m4.h - the few registers of QEMU's netduinoplus2 (an STM32F405,
  * Cortex-M4F) that processor-in-the-loop uses, and the port's scratch words
- * (startup/m4.ld).  Register addresses are the STM32F405's and ARMv7-M's.
+ * (startup/m4.ld).  (Its USART1, at 0x40011000, works in QEMU and has no
+ * baud timing, but the frames do not go through it: hal/pil_port_m4.c
+ * says why.)  Register addresses are the STM32F405's and ARMv7-M's.
  */
 #ifndef PIL_M4_H
 #define PIL_M4_H
@@ -10,20 +12,6 @@
 
 #define PIL_M4_REG(a) (*(volatile uint32_t *)(uintptr_t)(a))
 
-/* USART1: status (RXNE bit 5, TXE bit 7), data at +4, control 1 at +0x0C.
- * QEMU's has no baud timing: a byte written is on the link at once. */
-#define PIL_M4_USART1 0x40011000u
-#define PIL_M4_USART_SR PIL_M4_REG(PIL_M4_USART1 + 0x00u)
-#define PIL_M4_USART_DR PIL_M4_REG(PIL_M4_USART1 + 0x04u)
-#define PIL_M4_USART_CR1 PIL_M4_REG(PIL_M4_USART1 + 0x0Cu)
-#define PIL_M4_USART_RXNE (1u << 5)
-#define PIL_M4_USART_TXE (1u << 7)
-/* CR1: UE (13), RXNEIE (5), TE (3), RE (2). */
-#define PIL_M4_USART_ON ((1u << 13) | (1u << 5) | (1u << 3) | (1u << 2))
-/** USART1's interrupt number: it is enabled in the NVIC only to wake WFI
- *  (BASEPRI keeps it from ever being taken). */
-#define PIL_M4_USART1_IRQ 37u
-
 /* SysTick, counting the core clock (CLKSOURCE 1). */
 #define PIL_M4_SYST_CSR PIL_M4_REG(0xE000E010u)
 #define PIL_M4_SYST_RVR PIL_M4_REG(0xE000E014u)
@@ -31,10 +19,7 @@
 #define PIL_M4_SYST_RUN 0x7u          /**< ENABLE, TICKINT, CLKSOURCE */
 #define PIL_M4_SYST_MAX 0xFFFFFFu     /**< 24 bits */
 
-/* NVIC and the system control block. */
-#define PIL_M4_NVIC_ISER(n) PIL_M4_REG(0xE000E100u + 4u * (n))
-#define PIL_M4_NVIC_ICPR(n) PIL_M4_REG(0xE000E280u + 4u * (n))
-#define PIL_M4_NVIC_IPR8(n) (*(volatile uint8_t *)(uintptr_t)(0xE000E400u + (n)))
+/* The system control block. */
 #define PIL_M4_SHPR3 PIL_M4_REG(0xE000ED20u)
 #define PIL_M4_CPACR PIL_M4_REG(0xE000ED88u)
 #define PIL_M4_CFSR PIL_M4_REG(0xE000ED28u)
@@ -59,6 +44,8 @@ enum pil_m4_scratch_word {
     PIL_M4_TOTAL_LO = 5,      /**< instructions since reset (64 bits) */
     PIL_M4_TOTAL_HI = 6,
     PIL_M4_STACK_MAX = 7,     /**< bytes of stack used, by painting */
+    PIL_M4_IN = 8,            /**< the semihosting handles of QEMU's standard input and output, +1 */
+    PIL_M4_OUT = 9,
     PIL_M4_SCRATCH_WORDS = 16
 };
 /** Where the QEMU loader writes the budgets: keep equal to m4.ld's SCRATCH. */
@@ -75,5 +62,7 @@ void pil_m4_resume(void);
 /** Reports `event` (pil_emu_event_t) with `pc` and halts for good: the
  *  fault and SysTick handlers. */
 void pil_m4_fatal(uint8_t event, uint32_t pc);
+/** Halts for good, saying nothing (the simulator has gone). */
+void pil_m4_halt(void);
 
 #endif

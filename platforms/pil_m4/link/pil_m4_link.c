@@ -36,7 +36,7 @@ int pil_m4_link_open(pil_avr_link_t *l, const pil_m4_link_def_t *def, char err[P
     snprintf(kernel, sizeof kernel, "%s", def->image);
     const char *const argv[] = {
         PIL_M4_QEMU, "-M", "netduinoplus2", "-nodefaults", "-display", "none", "-monitor", "none",
-        "-chardev", "stdio,id=pil,signal=off", "-serial", "chardev:pil", "-icount", "shift=0",
+        "-semihosting-config", "enable=on,target=native", "-icount", "shift=0",
         "-device", step, "-device", boot, "-kernel", kernel, NULL
     };
     pil_avr_link_def_t d = pil_avr_link_default_def();

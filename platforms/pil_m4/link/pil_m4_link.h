@@ -1,9 +1,10 @@
 /*
  * pil_m4_link.h - the simulator's end of the emulated Cortex-M4F: starts
  * QEMU (Debian's qemu-system-arm, a program of its own) on a robot's image
- * in its netduinoplus2 machine, with USART1 on QEMU's standard input and
- * output, and `-icount shift=0` (one instruction, one emulated ns: the
- * robot's SysTick then counts instructions).  The pipes, the wall-time
+ * in its netduinoplus2 machine, with semihosting to the host (the robot's
+ * doorbell: it reads and writes the frames on QEMU's standard input and
+ * output, hal/pil_port_m4.c) and `-icount shift=0` (one instruction, one
+ * emulated ns: the robot's SysTick then counts instructions).  The pipes, the wall-time
  * bound and the emulator's death with the simulator are pil_avr_link's
  * (platforms/pil_avr/link/): the frames are the same.  Host code.
  */

@@ -1,8 +1,8 @@
 /*
  * pil_m4_startup.c - bare-metal start of a PIL image on QEMU's
  * netduinoplus2 (Cortex-M4F): the vector table, the reset handler (paint
- * the stack, copy .data, zero .bss, enable the FPU, set up USART1 and the
- * NVIC, start the SysTick on the boot budget, call main) and the handlers
+ * the stack, copy .data, zero .bss, enable the FPU, start the SysTick on
+ * the boot budget, call main) and the handlers
  * of what can go wrong, each of which tells the simulator in an EMU frame
  * (pil_msg.h) and halts: a fault (PIL_EMU_CRASH, with the faulting PC), the
  * SysTick reaching zero (PIL_EMU_BUDGET: the exchange ran past its
@@ -29,14 +29,20 @@ void pil_m4_unexpected(void);
 /* The FPU's coprocessors CP10 and CP11: full access. */
 #define PIL_M4_CPACR_FPU (0xFu << 20)
 
-void pil_m4_fatal(uint8_t event, uint32_t pc)
+void pil_m4_halt(void)
 {
     PIL_M4_SYST_CSR = 0u;
-    pil_m4_report(event, pc);
     __asm__ __volatile__("cpsid i" ::: "memory");
     for (;;) {
         __asm__ __volatile__("wfi");
     }
+}
+
+void pil_m4_fatal(uint8_t event, uint32_t pc)
+{
+    PIL_M4_SYST_CSR = 0u;
+    pil_m4_report(event, pc);
+    pil_m4_halt();
 }
 
 /* A fault: the stacked frame's PC (the frame is on the main stack; a
@@ -83,21 +89,16 @@ void pil_m4_reset(void)
     }
     PIL_M4_CPACR |= PIL_M4_CPACR_FPU;
     __asm__ __volatile__("dsb\n\tisb" ::: "memory");
-    /* USART1 on; its interrupt wakes WFI but is never taken (priority
-     * 0xF0 under BASEPRI 0x80); the SysTick's (priority 0) always is. */
-    PIL_M4_USART_CR1 = PIL_M4_USART_ON;
-    PIL_M4_NVIC_IPR8(PIL_M4_USART1_IRQ) = 0xF0u;
+    /* The SysTick's exception (the budget) at the highest priority. */
     PIL_M4_SHPR3 &= 0x00FFFFFFu;
-    __asm__ __volatile__("msr basepri, %0\n\tcpsie i" ::"r"(0x80u) : "memory");
-    PIL_M4_NVIC_ISER(PIL_M4_USART1_IRQ / 32u) = 1u << (PIL_M4_USART1_IRQ % 32u);
     pil_m4_resume();
     (void)main();
     pil_m4_fatal(PIL_EMU_HALT, 0u);
 }
 
 /* The vector table: the initial stack pointer, then the handlers (ARMv7-M's
- * 16 system vectors, then room for the STM32F405's 82 interrupts: none is
- * ever taken, USART1's only wakes WFI). */
+ * 16 system vectors, then room for the STM32F405's 82 interrupts, none of
+ * which is enabled). */
 typedef void (*pil_m4_vector_t)(void);
 #define PIL_M4_VECTORS (16u + 82u)
 __attribute__((section(".vectors"), used)) static const pil_m4_vector_t pil_m4_vectors[PIL_M4_VECTORS] = {
