@@ -81,3 +81,8 @@ pil-m4-tests: pil-m4 pil-avr
 pil-m4-compare: pil-m4 pil-avr
 	@PIL_OUT=$(PIL_AVR_OUT) M4_OUT=$(PIL_M4_OUT) STEPS=$(PIL_COMPARE_STEPS) IMAGES='$(pil_avr_names)' \
 	  FRAMES='$(PIL_IMAGES_FRAMES)' LONG=1 bash $(PIL_AVR)/tests/pil_tests.sh
+
+# The cost of an M4 robot-step, and how many one core keeps at real time.
+.PHONY: pil-m4-bench
+pil-m4-bench: pil-m4 pil-avr $(BUILD)/swarmsim
+	PLATFORM=pil_m4 bash tools/bench/pil.sh $(BUILD)/swarmsim

@@ -7,10 +7,12 @@
 # how many PIL robots one core keeps at real time (the control period over
 # that cost).  CPU time is counted from the kernel's figures for the run's
 # processes (bash's `times`), so it holds on a busy machine; wall time does
-# not.  Usage: pil.sh [SWARMSIM] [SCENARIO...]
+# not.  PLATFORM=pil_m4 (make pil-m4-bench) puts the image robots on the
+# emulated Cortex-M4F (QEMU) instead.  Usage: pil.sh [SWARMSIM] [SCENARIO...]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 sim=${1:-build/swarmsim}
+platform=${PLATFORM:-pil_avr}
 shift || true
 scenarios=("$@")
 [ ${#scenarios[@]} -gt 0 ] || scenarios=(tests/pil/walk.yaml tests/pil/forage.yaml tests/pil/eaipp.yaml tests/pil/repatt.yaml)
@@ -48,21 +50,24 @@ run() {
 printf '%-10s %-7s %-7s %-8s %-10s %-10s %-15s %-15s %-16s\n' scenario robots steps period host_cpu_s pil_cpu_s "us/PIL-step" "us/step(wall)" "PIL robots/core"
 for f in "${scenarios[@]}"; do
     name=$(basename "$f" .yaml)
-    groups=$(grep -c 'controller:' "$f")
+
     all=() host=()
-    for ((g = 0; g < groups; g++)); do
+    g=0
+    while read -r line; do
         all+=(--set "robots.$g.platform_robots=0")
+        case $line in *"platform: pil_avr"*) all+=(--set "robots.$g.platform=$platform") ;; esac
         host+=(--set "robots.$g.platform=host")
-    done
+        g=$((g + 1))
+    done < <(grep 'controller:' "$f")
     run "$name.host" "$f" "${host[@]}"
     hc=$cpu hw=$wall
     # Groups without an image stay host-built: count the PIL robots the run reports.
     run "$name.pil" "$f" "${all[@]}"
     pc=$cpu pw=$wall
-    [ "$pil" -gt 0 ] || { echo "pil.sh: $f: no robot ran on the AVR" >&2; exit 1; }
+    [ "$pil" -gt 0 ] || { echo "pil.sh: $f: no robot ran on $platform" >&2; exit 1; }
     awk -v n="$name" -v r="$robots" -v s="$steps" -v p="$period" -v hc="$hc" -v pc="$pc" -v hw="$hw" -v pw="$pw" -v k="$pil" 'BEGIN {
         c = (pc - hc) / (k * s); w = (pw - hw) / (k * s)
         printf "%-10s %-7s %-7s %-8s %-10.2f %-10.2f %-15.1f %-15.1f %-16d\n", n, k "/" r, s, p " ms", hc, pc, c * 1e6, w * 1e6, (p / 1000) / c
     }'
 done
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "platform: $platform; machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg)"
