@@ -15,8 +15,9 @@
 #   make pil-avr-compare  the same comparison, longer (PIL_COMPARE_STEPS, 3000), and the
 #                         measured cycles and stack per image into
 #                         build/firmware/pil_avr/cpu.md
-#   make readme-pil-cpu   that, then the table into docs/hardware/footprint.md
-#                         (between its pil-cpu markers)
+#   make readme-pil-cpu   that and make pil-m4-compare (the M4's instructions and stack:
+#                         platforms/pil_m4/), then the table into
+#                         docs/hardware/footprint.md (between its pil-cpu markers)
 #   make pil-avr-bench    the cost of a PIL robot-step, and how many PIL robots one
 #                         core keeps at real time (tools/bench/pil.sh)
 PIL_AVR := platforms/pil_avr
@@ -112,9 +113,9 @@ pil-avr-compare: pil-avr
 	@PIL_OUT=$(PIL_AVR_OUT) STEPS=$(PIL_COMPARE_STEPS) IMAGES='$(pil_avr_names)' FRAMES='$(PIL_IMAGES_FRAMES)' \
 	  LONG=1 REPORT=$(PIL_AVR_OUT)/cpu.md bash $(PIL_AVR)/tests/pil_tests.sh
 
-readme-pil-cpu: pil-avr-compare
+readme-pil-cpu: pil-avr-compare pil-m4-compare
 	@$(PYTHON) $(PIL_AVR)/tests/pil_report.py $(PIL_AVR_OUT)/measure --cpu $(FW_OUT)/cpu.md \
-	  --footprint $(FW_OUT)/epuck1/footprint.md --page docs/hardware/footprint.md
+	  --footprint $(FW_OUT)/epuck1/footprint.md --page docs/hardware/footprint.md --m4 $(FW_OUT)/pil_m4/measure
 
 pil-avr-bench: pil-avr $(BUILD)/swarmsim
 	bash tools/bench/pil.sh $(BUILD)/swarmsim

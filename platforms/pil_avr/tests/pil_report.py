@@ -5,7 +5,7 @@ build/firmware/pil_avr/cpu.md; docs/hardware/footprint.md shows it).
 
     pil_report.py MEASURE_DIR [--cpu build/firmware/cpu.md]
                   [--footprint build/firmware/epuck1/footprint.md]
-                  [--page docs/hardware/footprint.md]
+                  [--page docs/hardware/footprint.md] [--m4 M4_MEASURE_DIR]
 
 It prints the report; with --page it writes it into PAGE between the two
 marker lines PAGE_BEGIN and PAGE_END instead (make readme-pil-cpu), the
@@ -36,6 +36,12 @@ figures:
                     -fstack-usage frames) and the CPU report's dsPIC cycles
                     (3 x x86 instructions under callgrind, plus software
                     float).
+
+With --m4, two more columns from the emulated Cortex-M4F (QEMU, the
+e-puck2's core: platforms/pil_m4/, make pil-m4-compare): the controller
+step's instructions between the same two marks (SysTick under
+`-icount shift=0`: QEMU counts instructions, not cycles: it models no flash
+wait states or pipeline) and its stack by painting.
 
 The AVR is an 8-bit core: 16- and 32-bit arithmetic costs it 2 to 4 times a
 dsPIC's cycles (more for the tone detector's 32-bit products), so these
@@ -118,7 +124,7 @@ def ms(cycles):
     return f'{cycles / HZ * 1000:.2f}'
 
 
-def render(args, images, page=False):
+def render(args, images, page=False, m4=None):
     """The report's lines, without its title (for a page, without the
     closing paragraph on the method: the page says it)."""
     lines = []
@@ -138,9 +144,11 @@ def render(args, images, page=False):
             elif cur and re.match(r'^\s+(camera|sound)\s+yes', line):
                 flags[cur].add(line.split()[0])
     w = lines.append
-    w('| image | controller step, cycles mean / max | whole step max (frames, telemetry) | '
-      '+ detectors, max (ms at 16 MHz) | stack by painting | stack estimate | dsPIC estimate, max |')
-    w('|---|---|---|---|---|---|---|')
+    w('| image | AVR controller step, cycles mean / max | AVR whole step max (frames, telemetry) | '
+      'AVR + detectors, max (ms at 16 MHz) | AVR stack by painting | stack estimate | '
+      + ('M4 controller step, instructions mean / max | M4 stack by painting | ' if m4 else '')
+      + 'dsPIC estimate, max |')
+    w('|---|---|---|---|---|---|---|' + ('---|---|' if m4 else ''))
     for name, m in images.items():
         runs = m['blobs'] or m['frames']
         cmean = sum(r['control_mean'] for r in runs) / len(runs)
@@ -161,8 +169,21 @@ def render(args, images, page=False):
         est_stack = next(iter(est.values()), '-')
         ds = cpu.get(CPU_ROW.get(m['controller'], ''), {})
         ds = next((v for k, v in ds.items() if 'max' in k), '-') if ds else '-'
+        m4_cells = ''
+        if m4 is not None:
+            mm = m4.get(name)
+            if mm:
+                mruns = mm['blobs'] or mm['frames']
+                mmean = sum(r['control_mean'] for r in mruns) / len(mruns)
+                mmax = max(r['control_max'] for r in mruns)
+                mstack = max(r['stack_bytes'] for r in mm['blobs']) if mm['blobs'] else None
+                mfstack = max(r['stack_bytes'] for r in mm['frames']) if mm['frames'] else None
+                mst = f'{mstack}' + (f' ({mfstack} with frames)' if mfstack else '')
+                m4_cells = f'{fmt(mmean)} / {fmt(mmax)} | {mst} | '
+            else:
+                m4_cells = '- | - | '
         w(f'| {name} | {fmt(cmean)} / {fmt(cmax)} ({ms(cmax)} ms) | {fmt(whole)} | {with_det} | {st} | '
-          f'{est_stack} | {ds} |')
+          f'{est_stack} | {m4_cells}{ds} |')
     w('')
     if blob and tone:
         w(f'Detectors alone: the blob detector over a 40 x 20 RGB565 frame, {fmt(blob[0])} cycles '
@@ -200,12 +221,17 @@ def main(argv=None):
     ap.add_argument('--cpu', default='build/firmware/cpu.md')
     ap.add_argument('--footprint', default='build/firmware/epuck1/footprint.md')
     ap.add_argument('--page', help='write the report into this page, between its markers')
+    ap.add_argument('--m4', help="the emulated Cortex-M4F's measurements (pil-m4-compare's measure folder)")
     args = ap.parse_args(argv)
     images = load(args.measure)
     if not images:
         print(f'pil_report.py: {args.measure}: no measurements', file=sys.stderr)
         return 1
-    lines = render(args, images, page=bool(args.page))
+    m4 = load(args.m4) if args.m4 else None
+    if args.m4 and not m4:
+        print(f'pil_report.py: {args.m4}: no measurements', file=sys.stderr)
+        return 1
+    lines = render(args, images, page=bool(args.page), m4=m4)
     if args.page:
         write_page(args.page, lines)
         print(f'pil_report.py: {args.page}: {len(images)} images')
