@@ -38,7 +38,7 @@ $(PIL_M4_OUT)/m4/%.map: $(PIL_M4_OUT)/m4/%.elf $(PIL_AVR_OUT)/host/% $(PIL_AVR)/
 
 pil-m4: pil-avr-images lcm-types
 	@$(MAKE) --no-print-directory pil-m4-build PIL_NAMES='$(pil_avr_names)'
-pil-m4-build: $(foreach i,$(PIL_NAMES),$(PIL_M4_OUT)/m4/$(i).elf $(PIL_M4_OUT)/m4/$(i).map)
+pil-m4-build: $(PIL_M4_OUT)/m4/misbehave.elf $(foreach i,$(PIL_NAMES),$(PIL_M4_OUT)/m4/$(i).elf $(PIL_M4_OUT)/m4/$(i).map)
 	@:
 
 # ------------------------------------------------ the simulator's end

@@ -10,6 +10,13 @@
  *   2  never answers (cycle budget)      7  a REQUEST the protocol lacks
  *   3  jumps to the reset vector         8  two IR messages in a period of one
  *   4  recurses into its static data     9  an ACT of another step
+ *
+ * It builds for the emulated Cortex-M4F too (platforms/pil_m4/), where
+ * cases 1, 3, 4 and 6 are that core's: a write to unmapped memory (a
+ * fault), a system reset (SYSRESETREQ), a recursion off the bottom of the
+ * SRAM (the stack is below the static data there: the core locks up) and
+ * WFI with interrupts off.  (A test image: the only chip-specific code of
+ * an image, under the compiler's own macros.)
  */
 #include <stdint.h>
 
@@ -46,14 +53,24 @@ static void misbehave(uint16_t how)
     pil_act_t act = { 0, 0, 0u, 0u, 0u, { 0u, 0u, 0u }, 0u, (const uint8_t *)0 };
     switch (how) {
     case 1:
+#ifdef __arm__
+        *(volatile uint32_t *)(uintptr_t)0xA0000000u = 1u;   /* the FSMC's registers: none in QEMU */
+#else
         *(volatile uint8_t *)(uintptr_t)0x2400u = 1u;   /* past RAMEND (0x21FF) */
+#endif
         break;
     case 2:
         for (;;) {
             __asm__ __volatile__("nop");
         }
     case 3:
+#ifdef __arm__
+        *(volatile uint32_t *)(uintptr_t)0xE000ED0Cu = 0x05FA0004u;   /* AIRCR: SYSRESETREQ */
+        for (;;) {
+        }
+#else
         ((void (*)(void))0)();
+#endif
         break;
     case 4:
         (void)recurse(1000u);
@@ -62,7 +79,13 @@ static void misbehave(uint16_t how)
         send_raw(PIL_ACT, pil_act_encode(p, 256u, &act), r->seq, 1u);
         break;
     case 6:
+#ifdef __arm__
+        for (;;) {
+            __asm__ __volatile__("cpsid i\n\twfi");
+        }
+#else
         __asm__ __volatile__("cli\n\tsleep");
+#endif
         break;
     case 7:
         p[0] = 42u;

@@ -6,7 +6,8 @@
  * of what can go wrong, each of which tells the simulator in an EMU frame
  * (pil_msg.h) and halts: a fault (PIL_EMU_CRASH, with the faulting PC), the
  * SysTick reaching zero (PIL_EMU_BUDGET: the exchange ran past its
- * budget), main returning (PIL_EMU_HALT).  Our own code, no vendor
+ * budget), main returning (PIL_EMU_HALT), a reset after the image had run
+ * (PIL_EMU_RESET).  Our own code, no vendor
  * start-up file: the e-puck2's port builds on it.
  */
 #include <stdint.h>
@@ -40,8 +41,7 @@ void pil_m4_halt(void)
 
 void pil_m4_fatal(uint8_t event, uint32_t pc)
 {
-    PIL_M4_SYST_CSR = 0u;
-    pil_m4_report(event, pc);
+    pil_m4_report(event, pc);     /* reads the SysTick, then stops it */
     pil_m4_halt();
 }
 
@@ -83,6 +83,11 @@ void pil_m4_reset(void)
     }
     for (uint32_t *d = pil_m4_bss_start; d < pil_m4_bss_end;) {
         *d++ = 0u;
+    }
+    /* QEMU keeps the SRAM across a system reset: a count since reset
+     * there means the image reset itself (the budgets are the loader's). */
+    if (PIL_M4_SCRATCH(PIL_M4_TOTAL_LO) != 0u || PIL_M4_SCRATCH(PIL_M4_TOTAL_HI) != 0u) {
+        pil_m4_fatal(PIL_EMU_RESET, 0u);
     }
     for (uint32_t w = PIL_M4_STEPPING; w < PIL_M4_SCRATCH_WORDS; w++) {
         PIL_M4_SCRATCH(w) = 0u;
