@@ -92,18 +92,21 @@ void faults_destroy(struct sim *sim)
     sim->n_faults = 0;
 }
 
+/* The summary's start_s / end_s are the times of the fault's events: the
+ * telemetry stamps what happened in a step with the time at its end. */
 static void set_active(struct sim *sim, fault_run_t *fr, int on)
 {
     sim_robot_t *r = &sim->robots[fr->robot];
+    double step_end_s = (double)(sim->step + 1) * sim->sc->control_period_ms / 1000.0;
     fr->active = (uint8_t)on;
     if (on) {
         r->fault_on[fr->kind]++;
         if (fr->kind == FAULT_WHEEL_DRIFT) r->drift = fr->value;
         if (fr->kind == FAULT_IR_NOISE) r->ir_noise_sd = fr->value;
-        fr->start_s = (double)sim->step * sim->sc->control_period_ms / 1000.0;
+        fr->start_s = step_end_s;
     } else {
         r->fault_on[fr->kind]--;
-        fr->end_s = (double)sim->step * sim->sc->control_period_ms / 1000.0;
+        fr->end_s = step_end_s;
     }
     sim_event(sim, fr->robot, "fault", scenario_fault_names[fr->kind], on);
 }

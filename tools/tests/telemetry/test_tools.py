@@ -286,6 +286,26 @@ class RoundTrip(SimulatedRuns):
         self.assertEqual(sorted(Path(p).name for p in r.stdout.split()), names)
 
 
+class FaultTimes(TempDir):
+    def test_fault_events_and_the_summary_agree(self):
+        # Before: the events came 0.1 s (one control step) after start_s and end_s.
+        out = self.tmp / "faults"
+        run_sim(out, SCENARIOS / "random_walk.yaml", "--steps", 60, "--set", "robots.0.count=4",
+                "--set", "robots.0.faults=[{kind: stop, fraction: 0.5, at: 1, duration: 2}, "
+                         "{kind: ir_fail, fraction: 0.25, at: 2.5}]")
+        summary = json.loads((out / "run_1" / "summary.json").read_text())
+        told = {}
+        for ch, m in read_log(out / "run_1" / "telemetry.lcmlog"):
+            if ch == "SWARM_EVENT" and m.kind == "fault":
+                told.setdefault((m.robot_id, m.detail), []).append(m.utime / 1e6)
+        listed = {(f["robot"], f["kind"]): [f["start_s"]] + ([f["end_s"]] if f["end_s"] is not None else [])
+                  for f in summary["faults"]}
+        self.assertEqual(len(listed), 3, summary["faults"])
+        self.assertEqual(told, listed)
+        self.assertEqual(sorted(v[0] for v in listed.values()), [1.1, 1.1, 2.6])   # the end of the first faulty step
+        self.assertEqual(sorted(v[1] - v[0] for v in listed.values() if len(v) == 2), [2.0, 2.0])
+
+
 class Formats(unittest.TestCase):
     def test_numbers_print_as_the_simulator_prints_them(self):
         nan = float("nan")
