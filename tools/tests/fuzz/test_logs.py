@@ -4,6 +4,8 @@ untrusted input:
 
 - any bytes as a log: the reader yields events or raises LogError naming a
   byte offset, never anything else, and reads nothing past the file;
+- two different channel names (any bytes) never read as the same text, and
+  a name in UTF-8 without a backslash reads as itself;
 - well-formed logs of any events read back exactly, and a log cut anywhere
   inside an event is refused at that event's offset;
 - any channel names (slashes, dots, '..', non-ASCII): the export's file
@@ -68,6 +70,17 @@ class LogReader(unittest.TestCase):
         owner = max(s for s in starts if s < cut)
         with self.assertRaisesRegex(logfile.LogError, f"at byte {owner}"):
             self.read(blob[:cut])
+
+
+class ChannelNames(unittest.TestCase):
+    @given(st.binary(max_size=30), st.binary(max_size=30))
+    def test_two_names_never_read_alike(self, a, b):
+        # Before: b"X\xff" and the plain text "X\\xff" both read "X\\xff".
+        self.assertEqual(logfile.channel_name(a) == logfile.channel_name(b), a == b)
+
+    @given(st.text(max_size=30).filter(lambda t: "\\" not in t))
+    def test_plain_names_read_as_they_are(self, text):
+        self.assertEqual(logfile.channel_name(text.encode()), text)     # hypothesis' text has no surrogates
 
 
 class ExportNames(unittest.TestCase):
