@@ -99,5 +99,6 @@ fuzz-python: deps $(BUILD)/telemetry/libtelemetry_frame.so   # TELEMETRY_FRAME_S
 	  $(PYTHON) -m unittest discover -s tools/tests/fuzz -t .
 
 EXTRA_TESTS += fuzz-tests
+TEST_BUILD += fuzz-build
 
 -include $(shell find $(FUZZ_DIR) -name '*.d' 2>/dev/null)

@@ -12,6 +12,7 @@ TSAN := -fsanitize=thread -fno-omit-frame-pointer
 FW_OBJ_TSAN := $(call objs,tsan,$(FW_SRC))
 SIM_OBJ_TSAN := $(call objs,tsan,$(SIM_SRC))
 EXTRA_TESTS += tsan-tests
+TEST_BUILD += $(BUILD)/tests/tsan/test_sim $(BUILD)/tsan/swarmsim
 
 $(BUILD)/tsan/firmware/%.o $(BUILD)/tsan/hal/%.o: | $(BUILD)/config.mk
 $(BUILD)/tsan/firmware/%.o: firmware/%.c

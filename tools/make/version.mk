@@ -8,8 +8,8 @@ VERSION_H := $(BUILD)/gen/version.h
 version-header:
 	@mkdir -p $(dir $(VERSION_H))
 	@v=$$(git describe --always --dirty --abbrev=12 2>/dev/null || echo unknown); \
-	 printf '#define SWARMSIM_VERSION "%s"\n' "$$v" > $(VERSION_H).tmp; \
-	 if cmp -s $(VERSION_H).tmp $(VERSION_H); then rm -f $(VERSION_H).tmp; else mv $(VERSION_H).tmp $(VERSION_H); fi
+	 t=$(VERSION_H).tmp.$$$$; printf '#define SWARMSIM_VERSION "%s"\n' "$$v" > $$t; \
+	 if cmp -s $$t $(VERSION_H); then rm -f $$t; else mv $$t $(VERSION_H); fi
 $(VERSION_H): version-header ;
 
 $(BUILD)/obj/sim_host/main.o: $(VERSION_H)

@@ -4,17 +4,20 @@ robot's id (schema pieces on TELEMETRY_SCHEMA too), counting what is wrong
 standing in for e-pucks' rfcomm ports (garbage, several devices, a device
 that disappears and comes back), the command line writing an LCM log, and
 memq://."""
+import fcntl
 import os
 import random
 import signal
+import struct
 import subprocess
+import termios
 import time
 import tty
 
 from swarmtools.telemetry import bridge, common
 from swarmtools.telemetry.frames import encode_frame
 
-from .helpers import PYTHON, TempDir, c_encoder, event, read_log, robot_state, schema
+from .helpers import LONG, PYTHON, TempDir, c_encoder, event, read_log, robot_state, schema, wait_for
 
 #: A robot_state_t of telemetry v1 (its fingerprint, then whatever).
 V1_ROBOT_STATE = bytes.fromhex("3715081f471fd9b6") + bytes(40)
@@ -63,8 +66,24 @@ class PtyRobot:
             os.close(self.master)
             self.master = None
 
+    def opened_by(self, proc):
+        """True once process `proc` has this robot's port open (its /proc fds)."""
+        fds = f"/proc/{proc.pid}/fd"
+        try:
+            return any(os.readlink(os.path.join(fds, fd)) == self.slave_path for fd in os.listdir(fds))
+        except OSError:
+            return False
 
-def pump(br, until, timeout=5.0):
+    def all_read(self):
+        """True when no byte sent is left unread on the port (FIONREAD)."""
+        fd = os.open(self.slave_path, os.O_RDONLY | os.O_NOCTTY | os.O_NONBLOCK)
+        try:
+            return struct.unpack("i", fcntl.ioctl(fd, termios.FIONREAD, b"\0" * 4))[0] == 0
+        finally:
+            os.close(fd)
+
+
+def pump(br, until, timeout=LONG):
     t0 = time.monotonic()
     while not until():
         if time.monotonic() - t0 > timeout:
@@ -224,7 +243,7 @@ class PseudoTerminals(TempDir):
                                  "--id", f"{robot.link}=3", "--status-every", "0.2", "--report-every", "0"],
                                 stderr=subprocess.PIPE, text=True)
         try:
-            time.sleep(0.5)
+            wait_for(lambda: robot.opened_by(proc), "the bridge to open the port")
             robot.send(b"\xff" * 50)
             for seq in range(10):
                 robot.send(c_frame(1, 99, seq, robot_state(robot_id=99, values=[seq]).encode()))
@@ -234,10 +253,10 @@ class PseudoTerminals(TempDir):
             robot.send(c_frame(2, 99, 11, event(kind="oae", value=4).encode()))
             robot.send(c_frame(6, 99, 12, schema("sorter", ["carried"], counters=[1]).encode()))
             robot.send(c_frame(1, 99, 13, V1_ROBOT_STATE))
-            time.sleep(1.0)
+            wait_for(robot.all_read, "the bridge to read every byte")   # then a signal ends its loop after them
         finally:
             proc.send_signal(signal.SIGINT)
-            _, err = proc.communicate(timeout=10)
+            _, err = proc.communicate(timeout=LONG)
             robot.close()
         self.assertEqual(proc.returncode, 130, err)
         self.assertTrue(err.splitlines()[-1].startswith("swarm-bridge: stopped by SIGINT; "), err)
@@ -279,10 +298,10 @@ class StartAndStop(TempDir):
         t0 = time.monotonic()
         p = self.bridge("/dev/null", missing)
         try:
-            _, err = p.communicate(timeout=10)   # before: ran on, reopening the missing port every second
+            _, err = p.communicate(timeout=LONG)   # before: ran on, reopening the missing port every second
         finally:
             p.kill()
-        self.assertLess(time.monotonic() - t0, 5.0)
+        self.assertLess(time.monotonic() - t0, LONG)
         self.assertEqual(p.returncode, 1, err)
         self.assertEqual(err, f"swarm-bridge: cannot open {missing} (No such file or directory); bind the robot's "
                               f"port first (sudo rfcomm bind ...), or pass --wait to wait for it\n")
@@ -295,17 +314,18 @@ class StartAndStop(TempDir):
                              text=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
         robot = None
         try:
-            time.sleep(0.8)
+            first = p.stderr.readline()            # said once it is waiting
             self.assertIsNone(p.poll(), "the bridge did not wait")
             robot = PtyRobot(str(link))
-            time.sleep(0.5)
+            wait_for(lambda: robot.opened_by(p), "the bridge to open the port once it is there")
             robot.send(encode_frame(1, 5, 0, robot_state(robot_id=5).encode()))
-            time.sleep(0.5)
+            wait_for(robot.all_read, "the bridge to read the frame")
         finally:
             p.send_signal(signal.SIGINT)
-            _, err = p.communicate(timeout=10)
+            _, err = p.communicate(timeout=LONG)
             if robot:
                 robot.close()
+        err = first + err
         self.assertEqual(p.returncode, 130, err)
         lines = err.splitlines()
         self.assertEqual(lines[0], f"swarm-bridge: waiting for {link} (No such file or directory)")
@@ -315,13 +335,13 @@ class StartAndStop(TempDir):
     def test_sigterm_and_duration_are_named(self):
         robot = PtyRobot(str(self.tmp / "rfcomm2"))          # a robot that says nothing
         try:
-            p = self.bridge(robot.link, "--duration", "30", "--quiet")
-            time.sleep(0.8)
+            p = self.bridge(robot.link, "--duration", "3000", "--quiet")
+            wait_for(lambda: robot.opened_by(p), "the bridge to open the port")     # in its loop
             p.send_signal(signal.SIGTERM)
-            _, err = p.communicate(timeout=10)
+            _, err = p.communicate(timeout=LONG)
             self.assertEqual((p.returncode, err), (143, "swarm-bridge: stopped by SIGTERM\n"))
             p = self.bridge(robot.link, "--duration", "0.5", "--quiet")
-            _, err = p.communicate(timeout=10)
+            _, err = p.communicate(timeout=LONG)
             self.assertEqual((p.returncode, err), (0, "swarm-bridge: stopped after --duration 0.5 s\n"))
         finally:
             robot.close()
