@@ -164,7 +164,7 @@ def run_sim(out_dir, *args):
     return r
 
 
-def tool(name, *args, check=True, timeout=120):
+def tool(name, *args, check=True, timeout=LONG):
     """Runs python -m swarmtools.telemetry.<name> with `args`."""
     r = subprocess.run([PYTHON, "-m", f"swarmtools.telemetry.{name}", *map(str, args)], cwd=ROOT,
                        capture_output=True, text=True, timeout=timeout)
