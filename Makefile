@@ -63,6 +63,7 @@ include $(sort $(wildcard tools/make/*.mk))
 help:
 	@echo "make run        build what is needed and run the default scenario (RUN_SCENARIO=, RUN_ARGS=)"
 	@echo "make test       every test group, each with its time"
+	@echo "make docs       the documentation site, into build/site/ (make docs-serve: at http://127.0.0.1:8000/)"
 	@echo "make deps       install what the build and the tools need (.venv, swarmtools)"
 	@echo "make bench      simulator throughput (BENCH_ARGS=)"
 	@echo "make video      film seed 000's base run to out/video/foraging_base.mp4 (VIDEO_ARGS=)"

@@ -39,9 +39,10 @@ objects, and their hash cache, count as ours in the static RAM.
                the whole image (with the stubs, libgcc's software float...).
                AVR code is 8-bit code: the dsPIC's will be smaller.
 
-Prints a table, writes it to build/firmware/footprint.md (and the README's
-form of it to footprint_readme.md), exits 1 when a compile or link fails,
-the RAM gate is exceeded or the README's table is not the measured one.  Standard library only.
+Prints a table, writes it to build/firmware/footprint.md (and the
+documentation's form of it to footprint_readme.md), exits 1 when a compile
+or link fails, the RAM gate is exceeded or the documentation's table
+(docs/hardware/footprint.md) is not the measured one.  Standard library only.
 
 usage: image_gates.py [--build DIR] [--jobs N] IMAGE:BACKEND ...
 """
@@ -500,12 +501,12 @@ def main():
     with open(out, 'w') as f:
         f.write('# Firmware footprint\n\n' + table)
     print(f'written to {os.path.relpath(out, ROOT)}')
-    # The README shows the same measurement in its own form: written beside
-    # it, and the README's copy must equal it (readme_footprint.py).
+    # The documentation shows the same measurement in its own form: written
+    # beside it, and the page's copy must equal it (readme_footprint.py).
     readme_table = readme_footprint.render(images, by, readme_footprint.compiler_versions(TARGETS), RAM_GATE)
     with open(os.path.join(ROOT, args.build, 'footprint_readme.md'), 'w') as f:
         f.write(readme_table)
-    why = readme_footprint.compare(os.path.join(ROOT, 'README.md'), readme_table)
+    why = readme_footprint.compare(readme_footprint.PAGE, readme_table)
     checks += 1
     if why and why.startswith('note:'):
         print(why)

@@ -1,15 +1,16 @@
-"""readme_footprint.py - the README's footprint table, made from what the
-image gates measured (tests/firmware/image_gates.py), so that it cannot
+"""readme_footprint.py - the documentation's footprint table, made from what
+the image gates measured (tests/firmware/image_gates.py), so that it cannot
 drift from the measurement (it once was 16 B off).
 
-The table sits in README.md between the two marker lines below.  The gates
+The table sits in its page, PAGE (docs/hardware/footprint.md), between the
+two marker lines below.  The gates
 compare it with the measurement and fail when it differs; `make
 readme-footprint` writes the measured table there.  Sizes depend on the
 compilers, so the table names the versions it was measured with, and a
 machine with other versions only notes the difference (its sizes are its
 own, not wrong).
 
-usage: readme_footprint.py --update [--readme README.md] [--table build/firmware/footprint_readme.md]
+usage: readme_footprint.py --update [--page docs/hardware/footprint.md] [--table build/firmware/footprint_readme.md]
 """
 import argparse
 import os
@@ -17,9 +18,11 @@ import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
+#: The page that holds the table.
+PAGE = os.path.join(ROOT, 'docs', 'hardware', 'footprint.md')
 BEGIN = '<!-- footprint: measured by make firmware-check, which fails when this differs; make readme-footprint writes it -->'
 END = '<!-- /footprint -->'
-#: How the README names the IR backends of images.list.
+#: How the page names the IR backends of images.list.
 BACKEND_NAMES = {'randb': 'turret', 'libircom': 'libIrcom'}
 
 
@@ -37,7 +40,7 @@ def n(v):
 
 
 def render(images, by, versions, gate):
-    """The README's table (between the markers) from the gates' results
+    """The page's table (between the markers) from the gates' results
     `by[(image, target)]`."""
     lines = [BEGIN,
              f'| image | IR | static RAM (gate <= {n(gate)}) | camera frames | stack estimate | our RAM total '
@@ -56,7 +59,7 @@ def render(images, by, versions, gate):
 
 
 def readme_block(text):
-    """(start, end) of the marked table in the README's text, or None."""
+    """(start, end) of the marked table in the page's text, or None."""
     start = text.find(BEGIN)
     end = text.find(END, start)
     if start < 0 or end < 0:
@@ -65,7 +68,7 @@ def readme_block(text):
 
 
 def compare(readme, table):
-    """None when the README's table is the measured one; else why not (a
+    """None when the page's table is the measured one; else why not (a
     failure), or a note starting with 'note:' when other compilers made it."""
     with open(readme, encoding='utf-8') as fh:
         text = fh.read()
@@ -77,14 +80,14 @@ def compare(readme, table):
         return None
     measured_with = [ln for ln in table.splitlines() if ln.startswith('Measured with')]
     if measured_with and measured_with[0] not in theirs:
-        return (f"note: the README's footprint table was not measured with this machine's compilers "
+        return (f"note: {os.path.relpath(readme, ROOT)}'s footprint table was not measured with this machine's compilers "
                 f"({measured_with[0][len('Measured with '):-1]}): not compared")
     ours, measured = theirs.splitlines(), table.splitlines()
     k = next((i for i, (a, b) in enumerate(zip(ours, measured, strict=False)) if a != b), min(len(ours), len(measured)))
     readme_line = ours[k] if k < len(ours) else '(nothing)'
     measured_line = measured[k] if k < len(measured) else '(nothing)'
-    return (f"the README's footprint table differs from the measurement: README {readme_line!r}, measured "
-            f"{measured_line!r}; `make readme-footprint` writes the measured table into the README")
+    return (f"{os.path.relpath(readme, ROOT)}'s footprint table differs from the measurement: the page "
+            f"{readme_line!r}, measured {measured_line!r}; `make readme-footprint` writes the measured table there")
 
 
 def update(readme, table_path):
@@ -102,8 +105,8 @@ def update(readme, table_path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    ap.add_argument('--update', action='store_true', help='write the measured table into the README')
-    ap.add_argument('--readme', default=os.path.join(ROOT, 'README.md'))
+    ap.add_argument('--update', action='store_true', help='write the measured table into the page')
+    ap.add_argument('--page', '--readme', dest='readme', default=PAGE)
     ap.add_argument('--table', default=os.path.join(ROOT, 'build', 'firmware', 'footprint_readme.md'))
     args = ap.parse_args()
     if not args.update:

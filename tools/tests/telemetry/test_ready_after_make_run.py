@@ -1,7 +1,8 @@
-"""After `make run`, every tool the README shows works or says in one line
-what to run: each console script and each of its subcommands answers
+"""After `make run`, every tool the documentation shows works or says in one
+line what to run: each console script and each of its subcommands answers
 --help (swarm-sweep's ended in a traceback over a '%' in its help), every
-`.venv/bin/` program and `make` goal the README names exists, and a tool
+`.venv/bin/` program and `make` goal README.md and the site's pages (docs/)
+name exists, and a tool
 whose generated types, LCM module or matplotlib are missing says what to
 run in one line, with no traceback."""
 import re
@@ -14,7 +15,9 @@ from pathlib import Path
 from .helpers import ROOT, TempDir
 
 BIN = Path(sys.executable).parent
-README = (ROOT / "README.md").read_text()
+# README.md and the site's pages, less the design notes (a record of their time).
+README = "\n".join(p.read_text() for p in [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+                   if "notes" not in p.relative_to(ROOT).parts)
 
 
 def scripts():
@@ -46,7 +49,7 @@ class NamedInTheReadme(unittest.TestCase):
         named = set(re.findall(r"\.venv/bin/([\w.-]+)", README))
         self.assertIn("swarm-monitor", named)
         for name in sorted(named):
-            self.assertTrue((BIN / name).exists(), f"the README shows .venv/bin/{name}, which make deps does not install")
+            self.assertTrue((BIN / name).exists(), f"the documentation shows .venv/bin/{name}, which make deps does not install")
 
     def test_make_goals_exist(self):
         # In code: `make GOAL ...` spans and the lines of code blocks.
@@ -55,7 +58,7 @@ class NamedInTheReadme(unittest.TestCase):
         self.assertIn("spy", goals)
         r = run(["make", "-pq", "--no-print-directory", "help"])
         targets = set(re.findall(r"^([a-z][\w-]*):", r.stdout, re.M))
-        self.assertEqual(sorted(goals - targets), [], "make goals the README names but the Makefile lacks")
+        self.assertEqual(sorted(goals - targets), [], "make goals the documentation names but the Makefile lacks")
 
 
 class MissingPieces(TempDir):
