@@ -37,7 +37,7 @@ def _fields(cls):
 
 
 def _struct(typename):
-    """The class of a nested type ("swarmlcm.scene_shape_t")."""
+    """The class of an inner type ("swarmlcm.scene_shape_t")."""
     return getattr(common.swarmlcm, typename.rsplit(".", 1)[-1])
 
 
