@@ -2,10 +2,11 @@
 # timed.sh [-j N] [-t TIMES] COMMAND... -- GROUP... - runs each test group as
 # `COMMAND... GROUP` (a make target), N at a time, the longest first by the
 # times of the last run that passed (TIMES: "GROUP SECONDS" lines, rewritten
-# then; a group never timed goes first).  Each group's output is kept
-# together and shown when it ends (as it comes with -j 1), under "== GROUP:
-# passed in S s" (or FAILED); then every group's time and the wall time.  Once a group fails,
-# no other starts and the status is 1.
+# then; for a group it lacks, tools/make/test_times.txt, a run's times kept
+# in the repository; a group in neither goes first).  Each group's output
+# is kept together and shown when it ends (as it comes with -j 1), under
+# "== GROUP: passed in S s" (or FAILED); then every group's time and the
+# wall time.  Once a group fails, no other starts and the status is 1.
 set -u
 jobs=1 times=/dev/null
 while getopts "j:t:" o; do
@@ -20,7 +21,7 @@ trap 'rm -rf "$logs"' EXIT
 
 i=0
 mapfile -t order < <(for g in "$@"; do
-    s=$(awk -v g="$g" '$1 == g { print $2 }' "$times" 2>/dev/null)
+    s=$(awk -v g="$g" '$1 == g { print $2; exit }' "$times" "$(dirname "$0")/test_times.txt" 2>/dev/null)
     echo "${s:-1e9} $((i++)) $g"
 done | sort -k1,1gr -k2,2n | cut -d' ' -f3)
 
@@ -65,5 +66,7 @@ for g in "${order[@]}"; do
 done
 [ $failed -eq 0 ] || exit 1
 if [ "$times" != /dev/null ]; then
-    for g in "${order[@]}"; do echo "$g ${took[$g]}"; done >"$times.$$" && mv "$times.$$" "$times"
+    { for g in "${order[@]}"; do echo "$g ${took[$g]}"; done
+      awk -v run=" ${order[*]} " 'index(run, " " $1 " ") == 0' "$times" 2>/dev/null; } >"$times.$$" &&
+        mv "$times.$$" "$times"      # and the times of the groups not run now
 fi
