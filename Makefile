@@ -107,8 +107,10 @@ $(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN) $(SIM_EXTRA_OBJ_ASAN)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
+# Linked under another name, then renamed: a run of the old binary (a test
+# group beside this build) keeps it whole.
 $(BUILD)/swarmsim: $(BUILD)/obj/sim_host/main.o $(BUILD)/libswarm.a
-	$(CC) -o $@ $^ $(LDLIBS_SIM)
+	$(CC) -o $@.tmp $^ $(LDLIBS_SIM) && mv $@.tmp $@
 
 # Test binaries record the headers they read (-MMD): a changed header
 # rebuilds them.
