@@ -8,6 +8,11 @@
 BUILD := build
 SHELL := /bin/bash
 
+# Short build lines ("  CC      sim_host/core/sim.c"); `make V=1` prints the
+# full commands, `make -s` neither.  $(call show,WHAT,FILE) starts a recipe line.
+V ?= 0
+show = $(if $(or $(filter 1,$(V)),$(findstring s,$(firstword -$(MAKEFLAGS)))),,@printf '  %-7s %s\n' '$(1)' '$(2)';)
+
 # Dependencies: found or installed by tools/deps.sh, recorded in config.mk.
 # Make rebuilds an included makefile that is missing or out of date, so
 # only goals that build read it: `make clean` installs nothing.
@@ -17,24 +22,27 @@ include $(BUILD)/config.mk
 endif
 $(BUILD)/config.mk: tools/deps.sh tools/requirements.txt
 	@mkdir -p $(BUILD)
-	tools/deps.sh > $@.tmp && mv $@.tmp $@
+	$(call show,DEPS,tools/deps.sh)tools/deps.sh > $@.tmp && mv $@.tmp $@
 
 WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-# Layering: firmware sees only hal/ and firmware/ (tests/firmware/hygiene.sh
-# also checks its #include lines); the simulator sees everything.
-FW_INC := -Ihal -Ifirmware
-SIM_INC := $(FW_INC) -Isim_host
+# Layering: firmware sees only hal/, wire/ and firmware/ (tests/firmware/hygiene.sh
+# compiles each layer with only what it may include); the simulator sees everything.
+FW_INC := -Ihal -Iwire -Ifirmware
+SIM_INC := $(FW_INC) -Isim_host -Isim_host/include
 CFLAGS_COMMON := $(WARN) -g -O2 -fno-strict-aliasing -ffp-contract=off
 # Firmware and HAL helpers are C99; the simulator may use C11.
 FW_CFLAGS := -std=c99 -pedantic $(FW_INC) $(CFLAGS_COMMON)
 SIM_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(SIM_INC) $(CFLAGS_COMMON) $(BOX2D_CFLAGS) $(PNG_CFLAGS)
 LDLIBS_SIM := $(BOX2D_LIBS) $(YAML_LIBS) $(PNG_LIBS) $(GL_LIBS) -lpthread -lm
 
-# Controllers: firmware/<folder>/*.c (common/ and one folder per seed);
-# firmware/apps/ holds the robot images' mains, built by firmware.mk.
-FW_DIRS := $(filter-out firmware/apps,$(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c)))))
-FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c))
-SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/tasks/*/*.c)))
+# Controllers: firmware/<folder>/*.c (common/ and one folder per seed); the
+# robot images are declared by the platforms (platforms/<p>/images.list,
+# tools/make/firmware.mk).
+FW_DIRS := $(patsubst %/,%,$(sort $(dir $(wildcard firmware/*/*.c))))
+# The wire protocols (wire/<protocol>/*.c: telemetry framing, the host
+# link's messages) are linked with them.
+FW_SRC := $(sort $(wildcard $(addsuffix /*.c,$(FW_DIRS)))) $(sort $(wildcard hal/*.c)) $(sort $(wildcard wire/*/*.c))
+SIM_SRC := $(filter-out sim_host/main.c,$(sort $(wildcard sim_host/*.c sim_host/core/*.c sim_host/models/*/*.c sim_host/tasks/*/*.c)))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 
 # $(call objs,VARIANT,SOURCES)
@@ -63,13 +71,15 @@ include $(sort $(wildcard tools/make/*.mk))
 help:
 	@echo "make run        build what is needed and run the default scenario (RUN_SCENARIO=, RUN_ARGS=)"
 	@echo "make test       every test group, each with its time"
+	@echo "make new-controller NAME=foo / new-task NAME=bar   copy the tutorials' example under your name, build it, run it"
 	@echo "make docs       the documentation site, into build/site/ (make docs-serve: at http://127.0.0.1:8000/)"
 	@echo "make deps       install what the build and the tools need (.venv, swarmtools)"
+	@echo "make V=1 ...    the full compiler commands instead of the short CC lines"
 	@echo "make bench      simulator throughput (BENCH_ARGS=)"
 	@echo "make video      film seed 000's base run to out/video/foraging_base.mp4 (VIDEO_ARGS=)"
 	@echo "make study-drtm seed 000's study (STUDY_ARGS=--quick for a smoke run)"
 	@echo "make study-faults seed 000 under faults; make study-repatt seed 002's study (STUDY_ARGS=--quick)"
-	@echo "make study-gains seed 002's gains study, reduced (Figs 2a/2b; STUDY_ARGS=--estimate 120: the full sweep's cost)"
+	@echo "make study-gains seed 002's gains study, reduced (Figs 2a/2b; STUDY_ARGS=--quick, --estimate 120: the full sweep's cost)"
 	@echo "make study-eaipp seed 003 (EAIPP, Figs 10-17; STUDY_ARGS=--quick, --figures maze,loss, --picture)"
 	@echo "make firmware-check / firmware / flash   the e-puck gates, .hex files, flashing"
 	@echo "make monitor / spy   watch telemetry (LCM_URL=)"
@@ -80,46 +90,52 @@ all: $(BUILD)/swarmsim
 
 deps: $(BUILD)/config.mk
 
-$(BUILD)/obj/firmware/%.o $(BUILD)/obj/hal/%.o: | $(BUILD)/config.mk
+$(BUILD)/obj/firmware/%.o $(BUILD)/obj/hal/%.o $(BUILD)/obj/wire/%.o: | $(BUILD)/config.mk
 $(BUILD)/obj/firmware/%.o: firmware/%.c
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+	$(call show,CC,$<)$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
 $(BUILD)/obj/hal/%.o: hal/%.c
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+	$(call show,CC,$<)$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/obj/wire/%.o: wire/%.c
+	@mkdir -p $(@D)
+	$(call show,CC,$<)$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
 $(BUILD)/obj/sim_host/%.o: sim_host/%.c
 	@mkdir -p $(@D)
-	$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
+	$(call show,CC,$<)$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
 $(BUILD)/asan/firmware/%.o: firmware/%.c
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+	$(call show,CC-ASAN,$<)$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
 $(BUILD)/asan/hal/%.o: hal/%.c
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+	$(call show,CC-ASAN,$<)$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+$(BUILD)/asan/wire/%.o: wire/%.c
+	@mkdir -p $(@D)
+	$(call show,CC-ASAN,$<)$(CC) $(FW_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
 $(BUILD)/asan/sim_host/%.o: sim_host/%.c
 	@mkdir -p $(@D)
-	$(CC) $(SIM_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
+	$(call show,CC-ASAN,$<)$(CC) $(SIM_CFLAGS) $(ASAN) -MMD -MP -c $< -o $@
 
 $(BUILD)/libswarm.a: $(FW_OBJ) $(SIM_OBJ) $(SIM_EXTRA_OBJ)
 	@rm -f $@
-	$(AR) rcs $@ $^
+	$(call show,AR,$@)$(AR) rcs $@ $^
 $(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN) $(SIM_EXTRA_OBJ_ASAN)
 	@rm -f $@
-	$(AR) rcs $@ $^
+	$(call show,AR,$@)$(AR) rcs $@ $^
 
 # Linked under another name, then renamed: a run of the old binary (a test
 # group beside this build) keeps it whole.
 $(BUILD)/swarmsim: $(BUILD)/obj/sim_host/main.o $(BUILD)/libswarm.a
-	$(CC) -o $@.tmp $^ $(LDLIBS_SIM) && mv $@.tmp $@
+	$(call show,LD,$@)$(CC) -o $@.tmp $^ $(LDLIBS_SIM) && mv $@.tmp $@
 
 # Test binaries record the headers they read (-MMD): a changed header
 # rebuilds them.
 $(BUILD)/tests/%: tests/%.c $(BUILD)/libswarm.a
 	@mkdir -p $(@D)
-	$(CC) $(SIM_CFLAGS) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
+	$(call show,CC,$@)$(CC) $(SIM_CFLAGS) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
 $(BUILD)/tests/asan/%: tests/%.c $(BUILD)/libswarm-asan.a
 	@mkdir -p $(@D)
-	$(CC) $(SIM_CFLAGS) $(ASAN) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm-asan.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
+	$(call show,CC-ASAN,$@)$(CC) $(SIM_CFLAGS) $(ASAN) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm-asan.a $(CMOCKA_LIBS) $(LDLIBS_SIM)
 
 # ---------------------------------------------------------------- run
 RUN_SCENARIO ?= sim_host/scenarios/foraging_base.yaml
@@ -142,8 +158,8 @@ asan-tests: $(TESTS_ASAN)
 cli-tests: $(BUILD)/swarmsim
 	@set -e; for t in $(sort $(wildcard tests/cli/*.sh)); do echo "== $$t"; bash $$t $(BUILD)/swarmsim; done
 
-firmware-hygiene: $(BUILD)/config.mk lcm-types
-	@LCM_CFLAGS='$(LCM_CFLAGS)' LCM_C_DIR='$(BUILD)/lcm_c' bash tests/firmware/hygiene.sh
+firmware-hygiene: $(BUILD)/config.mk lcm-types firmware-images
+	@LCM_CFLAGS='$(LCM_CFLAGS)' LCM_C_DIR='$(BUILD)/lcm_c' FW_GEN='$(FW_GEN)' bash tests/firmware/hygiene.sh
 
 # Every group (a make target), TEST_JOBS at a time (default: the CPUs; 1:
 # one after the other), after one build of what they share (TEST_BUILD;

@@ -3,9 +3,10 @@
  *
  * Controllers include this header (and firmware headers) only.  Every call
  * takes the robot as an opaque `hal_t *`; a platform defines `struct hal` and
- * every function below, and is bound at link time:
- *   - hal/epuck/   the e-puck1 (dsPIC30F6014A) over GCtronic's e-puck library;
- *   - sim_host/    the simulator, one hal_t per simulated robot.
+ * every function below, and is bound at link time.  The platforms are the
+ * folders of platforms/ (platforms/platforms.list):
+ *   - epuck1/   the e-puck1 (dsPIC30F6014A) over GCtronic's e-puck library;
+ *   - host/     the simulator (sim_host/), one hal_t per simulated robot.
  *
  * Units are integers at the boundary (the dsPIC has no FPU) and are named on
  * every channel.  Angles are in milliradians, counter-clockwise positive, zero
@@ -126,6 +127,23 @@ uint8_t hal_camera_widest(hal_t *hal, uint8_t colour, hal_blob_t *widest);
 hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px);
 
 /* ------------------------------------------------------------------ */
+/* Ground sensors (the ground-sensor module, an extension)             */
+/* ------------------------------------------------------------------ */
+
+/** Number of ground sensors: three IR emitter/receivers under the front
+ *  of the robot looking down, 10 mm apart: GS0 left, GS1 centre, GS2
+ *  right. */
+#define HAL_GROUND_COUNT 3u
+
+/** How much IR the floor under ground sensor `index` (0..2) reflects, in
+ *  raw counts 0..4095 into *reflected: larger is a lighter floor (about
+ *  1000 over white paper, near 0 over black; coloured paper reads nearly
+ *  as white).  Returns HAL_OK; HAL_ERR_RANGE for a sensor that does not
+ *  exist; HAL_ERR_UNAVAILABLE on a robot without the module (or an image
+ *  built without it), with *reflected 0 either way. */
+hal_status_t hal_ground(hal_t *hal, uint8_t index, uint16_t *reflected);
+
+/* ------------------------------------------------------------------ */
 /* Microphones and speaker                                             */
 /* ------------------------------------------------------------------ */
 
@@ -140,7 +158,7 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
  *  (0..2) over the last control period, in level counts >= 0, into *level.
  *  Scale: in the simulator 1 count = 0.001 of the sound model's unit (seed
  *  002's eq 1: a source gives A0 = 299.18 units at 0 m); on the e-puck the
- *  tone detector's amplitude (see hal/epuck).  Only changes of a level are
+ *  tone detector's amplitude (see platforms/epuck1/hal).  Only changes of a level are
  *  meant to be compared, never levels across platforms.
  *  Returns HAL_OK; HAL_ERR_BUSY when this robot's own speaker played during
  *  that period (its tone drowns the microphones: a controller that listens
@@ -247,7 +265,7 @@ hal_status_t hal_pose(hal_t *hal, hal_pose_t *out);
  *  when none is waiting; HAL_ERR_RANGE when it is longer than `cap` (it
  *  stays); HAL_ERR_UNAVAILABLE on a platform with no host link.  What the
  *  bytes mean is the controller's (a route: firmware/waypoint/route_msg.h).
- *  On the e-puck they arrive over Bluetooth (hal/epuck/host_link.h), in the
+ *  On the e-puck they arrive over Bluetooth (platforms/epuck1/hal/host_link.h), in the
  *  simulator from the scenario's `host.messages` file. */
 hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len);
 

@@ -5,7 +5,7 @@
  *
  * Platform-neutral robot code: integer only (no FPU, no float), correct
  * with 16-bit int, no allocation, no static state (the caller's stack holds
- * 2 x 4 bytes per band).  hal/epuck runs it on the newest TONE_DETECT_N
+ * 2 x 4 bytes per band).  platforms/epuck1/hal runs it on the newest TONE_DETECT_N
  * samples of each microphone (hal/sound_bands.h).
  *
  * The block: TONE_DETECT_N samples of one microphone, oldest first, any

@@ -60,7 +60,7 @@ int16_t units_ir_bearing_mrad(uint8_t index);
 #define EPUCK_IR_MOUNT_RADIUS_M ((float)EPUCK_IR_MOUNT_RADIUS_UM / 1e6f)
 #define EPUCK_IR_HEIGHT_M ((float)EPUCK_IR_HEIGHT_UM / 1e6f)
 #define EPUCK_CAMERA_HEIGHT_M ((float)EPUCK_CAMERA_HEIGHT_UM / 1e6f)
-/** The camera frame of the e-puck image: 40 x 20 pixels (hal/epuck). */
+/** The camera frame of the e-puck image: 40 x 20 pixels (platforms/epuck1/hal). */
 #define EPUCK_CAMERA_WIDTH_PX 40u
 #define EPUCK_CAMERA_HEIGHT_PX 20u
 

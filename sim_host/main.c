@@ -14,15 +14,16 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cli.h"
 #include "registry.h"
 #include "version.h"
 #include "core/runner.h"
-#include "core/scenario.h"
-#include "core/camera_render.h"
+#include "swarmsim/scenario.h"
+#include "models/camera/camera.h"
+#include "models/camera/camera_render.h"
 #include "core/sim_video.h"
 #include "core/telemetry.h"
 
-#define MAX_SETS 256
 #define COMMAND_MAX 4096
 
 /* The signal that asked to stop (0: none); the runner polls it. */
@@ -69,12 +70,12 @@ static void command_line(int argc, char **argv, char *buf, size_t len)
 
 /* The effective scenario (file + overrides) as YAML text, malloc'd. */
 static char *effective_scenario(const char *path, const scenario_override_t *sets, size_t n,
-                                size_t *len, char err[SCENARIO_ERROR_MAX])
+                                size_t *len, char err[SIM_ERR_MAX])
 {
     char *text = NULL;
     FILE *f = open_memstream(&text, len);
     if (!f) {
-        snprintf(err, SCENARIO_ERROR_MAX, "out of memory");
+        snprintf(err, SIM_ERR_MAX, "out of memory");
         return NULL;
     }
     int rc = scenario_write_effective(path, sets, n, f, err);
@@ -85,205 +86,26 @@ static char *effective_scenario(const char *path, const scenario_override_t *set
     return text;
 }
 
-static void usage(FILE *f)
-{
-    fputs(
-"usage: swarmsim SCENARIO.yaml [options]\n"
-"\n"
-"Runs e-puck firmware controllers in a Box2D world described by a YAML\n"
-"scenario, and writes per run a summary.json and a timeseries.csv.\n"
-"\n"
-"options:\n"
-"  --seed N        seed of the first repetition (default: the scenario's `seed`);\n"
-"                  repetition r uses seed N + r\n"
-"  --reps N        repetitions (default 1); with N > 1 an aggregate\n"
-"                  OUT/summary.json holds mean, sd, min, max of each metric\n"
-"  --threads N     worker threads (default: CPUs online): repetitions run side\n"
-"                  by side, and with fewer repetitions than threads the spare\n"
-"                  ones go inside each run of 500 robots or more; results for\n"
-"                  a seed are bit-identical for any N\n"
-"  --run-threads N threads inside each run (1 to 64), whatever its size:\n"
-"                  controllers and sensors, IR delivery, sound, Box2D's solver\n"
-"  --steps N       control steps per run (default: duration / control period)\n"
-"  --out DIR       output folder (default out/<scenario name>); each run\n"
-"                  writes DIR/run_<seed>/{summary.json,timeseries.csv,\n"
-"                  telemetry.lcmlog}\n"
-"  --set K=V       override scenario key K (dotted path, e.g. robots.0.count=30,\n"
-"                  robots.0.params.speed_steps_s=300, objects.0.x=1.5);\n"
-"                  repeatable, applied in order after the file\n"
-"  --frames N      write a top-down PNG every N steps, and the last frame,\n"
-"                  to DIR/run_<seed>/frames/ (default 0: none)\n"
-"  --frame-px N    width of the pictures in pixels (default 800)\n"
-"  --camera-frames ROBOT  save robot ROBOT's (id, 0-based) camera frames, its\n"
-"                  detected blobs drawn on them, to\n"
-"                  DIR/run_<seed>/camera/robot_<ROBOT>/frame_<step>.png (with\n"
-"                  camera.model geometric the frame is rendered for the picture\n"
-"                  only, and the boxes are the model's blobs)\n"
-"  --lcm URL       LCM telemetry (lcm_types/: RUN_INFO, TELEMETRY_SCHEMA,\n"
-"                  SWARM_STATE, ROBOT_STATE, SWARM_EVENT, RUN_SUMMARY, SCENE,\n"
-"                  TASK_DRAWING) to an LCM provider URL, e.g.\n"
-"                  udpm://239.255.76.67:7667?ttl=0; `off`: none.  Default: an LCM\n"
-"                  log DIR/run_<seed>/telemetry.lcmlog stamped with simulated time\n"
-"  --telemetry-rate R[,S]  robot states per robot per simulated second (R,\n"
-"                  default 1) and swarm states per simulated second (S,\n"
-"                  default 10); 0 sends none\n"
-"  --realtime X    with telemetry on: run no faster than X times real time\n"
-"                  (to watch a run live)\n"
-"  --quiet         print nothing on success (errors still go to stderr)\n"
-"  --replace       the --out folder may hold an earlier invocation's outputs:\n"
-"                  remove it first (only a folder swarmsim made, marked\n"
-"                  .swarmsim-out); without it a non-empty --out is an error\n"
-"  --resume        continue an interrupted invocation in its --out folder\n"
-"                  (same scenario, overrides, seeds, steps and outputs): its\n"
-"                  finished runs are kept, the others run\n"
-"  --check         load the scenario and its --set overrides, report what is\n"
-"                  wrong, and run nothing (exit 0 or 2)\n"
-"  --help          this text, the controllers and every scenario key\n"
-"\n"
-"exit status: 0 ok, 1 a run failed, 2 bad arguments or scenario (nothing written),\n"
-"130 / 143 stopped by SIGINT / SIGTERM: finished runs are kept, --resume continues\n"
-"\n", f);
-    video_print_usage(f);
-    fputs("controllers (a group's `controller:`):\n", f);
-    for (size_t i = 0; registry_controller_at(i); i++) {
-        const controller_def_t *c = registry_controller_at(i);
-        fprintf(f, "  %-14s %s\n", c->name, c->doc);
-        if (c->policies != NULL && c->policies[0] != NULL) {
-            fprintf(f, "  %-14s policies (`policy:`): %s (default)", "", c->policies[0]);
-            for (size_t k = 1; c->policies[k] != NULL; k++) {
-                fprintf(f, ", %s", c->policies[k]);
-            }
-            fputc('\n', f);
-        }
-    }
-    fputs("\ntasks (a scenario section of that name runs it):\n", f);
-    for (size_t i = 0; registry_task_at(i); i++) {
-        const task_def_t *t = registry_task_at(i);
-        fprintf(f, "  %-14s %s\n", t->name, t->doc);
-    }
-    fputc('\n', f);
-    scenario_print_schema(f);
-}
-
-/* Parses an unsigned integer in [lo, hi]; reports and returns -1 if not. */
-static int parse_uint(const char *opt, const char *text, uint64_t lo, uint64_t hi, uint64_t *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = (text && *text >= '0' && *text <= '9') ? strtoull(text, &end, 10) : 0;
-    if (!text || !*text || *text < '0' || *text > '9' || *end || errno || v < lo || v > hi) {
-        fprintf(stderr, "swarmsim: %s: '%s' is not an integer in [%" PRIu64 ", %" PRIu64 "]\n",
-                opt, text ? text : "", lo, hi);
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
 int main(int argc, char **argv)
 {
-    const char *path = NULL, *out_dir = NULL;
-    scenario_override_t sets[MAX_SETS];
-    size_t nsets = 0;
-    uint64_t seed = 0, reps = 1, threads = 0, run_threads = 0, steps = 0, frames = 0, frame_px = 800, camera_robot = 0;
-    int have_camera_robot = 0;
-    int have_seed = 0, have_steps = 0, quiet = 0, check_only = 0;
-    outdir_mode_t out_mode = OUTDIR_NEW;
-    telemetry_options_t telemetry;
-    telemetry_default_options(&telemetry);
-    video_options_t video = VIDEO_OPTIONS_DEFAULT;
-    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    threads = cpus > 0 ? (uint64_t)cpus : 1;
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        int bad = 0;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-            quiet = 1;
-            continue;
-        } else if (!strcmp(a, "--check")) {
-            check_only = 1;
-            continue;
-        } else if (!strcmp(a, "--replace") || !strcmp(a, "--resume")) {
-            outdir_mode_t m = a[3] == 'e' && a[4] == 'p' ? OUTDIR_REPLACE : OUTDIR_RESUME;
-            if (out_mode != OUTDIR_NEW && out_mode != m) {
-                fprintf(stderr, "swarmsim: --replace and --resume exclude each other\n");
-                return 2;
-            }
-            out_mode = m;
-            continue;
-        } else if (a[0] != '-') {
-            if (path) {
-                fprintf(stderr, "swarmsim: more than one scenario given ('%s' and '%s')\n", path, a);
-                return 2;
-            }
-            path = a;
-            continue;
-        }
-        if (!v) {
-            fprintf(stderr, "swarmsim: %s needs a value (see --help)\n", a);
-            return 2;
-        }
-        i++;
-        if (!strcmp(a, "--seed")) {
-            bad = parse_uint(a, v, 0, SCENARIO_SEED_MAX, &seed);
-            have_seed = 1;
-        } else if (!strcmp(a, "--reps")) {
-            bad = parse_uint(a, v, 1, 1000000, &reps);
-        } else if (!strcmp(a, "--threads")) {
-            bad = parse_uint(a, v, 1, 1024, &threads);
-        } else if (!strcmp(a, "--run-threads")) {
-            bad = parse_uint(a, v, 1, 64, &run_threads);
-        } else if (!strcmp(a, "--steps")) {
-            bad = parse_uint(a, v, 0, UINT64_C(10000000000), &steps);
-            have_steps = 1;
-        } else if (!strcmp(a, "--frames")) {
-            bad = parse_uint(a, v, 0, UINT64_C(1000000000), &frames);
-        } else if (!strcmp(a, "--camera-frames")) {
-            bad = parse_uint(a, v, 0, UINT64_C(100000), &camera_robot);
-            have_camera_robot = 1;
-        } else if (!strcmp(a, "--frame-px")) {
-            bad = parse_uint(a, v, 16, 8192, &frame_px);
-        } else if (!strcmp(a, "--lcm")) {
-            telemetry.enabled = strcmp(v, "off") != 0;
-            telemetry.url = telemetry.enabled ? v : NULL;
-        } else if (!strcmp(a, "--telemetry-rate")) {
-            if (telemetry_parse_rate(v, &telemetry) != 0) {
-                fprintf(stderr, "swarmsim: --telemetry-rate: '%s' is not R or R,S with rates in [0, 1000] Hz\n", v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--realtime")) {
-            char *end;
-            telemetry.realtime = strtod(v, &end);
-            if (*v == '\0' || *end || !(telemetry.realtime > 0.0 && telemetry.realtime <= 1e6)) {
-                fprintf(stderr, "swarmsim: --realtime: '%s' is not a factor in (0, 1e6]\n", v);
-                return 2;
-            }
-        } else if (video_parse_option(a, v, &video, &bad)) {
-            /* --video, --video-every, --video-fps (core/sim_video.c) */
-        } else if (!strcmp(a, "--out")) {
-            out_dir = v;
-        } else if (!strcmp(a, "--set")) {
-            if (nsets == MAX_SETS) {
-                fprintf(stderr, "swarmsim: more than %d --set options\n", MAX_SETS);
-                return 2;
-            }
-            sets[nsets++].text = v;
-        } else {
-            fprintf(stderr, "swarmsim: unknown option '%s' (see --help)\n", a);
-            return 2;
-        }
-        if (bad) {
-            return 2;
-        }
+    cli_t cli;
+    if (cli_parse(argc, argv, &cli) != 0) {
+        return 2;
     }
+    if (cli.help) {
+        cli_print_help(stdout);
+        return 0;
+    }
+    const char *path = cli.path, *out_dir = cli.out_dir;
+    const scenario_override_t *sets = cli.sets;
+    size_t nsets = cli.nsets;
+    uint64_t seed = cli.seed, reps = cli.reps, camera_robot = cli.camera_robot;
+    int have_camera_robot = cli.have_camera_robot, quiet = cli.quiet;
+    outdir_mode_t out_mode = cli.out_mode;
+    telemetry_options_t telemetry = cli.telemetry;
+    video_options_t video = cli.video;
     if (!path) {
-        fprintf(stderr, "swarmsim: no scenario given\n");
-        usage(stderr);
+        fprintf(stderr, "swarmsim: no scenario given (swarmsim SCENARIO.yaml [options]; --help lists them)\n");
         return 2;
     }
     if (video_check_options(&video) != 0) {   /* ffmpeg, the folder: before any run */
@@ -291,7 +113,7 @@ int main(int argc, char **argv)
     }
 
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX > 512 ? SCENARIO_ERROR_MAX : 512];
+    char err[SIM_ERR_MAX > 512 ? SIM_ERR_MAX : 512];
     if (!sc) {
         fprintf(stderr, "swarmsim: out of memory\n");
         return 1;
@@ -301,7 +123,7 @@ int main(int argc, char **argv)
         free(sc);
         return 2;
     }
-    uint64_t first_seed = have_seed ? seed : sc->seed;
+    uint64_t first_seed = cli.have_seed ? seed : sc->seed;
     if (reps - 1 > SCENARIO_SEED_MAX - first_seed) {
         fprintf(stderr, "swarmsim: seeds %" PRIu64 " + %" PRIu64 " repetitions pass the seed range "
                 "[0, %" PRIu64 "]\n", first_seed, reps, SCENARIO_SEED_MAX);
@@ -316,7 +138,7 @@ int main(int argc, char **argv)
         free(sc);
         return 2;
     }
-    if (sc->camera.model == CAMERA_RENDERED || have_camera_robot) {
+    if (camera_config(sc)->model == CAMERA_RENDERED || have_camera_robot) {
         camera_render_set_threads();   /* before any OSMesa context (camera_render.h) */
     }
     if (telemetry.realtime > 0.0 && !telemetry.enabled) {
@@ -326,18 +148,27 @@ int main(int argc, char **argv)
         free(sc);
         return 2;
     }
-    if (check_only) {   /* a sweep validates each combination of overrides this way */
+    if (cli.check_only) {   /* a sweep validates each combination of overrides this way */
         if (!quiet) {
-            printf("swarmsim: %s: ok\n", path);
+            sim_memory_t m;
+            char need[32];
+            sim_memory_estimate(sc, 1, &m);
+            scenario_format_bytes(m.total, need, sizeof need);
+            printf("swarmsim: %s: ok (a run needs about %s)\n", path, need);
         }
         scenario_free(sc);
         free(sc);
         return 0;
     }
+    /* Without --out: the scenario's own folder, which each invocation
+     * replaces when swarmsim made it (edit, run, look, run again). */
     char default_out[SCENARIO_NAME_MAX + 8];
     if (!out_dir) {
         snprintf(default_out, sizeof default_out, "out/%s", sc->name);
         out_dir = default_out;
+        if (out_mode == OUTDIR_NEW) {
+            out_mode = OUTDIR_DEFAULT;
+        }
     }
     size_t text_len = 0;
     char *text = effective_scenario(path, sets, nsets, &text_len, err);
@@ -353,12 +184,12 @@ int main(int argc, char **argv)
         .scenario = sc,
         .seed = first_seed,
         .reps = (uint32_t)reps,
-        .threads = (uint32_t)threads,
-        .run_threads = (uint32_t)run_threads,
-        .steps = have_steps ? steps : (uint64_t)(sc->duration * 1000.0 / sc->control_period_ms + 0.5),
+        .threads = (uint32_t)cli.threads,
+        .run_threads = (uint32_t)cli.run_threads,
+        .steps = cli.have_steps ? cli.steps : (uint64_t)(sc->duration * 1000.0 / sc->control_period_ms + 0.5),
         .out_dir = out_dir,
-        .frames_every = (uint32_t)frames,
-        .frame_px = (uint32_t)frame_px,
+        .frames_every = (uint32_t)cli.frames,
+        .frame_px = (uint32_t)cli.frame_px,
         .quiet = quiet,
         .progress = !quiet,
         .telemetry = telemetry,

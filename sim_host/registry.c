@@ -6,6 +6,7 @@
 
 #include <string.h>
 
+#include "models/model.h"
 #include "registry_list.h"
 
 static const controller_def_t *const controllers[] = {
@@ -16,6 +17,13 @@ static const controller_def_t *const controllers[] = {
 static const task_def_t *const tasks[] = {
     REGISTRY_TASKS
 };
+
+/* The models, from their one list (models/model_list.h). */
+#define SIM_MODEL(name) &name##_model,
+const model_def_t *const sim_models[SIM_MODEL_COUNT] = {
+#include "models/model_list.h"
+};
+#undef SIM_MODEL
 
 #define COUNT(a) (sizeof (a) / sizeof (a)[0])
 
@@ -72,4 +80,16 @@ const task_def_t *registry_task(const char *name)
 const task_def_t *registry_task_at(size_t i)
 {
     return i < COUNT(tasks) ? tasks[i] : NULL;
+}
+
+const task_def_t *registry_task_for_controller(const char *controller)
+{
+    for (size_t i = 0; i < COUNT(tasks); i++) {
+        for (size_t k = 0; tasks[i]->controllers != NULL && tasks[i]->controllers[k] != NULL; k++) {
+            if (strcmp(tasks[i]->controllers[k], controller) == 0) {
+                return tasks[i];
+            }
+        }
+    }
+    return NULL;
 }

@@ -12,7 +12,7 @@
 #include <stddef.h>
 
 #include "common/controller.h"
-#include "core/task.h"
+#include "swarmsim/task.h"
 
 /** The controller called `name`, or NULL. */
 const controller_def_t *registry_controller(const char *name);
@@ -23,6 +23,10 @@ const controller_def_t *registry_controller_at(size_t i);
 const task_def_t *registry_task(const char *name);
 /** The i-th registered task, or NULL past the end. */
 const task_def_t *registry_task_at(size_t i);
+
+/** The task whose `controllers` list `controller` (its world: without it
+ *  that controller's robots have nothing to do), or NULL. */
+const task_def_t *registry_task_for_controller(const char *controller);
 
 /** Robots that run no firmware: they keep the wheel speeds last set through
  *  their hal_t (tests drive robots so) and are obstacles otherwise. */

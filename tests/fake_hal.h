@@ -37,6 +37,8 @@ struct hal {
     hal_blob_t blobs[HAL_MAX_BLOBS];
     uint8_t n_blobs;
     uint32_t mic[HAL_MIC_COUNT][HAL_SOUND_BANDS];  /**< level counts */
+    uint8_t has_ground;           /**< the robot carries the ground-sensor module */
+    uint16_t ground[HAL_GROUND_COUNT];             /**< its readings, counts */
 
     /* Recorded actuators. */
     int16_t left, right;          /**< last wheel speeds set */
@@ -207,6 +209,19 @@ hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
         return HAL_ERR_RANGE;
     }
     hal->speaker_band = band;
+    return HAL_OK;
+}
+
+hal_status_t hal_ground(hal_t *hal, uint8_t index, uint16_t *reflected)
+{
+    *reflected = 0;
+    if (index >= HAL_GROUND_COUNT) {
+        return HAL_ERR_RANGE;
+    }
+    if (!hal->has_ground) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    *reflected = hal->ground[index];
     return HAL_OK;
 }
 

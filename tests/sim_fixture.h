@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "registry.h"
 
 /** A scenario (on the heap: scenario_free, free) of `robots` idle robots
@@ -36,7 +36,7 @@ static inline scenario_t *fixture_idle_scenario(uint32_t robots, float arena)
 /** A run of `sc` with `seed`; fails the test when sim_create refuses it. */
 static inline sim_t *fixture_sim(const scenario_t *sc, uint64_t seed)
 {
-    char err[256] = "";
+    char err[SIM_ERR_MAX] = "";
     sim_t *sim = sim_create(sc, seed, err);
     if (!sim) fail_msg("sim_create: %s", err);
     return sim;

@@ -17,8 +17,10 @@
 
 #include "hal.h"
 #include "units.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
+/* The camera's keys and model names, set in code (an internal header). */
+#include "models/camera/camera.h"
 
 #define PI 3.14159265358979
 /* One column of the 40-column, 56 deg frame, mrad. */
@@ -33,8 +35,8 @@ static scenario_t *camera_scenario(int model, uint32_t robots)
 {
     scenario_t *sc = fixture_idle_scenario(robots, 3.0f);
     sc->groups[0].placement.shape = PLACE_RECTANGLE;   /* spots clear of the objects */
-    sc->camera.model = model;
-    sc->camera.fps = 0.0f;
+    camera_config_mut(sc)->model = model;
+    camera_config_mut(sc)->fps = 0.0f;
     return sc;
 }
 
@@ -86,7 +88,7 @@ static void test_token_ahead_both_models(void **state)
         assert_non_null(t);
         double expect = 2000.0 * asin(TOKEN_R / 0.3);
         print_message("%s: bearing %d mrad, width %u mrad (expected 0 and %.0f), %u px\n",
-                      scenario_camera_model_names[model], t->bearing_mrad, t->width_mrad, expect, t->pixels);
+                      camera_kind_names[model], t->bearing_mrad, t->width_mrad, expect, t->pixels);
         double tol_w = model == CAMERA_GEOMETRIC ? 2.0 : 1.5 * COLUMN_MRAD;
         double tol_b = model == CAMERA_GEOMETRIC ? 2.0 : 0.5 * COLUMN_MRAD;
         assert_true(fabs(t->width_mrad - expect) <= tol_w);
@@ -113,7 +115,7 @@ static void test_side_by_side_merge_when_rendered(void **state)
         hal_blob_t b[HAL_MAX_BLOBS];
         uint8_t n = blobs_of(sim, 0, b);
         uint8_t red = count_colour(b, n, HAL_COLOUR_RED);
-        print_message("%s: %u red blob(s), widest %u mrad\n", scenario_camera_model_names[model], red,
+        print_message("%s: %u red blob(s), widest %u mrad\n", camera_kind_names[model], red,
                       widest(b, n, HAL_COLOUR_RED)->width_mrad);
         if (model == CAMERA_GEOMETRIC) {
             assert_int_equal(red, 2);
@@ -205,7 +207,7 @@ static void test_frames_at_their_rate_and_age(void **state)
     (void)state;
     for (int model = CAMERA_GEOMETRIC; model <= CAMERA_RENDERED; model++) {
         scenario_t *sc = camera_scenario(model, 2);
-        sc->camera.fps = 5.0f;
+        camera_config_mut(sc)->fps = 5.0f;
         add_cylinder(sc, 0.3f, 0.0f, TOKEN_R, TOKEN_H, HAL_COLOUR_RED);
         sim_t *sim = fixture_sim(sc, 3);
         sim_set_robot_pose(sim, 1, -1.0, -1.0, 0.0);
@@ -223,7 +225,7 @@ static void test_frames_at_their_rate_and_age(void **state)
             if (count_colour(b, blobs_of(sim, 0, b), HAL_COLOUR_RED) == 0) gone = s;
         }
         print_message("%s: first frame after %d step(s), the turn seen after %d\n",
-                      scenario_camera_model_names[model], first + 1, gone + 1);
+                      camera_kind_names[model], first + 1, gone + 1);
         assert_true(gone >= 1 && gone <= 4);
         sim_destroy(sim);
         scenario_free(sc);
@@ -237,7 +239,7 @@ static void test_rendered_runs_are_deterministic(void **state)
 {
     (void)state;
     scenario_t *sc = calloc(1, sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_override_t set[] = { { .text = "camera.model=rendered" }, { .text = "camera.noise=6" } };
     assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", set, 2, sc, err), 0);
     uint64_t hash[2];
@@ -276,7 +278,7 @@ static void test_rendered_runs_are_deterministic(void **state)
 static void under_nest_lamp(scenario_t *sc, int arena)
 {
     scenario_t *base = calloc(1, sizeof *base);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(base);
     assert_int_equal(scenario_load("../sim_host/scenarios/foraging_base.yaml", NULL, 0, base, err), 0);
     if (arena) {
@@ -366,8 +368,8 @@ static void test_detector_reach_is_the_geometric_range(void **state)
         }
         double reach = last_seen - TOKEN_R;   /* to the token's nearest point, as camera.range */
         print_message("reach %s: %.3f m (default camera.range %.2f m)\n", side ? "shaded" : "lit", reach,
-                      (double)sc->camera.range);
-        assert_true(fabs(reach - sc->camera.range) <= 0.05 + 1e-6);
+                      (double)camera_config_mut(sc)->range);
+        assert_true(fabs(reach - camera_config_mut(sc)->range) <= 0.05 + 1e-6);
     }
     sim_destroy(sim);
     scenario_free(sc);

@@ -20,9 +20,9 @@
 
 #include "sim_fixture.h"
 
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "tasks/paths/paths.h"
 
 /* The seed and the bound: seed 10 merges at 175.4 s with the turret of
@@ -41,7 +41,7 @@ static void test_square_path_forms(void **state)
                                   { "robots.1.placement.poses.0.x=0.7" },
                                   { "robots.2.count=15" } };
     scenario_t *sc = calloc(1, sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load("../sim_host/scenarios/eaipp_square.yaml", set, 3, sc, err) != 0) fail_msg("%s", err);
     sim_t *sim = sim_create(sc, PATH_SEED, err);

@@ -16,9 +16,9 @@
 
 #include <cmocka.h>
 
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "examples/phototaxis.h"
 #include "tasks/gather/gather.h"
 
@@ -27,7 +27,7 @@
 static scenario_t *load(const char *const *sets, size_t n)
 {
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_override_t o[8];
     assert_non_null(sc);
     for (size_t k = 0; k < n; k++) o[k].text = sets[k];
@@ -50,7 +50,7 @@ static void test_walkthrough_scenario_gathers(void **state)
 {
     (void)state;
     scenario_t *sc = load(NULL, 0);
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 1, err);
     if (!sim) fail_msg("%s", err);
     uint64_t steps = 0;
@@ -86,7 +86,7 @@ static void test_no_stop_condition(void **state)
     (void)state;
     const char *sets[] = { "gather.stop_fraction=0" };
     scenario_t *sc = load(sets, 1);
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 1, err);
     if (!sim) fail_msg("%s", err);
     for (int k = 0; k < 1000; k++) sim_step(sim);
@@ -105,7 +105,7 @@ static void test_task_check(void **state)
 {
     (void)state;
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_override_t o[1] = { { "gather.goal.x=9" } };
     assert_int_equal(scenario_load(SCENARIO, o, 1, sc, err), -1);
     assert_non_null(strstr(err, "--set gather.goal.x=9: gather.goal.x: the goal's centre is outside the arena (x in [-1.5, 1.5]"));

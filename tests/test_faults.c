@@ -1,5 +1,5 @@
 /*
- * test_faults.c - faults injected into robots (sim_host/core/faults.c):
+ * test_faults.c - faults injected into robots (sim_host/models/faults/faults.c):
  * who fails and when (the fraction, the onset, the seed), what each fault
  * does through the HAL, the record of it (events, summary counts), the
  * liar bounded by the beacon, and the scenario keys' errors.
@@ -17,14 +17,15 @@
 #include <cmocka.h>
 
 #include "hal.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
-#include "core/sim_internal.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
+/* Who was drawn to fail, and faults_stopped: the model's own header. */
+#include "models/faults/faults.h"
 #include "foraging/nest_beacon.h"
 
 /* Loads YAML text (through a temporary file) with overrides. */
-static int load_text(const char *yaml, const char *const *sets, scenario_t *sc, char err[SCENARIO_ERROR_MAX])
+static int load_text(const char *yaml, const char *const *sets, scenario_t *sc, char err[SIM_ERR_MAX])
 {
     char path[] = "/tmp/test_faults_XXXXXX";
     scenario_override_t ov[8];
@@ -44,7 +45,7 @@ static int load_text(const char *yaml, const char *const *sets, scenario_t *sc, 
 
 static sim_t *make(const char *yaml, const char *const *sets, uint64_t seed, scenario_t **out)
 {
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_t *sc = calloc(1, sizeof *sc);
     assert_non_null(sc);
     if (load_text(yaml, sets, sc, err) != 0) fail_msg("%s", err);
@@ -276,7 +277,7 @@ static void test_radio_faults(void **state)
 static void test_liar_is_bounded_by_the_beacon(void **state)
 {
     (void)state;
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_override_t ov[] = { { "robots.0.faults=[{kind: liar, fraction: 0.05, at: 0}]" },
                                  { "foraging.desired_food=1" } };   /* S < 0: everyone stays home, in range */
     scenario_t *sc = calloc(1, sizeof *sc);
@@ -290,8 +291,9 @@ static void test_liar_is_bounded_by_the_beacon(void **state)
         if (!strcmp(sim_robot_def(sim, i)->name, NEST_BEACON_NAME)) b = sim_robot_controller_const(sim, i);
     }
     assert_non_null(b);
-    assert_int_equal(sim->n_faults, 1);
-    uint32_t liar = sim->faults[0].robot;
+    const fault_run_t *drawn;
+    assert_int_equal(faults_drawn(sim, &drawn), 1);
+    uint32_t liar = drawn[0].robot;
     /* Its credited total (mod 256): one deposit per 20 steps, not 3000. */
     assert_true(b->last_deposits[liar] >= 148u && b->last_deposits[liar] <= 150u);
     assert_true(b->ledger_units <= NB_LEDGER_LIMIT_TOKENS * 1500);
@@ -302,7 +304,7 @@ static void test_liar_is_bounded_by_the_beacon(void **state)
 
 static void expect_error(const char *set, const char *want)
 {
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     const char *sets[] = { set, NULL };
     scenario_t *sc = calloc(1, sizeof *sc);
     assert_non_null(sc);

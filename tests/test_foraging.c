@@ -16,9 +16,9 @@
 
 #include "sim_fixture.h"
 
-#include "core/scenario.h"
-#include "core/metrics.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/sim.h"
 #include "foraging/forager.h"
 #include "foraging/nest_beacon.h"
 #include "tasks/foraging/foraging.h"
@@ -30,7 +30,7 @@
 static scenario_t *load(const char *policy, const char *info)
 {
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX], set_policy[64], set_info[64];
+    char err[SIM_ERR_MAX], set_policy[64], set_info[64];
     snprintf(set_policy, sizeof set_policy, "robots.0.policy=%s", policy);
     snprintf(set_info, sizeof set_info, "foraging.information=%s", info);
     scenario_override_t sets[3] = { { set_policy }, { set_info }, { "robots.1.count=0" } };

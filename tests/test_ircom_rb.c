@@ -1,6 +1,6 @@
 /*
  * test_ircom_rb.c - the simulator's IR messaging as seed 003 needs it
- * (sim_host/core/ircom.c): several messages a period (ircom.tx_per_period),
+ * (sim_host/models/ircom/ircom.c): several messages a period (ircom.tx_per_period),
  * per-message loss, the paper's random-vector bearing noise
  * (ircom.bearing_noise_vec), collisions (ircom.slots) and the inbox size
  * (ircom.queue).  Time: about a second.
@@ -19,19 +19,20 @@
 
 #include "hal.h"
 #include "registry.h"
-#include "core/scenario.h"
-#include "core/sim.h"
-#include "core/sim_internal.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
+/* The IR model's keys, set in code (an internal header). */
+#include "models/ircom/ircom.h"
 
 static scenario_t *idle_scenario(uint32_t robots)
 {
     scenario_t *sc = fixture_idle_scenario(robots, 3.0f);
-    sc->ircom.payload_bits = 16;
-    sc->ircom.range = 0.8f;
-    sc->ircom.loss = 0.0f;
-    sc->ircom.quantise_bearing = 0;
-    sc->ircom.bearing_noise = 0.0f;
-    sc->ircom.range_noise_rel = 0.0f;
+    ircom_config_mut(sc)->payload_bits = 16;
+    ircom_config_mut(sc)->range = 0.8f;
+    ircom_config_mut(sc)->loss = 0.0f;
+    ircom_config_mut(sc)->quantise_bearing = 0;
+    ircom_config_mut(sc)->bearing_noise = 0.0f;
+    ircom_config_mut(sc)->range_noise_rel = 0.0f;
     return sc;
 }
 
@@ -47,7 +48,7 @@ static void test_several_per_period(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(2);
-    sc->ircom.tx_per_period = 3;
+    ircom_config_mut(sc)->tx_per_period = 3;
     sim_t *sim = fixture_sim(sc, 1);
     hal_ircom_msg_t m;
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
@@ -73,8 +74,8 @@ static void test_loss_is_per_message(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(2);
-    sc->ircom.loss = 0.3f;
-    sc->ircom.tx_per_period = 4;
+    ircom_config_mut(sc)->loss = 0.3f;
+    ircom_config_mut(sc)->tx_per_period = 4;
     sim_t *sim = fixture_sim(sc, 2);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);
@@ -95,7 +96,7 @@ static void test_bearing_noise_vector(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(2);
-    sc->ircom.bearing_noise_vec = 0.05f;
+    ircom_config_mut(sc)->bearing_noise_vec = 0.05f;
     sim_t *sim = fixture_sim(sc, 3);
     /* Sender 0.5 m ahead: the measured vector minus the true one is the
      * noise vector, whose mean squared length is sd^2 (uniform azimuth,
@@ -123,7 +124,7 @@ static void test_bearing_noise_vector(void **state)
     sim_destroy(sim);
 
     /* sd 0: exact. */
-    sc->ircom.bearing_noise_vec = 0.0f;
+    ircom_config_mut(sc)->bearing_noise_vec = 0.0f;
     sim = fixture_sim(sc, 3);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.0, 0.4, 0.0);
@@ -144,7 +145,7 @@ static void test_collisions(void **state)
     /* Robot 0 hears robots 1 and 2: with one slot a period their frames
      * collide at robot 0, and each is deaf while it sends. */
     scenario_t *sc = idle_scenario(3);
-    sc->ircom.slots = 1;
+    ircom_config_mut(sc)->slots = 1;
     sim_t *sim = fixture_sim(sc, 4);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);
@@ -166,7 +167,7 @@ static void test_collisions(void **state)
     }
     sim_destroy(sim);
     /* With 10 slots the two frames share one a tenth of the time. */
-    sc->ircom.slots = 10;
+    ircom_config_mut(sc)->slots = 10;
     sim = fixture_sim(sc, 5);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);
@@ -191,7 +192,7 @@ static void test_queue_size(void **state)
 {
     (void)state;
     scenario_t *sc = idle_scenario(4);
-    sc->ircom.queue = 2;
+    ircom_config_mut(sc)->queue = 2;
     sim_t *sim = fixture_sim(sc, 6);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.3, 0.0, 0.0);

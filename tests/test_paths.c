@@ -32,10 +32,12 @@
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "tasks/paths/paths.h"
+/* The IR sensors' keys, set in code (an internal header). */
+#include "models/ir/ir.h"
 
 /* Groups: 0 the nest at (-1, 0), 1 the food at (+1, 0), 2 `swarm` idle
  * robots in a row at y = -2 (out of everyone's range until posed). */
@@ -47,7 +49,7 @@ static scenario_t *world(uint32_t swarm)
     sc->arena.width = sc->arena.height = 5.0f;
     sc->duration = 1000.0;
     sc->control_period_ms = 100;
-    sc->ir.noise_rel = sc->ir.noise_abs = 0.0f;
+    ir_config_mut(sc)->noise_rel = ir_config_mut(sc)->noise_abs = 0.0f;
     sc->group_count = 3;
     const char *names[3] = { "nest", "food", "swarm" };
     for (uint32_t g = 0; g < 3; g++) {
@@ -377,7 +379,7 @@ static void test_random_cylinders(void **state)
     /* No room: an error, not a hang. */
     sc->random_cylinders.count = 400;
     sc->random_cylinders.radius_min = sc->random_cylinders.radius_max = 0.3f;
-    char err[256] = "";
+    char err[SIM_ERR_MAX] = "";
     assert_null(sim_create(sc, 1, err));
     assert_non_null(strstr(err, "random_cylinders"));
     scenario_free(sc);
@@ -393,7 +395,7 @@ static scenario_t *shipped(const char *file, const scenario_override_t *set, siz
     char path[256];
     snprintf(path, sizeof path, "../sim_host/scenarios/%s", file);
     scenario_t *sc = calloc(1, sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     if (scenario_load(path, set, n_set, sc, err) != 0) fail_msg("%s: %s", file, err);
     return sc;
 }

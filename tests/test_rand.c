@@ -8,8 +8,10 @@
 
 #include <cmocka.h>
 
-#include "core/rand.h"
+#include "swarmsim/rand.h"
 #include "common/rng.h"
+/* The models' names (sim_rand_purpose): the list is internal. */
+#include "models/model.h"
 
 static void test_normal_moments_and_tails(void **state)
 {
@@ -52,6 +54,29 @@ static void test_streams_differ_and_repeat(void **state)
     assert_true(sim_rand_seed32(1, 0, RAND_CONTROLLER) != sim_rand_seed32(1, 1, RAND_CONTROLLER));
 }
 
+/* A purpose from a name lies above the numbered ones, is the same for the
+ * same name, and no two shipped models' names share one (a model that
+ * seeds from its name gets streams of its own). */
+static void test_purposes_of_names(void **state)
+{
+    (void)state;
+    uint64_t seen[SIM_MODEL_COUNT];
+    assert_true(sim_rand_purpose("ground") == sim_rand_purpose("ground"));
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        uint64_t p = sim_rand_purpose(sim_models[id]->name);
+        assert_true(p >= 128u && p <= 255u && p > RAND_CAMERA);
+        for (uint32_t k = 0; k < id; k++) {
+            if (seen[k] == p) fail_msg("models %s and %s share stream purpose %u", sim_models[k]->name,
+                                       sim_models[id]->name, (unsigned)p);
+        }
+        seen[id] = p;
+    }
+    sim_rand_t a, b;
+    sim_rand_seed(&a, 1, 3, sim_rand_purpose("ground"));
+    sim_rand_seed(&b, 1, 3, RAND_SENSORS);
+    assert_true(sim_rand_u64(&a) != sim_rand_u64(&b));
+}
+
 static void test_firmware_rng_ranges(void **state)
 {
     (void)state;
@@ -75,6 +100,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_normal_moments_and_tails),
         cmocka_unit_test(test_streams_differ_and_repeat),
+        cmocka_unit_test(test_purposes_of_names),
         cmocka_unit_test(test_firmware_rng_ranges),
     };
     return cmocka_run_group_tests_name("rand", tests, NULL, NULL);

@@ -109,7 +109,7 @@ static void cleanup(const char *path)
 static void render_and_read(render_ctx_t *ctx, const render_scene_t *sc,
                             const char *name, picture_t *pic)
 {
-    char path[256], tmp[300], err[RENDER_ERR_MAX] = "";
+    char path[256], tmp[300], err[SIM_ERR_MAX] = "";
     path_in_dir(path, sizeof path, name);
     int rc = render_scene_png(ctx, sc, path, err);
     if (rc != 0)
@@ -472,7 +472,7 @@ static void test_bad_path(void **state)
 {
     render_ctx_t *ctx = *state;
     render_scene_t sc = empty_scene();
-    char err[RENDER_ERR_MAX] = "";
+    char err[SIM_ERR_MAX] = "";
     const char *bad = "/nonexistent-dir-for-test-render/x.png";
     assert_int_equal(render_scene_png(ctx, &sc, bad, err), -1);
     assert_non_null(strstr(err, bad));
@@ -502,7 +502,7 @@ static void test_bad_path(void **state)
 static void test_invalid_arguments(void **state)
 {
     render_ctx_t *ctx = *state;
-    char err[RENDER_ERR_MAX] = "";
+    char err[SIM_ERR_MAX] = "";
     char path[256];
     path_in_dir(path, sizeof path, "invalid.png");
 
@@ -557,7 +557,7 @@ static void test_overwrite(void **state)
     render_scene_t sc = empty_scene();
     render_object_t ob = {.shape = 0, .x = 0.0f, .y = 0.0f, .radius = 0.1f,
                           .colour = 2};
-    char path[256], err[RENDER_ERR_MAX];
+    char path[256], err[SIM_ERR_MAX];
     path_in_dir(path, sizeof path, "overwrite.png");
     assert_int_equal(render_scene_png(ctx, &sc, path, err), 0);
     sc.objects = &ob;
@@ -598,7 +598,7 @@ typedef struct worker {
     render_ctx_t *ctx;  /* NULL: the worker creates and destroys its own */
     int frames;
     int failures;       /* frames that were wrong or failed */
-    char err[RENDER_ERR_MAX];
+    char err[SIM_ERR_MAX];
 } worker_t;
 
 /* Each worker's robot sits at its own place with its own highlight, and

@@ -72,7 +72,7 @@ static picture_t *draw(fixture_t *fx, const render_scene_t *sc)
 {
     picture_t *pic = malloc(sizeof *pic);
     assert_non_null(pic);
-    char err[RENDER_ERR_MAX] = "";
+    char err[SIM_ERR_MAX] = "";
     int rc = render_scene_rgb(fx->ctx, sc, pic->rgb, err);
     if (rc != 0)
         print_error("render_scene_rgb: %s\n", err);
@@ -280,7 +280,7 @@ static void test_rgb_is_the_png(void **state)
     int fd = mkstemp(path);
     assert_true(fd >= 0);
     close(fd);
-    char err[RENDER_ERR_MAX] = "";
+    char err[SIM_ERR_MAX] = "";
     assert_int_equal(render_scene_png(fx->ctx, &fx->sc, path, err), 0);
     png_image img;
     memset(&img, 0, sizeof img);
@@ -304,7 +304,7 @@ static void test_bad_arguments(void **state)
     fixture_t *fx = *state;
     render_scene_t sc = fx->sc;
     sc.legend = NULL;
-    char err[RENDER_ERR_MAX] = "";
+    char err[SIM_ERR_MAX] = "";
     uint8_t *rgb = malloc(W * H * 3);
     assert_non_null(rgb);
     assert_int_equal(render_scene_rgb(fx->ctx, &sc, rgb, err), -1);

@@ -19,8 +19,8 @@
 #include <cmocka.h>
 
 #include "core/robot_link.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "foraging/forager.h"
 #include "swarmlcm_robot_state_t.h"
 #include "swarmlcm_schema_t.h"
@@ -30,7 +30,7 @@
 static scenario_t *load(int sil, const char *baud)
 {
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     scenario_override_t o[2] = { { sil ? "robot_telemetry.enabled=true" : "robot_telemetry.enabled=false" },
                                  { baud } };
     assert_non_null(sc);
@@ -40,7 +40,7 @@ static scenario_t *load(int sil, const char *baud)
 
 static sim_t *make(const scenario_t *sc)
 {
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 6, err);
     if (!sim) fail_msg("%s", err);
     return sim;

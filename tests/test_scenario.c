@@ -19,10 +19,17 @@
 #include <unistd.h>
 
 #include "common/random_walk.h"
-#include "core/scenario.h"
+#include "swarmsim/scenario.h"
 #include "foraging/forager.h"
 #include "registry.h"
 #include "tasks/foraging/foraging.h"
+/* The models' configs, set and read in code (their headers are internal). */
+#include "models/camera/camera.h"
+#include "models/ir/ir.h"
+#include "models/host/host.h"
+#include "models/ircom/ircom.h"
+#include "models/wheels/wheels.h"
+#include "models/tracker/tracker.h"
 
 #define MAX_SETS 8
 
@@ -30,7 +37,7 @@ static char tmpdir[256];
 
 typedef struct fixture {
     scenario_t *sc;
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     char path[512];  /* the file of the last load */
 } fixture_t;
 
@@ -177,31 +184,31 @@ static void test_defaults(void **state)
     assert_int_equal(sc->object_count, 0);
     assert_int_equal(sc->light_count, 0);
     assert_int_equal(sc->task_count, 0);
-    assert_int_equal(sc->tracker.enabled, 0);
+    assert_int_equal(tracker_config(sc)->enabled, 0);
     assert_string_equal(sc->groups[0].controller, "random_walk");
     assert_string_equal(sc->groups[0].name, "random_walk");
     assert_ptr_equal(sc->groups[0].def, registry_controller("random_walk"));
     assert_int_equal(rw_params(sc)->speed_steps_s, 500);
     assert_int_equal(rw_params(sc)->avoid_exit, 150);
-    assert_float_equal(sc->ir.aperture, 15.0, 1e-6);
-    assert_float_equal(sc->ir.range, 0.1, 1e-6);
-    assert_float_equal(sc->ir.noise_rel, 0.01, 1e-6);
-    assert_float_equal(sc->ir.noise_abs, 5.0, 1e-6);
-    assert_float_equal(sc->ambient.dark, 4000.0, 1e-6);
-    assert_float_equal(sc->ambient.half, 1.0, 1e-6);
-    assert_float_equal(sc->ambient.noise_rel, 0.01, 1e-6);
-    assert_float_equal(sc->camera.fov, 56.0, 1e-6);
-    assert_float_equal(sc->camera.range, 0.9, 1e-6);   /* the detector's reach (test_camera_render) */
-    assert_float_equal(sc->camera.fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
-    assert_int_equal(sc->camera.width_px, 40);
-    assert_int_equal(sc->camera.height_px, 20);   /* the e-puck image's frame */
-    assert_float_equal(sc->ircom.range, 0.25, 1e-6);
-    assert_float_equal(sc->ircom.loss, 0.1, 1e-6);
-    assert_float_equal(sc->ircom.bearing_noise, 5.0, 1e-6);
-    assert_float_equal(sc->ircom.range_noise_rel, 0.1, 1e-6);
-    assert_int_equal(sc->ircom.quantise_bearing, 1);
-    assert_int_equal(sc->ircom.blocked_by_robots, 0);
-    assert_float_equal(sc->wheels.speed_noise_rel, 0.0, 1e-9);
+    assert_float_equal(ir_config(sc)->aperture, 15.0, 1e-6);
+    assert_float_equal(ir_config(sc)->range, 0.1, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_rel, 0.01, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_abs, 5.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.dark, 4000.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.half, 1.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.noise_rel, 0.01, 1e-6);
+    assert_float_equal(camera_config(sc)->fov, 56.0, 1e-6);
+    assert_float_equal(camera_config(sc)->range, 0.9, 1e-6);   /* the detector's reach (test_camera_render) */
+    assert_float_equal(camera_config(sc)->fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
+    assert_int_equal(camera_config(sc)->width_px, 40);
+    assert_int_equal(camera_config(sc)->height_px, 20);   /* the e-puck image's frame */
+    assert_float_equal(ircom_config(sc)->range, 0.25, 1e-6);
+    assert_float_equal(ircom_config(sc)->loss, 0.1, 1e-6);
+    assert_float_equal(ircom_config(sc)->bearing_noise, 5.0, 1e-6);
+    assert_float_equal(ircom_config(sc)->range_noise_rel, 0.1, 1e-6);
+    assert_int_equal(ircom_config(sc)->quantise_bearing, 1);
+    assert_int_equal(ircom_config(sc)->blocked_by_robots, 0);
+    assert_float_equal(wheels_config(sc)->speed_noise_rel, 0.0, 1e-9);
     assert_int_equal(sc->output.timeseries_every, 10);
 }
 
@@ -401,27 +408,27 @@ static void test_full_file(void **state)
     assert_int_equal(rw_params(sc)->avoid_enter, 500);
     assert_int_equal(rw_params(sc)->avoid_exit, 250);
 
-    assert_float_equal(sc->ir.aperture, 20.0, 1e-6);
-    assert_float_equal(sc->ir.range, 0.07, 1e-6);
-    assert_float_equal(sc->ir.noise_rel, 0.05, 1e-6);
-    assert_float_equal(sc->ir.noise_abs, 10.0, 1e-6);
-    assert_float_equal(sc->ambient.dark, 3800.0, 1e-6);
-    assert_float_equal(sc->ambient.half, 0.5, 1e-6);
-    assert_float_equal(sc->ambient.noise_rel, 0.02, 1e-6);
-    assert_float_equal(sc->camera.fov, 60.0, 1e-6);
-    assert_float_equal(sc->camera.range, 1.0, 1e-6);
-    assert_int_equal(sc->camera.width_px, 64);
-    assert_int_equal(sc->camera.height_px, 48);
-    assert_float_equal(sc->ircom.range, 0.3, 1e-6);
-    assert_float_equal(sc->ircom.loss, 0.25, 1e-6);
-    assert_float_equal(sc->ircom.bearing_noise, 10.0, 1e-6);
-    assert_float_equal(sc->ircom.range_noise_rel, 0.2, 1e-6);
-    assert_int_equal(sc->ircom.quantise_bearing, 0);
-    assert_int_equal(sc->ircom.blocked_by_robots, 1);
-    assert_float_equal(sc->wheels.speed_noise_rel, 0.05, 1e-6);
-    assert_int_equal(sc->tracker.enabled, 1);
-    assert_float_equal(sc->tracker.noise_mm, 5.0, 1e-6);
-    assert_float_equal(sc->tracker.dropout, 0.1, 1e-6);
+    assert_float_equal(ir_config(sc)->aperture, 20.0, 1e-6);
+    assert_float_equal(ir_config(sc)->range, 0.07, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_rel, 0.05, 1e-6);
+    assert_float_equal(ir_config(sc)->noise_abs, 10.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.dark, 3800.0, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.half, 0.5, 1e-6);
+    assert_float_equal(ir_config(sc)->ambient.noise_rel, 0.02, 1e-6);
+    assert_float_equal(camera_config(sc)->fov, 60.0, 1e-6);
+    assert_float_equal(camera_config(sc)->range, 1.0, 1e-6);
+    assert_int_equal(camera_config(sc)->width_px, 64);
+    assert_int_equal(camera_config(sc)->height_px, 48);
+    assert_float_equal(ircom_config(sc)->range, 0.3, 1e-6);
+    assert_float_equal(ircom_config(sc)->loss, 0.25, 1e-6);
+    assert_float_equal(ircom_config(sc)->bearing_noise, 10.0, 1e-6);
+    assert_float_equal(ircom_config(sc)->range_noise_rel, 0.2, 1e-6);
+    assert_int_equal(ircom_config(sc)->quantise_bearing, 0);
+    assert_int_equal(ircom_config(sc)->blocked_by_robots, 1);
+    assert_float_equal(wheels_config(sc)->speed_noise_rel, 0.05, 1e-6);
+    assert_int_equal(tracker_config(sc)->enabled, 1);
+    assert_float_equal(tracker_config(sc)->noise_mm, 5.0, 1e-6);
+    assert_float_equal(tracker_config(sc)->dropout, 0.1, 1e-6);
     assert_int_equal(sc->output.timeseries_every, 5);
     assert_int_equal(sc->task_count, 1);
     assert_ptr_equal(sc->tasks[0].def, &foraging_task);
@@ -482,7 +489,7 @@ static void test_unknown_keys(void **state)
         { "duraton: 5\n", 1, "duraton: unknown key 'duraton' (did you mean 'duration'?)" },
         { RW "    zzzzzz: 1\n", 3,
           "robots[0].zzzzzz: unknown key 'zzzzzz' (valid keys: name, count, controller, policy, "
-          "heading, min_spacing, moves, placement, faults, params)" },
+          "heading, min_spacing, moves, placement, faults, ground_sensors, params)" },
         { RW "    placement: {shape: circle, radius: 1, centre: 0}\n", 3,
           "robots[0].placement.centre: unknown key 'centre' (valid keys: shape, x, y," },
         { "objects:\n  - radius: 0.1\n  - radius: 0.1\n    colur: red\n", 4,
@@ -749,7 +756,7 @@ static void test_override_existing_and_absent(void **state)
     assert_int_equal(fx->sc->group_count, 2);                /* appended */
     assert_string_equal(fx->sc->groups[1].controller, "idle");
     assert_int_equal(fx->sc->groups[1].count, 1);            /* entry default */
-    assert_int_equal(fx->sc->tracker.enabled, 1);
+    assert_int_equal(tracker_config(fx->sc)->enabled, 1);
     assert_int_equal(rw_params(fx->sc)->speed_steps_s, 300);
     assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);  /* default kept */
     assert_string_equal(fx->sc->name, "with space");
@@ -892,7 +899,7 @@ static void test_group_names(void **state)
 static void test_effective_scenario_of_a_multiline_value(void **state)
 {
     fixture_t *fx = *state;
-    char err[SCENARIO_ERROR_MAX], out[600];
+    char err[SIM_ERR_MAX], out[600];
     scenario_t *again = malloc(sizeof *again);
     assert_non_null(again);
     snprintf(fx->path, sizeof fx->path, "%s/multiline.yaml", tmpdir);
@@ -1018,11 +1025,11 @@ static void test_host_messages(void **state)
     expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
     assert_int_equal(load_sets(fx, "s.yaml", RW "    count: 2\nhost:\n  messages:\n"
                                "    - {robot: 1, at: 0.5, hex: 'A1b2'}\n", NULL), 0);
-    assert_int_equal(fx->sc->host.message_count, 1);
-    assert_int_equal(fx->sc->host.messages[0].robot, 1);
-    assert_int_equal(fx->sc->host.messages[0].len, 2);
-    assert_int_equal(fx->sc->host.messages[0].bytes[0], 0xA1);
-    assert_int_equal(fx->sc->host.messages[0].bytes[1], 0xB2);
+    assert_int_equal(host_config(fx->sc)->message_count, 1);
+    assert_int_equal(host_config(fx->sc)->messages[0].robot, 1);
+    assert_int_equal(host_config(fx->sc)->messages[0].len, 2);
+    assert_int_equal(host_config(fx->sc)->messages[0].bytes[0], 0xA1);
+    assert_int_equal(host_config(fx->sc)->messages[0].bytes[1], 0xB2);
 }
 
 #define T(f) cmocka_unit_test_setup_teardown(f, setup, teardown)

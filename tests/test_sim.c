@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,9 +20,15 @@
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
-#include "core/scenario.h"
-#include "core/sim.h"
-#include "core/sim_internal.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
+#include "models/camera/camera.h"
+#include "models/ir/ir.h"
+#include "models/host/host.h"
+#include "models/ircom/ircom.h"
+#include "models/wheels/wheels.h"
+#include "models/sound/sound.h"
+#include "models/tracker/tracker.h"
 
 #define PI 3.14159265358979
 
@@ -118,7 +125,7 @@ static void test_light_falls_with_distance(void **state)
     scenario_t *sc = fixture_idle_scenario(1, 6.0f);
     sc->light_count = 1;
     sc->lights[0] = (light_def_t){ .x = 0.0f, .y = 0.0f, .height = 0.1f, .intensity = 1.0f };
-    sc->ambient.noise_rel = 0.0f;
+    ir_config_mut(sc)->ambient.noise_rel = 0.0f;
     sim_t *sim = fixture_sim(sc, 4);
     double prev = 0;
     static const double dist[] = { 0.3, 0.6, 1.2, 2.4 };
@@ -133,7 +140,7 @@ static void test_light_falls_with_distance(void **state)
         assert_true(back > front);
         prev = front;
     }
-    assert_true(prev < sc->ambient.dark);
+    assert_true(prev < ir_config_mut(sc)->ambient.dark);
     sim_destroy(sim);
     scenario_free(sc);
     free(sc);
@@ -151,7 +158,7 @@ static void test_camera_field_of_view_and_occlusion(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(2, 3.0f);
-    sc->camera.fps = 0.0f;   /* blobs of each step's poses: the geometry under test */
+    camera_config_mut(sc)->fps = 0.0f;   /* blobs of each step's poses: the geometry under test */
     assert_int_equal(scenario_add_object(sc, &(object_def_t){ .shape = SHAPE_CYLINDER, .x = 0.4f, .y = 0.0f,
                                                              .radius = 0.03f, .height = 0.05f,
                                                              .colour = HAL_COLOUR_RED }), 0);
@@ -322,7 +329,7 @@ static uint64_t run_hash(uint64_t seed, int steps)
 {
     scenario_t *sc = calloc(1, sizeof *sc);
     scenario_defaults(sc);
-    sc->wheels.speed_noise_rel = 0.05f;
+    wheels_config_mut(sc)->speed_noise_rel = 0.05f;
     sim_t *sim = fixture_sim(sc, seed);
     for (int k = 0; k < steps; k++) sim_step(sim);
     uint64_t h = sim_state_hash(sim);
@@ -341,6 +348,19 @@ static void test_same_seed_same_state(void **state)
 
 /* ----------------------------------------------------- wheel bias (eq 3) */
 
+/* Robot i's wheel bias (left or right), steps/s, read through the run's
+ * fields (sim_field), as a binding reads robots' arrays.  Writable: the
+ * saturation test sets a bias by hand. */
+static double *bias_of(const sim_t *sim, uint32_t i, int right)
+{
+    sim_field_t f;
+    assert_int_equal(sim_field(sim, right ? "wheels.bias_right" : "wheels.bias_left", &f), 0);
+    assert_int_equal(f.type, SIM_FIELD_F64);
+    assert_int_equal(f.count, 1);
+    assert_true(i < sim_robot_count(sim));
+    return (double *)(uintptr_t)((const char *)f.base + (size_t)i * f.stride);
+}
+
 /* wheels.bias_sd: each robot's two biases are drawn once a run, Gaussian with
  * the key's sd (m/s), from their own stream; off by default. */
 static void test_wheel_bias_draws(void **state)
@@ -348,23 +368,23 @@ static void test_wheel_bias_draws(void **state)
     (void)state;
     scenario_t *sc = fixture_idle_scenario(400, 20.0f);
     sim_t *sim = fixture_sim(sc, 5);
-    for (uint32_t i = 0; i < sim->n; i++) {
-        assert_true(sim->robots[i].bias_left == 0.0 && sim->robots[i].bias_right == 0.0);
+    for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+        assert_true(*bias_of(sim, i, 0) == 0.0 && *bias_of(sim, i, 1) == 0.0);
     }
     sim_destroy(sim);
-    sc->wheels.bias_sd = 0.02f;                       /* 2 cm/s = 155 steps/s */
+    wheels_config_mut(sc)->bias_sd = 0.02f;                       /* 2 cm/s = 155 steps/s */
     sim = fixture_sim(sc, 5);
     sim_t *same = fixture_sim(sc, 5), *other = fixture_sim(sc, 6);
     double sum = 0, sq = 0;
-    for (uint32_t i = 0; i < sim->n; i++) {
-        const sim_robot_t *r = &sim->robots[i];
-        assert_true(r->bias_left != r->bias_right);
-        assert_true(r->bias_left == same->robots[i].bias_left);
-        assert_true(r->bias_left != other->robots[i].bias_left);
-        sum += r->bias_left + r->bias_right;
-        sq += r->bias_left * r->bias_left + r->bias_right * r->bias_right;
+    for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+        const double bl = *bias_of(sim, i, 0), br = *bias_of(sim, i, 1);
+        assert_true(bl != br);
+        assert_true(bl == *bias_of(same, i, 0));
+        assert_true(bl != *bias_of(other, i, 0));
+        sum += bl + br;
+        sq += bl * bl + br * br;
     }
-    const double n = 2.0 * sim->n, sd = sqrt(sq / n), expect = 0.02 / EPUCK_STEP_M;
+    const double n = 2.0 * sim_robot_count(sim), sd = sqrt(sq / n), expect = 0.02 / EPUCK_STEP_M;
     /* 800 draws: the sd within 10 % (about 4 standard errors), the mean
      * within 4 standard errors of 0. */
     if (fabs(sd - expect) > 0.10 * expect || fabs(sum / n) > 4.0 * expect / sqrt(n)) {
@@ -384,11 +404,11 @@ static void test_wheel_bias_moves_and_saturates(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(2, 8.0f);
-    sc->wheels.bias_sd = 0.02f;
+    wheels_config_mut(sc)->bias_sd = 0.02f;
     sim_t *sim = fixture_sim(sc, 9);
     sim_set_robot_pose(sim, 0, -2.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 2.0, 2.0, 0.0);
-    const double bl = sim->robots[0].bias_left, br = sim->robots[0].bias_right;
+    const double bl = *bias_of(sim, 0, 0), br = *bias_of(sim, 0, 1);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
     double turned = 0, prev = 0, x, y, t;
     for (int k = 0; k < 10; k++) {                      /* 1 s */
@@ -409,7 +429,7 @@ static void test_wheel_bias_moves_and_saturates(void **state)
     sim_robot_pose(sim, 1, &x, &y, &t);                 /* commanded (0, 0) */
     assert_true(x == 2.0f && y == 2.0f);
     /* Saturation: a 0.5 m/s bias on both wheels drives at 1000 steps/s. */
-    sim->robots[1].bias_left = sim->robots[1].bias_right = 0.5 / EPUCK_STEP_M;
+    *bias_of(sim, 1, 0) = *bias_of(sim, 1, 1) = 0.5 / EPUCK_STEP_M;
     hal_set_wheel_speeds(sim_robot_hal(sim, 1), 100, 100);
     for (int k = 0; k < 10; k++) sim_step(sim);
     sim_robot_pose(sim, 1, &x, &y, &t);
@@ -428,22 +448,22 @@ static void test_wheel_bias_per_step(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(1, 8.0f);
-    sc->wheels.bias_sd = 0.02f;
-    sc->wheels.bias_per_step = 1;
+    wheels_config_mut(sc)->bias_sd = 0.02f;
+    wheels_config_mut(sc)->bias_per_step = 1;
     sim_t *sim = fixture_sim(sc, 9), *same = fixture_sim(sc, 9);
     hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
     hal_set_wheel_speeds(sim_robot_hal(same, 0), 388, 388);
-    double sq = 0, prev = sim->robots[0].bias_left;
+    double sq = 0, prev = *bias_of(sim, 0, 0);
     int changed = 0;
     const int steps = 400;
     for (int k = 0; k < steps; k++) {
         sim_step(sim);
         sim_step(same);
-        const sim_robot_t *r = &sim->robots[0];
-        assert_true(r->bias_left == same->robots[0].bias_left && r->bias_right == same->robots[0].bias_right);
-        changed += r->bias_left != prev;
-        prev = r->bias_left;
-        sq += r->bias_left * r->bias_left + r->bias_right * r->bias_right;
+        const double bl = *bias_of(sim, 0, 0), br = *bias_of(sim, 0, 1);
+        assert_true(bl == *bias_of(same, 0, 0) && br == *bias_of(same, 0, 1));
+        changed += bl != prev;
+        prev = bl;
+        sq += bl * bl + br * br;
         hal_set_wheel_speeds(sim_robot_hal(sim, 0), 388, 388);
         hal_set_wheel_speeds(sim_robot_hal(same, 0), 388, 388);
     }
@@ -462,7 +482,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(2, 2.0f);
-    sc->ircom.loss = 0.0f;
+    ircom_config_mut(sc)->loss = 0.0f;
     const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.03f, .height = 0.05f };
     assert_int_equal(scenario_add_object(sc, &obj), 0);
     sim_t *sim = fixture_sim(sc, 11);
@@ -503,7 +523,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sim_destroy(sim);
 
     /* 16-bit payload (range-and-bearing turret). */
-    sc->ircom.payload_bits = 16;
+    ircom_config_mut(sc)->payload_bits = 16;
     sim = fixture_sim(sc, 13);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.0, 0.15, 0.0);
@@ -514,7 +534,7 @@ static void test_ircom_range_bearing_and_blocking(void **state)
     sim_destroy(sim);
 
     /* Loss 1: nothing arrives. */
-    sc->ircom.loss = 1.0f;
+    ircom_config_mut(sc)->loss = 1.0f;
     sc->object_count = 0;
     sim = fixture_sim(sc, 12);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
@@ -532,7 +552,7 @@ static void test_placement_failure_is_reported(void **state)
     (void)state;
     scenario_t *sc = fixture_idle_scenario(500, 0.5f);
     sc->groups[0].placement.shape = PLACE_RECTANGLE;
-    char err[256] = "";
+    char err[SIM_ERR_MAX] = "";
     sim_t *sim = sim_create(sc, 1, err);
     assert_null(sim);
     assert_non_null(strstr(err, "cannot place robot"));
@@ -630,7 +650,7 @@ static void test_bad_pose_is_reported(void **state)
     scenario_t *sc = two_groups(2, 0);
     const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.5f, .y = 0.5f, .radius = 0.1f, .height = 0.05f };
     assert_int_equal(scenario_add_object(sc, &obj), 0);
-    char err[256] = "";
+    char err[SIM_ERR_MAX] = "";
     assert_null(sim_create(sc, 1, err));
     assert_non_null(strstr(err, "robots[1] (post): pose 0 at (0.5, 0.5) m is not free"));
     scenario_free(sc);
@@ -646,7 +666,7 @@ static void test_step_order_does_not_matter(void **state)
                                          "../sim_host/scenarios/random_walk.yaml" };
     for (size_t f = 0; f < 2; f++) {
         scenario_t *sc = malloc(sizeof *sc);
-        char err[SCENARIO_ERROR_MAX];
+        char err[SIM_ERR_MAX];
         uint64_t hash[3];
         assert_non_null(sc);
         if (scenario_load(files[f], NULL, 0, sc, err) != 0) fail_msg("%s", err);
@@ -683,7 +703,7 @@ static void test_thread_count_does_not_matter(void **state)
     static const scenario_override_t sets[] = { { "robots.0.count=800" }, { "arena.width=25.3" },
                                                 { "arena.height=25.3" }, { "foraging.food_count=800" } };
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load("../tools/bench/bench_full_sensing.yaml", sets, 4, sc, err) != 0) fail_msg("%s", err);
     uint64_t hash[3], held[3];
@@ -744,7 +764,7 @@ static void test_tracker_pose(void **state)
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
     sim_destroy(sim);
 
-    sc->tracker.enabled = 1;
+    tracker_config_mut(sc)->enabled = 1;
     sim = fixture_sim(sc, 4);
     sim_set_robot_pose(sim, 0, 0.1234, -0.5678, 1.0);
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_OK);
@@ -753,7 +773,7 @@ static void test_tracker_pose(void **state)
     assert_int_equal(p.heading_mrad, 1000);
     sim_destroy(sim);
 
-    sc->tracker.noise_mm = 10.0f;
+    tracker_config_mut(sc)->noise_mm = 10.0f;
     sim = fixture_sim(sc, 4);
     double sum = 0, sq = 0;
     for (int k = 0; k < 400; k++) {
@@ -767,8 +787,8 @@ static void test_tracker_pose(void **state)
     assert_true(fabs(mean) < 2.0 && sd > 8.0 && sd < 12.0);
     sim_destroy(sim);
 
-    sc->tracker.noise_mm = 0.0f;
-    sc->tracker.dropout = 1.0f;
+    tracker_config_mut(sc)->noise_mm = 0.0f;
+    tracker_config_mut(sc)->dropout = 1.0f;
     sim = fixture_sim(sc, 4);
     assert_int_equal(hal_pose(sim_robot_hal(sim, 0), &p), HAL_ERR_UNAVAILABLE);
     sim_destroy(sim);
@@ -792,14 +812,14 @@ static void test_host_messages(void **state)
         { 1, 0.0f, 3, 0x11 }, { 0, 0.25f, 1, 0x22 }, { 1, 0.0f, 2, 0x33 },
     };
     for (uint32_t k = 0; k < 3; k++) {
-        host_message_def_t *d = &sc->host.messages[k];
-        memset(d, 0, sizeof *d);
-        d->robot = m[k].robot;
-        d->at = m[k].at;
-        d->len = m[k].len;
-        d->bytes[0] = m[k].b0;
+        host_message_def_t d;
+        memset(&d, 0, sizeof d);
+        d.robot = m[k].robot;
+        d.at = m[k].at;
+        d.len = m[k].len;
+        d.bytes[0] = m[k].b0;
+        assert_int_equal(host_add_message(sc, &d), 0);
     }
-    sc->host.message_count = 3;
     sim = fixture_sim(sc, 4);   /* 100 ms control period */
     hal_t *h0 = sim_robot_hal(sim, 0), *h1 = sim_robot_hal(sim, 1);
     assert_int_equal(hal_host_receive(h0, buf, sizeof buf, &len), HAL_ERR_EMPTY);   /* not before 0.25 s */
@@ -828,8 +848,8 @@ static void test_hal_status(void **state)
 {
     (void)state;
     scenario_t *sc = fixture_idle_scenario(1, 2.0f);
-    sc->camera.width_px = 40;
-    sc->camera.height_px = 20;
+    camera_config_mut(sc)->width_px = 40;
+    camera_config_mut(sc)->height_px = 20;
     sim_t *sim = fixture_sim(sc, 4);
     hal_t *hal = sim_robot_hal(sim, 0);
     uint32_t level = 5;
@@ -847,7 +867,7 @@ static void test_hal_status(void **state)
     assert_int_equal(hal_ir_bearing_mrad(hal, 8), 0);
     sim_destroy(sim);
 
-    sc->sound.enabled = 1;
+    sound_config_mut(sc)->enabled = 1;
     sim = fixture_sim(sc, 4);
     hal = sim_robot_hal(sim, 0);
     assert_int_equal(hal_mic_level(hal, 2, 3, &level), HAL_OK);
@@ -866,6 +886,74 @@ static void test_hal_status(void **state)
     assert_int_equal(hal_mic_level(hal, 0, 1, &level), HAL_OK);
     sim_destroy(sim);
     scenario_free(sc);
+    free(sc);
+}
+
+/* A controller's observables by name: the random walkers' "oae" counters
+ * sum to the summary's total; an unknown name is refused. */
+static void test_observables(void **state)
+{
+    (void)state;
+    scenario_t *sc = calloc(1, sizeof *sc);
+    assert_non_null(sc);
+    scenario_defaults(sc);
+    sim_t *sim = fixture_sim(sc, 4);
+    for (int k = 0; k < 600; k++) sim_step(sim);
+    double sum = 0;
+    float v;
+    for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+        assert_int_equal(sim_robot_observable(sim, i, "oae", &v), 0);
+        sum += v;
+    }
+    assert_true(sum > 0 && sum == fixture_metric(sim, "oae_total"));
+    assert_int_equal(sim_robot_observable(sim, 0, "no_such_thing", &v), -1);
+    sim_destroy(sim);
+    free(sc);
+}
+
+/* ----------------------------------------------------- memory estimate */
+
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+/* Resident memory of this process, bytes (/proc/self/statm). */
+static uint64_t resident_bytes(void)
+{
+    unsigned long pages = 0, resident = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    assert_non_null(f);
+    assert_int_equal(fscanf(f, "%lu %lu", &pages, &resident), 2);
+    fclose(f);
+    return (uint64_t)resident * 4096u;
+}
+#endif
+
+/* sim_memory_estimate against what a run's resident memory grows by: the
+ * random walk of the benchmark worlds (20 robots/m^2) at 20,000 robots,
+ * within 25 %.  Under a sanitizer memory is its own, so only plain builds
+ * compare (the estimate must still grow with the robots). */
+static void test_memory_estimate(void **state)
+{
+    (void)state;
+    scenario_t *sc = calloc(1, sizeof *sc);
+    assert_non_null(sc);
+    scenario_defaults(sc);
+    sc->groups[0].count = 20000;
+    sc->arena.width = sc->arena.height = 32.0f;
+    sim_memory_t small, big;
+    sim_memory_estimate(sc, 1, &big);
+    sc->groups[0].count = 200;
+    sim_memory_estimate(sc, 1, &small);
+    assert_true(big.total > small.total + 19000u * 2000u);
+    sc->groups[0].count = 20000;
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+    uint64_t before = resident_bytes();
+    sim_t *sim = fixture_sim(sc, 1);
+    for (int k = 0; k < 3; k++) sim_step(sim);
+    uint64_t grew = resident_bytes() - before;
+    print_message("20,000 robots: estimate %llu B, resident memory grew by %llu B (%.2f)\n",
+                  (unsigned long long)big.total, (unsigned long long)grew, (double)big.total / (double)grew);
+    assert_true((double)big.total > 0.75 * (double)grew && (double)big.total < 1.25 * (double)grew);
+    sim_destroy(sim);
+#endif
     free(sc);
 }
 
@@ -892,6 +980,8 @@ int main(void)
         cmocka_unit_test(test_thread_count_does_not_matter),
         cmocka_unit_test(test_tracker_pose),
         cmocka_unit_test(test_host_messages),
+        cmocka_unit_test(test_observables),
+        cmocka_unit_test(test_memory_estimate),
         cmocka_unit_test(test_hal_status),
         cmocka_unit_test(test_wheel_bias_draws),
         cmocka_unit_test(test_wheel_bias_per_step),

@@ -1,5 +1,5 @@
 /*
- * test_sound.c - the simulator's sound field (sim_host/core/sound.h) and its
+ * test_sound.c - the simulator's sound field (sim_host/models/sound/sound.h) and its
  * HAL: levels against seed 002's eq 1 at known distances, sums of sources,
  * both silent_robots rules, eq 4's noise statistics, self-masking, the
  * speaker's one-period delay, the cutoff's error, its grid (all pairs when
@@ -22,10 +22,10 @@
 
 #include "common/random_walk.h"
 #include "hal.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/sim_internal.h"
-#include "core/sound.h"
+#include "models/sound/sound.h"
 
 #define A0 299.18
 #define AE 48.18
@@ -87,8 +87,8 @@ static scenario_t *probe_scenario(uint32_t robots)
     sc->groups[0].moves = 0;
     sc->groups[0].placement.shape = PLACE_GRID;
     sc->arena.width = sc->arena.height = 12.0f;
-    sc->sound.enabled = 1;
-    sc->sound.noise = 0.0;
+    sound_config_mut(sc)->enabled = 1;
+    sound_config_mut(sc)->noise = 0.0;
     return sc;
 }
 
@@ -149,7 +149,7 @@ static void test_sources_sum_under_both_rules(void **state)
     (void)state;
     scenario_t *sc = probe_scenario(5);
     for (int rule = 0; rule < 2; rule++) {
-        sc->sound.silent_robots = rule == 0 ? SOUND_SILENT_AMBIENT : SOUND_SILENT_NONE;
+        sound_config_mut(sc)->silent_robots = rule == 0 ? SOUND_SILENT_AMBIENT : SOUND_SILENT_NONE;
         sim_t *sim = fixture_sim(sc, 1);
         sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);    /* the listener */
         sim_set_robot_pose(sim, 1, 1.0, 0.0, 0.0);    /* band 1 at 1 m */
@@ -185,7 +185,7 @@ static void test_noise_statistics(void **state)
 {
     (void)state;
     scenario_t *sc = probe_scenario(2);
-    sc->sound.noise = 0.06;
+    sound_config_mut(sc)->noise = 0.06;
     sim_t *sim = fixture_sim(sc, 7);
     sim_set_robot_pose(sim, 0, -0.5, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 0.5, 0.0, 0.0);
@@ -231,7 +231,7 @@ static void test_self_masking_and_duplex(void **state)
     (void)state;
     scenario_t *sc = probe_scenario(2);
     for (int duplex = 0; duplex < 2; duplex++) {
-        sc->sound.self_masking = (uint8_t)!duplex;
+        sound_config_mut(sc)->self_masking = (uint8_t)!duplex;
         sim_t *sim = fixture_sim(sc, 1);
         sim_set_robot_pose(sim, 0, -0.5, 0.0, 0.0);
         sim_set_robot_pose(sim, 1, 0.5, 0.0, 0.0);
@@ -311,7 +311,7 @@ static void test_cutoff_error(void **state)
 {
     (void)state;
     scenario_t *sc = probe_scenario(3);
-    sc->sound.cutoff = 2.0;
+    sound_config_mut(sc)->cutoff = 2.0;
     sim_t *sim = fixture_sim(sc, 1);
     sim_set_robot_pose(sim, 0, 0.0, 0.0, 0.0);
     sim_set_robot_pose(sim, 1, 1.0, 0.0, 0.0);   /* inside: exact */
@@ -325,9 +325,9 @@ static void test_cutoff_error(void **state)
     assert_level(p->level[0][2], 2 * AE);
     double err = loud(3.0) + AE - p->level[0][2] / 1000.0;
     assert_true(fabs(err - A0 * exp(-0.12 * 3.0)) < 0.002);
-    assert_true(err <= A0 * exp(-0.12 * sc->sound.cutoff));
-    assert_true(sound_term(sc, 3.0, 1) == AE);
-    assert_true(sound_term(sc, 1.0, 1) == loud(1.0));
+    assert_true(err <= A0 * exp(-0.12 * sound_config_mut(sc)->cutoff));
+    assert_true(sound_term(sound_config(sc), 3.0, 1) == AE);
+    assert_true(sound_term(sound_config(sc), 1.0, 1) == loud(1.0));
     sim_destroy(sim);
     scenario_free(sc);
     free(sc);
@@ -343,10 +343,10 @@ static void test_cutoff_beyond_arena_is_all_pairs(void **state)
         uint32_t level[2][30][HAL_SOUND_BANDS];
         for (int pass = 0; pass < 2; pass++) {
             scenario_t *sc = probe_scenario(30);
-            sc->sound.noise = 0.06;
-            sc->sound.silent_robots = (rule & 1) ? SOUND_SILENT_NONE : SOUND_SILENT_AMBIENT;
-            sc->sound.self_masking = (rule & 2) ? 1 : 0;
-            sc->sound.cutoff = pass ? 100.0 : 0.0;
+            sound_config_mut(sc)->noise = 0.06;
+            sound_config_mut(sc)->silent_robots = (rule & 1) ? SOUND_SILENT_NONE : SOUND_SILENT_AMBIENT;
+            sound_config_mut(sc)->self_masking = (rule & 2) ? 1 : 0;
+            sound_config_mut(sc)->cutoff = pass ? 100.0 : 0.0;
             sim_t *sim = fixture_sim(sc, 3);
             for (uint32_t i = 0; i < 30; i++) {
                 probe(sim, i)->emit = (uint8_t)(i % 4);
@@ -372,8 +372,8 @@ static void test_cutoff_far_field_statistics(void **state)
 {
     (void)state;
     scenario_t *sc = probe_scenario(25);   /* a 5 x 5 grid, 2.4 m apart */
-    sc->sound.noise = 0.06;
-    sc->sound.cutoff = 0.5;
+    sound_config_mut(sc)->noise = 0.06;
+    sound_config_mut(sc)->cutoff = 0.5;
     sim_t *sim = fixture_sim(sc, 11);
     double sum = 0.0, sq = 0.0;
     int n = 0;
@@ -407,9 +407,9 @@ static void test_counts(void **state)
     assert_int_equal(sound_counts(NAN), 0u);
     assert_int_equal(sound_counts(1e9), UINT32_MAX);
     scenario_t *sc = probe_scenario(1);
-    assert_true(sound_term(sc, 2.0, 0) == AE);
-    sc->sound.silent_robots = SOUND_SILENT_NONE;
-    assert_true(sound_term(sc, 2.0, 0) == 0.0);
+    assert_true(sound_term(sound_config(sc), 2.0, 0) == AE);
+    sound_config_mut(sc)->silent_robots = SOUND_SILENT_NONE;
+    assert_true(sound_term(sound_config(sc), 2.0, 0) == 0.0);
     scenario_free(sc);
     free(sc);
 }
@@ -422,13 +422,13 @@ static void test_scenario_section(void **state)
 {
     (void)state;
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load("data/scenarios/sound_small.yaml", NULL, 0, sc, err) != 0) fail_msg("%s", err);
-    assert_true(sc->sound.enabled == 1 && sc->sound.self_masking == 1);
-    assert_true(sc->sound.alpha == 0.726 && sc->sound.noise == 0.06 && sc->sound.a0 == A0
-                && sc->sound.ae == AE && sc->sound.cutoff == 0.0);
-    assert_int_equal(sc->sound.silent_robots, SOUND_SILENT_AMBIENT);
+    assert_true(sound_config_mut(sc)->enabled == 1 && sound_config_mut(sc)->self_masking == 1);
+    assert_true(sound_config_mut(sc)->alpha == 0.726 && sound_config_mut(sc)->noise == 0.06 && sound_config_mut(sc)->a0 == A0
+                && sound_config_mut(sc)->ae == AE && sound_config_mut(sc)->cutoff == 0.0);
+    assert_int_equal(sound_config_mut(sc)->silent_robots, SOUND_SILENT_AMBIENT);
 
     scenario_override_t bad[] = { { "sound.silent_robots=loud" } };
     assert_int_equal(scenario_load("data/scenarios/sound_small.yaml", bad, 1, sc, err), -1);
@@ -445,7 +445,7 @@ static void test_scenario_section(void **state)
     assert_non_null(strstr(err, "sound_bad_rule.yaml:6: sound.silent_robots: expected one of ambient|none"));
 
     scenario_defaults(sc);
-    assert_int_equal(sc->sound.enabled, 0);
+    assert_int_equal(sound_config_mut(sc)->enabled, 0);
     scenario_free(sc);
     free(sc);
 }
@@ -500,7 +500,7 @@ static controller_def_t chatty_def;
 static scenario_t *chatty_scenario(void)
 {
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load("data/scenarios/sound_small.yaml", NULL, 0, sc, err) != 0) fail_msg("%s", err);
     chatty_def = random_walk_def;
@@ -528,7 +528,7 @@ typedef struct chatty_run {
 static void *chatty_run(void *arg)
 {
     chatty_run_t *r = arg;
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(r->sc, r->seed, err);
     if (!sim) return NULL;
     sim_set_step_order(sim, r->order, 77);

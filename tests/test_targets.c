@@ -27,9 +27,13 @@
 #include "hal.h"
 #include "registry.h"
 #include "units.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
+/* The wheels' keys, set in code (an internal header). */
+#include "models/camera/camera.h"
+#include "models/ir/ir.h"
+#include "models/wheels/wheels.h"
 #include "tasks/targets/targets.h"
 
 #define PI 3.14159265358979
@@ -43,9 +47,9 @@ static scenario_t *world(uint32_t robots, float arena)
     scenario_t *sc = fixture_idle_scenario(robots, arena);
     sc->groups[0].placement.width = sc->groups[0].placement.height = 0.3f;
     sc->control_period_ms = 25;
-    sc->camera.fps = 0.0f;
-    sc->ir.noise_rel = sc->ir.noise_abs = 0.0f;
-    sc->wheels.speed_noise_rel = 0.0f;
+    camera_config_mut(sc)->fps = 0.0f;
+    ir_config_mut(sc)->noise_rel = ir_config_mut(sc)->noise_abs = 0.0f;
+    wheels_config_mut(sc)->speed_noise_rel = 0.0f;
     sc->task_count = 1;
     sc->tasks[0].def = &targets_task;
     targets_task.default_config(sc->tasks[0].config.bytes);
@@ -87,7 +91,7 @@ static void test_layouts(void **state)
     scenario_t *sc = world(1, 8.264f);
     targets_config_t *c = config(sc);
     float x[200], y[200];
-    char err[256];
+    char err[SIM_ERR_MAX];
     assert_int_equal(c->count, 200);
     for (int d = TARGETS_ONE; d <= TARGETS_UNIFORM; d++) {
         c->distribution = d;
@@ -394,10 +398,10 @@ static scenario_t *camera_world(float fov)
 {
     scenario_t *sc = world(2, 3.0f);
     sc->task_count = 0;   /* obstacles instead of targets */
-    sc->camera.fov = fov;
-    sc->camera.range = 0.5f;
-    sc->camera.width_px = 640;
-    sc->camera.height_px = 60;
+    camera_config_mut(sc)->fov = fov;
+    camera_config_mut(sc)->range = 0.5f;
+    camera_config_mut(sc)->width_px = 640;
+    camera_config_mut(sc)->height_px = 60;
     const object_def_t obj = { .shape = SHAPE_CYLINDER, .x = 0.0f, .y = 0.0f, .radius = 0.02f, .height = 0.05f,
                                .colour = HAL_COLOUR_RED };
     assert_int_equal(scenario_add_object(sc, &obj), 0);
@@ -488,10 +492,10 @@ static void test_all_round_camera_in_a_crowd(void **state)
     c->layout_side = 1.0f;
     c->nest.radius = 0.05f;
     c->target_radius = 0.004f;   /* small: they hide little of each other */
-    sc->camera.fov = 360.0f;
-    sc->camera.range = 0.496f;
-    sc->camera.width_px = 640;
-    sc->camera.height_px = 60;
+    camera_config_mut(sc)->fov = 360.0f;
+    camera_config_mut(sc)->range = 0.496f;
+    camera_config_mut(sc)->width_px = 640;
+    camera_config_mut(sc)->height_px = 60;
     sim_t *sim = fixture_sim(sc, 9);
     uint32_t high = 140;
     for (uint32_t k = 140; k < 150; k++) {

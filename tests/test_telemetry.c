@@ -23,9 +23,9 @@
 #include <lcm/lcm.h>
 
 #include "common/random_walk.h"
-#include "core/metrics.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/telemetry.h"
 #include "foraging/forager.h"
 #include "swarmlcm_event_t.h"
@@ -45,7 +45,7 @@
 static scenario_t *load(const char *path)
 {
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load(path, NULL, 0, sc, err) != 0) fail_msg("%s", err);
     return sc;
@@ -204,7 +204,7 @@ static void subscribe_all(lcm_t *lcm, seen_t *s)
 static void close_memq(telemetry_t *t, seen_t *s)
 {
     lcm_t *lcm = telemetry_lcm(t);
-    char err[256];
+    char err[SIM_ERR_MAX];
     swarmlcm_run_info_t_unsubscribe(lcm, s->sub_info);
     swarmlcm_swarm_state_t_unsubscribe(lcm, s->sub_swarm);
     swarmlcm_robot_state_t_unsubscribe(lcm, s->sub_robot);
@@ -224,7 +224,7 @@ static telemetry_t *open_memq(const sim_t *sim, double robot_hz, double swarm_hz
 {
     telemetry_options_t opt;
     telemetry_t *t = NULL;
-    char err[256];
+    char err[SIM_ERR_MAX];
     telemetry_default_options(&opt);
     opt.url = "memq://";
     opt.robot_hz = robot_hz;
@@ -435,7 +435,7 @@ static void test_telemetry_does_not_change_a_run(void **state)
     run(b, t, s, 1500);
     assert_int_equal(sim_state_hash(a), sim_state_hash(b));
     assert_true(s->robot > 0);
-    char err[256];
+    char err[SIM_ERR_MAX];
     close_memq(t, s);
     assert_int_equal(telemetry_close(NULL, 1, err), 0);   /* NULL is nothing */
     sim_destroy(a);
@@ -473,7 +473,7 @@ static void test_disabled(void **state)
     sim_t *sim = fixture_sim(sc, 1);
     telemetry_options_t o;
     telemetry_t *t = (telemetry_t *)&o;
-    char err[256];
+    char err[SIM_ERR_MAX];
     telemetry_default_options(&o);
     o.enabled = 0;
     assert_int_equal(telemetry_open(&o, sim, "/nonexistent/x.lcmlog", &t, err), 0);
@@ -506,7 +506,7 @@ static uint8_t *slurp(const char *path, long *len)
 static void test_log_file(void **state)
 {
     (void)state;
-    char dir[] = "/tmp/test_telemetry_XXXXXX", path[256], tmp[300], copy[300], err[256];
+    char dir[] = "/tmp/test_telemetry_XXXXXX", path[256], tmp[300], copy[300], err[SIM_ERR_MAX];
     assert_non_null(mkdtemp(dir));
     snprintf(path, sizeof path, "%s/" TELEMETRY_LOG_NAME, dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
@@ -588,7 +588,7 @@ static void test_bad_url(void **state)
     sim_t *sim = fixture_sim(sc, 1);
     telemetry_options_t o;
     telemetry_t *t = NULL;
-    char err[256];
+    char err[SIM_ERR_MAX];
     telemetry_default_options(&o);
     o.url = "nosuchprovider://x";
     assert_int_equal(telemetry_open(&o, sim, NULL, &t, err), -1);

@@ -1,6 +1,6 @@
 /*
  * test_telemetry_rx.c - the robot's streaming decoder of the frames a host
- * sends (firmware/telemetry/telemetry_rx, telemetry_host): frames made by
+ * sends (wire/telemetry/telemetry_rx, telemetry_host): frames made by
  * telemetry_frame_encode decoded back byte by byte; corrupted CRC,
  * truncated frames, garbage between frames, a frame too long for the
  * robot's buffer, resync at the next zero; the POSE payload; and the fixed

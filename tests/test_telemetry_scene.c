@@ -21,8 +21,8 @@
 #include <lcm/lcm.h>
 
 #include "core/render.h"
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/telemetry.h"
 #include "core/telemetry_scene.h"
 #include "swarmlcm_scene_t.h"
@@ -108,7 +108,7 @@ static void on_drawing(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_
 static scenario_t *load(const char *path)
 {
     scenario_t *sc = malloc(sizeof *sc);
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     assert_non_null(sc);
     if (scenario_load(path, NULL, 0, sc, err) != 0) fail_msg("%s", err);
     return sc;
@@ -146,7 +146,7 @@ typedef struct bus {
 static void open_bus(bus_t *b, const sim_t *sim)
 {
     telemetry_options_t opt;
-    char err[256];
+    char err[SIM_ERR_MAX];
     memset(b, 0, sizeof *b);
     telemetry_default_options(&opt);
     opt.url = "memq://";
@@ -164,7 +164,7 @@ static void drain(bus_t *b)
 
 static void close_bus(bus_t *b)
 {
-    char err[256];
+    char err[SIM_ERR_MAX];
     swarmlcm_scene_t_unsubscribe(b->lcm, b->sub_scene);
     swarmlcm_task_drawing_t_unsubscribe(b->lcm, b->sub_drawing);
     assert_int_equal(telemetry_close(b->t, 1, err), 0);
@@ -179,7 +179,7 @@ static void test_gather_scene_and_drawing(void **state)
 {
     (void)state;
     scenario_t *sc = load(GATHER);
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 1, err);
     if (!sim) fail_msg("%s", err);
     bus_t b;
@@ -265,7 +265,7 @@ static void test_foraging_items(void **state)
 {
     (void)state;
     scenario_t *sc = load(BASE);
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 2, err);
     if (!sim) fail_msg("%s", err);
     bus_t b;
@@ -300,7 +300,7 @@ static void test_no_task_draws_nothing(void **state)
 {
     (void)state;
     scenario_t *sc = load(WALK);
-    char err[256];
+    char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 1, err);
     if (!sim) fail_msg("%s", err);
     bus_t b;

@@ -18,8 +18,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+#include "swarmsim/sim.h"
 #include "core/sim_video.h"
 #include "core/video.h"
 
@@ -71,7 +71,7 @@ static void frame(uint8_t *rgb, int k)
 static void test_frames_to_file(void **state)
 {
     (void)state;
-    char path[128], tmp[160], err[VIDEO_ERR_MAX] = "";
+    char path[128], tmp[160], err[SIM_ERR_MAX] = "";
     in_dir(path, sizeof path, "ok.mp4");
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     real_ffmpeg();
@@ -95,7 +95,7 @@ static void test_frames_to_file(void **state)
 static void test_not_kept(void **state)
 {
     (void)state;
-    char path[128], tmp[160], err[VIDEO_ERR_MAX] = "";
+    char path[128], tmp[160], err[SIM_ERR_MAX] = "";
     in_dir(path, sizeof path, "dropped.mp4");
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     real_ffmpeg();
@@ -113,7 +113,7 @@ static void test_not_kept(void **state)
 static void test_bad_sizes(void **state)
 {
     (void)state;
-    char err[VIDEO_ERR_MAX] = "", path[128];
+    char err[SIM_ERR_MAX] = "", path[128];
     in_dir(path, sizeof path, "odd.mp4");
     assert_null(video_open(path, W + 1, H, 20.0, err));
     assert_non_null(strstr(err, "even sizes"));
@@ -126,7 +126,7 @@ static void test_bad_sizes(void **state)
 static void test_ffmpeg_dies(void **state)
 {
     (void)state;
-    char path[128], tmp[160], err[VIDEO_ERR_MAX] = "";
+    char path[128], tmp[160], err[SIM_ERR_MAX] = "";
     in_dir(path, sizeof path, "dies.mp4");
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     fake_ffmpeg("head -c 20000 >/dev/null; echo partial >\"$out\"; echo 'fake: disk full' >&2; exit 1");
@@ -141,7 +141,7 @@ static void test_ffmpeg_dies(void **state)
     assert_true(failed);
     assert_non_null(strstr(err, "ffmpeg exited with status 1"));
     assert_non_null(strstr(err, "fake: disk full"));
-    char err2[VIDEO_ERR_MAX] = "";
+    char err2[SIM_ERR_MAX] = "";
     assert_int_equal(video_close(v, 1, err2), -1);
     assert_non_null(strstr(err2, "status 1"));
     assert_false(exists(path));
@@ -152,7 +152,7 @@ static void test_ffmpeg_dies(void **state)
 static void test_no_ffmpeg(void **state)
 {
     (void)state;
-    char err[VIDEO_ERR_MAX] = "", empty[128], path[128];
+    char err[SIM_ERR_MAX] = "", empty[128], path[128];
     in_dir(empty, sizeof empty, "empty");
     in_dir(path, sizeof path, "never.mp4");
     mkdir(empty, 0777);
@@ -196,7 +196,7 @@ static void test_recorder(void **state)
     (void)state;
     scenario_t *sc = malloc(sizeof *sc);
     assert_non_null(sc);
-    char err[512];
+    char err[SIM_ERR_MAX];
     int rc = scenario_load("../sim_host/scenarios/random_walk.yaml", NULL, 0, sc, err);
     if (rc != 0)
         print_error("%s\n", err);

@@ -20,7 +20,18 @@
  *                   the current state, lower case ("search")
  *
  * CONTROLLER_API(NAME) in the controller's header declares these five, so
- * the compiler checks the definitions against the contract.
+ * the compiler checks the definitions against the contract.  A controller
+ * with policies also exports
+ *
+ *   void NAME_set_policy(void *params, uint8_t index);
+ *                   applies policy `index` (its def's set_policy), which a
+ *                   robot image's selector switch calls
+ *
+ * and one that shows values exports NAME_observables.  The robot images
+ * (platforms/<p>/images.list) run a controller through these functions,
+ * called by name, not through its controller_def_t: a function pointer
+ * would hide the call chain from the stack gate, and the def carries the
+ * simulator's parameter tables.
  *
  * The description (controller_def_t) lives in NAME_def.c beside the
  * controller: its parameter keys (param.h), what it shows (observable.h),

@@ -1,5 +1,6 @@
 /* The example controller as the simulator runs it: its keys and what it
- * shows.  One line in sim_host/registry.c registers it. */
+ * shows.  The build registers it: tools/make/registry.sh finds its line
+ * `const controller_def_t phototaxis_def = {`. */
 #include "examples/phototaxis.h"
 
 #define P phototaxis_params_t

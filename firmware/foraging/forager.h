@@ -78,7 +78,9 @@ typedef struct forager_params {
     uint16_t arena_l_mm;         /**< L, arena side, mm (4000) */
     int16_t speed_steps_s;       /**< forward speed, steps/s (388 = 0.05 m/s); also the walk's */
     int16_t steer_gain;          /**< wheel speed difference per bearing, steps/s per rad (800) */
-    uint16_t grasp_width_mrad;   /**< red blob this wide = token held (700) */
+    /* A held token fills the 977 mrad view; one on the floor stays below
+     * about 850 mrad (forager_default_params). */
+    uint16_t grasp_width_mrad;   /**< red blob this wide = token held, mrad (900) */
     uint16_t near_width_mrad;    /**< red blob this wide and centred = token about to be
                                       grasped: its IR echo is not an obstacle (250) */
     uint8_t lost_steps;          /**< steps without the held token before SEARCH again (3) */

@@ -185,4 +185,8 @@ void repatt_apply_policy(repatt_params_t *params, uint8_t policy);
 extern const observable_t repatt_observables[];   /* repatt_observables.c */
 extern const controller_def_t repatt_def;
 
+/** controller_def_t.set_policy of RepAtt's params (repatt_def.c): the gains
+ *  of policy `index` (repatt_apply_policy); an image's selector calls it. */
+void repatt_set_policy(void *params, uint8_t index);
+
 #endif

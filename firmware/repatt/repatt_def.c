@@ -59,7 +59,7 @@ static const param_desc_t repatt_params[] = {
 };
 #undef RP
 
-static void repatt_set_policy(void *params, uint8_t index)
+void repatt_set_policy(void *params, uint8_t index)
 {
     repatt_apply_policy((repatt_params_t *)params, index);
 }

@@ -1,4 +1,4 @@
-#include "drawing.h"
+#include "swarmsim/drawing.h"
 
 int drawing_add(drawing_t *d, const draw_shape_t *shape)
 {

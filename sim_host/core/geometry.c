@@ -1,4 +1,4 @@
-#include "geometry.h"
+#include "swarmsim/geometry.h"
 
 #include "units.h"
 

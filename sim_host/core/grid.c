@@ -2,7 +2,7 @@
  * grid.c - the uniform grid of grid.h: counting-sort binning of points and
  * boxes.
  */
-#include "grid.h"
+#include "swarmsim/grid.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -33,7 +33,7 @@ void grid_free(grid_t *g)
     memset(g, 0, sizeof *g);
 }
 
-static int reserve(grid_t *g, uint32_t n)
+int grid_reserve(grid_t *g, uint32_t n)
 {
     if (n <= g->item_cap) {
         return 0;
@@ -58,7 +58,7 @@ int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n)
 {
     size_t cells = (size_t)g->nx * (size_t)g->ny;
     uint32_t kept = 0;
-    if (reserve(g, n) != 0) {
+    if (grid_reserve(g, n) != 0) {
         return -1;
     }
     memset(g->start, 0, (cells + 1) * sizeof *g->start);
@@ -100,7 +100,7 @@ int grid_build_boxes(grid_t *g, const float (*aabb)[4], uint32_t n)
             }
         }
     }
-    if (reserve(g, total) != 0) {
+    if (grid_reserve(g, total) != 0) {
         return -1;
     }
     for (size_t c = 0; c < cells; c++) {

@@ -37,7 +37,7 @@ static int reserve(struct sim *sim, uint32_t n)
     return 0;
 }
 
-int items_index_build(struct sim *sim)
+void items_index_build(struct sim *sim)
 {
     sim_item_index_t *ix = &sim->item_index;
     ix->valid = 0;
@@ -51,18 +51,17 @@ int items_index_build(struct sim *sim)
         }
         if (reserve(sim, n) != 0
             || (g->nx == 0 && grid_init(g, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, ITEM_CELL_M) != 0)) {
-            return -1;
+            sim_out_of_memory("the index of the tasks' items");
         }
         for (uint32_t k = 0; k < n; k++) {
             ix->x[k] = items[k].x;
             ix->y[k] = items[k].y;
         }
         if (grid_build_points(g, ix->x, ix->y, n) != 0) {
-            return -1;
+            sim_out_of_memory("the index of the tasks' items");
         }
     }
     ix->valid = 1;
-    return 0;
 }
 
 void items_index_drop(struct sim *sim) { sim->item_index.valid = 0; }

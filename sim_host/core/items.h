@@ -15,8 +15,8 @@
 
 #include <stdint.h>
 
-#include "grid.h"
-#include "scenario.h"
+#include "swarmsim/grid.h"
+#include "swarmsim/scenario.h"
 
 struct sim;
 struct sim_scratch;
@@ -28,9 +28,9 @@ typedef struct sim_item_index {
     uint32_t cap;                      /**< of x, y and every worker's sim_scratch_t.items */
 } sim_item_index_t;
 
-/** Bins every task's items (the control phase begins).  Returns 0, or -1
- *  when out of memory (queries then answer "every item"). */
-int items_index_build(struct sim *sim);
+/** Bins every task's items (the control phase begins).  Its buffers grow
+ *  with the items (out of memory: sim_out_of_memory). */
+void items_index_build(struct sim *sim);
 
 /** The control phase ends: items may move again. */
 void items_index_drop(struct sim *sim);

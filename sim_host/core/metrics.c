@@ -3,7 +3,7 @@
  * counters (observable.h: obstacle-avoidance events are counted on the
  * robot, as seed 000 does), and what each task declares.
  */
-#include "metrics.h"
+#include "swarmsim/metrics.h"
 
 #include <math.h>
 
@@ -114,11 +114,10 @@ void metrics_final(const sim_t *simp, metric_list_t *out)
     metrics_put(out, "min_wall_clearance_mm", "mm", "smallest body-to-wall gap (negative: overlap)",
                 isfinite(g->min_wall_clearance_m) ? 1000.0 * g->min_wall_clearance_m : 0.0);
     metrics_put(out, "escaped", "robots", "robots that ever left the arena", (double)g->escaped);
-    if (sim_has_faults(sim->sc)) {   /* only then: other summaries keep their keys */
-        metrics_put(out, "faults_started", "", "injected faults that began during the run",
-                    (double)faults_started(sim));
-        metrics_put(out, "faulty_robots", "robots", "robots with at least one fault begun",
-                    (double)faults_robots(sim));
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim->models[id].def->final) {
+            sim->models[id].def->final(sim, sim->models[id].self, out);
+        }
     }
     int stops = 0;
     for (uint32_t k = 0; k < sim->n_tasks; k++) {

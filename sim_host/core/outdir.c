@@ -97,29 +97,29 @@ static int write_marker(const char *dir, const char *ident)
     return 0;
 }
 
-int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char err[OUTDIR_ERR_MAX])
+int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char err[SIM_ERR_MAX])
 {
     struct stat st;
-    char have[OUTDIR_ERR_MAX];
+    char have[SIM_ERR_MAX];
     int exists = stat(dir, &st) == 0;
     if (exists && !S_ISDIR(st.st_mode)) {
-        snprintf(err, OUTDIR_ERR_MAX, "%s: exists and is not a folder", dir);
+        snprintf(err, SIM_ERR_MAX, "%s: exists and is not a folder", dir);
         return -1;
     }
     int empty = exists ? is_empty(dir) : 1;
     if (empty < 0) {
-        snprintf(err, OUTDIR_ERR_MAX, "%s: cannot read: %s", dir, strerror(errno));
+        snprintf(err, SIM_ERR_MAX, "%s: cannot read: %s", dir, strerror(errno));
         return -1;
     }
     int marked = exists ? read_marker(dir, have, sizeof have) : 0;
     if (mode == OUTDIR_RESUME) {
         if (marked != 1) {
-            snprintf(err, OUTDIR_ERR_MAX, "--resume: %s is %s: nothing of swarmsim's to continue", dir,
+            snprintf(err, SIM_ERR_MAX, "--resume: %s is %s: nothing of swarmsim's to continue", dir,
                      !exists ? "not there" : "not a swarmsim output folder (no " OUTDIR_MARKER ")");
             return -1;
         }
         if (strcmp(have, ident) != 0) {
-            snprintf(err, OUTDIR_ERR_MAX, "--resume: %s holds another invocation's runs (scenario, seeds, "
+            snprintf(err, SIM_ERR_MAX, "--resume: %s holds another invocation's runs (scenario, seeds, "
                      "steps or outputs differ): it has [%.180s], this is [%.180s]", dir, have, ident);
             return -1;
         }
@@ -127,22 +127,24 @@ int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char 
     }
     if (!empty) {
         if (mode == OUTDIR_NEW) {
-            snprintf(err, OUTDIR_ERR_MAX, "%s: not empty (an earlier invocation's outputs?); --replace "
-                     "replaces it, --resume continues it, or give another --out", dir);
+            snprintf(err, SIM_ERR_MAX, "%s: not empty (an earlier invocation's outputs?); add --replace to "
+                     "replace it (only a folder swarmsim made), --resume to continue it, or give another --out "
+                     "(without --out, out/<scenario> is replaced on every run)", dir);
             return -1;
         }
+        const char *how = mode == OUTDIR_DEFAULT ? "the default --out" : "--replace";
         if (marked != 1) {
-            snprintf(err, OUTDIR_ERR_MAX, "--replace: %s was not made by swarmsim (no " OUTDIR_MARKER
-                     "): refusing to delete it; give another --out", dir);
+            snprintf(err, SIM_ERR_MAX, "%s: %s was not made by swarmsim (no " OUTDIR_MARKER
+                     "): refusing to delete it; give another --out", how, dir);
             return -1;
         }
         if (outdir_remove_tree(dir) != 0) {
-            snprintf(err, OUTDIR_ERR_MAX, "--replace: cannot remove %s: %s", dir, strerror(errno));
+            snprintf(err, SIM_ERR_MAX, "%s: cannot remove %s: %s", how, dir, strerror(errno));
             return -1;
         }
     }
     if (outdir_mkdirs(dir) != 0 || write_marker(dir, ident) != 0) {
-        snprintf(err, OUTDIR_ERR_MAX, "%s: cannot create: %s", dir, strerror(errno));
+        snprintf(err, SIM_ERR_MAX, "%s: cannot create: %s", dir, strerror(errno));
         return -1;
     }
     return 0;

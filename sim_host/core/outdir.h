@@ -9,7 +9,9 @@
  *   replace  a non-empty folder is removed first, only if it has the marker
  *            (`--out ~` can never erase a home);
  *   resume   the folder must have the marker with the same identity; its
- *            finished runs are kept and the others run.
+ *            finished runs are kept and the others run;
+ *   default  the scenario's own folder (no --out given): replaced when it
+ *            has the marker, as `replace`; refused when it does not.
  * A run writes into run_<seed>.partial/ and gets its final name only when
  * it finished, so a run stopped or failed half-way leaves nothing under a
  * final name.
@@ -17,14 +19,15 @@
 #ifndef SIM_OUTDIR_H
 #define SIM_OUTDIR_H
 
-#define OUTDIR_MARKER ".swarmsim-out"
-#define OUTDIR_ERR_MAX 512
+#include "swarmsim/base.h"
 
-typedef enum outdir_mode { OUTDIR_NEW, OUTDIR_REPLACE, OUTDIR_RESUME } outdir_mode_t;
+#define OUTDIR_MARKER ".swarmsim-out"
+
+typedef enum outdir_mode { OUTDIR_NEW, OUTDIR_REPLACE, OUTDIR_RESUME, OUTDIR_DEFAULT } outdir_mode_t;
 
 /** Makes `dir` ready for the invocation `ident` (one line, no newline).
  *  Returns 0, or -1 with a message in `err` and nothing changed. */
-int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char err[OUTDIR_ERR_MAX]);
+int outdir_prepare(const char *dir, outdir_mode_t mode, const char *ident, char err[SIM_ERR_MAX]);
 
 /** mkdir -p */
 int outdir_mkdirs(const char *path);

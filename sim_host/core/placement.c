@@ -212,7 +212,7 @@ static void draw_spot(const struct sim *sim, const robot_group_t *grp, uint32_t 
 }
 
 static int place_group(struct sim *sim, const robot_group_t *grp, uint32_t gi, uint32_t first,
-                       placed_t *placed, sim_rand_t *rnd, char err[256])
+                       placed_t *placed, sim_rand_t *rnd, char err[SIM_ERR_MAX])
 {
     float spacing = fmaxf(grp->min_spacing, 2 * EPUCK_BODY_RADIUS_M);
     const placement_def_t *p = &grp->placement;
@@ -227,7 +227,7 @@ static int place_group(struct sim *sim, const robot_group_t *grp, uint32_t gi, u
             r->theta = isnan(deg) ? (float)(2 * UNITS_PI * sim_rand_uniform(rnd) - UNITS_PI) : heading_rad(deg);
             ok = free_spot(sim, placed, spacing, r->x, r->y);
             if (!ok) {
-                snprintf(err, 256, "robots[%u] (%s): pose %u at (%g, %g) m is not free: "
+                snprintf(err, SIM_ERR_MAX, "robots[%u] (%s): pose %u at (%g, %g) m is not free: "
                          "outside the arena, on an obstacle or too close to another robot",
                          gi, grp->name, k, (double)q->x, (double)q->y);
                 return -1;
@@ -251,14 +251,14 @@ static int place_group(struct sim *sim, const robot_group_t *grp, uint32_t gi, u
             float x, y;
             draw_spot(sim, grp, k, rnd, &x, &y);
             const char *problem = spot_problem(sim, placed, spacing, x, y, why);
-            snprintf(err, 256, "robots[%u] (%s): grid spot %u of %u at (%.3f, %.3f) m %s; grid spots "
+            snprintf(err, SIM_ERR_MAX, "robots[%u] (%s): grid spot %u of %u at (%.3f, %.3f) m %s; grid spots "
                      "do not move, so shift or resize the grid (placement x, y, width, height) or "
                      "use shape: rectangle, whose random spots avoid obstacles",
                      gi, grp->name, k + 1, grp->count, (double)x, (double)y, problem ? problem : "is taken");
             return -1;
         }
         if (!ok) {
-            snprintf(err, 256, "cannot place robot %u of %u of robots[%u] (%s, placement %s): no free "
+            snprintf(err, SIM_ERR_MAX, "cannot place robot %u of %u of robots[%u] (%s, placement %s): no free "
                      "spot; enlarge the region or the arena, or use fewer robots",
                      k + 1, grp->count, gi, grp->name, shape_names[p->shape]);
             return -1;
@@ -274,7 +274,7 @@ static float cylinder_gap(const obstacle_t *o, vec2_t p, float r)
     return obstacle_gap(o, p) + EPUCK_BODY_RADIUS_M - r;
 }
 
-int placement_cylinders(struct sim *sim, char err[256])
+int placement_cylinders(struct sim *sim, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
     uint32_t count = sc->random_cylinders.count, first = sc->object_count;
@@ -290,7 +290,7 @@ int placement_cylinders(struct sim *sim, char err[256])
      * scenario's boxes with their corners). */
     before = calloc(first + count, sizeof *before);
     if (!before) {
-        snprintf(err, 256, "out of memory for %u random cylinders", count);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u random cylinders", count);
         return -1;
     }
     for (uint32_t k = 0; k < first; k++) {
@@ -333,7 +333,7 @@ int placement_cylinders(struct sim *sim, char err[256])
             }
         }
         if (!ok) {
-            snprintf(err, 256, "random_cylinders: cannot place cylinder %u of %u (radius %.3g m) %.3g m clear of "
+            snprintf(err, SIM_ERR_MAX, "random_cylinders: cannot place cylinder %u of %u (radius %.3g m) %.3g m clear of "
                      "the walls, the obstacles and the fixed robots; use fewer or smaller cylinders, or a "
                      "smaller gap", k + 1, count, (double)r, (double)gap);
             free(before);
@@ -348,7 +348,7 @@ int placement_cylinders(struct sim *sim, char err[256])
     return 0;
 }
 
-int placement_run(struct sim *sim, char err[256])
+int placement_run(struct sim *sim, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
     placed_t placed = { 0 };
@@ -357,7 +357,7 @@ int placement_run(struct sim *sim, char err[256])
     int rc = 0;
     if (placed_init(&placed, sim) != 0) {
         placed_free(&placed);
-        snprintf(err, 256, "out of memory placing %u robots", sim->n);
+        snprintf(err, SIM_ERR_MAX, "out of memory placing %u robots", sim->n);
         return -1;
     }
     sim_rand_seed(&rnd, sim->seed, 0, RAND_PLACEMENT);

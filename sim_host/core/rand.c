@@ -1,4 +1,4 @@
-#include "rand.h"
+#include "swarmsim/rand.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -9,6 +9,20 @@ static uint64_t splitmix64(uint64_t *x)
     z = (z ^ (z >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
     z = (z ^ (z >> 27)) * UINT64_C(0x94d049bb133111eb);
     return z ^ (z >> 31);
+}
+
+uint64_t sim_rand_purpose(const char *name)
+{
+    /* FNV-1a, folded into [128, 255]: sim_rand_seed shifts the purpose
+     * left by 56 bits, so only its low byte reaches the seed; the top bit
+     * keeps it off the numbered purposes (below 128), the name picks the
+     * other seven.  Two names may share a purpose (1 in 128): test_rand
+     * checks that the shipped names do not. */
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    for (; *name; name++) {
+        h = (h ^ (uint8_t)*name) * UINT64_C(0x100000001b3);
+    }
+    return 128u + (h & 0x7Fu);
 }
 
 void sim_rand_seed(sim_rand_t *r, uint64_t seed, uint64_t index, uint64_t purpose)

@@ -46,7 +46,7 @@ static void set_err(char *err, const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err, RENDER_ERR_MAX, fmt, ap);
+    vsnprintf(err, SIM_ERR_MAX, fmt, ap);
     va_end(ap);
 }
 

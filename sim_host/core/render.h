@@ -24,10 +24,9 @@
 
 #include <stdint.h>
 
-#include "drawing.h"
+#include "swarmsim/drawing.h"
+#include "swarmsim/base.h"
 
-/** Size of the `err` buffers the functions below write to. */
-#define RENDER_ERR_MAX 256
 
 /** Picture size limits, pixels (both sides). */
 #define RENDER_MIN_PX 16
@@ -127,7 +126,7 @@ typedef struct render_ctx render_ctx_t;
  * Creates a renderer for pictures of width_px x height_px pixels
  * (RENDER_MIN_PX..RENDER_MAX_PX each).  Returns a context the caller owns and
  * frees with render_destroy, or NULL with a message in `err` (which may be
- * NULL; else RENDER_ERR_MAX bytes).
+ * NULL; else SIM_ERR_MAX bytes).
  */
 render_ctx_t *render_create(int width_px, int height_px, char *err);
 

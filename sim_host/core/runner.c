@@ -21,11 +21,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "metrics.h"
+#include "swarmsim/metrics.h"
 #include "pool.h"
-#include "sim.h"
+#include "swarmsim/sim.h"
 #include "sim_render.h"
-#include "task.h"
+#include "swarmsim/task.h"
 
 #define PATH_MAX_LEN 1024
 
@@ -46,7 +46,7 @@ typedef struct job {
     atomic_int failed;
     pthread_mutex_t err_lock;
     double t_end;                  /**< when the last worker finished (under err_lock) */
-    char err[512];
+    char err[SIM_ERR_MAX];
 } job_t;
 
 static double now_s(void)
@@ -109,7 +109,7 @@ static void write_row(FILE *f, const metric_list_t *m)
 
 static int render_frame(job_t *job, const sim_t *sim, render_ctx_t **ctx, const char *dir)
 {
-    char path[PATH_MAX_LEN], err[RENDER_ERR_MAX];
+    char path[PATH_MAX_LEN], err[SIM_ERR_MAX];
     if (!*ctx) {
         const scenario_t *sc = job->opt->scenario;
         int w = (int)job->opt->frame_px;
@@ -150,7 +150,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     const run_options_t *opt = job->opt;
     const scenario_t *sc = opt->scenario;
     uint64_t seed = opt->seed + rep;
-    char err[256], final_dir[PATH_MAX_LEN - 80], dir[PATH_MAX_LEN - 64], path[PATH_MAX_LEN];
+    char err[SIM_ERR_MAX], final_dir[PATH_MAX_LEN - 80], dir[PATH_MAX_LEN - 64], path[PATH_MAX_LEN];
     char tmp[PATH_MAX_LEN + 8];
     rep_result_t *res = &job->results[rep];
 
@@ -231,8 +231,8 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
             ok = 0;
         }
         sim_step(sim);
-        if (sim_camera_error(sim)) {   /* a renderer or a camera picture failed */
-            fail(job, "%s: %s", sc->path, sim_camera_error(sim));
+        if (sim_error(sim)) {   /* a renderer or a camera picture failed */
+            fail(job, "%s: %s", sc->path, sim_error(sim));
             ok = 0;
         }
         telemetry_step(tel, sim);
@@ -420,12 +420,12 @@ typedef char metric_text_t[3][METRIC_TEXT_MAX];
  * error (exit 2, no folder).  Fills `names` with the run's metrics, their
  * strings in `text` (some are the probe's own, its counters' keys, which
  * die with it; --resume reads finished runs by these names). */
-static int check_setup(const run_options_t *opt, metric_list_t *names, metric_text_t *text, char err[512])
+static int check_setup(const run_options_t *opt, metric_list_t *names, metric_text_t *text, char err[SIM_ERR_MAX])
 {
-    char e[256];
+    char e[SIM_ERR_MAX];
     sim_t *probe = sim_create(opt->scenario, opt->seed, e);
     if (!probe) {
-        snprintf(err, 512, "%.250s: %s", opt->scenario->path, e);
+        snprintf(err, SIM_ERR_MAX, "%.200s: %.300s", opt->scenario->path, e);
         return -1;
     }
     metrics_final(probe, names);
@@ -439,17 +439,17 @@ static int check_setup(const run_options_t *opt, metric_list_t *names, metric_te
     }
     sim_destroy(probe);
     if (opt->telemetry.enabled && opt->telemetry.url && telemetry_check_url(opt->telemetry.url, e) != 0) {
-        snprintf(err, 512, "%s", e);
+        snprintf(err, SIM_ERR_MAX, "%s", e);
         return -1;
     }
     return 0;
 }
 
-static int run_with(const run_options_t *opt, metric_text_t *text, char err[512])
+static int run_with(const run_options_t *opt, metric_text_t *text, char err[SIM_ERR_MAX])
 {
     job_t job;
     metric_list_t names;
-    char ident[OUTDIR_ERR_MAX], path[PATH_MAX_LEN];
+    char ident[SIM_ERR_MAX], path[PATH_MAX_LEN];
     memset(&job, 0, sizeof job);
     job.opt = opt;
     if (check_setup(opt, &names, text, err) != 0) {
@@ -463,7 +463,7 @@ static int run_with(const run_options_t *opt, metric_text_t *text, char err[512]
     snprintf(path, sizeof path, "%s/" SUMMARY_SCENARIO_COPY, opt->out_dir);
     job.results = calloc(opt->reps, sizeof *job.results);
     if (!job.results || write_text(path, opt->scenario_text) != 0) {
-        snprintf(err, 512, "%.400s: cannot write: %s", path, job.results ? strerror(errno) : "out of memory");
+        snprintf(err, SIM_ERR_MAX, "%.400s: cannot write: %s", path, job.results ? strerror(errno) : "out of memory");
         free(job.results);
         return RUNNER_FAILED;
     }
@@ -523,10 +523,10 @@ static int run_with(const run_options_t *opt, metric_text_t *text, char err[512]
     int rc = RUNNER_OK;
     int stopped = opt->stop && *opt->stop;
     if (atomic_load(&job.failed)) {
-        snprintf(err, 512, "%s", job.err);
+        snprintf(err, SIM_ERR_MAX, "%s", job.err);
         rc = RUNNER_FAILED;
     } else if (stopped || done < opt->reps) {
-        snprintf(err, 512, "stopped: %u of %u runs finished in %s (each run_<seed>/ complete); "
+        snprintf(err, SIM_ERR_MAX, "stopped: %u of %u runs finished in %s (each run_<seed>/ complete); "
                  "--resume continues", done, opt->reps, opt->out_dir);
         rc = RUNNER_STOPPED;
     }
@@ -534,7 +534,7 @@ static int run_with(const run_options_t *opt, metric_text_t *text, char err[512]
     if ((opt->reps > 1 || rc != RUNNER_OK) && done > 0) {
         if (write_aggregate(opt, job.results, opt->quiet || rc != RUNNER_OK ? NULL : stdout) != 0 &&
             rc == RUNNER_OK) {
-            snprintf(err, 512, "%s/summary.json: cannot write: %s", opt->out_dir, strerror(errno));
+            snprintf(err, SIM_ERR_MAX, "%s/summary.json: cannot write: %s", opt->out_dir, strerror(errno));
             rc = RUNNER_FAILED;
         }
     } else if (rc == RUNNER_OK && !opt->quiet) {
@@ -564,11 +564,11 @@ static int run_with(const run_options_t *opt, metric_text_t *text, char err[512]
     return rc;
 }
 
-int runner_run(const run_options_t *opt, char err[512])
+int runner_run(const run_options_t *opt, char err[SIM_ERR_MAX])
 {
     metric_text_t *text = calloc(METRICS_MAX, sizeof *text);
     if (!text) {
-        snprintf(err, 512, "out of memory");
+        snprintf(err, SIM_ERR_MAX, "out of memory");
         return RUNNER_SETUP_ERROR;
     }
     int rc = run_with(opt, text, err);

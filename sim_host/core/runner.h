@@ -29,7 +29,7 @@
 #include <stdint.h>
 
 #include "outdir.h"
-#include "scenario.h"
+#include "swarmsim/scenario.h"
 #include "summary.h"
 #include "sim_video.h"
 #include "telemetry.h"
@@ -71,6 +71,6 @@ enum {
 
 /** Runs everything.  Returns a RUNNER_* code, with a message in `err`
  *  unless RUNNER_OK. */
-int runner_run(const run_options_t *opt, char err[512]);
+int runner_run(const run_options_t *opt, char err[SIM_ERR_MAX]);
 
 #endif

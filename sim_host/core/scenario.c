@@ -17,15 +17,17 @@
  *  - A task runs when its section (named after the task) is present, in
  *    registry order whatever the file's order.
  */
-#include "scenario.h"
+#include "swarmsim/scenario.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "models/model.h"
 #include "registry.h"
+#include "swarmsim/sim.h"
 #include "schema.h"
-#include "task.h"
+#include "swarmsim/task.h"
 #include "units.h"
 #include "yaml_tree.h"
 
@@ -46,8 +48,6 @@
 static const char *const shape_choices[] = { "cylinder", "box", NULL };
 static const char *const colour_choices[] = { "none", "red", "green", "blue", NULL };
 static const char *const placement_choices[] = { "rectangle", "circle", "ring", "grid", "poses", NULL };
-/* The names of camera_model_t, in its order. */
-const char *const scenario_camera_model_names[] = { "geometric", "rendered", NULL };
 
 static const param_desc_t top_params[] = {
     { .key = "name", PARAM_STRING_FIELD(SC, name),
@@ -60,6 +60,8 @@ static const param_desc_t top_params[] = {
       .max = 10000, .doc = "one controller step, ms" },
     { .key = "physics_substeps", PARAM_FIELD(SC, physics_substeps, uint16_t), .min = 1, .max = 64,
       .doc = "physics sub-steps per control step" },
+    { .key = "memory_limit_mb", PARAM_FIELD(SC, memory_limit_mb, uint32_t), .min = 1, .max = 16777216,
+      .doc = "refuse the scenario when a run needs more, MB (the estimate: swarmsim --check)" },
     PARAM_END
 };
 
@@ -90,30 +92,6 @@ static const param_desc_t group_params[] = {
       .doc = "false: a static body nothing can push (a fixed station, a landmark)" },
     PARAM_END
 };
-
-/* The names of fault_kind_t, in its order. */
-const char *const scenario_fault_names[] = {
-    "stop", "wheel_stall", "wheel_drift", "ir_fail", "ir_noise", "camera_fail", "radio_dropout",
-    "radio_bursts", "liar", "babble", NULL
-};
-
-#define FLT fault_def_t
-static const param_desc_t fault_params[] = {
-    { .key = "kind", PARAM_ENUM_FIELD(FLT, kind, scenario_fault_names),
-      .doc = "what goes wrong (README: faults)" },
-    { .key = "fraction", PARAM_FIELD(FLT, fraction, float), .min = 0, .max = 1,
-      .doc = "of the group's robots, drawn per run (rounded)" },
-    { .key = "at", PARAM_ANGLE_FIELD(FLT, at), .min = 0, .max = 1e7,
-      .doc = "onset, s, or random (uniform over the run)" },
-    { .key = "rate", PARAM_FIELD(FLT, rate, float), .min = 0, .max = 1000,
-      .doc = "> 0: onset after an exponential time of this rate, 1/s (instead of at)" },
-    { .key = "duration", PARAM_FIELD(FLT, duration, float), .min = 0, .max = 1e7,
-      .doc = "s it lasts (0: to the end); radio_bursts: mean burst length, s" },
-    { .key = "value", PARAM_FIELD(FLT, value, float), .min = -1e6, .max = 1e6,
-      .doc = "wheel_drift: speed factor; ir_noise: sd, counts; radio_bursts: mean gap, s" },
-    PARAM_END
-};
-#undef FLT
 
 static const param_desc_t placement_params[] = {
     { .key = "shape", PARAM_ENUM_FIELD(GRP, placement.shape, placement_choices),
@@ -171,145 +149,6 @@ static const param_desc_t light_params[] = {
     PARAM_END
 };
 
-static const param_desc_t ir_params[] = {
-    { .key = "aperture", PARAM_FIELD(SC, ir.aperture, float), .min = 0.1, .max = 90,
-      .doc = "half-angle of the sensing cone, deg" },
-    { .key = "range", PARAM_FIELD(SC, ir.range, float), .min = 0.001, .max = 1,
-      .doc = "beyond this a sensor reads ~0, m" },
-    { .key = "noise_rel", PARAM_FIELD(SC, ir.noise_rel, float), .min = 0, .max = 1,
-      .doc = "relative Gaussian sd of the value" },
-    { .key = "noise_abs", PARAM_FIELD(SC, ir.noise_abs, float), .min = 0, .max = 4095,
-      .doc = "additive Gaussian sd, raw counts" },
-    PARAM_END
-};
-
-static const param_desc_t ambient_params[] = {
-    { .key = "dark", PARAM_FIELD(SC, ambient.dark, float), .min = 0, .max = 4095,
-      .doc = "raw reading in the dark, counts" },
-    { .key = "half", PARAM_FIELD(SC, ambient.half, float), .min = 1e-6, .max = 1e6,
-      .doc = "irradiance at which the reading halves (1 = unit lamp at 1 m)" },
-    { .key = "noise_rel", PARAM_FIELD(SC, ambient.noise_rel, float), .min = 0, .max = 1,
-      .doc = "relative Gaussian sd" },
-    PARAM_END
-};
-
-static const param_desc_t camera_params[] = {
-    { .key = "fov", PARAM_FIELD(SC, camera.fov, float), .min = 1, .max = 360,
-      .doc = "horizontal field of view, deg (up to 179 the e-puck's pinhole camera; wider: an "
-             "all-round panoramic stand-in, lens on the robot's axis)" },
-    { .key = "range", PARAM_FIELD(SC, camera.range, float), .min = 0.01, .max = 100,
-      .doc = "objects farther away are not seen (their nearest point), m; the default is the "
-             "e-puck detector's reach for a 3.5 x 4.2 cm cylinder (geometric; rendered draws to 5 m)" },
-    { .key = "width_px", PARAM_FIELD(SC, camera.width_px, uint16_t), .min = 1, .max = 640,
-      .doc = "the robot's frame width, pixels" },
-    { .key = "height_px", PARAM_FIELD(SC, camera.height_px, uint16_t), .min = 1, .max = 480,
-      .doc = "the robot's frame height, pixels" },
-    { .key = "model", PARAM_ENUM_FIELD(SC, camera.model, scenario_camera_model_names),
-      .doc = "geometric (fast: blobs from angles) or rendered (OSMesa frame through hal/blob_detect.c)" },
-    { .key = "fps", PARAM_FIELD(SC, camera.fps, float), .min = 0, .max = 1000,
-      .doc = "frames per second, both models; blobs are a frame old and held until the next "
-             "(the e-puck image's 4.3 by default; 0: fresh every control step)" },
-    { .key = "noise", PARAM_FIELD(SC, camera.noise, float), .min = 0, .max = 255,
-      .doc = "rendered: Gaussian sd added to each pixel's 8-bit channels, counts" },
-    PARAM_END
-};
-
-static const param_desc_t ircom_params[] = {
-    { .key = "range", PARAM_FIELD(SC, ircom.range, float), .min = 0, .max = 10,
-      .doc = "centre-to-centre reach, m" },
-    { .key = "loss", PARAM_FIELD(SC, ircom.loss, float), .min = 0, .max = 1,
-      .doc = "probability a message is lost" },
-    { .key = "bearing_noise", PARAM_FIELD(SC, ircom.bearing_noise, float), .min = 0, .max = 180,
-      .doc = "Gaussian sd added to the bearing, deg" },
-    { .key = "range_noise_rel", PARAM_FIELD(SC, ircom.range_noise_rel, float), .min = 0, .max = 1,
-      .doc = "relative Gaussian sd of the range" },
-    { .key = "quantise_bearing", PARAM_BOOL_FIELD(SC, ircom.quantise_bearing),
-      .doc = "report the receiving sensor's bearing" },
-    { .key = "blocked_by_robots", PARAM_BOOL_FIELD(SC, ircom.blocked_by_robots),
-      .doc = "robots also block line of sight" },
-    { .key = "payload_bits", PARAM_FIELD(SC, ircom.payload_bits, uint8_t), .min = 8, .max = 16,
-      .doc = "data bits per message: 8 libIrcom, 16 range-and-bearing turret" },
-    { .key = "bearing_noise_vec", PARAM_FIELD(SC, ircom.bearing_noise_vec, float), .min = 0, .max = 10,
-      .doc = "sd of a random vector (uniform azimuth, Gaussian length) added to the sender's offset, m (seed 003)" },
-    { .key = "tx_per_period", PARAM_FIELD(SC, ircom.tx_per_period, uint8_t), .min = 1, .max = SIM_IRCOM_TX_MAX,
-      .doc = "messages a robot may send per control period (the turret's rate)" },
-    { .key = "slots", PARAM_FIELD(SC, ircom.slots, uint16_t), .min = 0, .max = 1000,
-      .doc = "frame times per control period for collisions (0: no collisions)" },
-    { .key = "queue", PARAM_FIELD(SC, ircom.queue, uint8_t), .min = 1, .max = SIM_IRCOM_QUEUE_MAX,
-      .doc = "messages a receiver's inbox holds (libIrcom: 20)" },
-    PARAM_END
-};
-
-static const param_desc_t wheels_params[] = {
-    { .key = "speed_noise_rel", PARAM_FIELD(SC, wheels.speed_noise_rel, float), .min = 0, .max = 1,
-      .doc = "per-wheel relative speed noise (sd)" },
-    { .key = "bias_sd", PARAM_FIELD(SC, wheels.bias_sd, float), .min = 0, .max = 1,
-      .doc = "sd of a per-robot, per-wheel speed bias drawn once a run, m/s (seed 003's eq 3; "
-             "the e-puck saturates at 0.129 m/s)" },
-    { .key = "bias_per_step", PARAM_BOOL_FIELD(SC, wheels.bias_per_step),
-      .doc = "draw the bias anew every control step instead of once a run (another reading of eq 3)" },
-    PARAM_END
-};
-
-static const param_desc_t tracker_params[] = {
-    { .key = "enabled", PARAM_BOOL_FIELD(SC, tracker.enabled),
-      .doc = "an overhead tracker gives every robot its pose (hal_pose)" },
-    { .key = "noise_mm", PARAM_FIELD(SC, tracker.noise_mm, float), .min = 0, .max = 10000,
-      .doc = "Gaussian sd of the tracked x and y, mm" },
-    { .key = "noise_deg", PARAM_FIELD(SC, tracker.noise_deg, float), .min = 0, .max = 180,
-      .doc = "Gaussian sd of the tracked heading, deg" },
-    { .key = "dropout", PARAM_FIELD(SC, tracker.dropout, float), .min = 0, .max = 1,
-      .doc = "probability the tracker loses a robot for a step" },
-    PARAM_END
-};
-
-/* The names of sound_silent_t, in its order. */
-const char *const scenario_sound_silent_names[] = { "ambient", "none", NULL };
-
-#define HMSG host_message_def_t
-static const param_desc_t host_message_params[] = {
-    { .key = "robot", PARAM_FIELD(HMSG, robot, uint32_t), .min = 0, .max = 100000,
-      .doc = "robot id, 0-based over every group" },
-    { .key = "at", PARAM_FIELD(HMSG, at, float), .min = 0, .max = 1e9,
-      .doc = "s: hal_host_receive gives it from the first step at or after this" },
-    { .key = "hex", PARAM_STRING_FIELD(HMSG, hex),
-      .doc = "the message's bytes, two hex digits each (1 to 64 bytes)" },
-    PARAM_END
-};
-#undef HMSG
-
-static const param_desc_t sound_params[] = {
-    { .key = "enabled", PARAM_BOOL_FIELD(SC, sound.enabled),
-      .doc = "robots hear each other's speakers (hal_mic_level, hal_speaker_set)" },
-    { .key = "a0", PARAM_FIELD(SC, sound.a0, double), .min = 0, .max = 1e6,
-      .doc = "eq 1: level of a source at 0 m, units (1 unit = 1000 level counts)" },
-    { .key = "alpha", PARAM_FIELD(SC, sound.alpha, double), .min = 0, .max = 1000,
-      .doc = "eq 1: attenuation, 1/m (paper 0.12; e-puck scale 0.12/k = 0.726)" },
-    { .key = "ae", PARAM_FIELD(SC, sound.ae, double), .min = 0, .max = 1e6,
-      .doc = "eq 1: ambient term, units, once per robot in the sum" },
-    { .key = "noise", PARAM_FIELD(SC, sound.noise, double), .min = 0, .max = 1,
-      .doc = "eq 4: relative Gaussian sd of each pair's term (0.06 = N100, 0 = N0)" },
-    { .key = "silent_robots", PARAM_ENUM_FIELD(SC, sound.silent_robots, scenario_sound_silent_names),
-      .doc = "a robot silent in a band adds its ambient term (ambient) or nothing (none)" },
-    { .key = "self_masking", PARAM_BOOL_FIELD(SC, sound.self_masking),
-      .doc = "a robot whose speaker played hears nothing that period (false: full duplex)" },
-    { .key = "cutoff", PARAM_FIELD(SC, sound.cutoff, double), .min = 0, .max = 1e6,
-      .doc = "m; > 0: sources farther away add only ae (error <= a0 e^(-alpha cutoff) each)" },
-    PARAM_END
-};
-
-static const param_desc_t robot_telemetry_params[] = {
-    { .key = "enabled", PARAM_BOOL_FIELD(SC, robot_telemetry.enabled),
-      .doc = "every robot runs the image's telemetry sender; its frames are republished" },
-    { .key = "channel_prefix", PARAM_STRING_FIELD(SC, robot_telemetry.channel_prefix),
-      .doc = "prefix of the republished channels (as the bridge's --prefix)" },
-    { .key = "baud", PARAM_FIELD(SC, robot_telemetry.baud, uint32_t), .min = 0, .max = 10000000,
-      .doc = "the UART's rate, bits/s (0: unlimited); bytes beyond it wait in the sender" },
-    { .key = "dump", PARAM_BOOL_FIELD(SC, robot_telemetry.dump),
-      .doc = "also write each robot's raw byte stream to run_<seed>/uart/robot_<id>.bin" },
-    PARAM_END
-};
-
 static const param_desc_t random_cylinders_params[] = {
     { .key = "count", PARAM_FIELD(SC, random_cylinders.count, uint32_t), .min = 0, .max = SCENARIO_MAX_OBJECTS,
       .doc = "cylinders drawn at random when each run is built (0: none)" },
@@ -343,8 +182,6 @@ static const object_def_t object_default = {
 };
 static const light_def_t light_default = { 0.0f, 0.0f, 0.1f, 1.0f };
 static const pose_def_t pose_default = { 0.0f, 0.0f, NAN };
-static const fault_def_t fault_default = { FAULT_STOP, 1.0f, NAN, 0.0f, 0.0f, 0.0f };
-static const host_message_def_t host_message_default = { 0u, 0.0f, "", 0u, { 0u } };
 /* A group entry before its keys: one robot anywhere in the arena, random
  * heading; it must name its controller. */
 static const robot_group_t group_default = {
@@ -354,6 +191,8 @@ static const robot_group_t group_default = {
 
 static int check_object(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
 static int check_group(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
+static int fill_other(const loader_t *ld, const ypair_t *pair, const char *path, void *base);
+static const char *other_key(size_t i);
 static int fill_task(const loader_t *ld, const ypair_t *pair, const char *path, void *base);
 static const char *task_key(size_t i);
 
@@ -362,22 +201,12 @@ MAPPING_SCHEMA(arena);
 MAPPING_SCHEMA(object);
 MAPPING_SCHEMA(light);
 MAPPING_SCHEMA(pose);
-MAPPING_SCHEMA(fault);
-MAPPING_SCHEMA(ir);
-MAPPING_SCHEMA(ambient);
-MAPPING_SCHEMA(camera);
-MAPPING_SCHEMA(ircom);
-MAPPING_SCHEMA(wheels);
-MAPPING_SCHEMA(tracker);
-MAPPING_SCHEMA(sound);
 MAPPING_SCHEMA(output);
 MAPPING_SCHEMA(random_cylinders);
-MAPPING_SCHEMA(robot_telemetry);
-MAPPING_SCHEMA(host_message);
 
 static const seq_desc_t poses_seq = {
     "poses", SCENARIO_MAX_POSES, sizeof(pose_def_t), &pose_default, &pose_schema,
-    offsetof(robot_group_t, placement.poses), offsetof(robot_group_t, placement.pose_count), NULL, 0
+    offsetof(robot_group_t, placement.poses), offsetof(robot_group_t, placement.pose_count), NULL, 0, NULL
 };
 static const child_t placement_children[] = {
     { "poses", CHILD_SEQUENCE, NULL, &poses_seq, "poses: one {x, y, heading} per robot" },
@@ -385,46 +214,32 @@ static const child_t placement_children[] = {
 };
 static const schema_t placement_schema = { placement_params, placement_children, NULL, NULL };
 
-static int check_fault(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
-static const seq_desc_t faults_seq = {
-    "faults", SCENARIO_MAX_FAULTS, sizeof(fault_def_t), &fault_default, &fault_schema,
-    offsetof(robot_group_t, faults), offsetof(robot_group_t, fault_count), check_fault, 0
-};
 
 static const child_t group_children[] = {
     { "placement", CHILD_MAPPING, &placement_schema, NULL, "where the robots start" },
-    { "faults", CHILD_SEQUENCE, NULL, &faults_seq, "faults injected into some of the robots" },
     { "params", CHILD_DEFERRED, NULL, NULL, "the controller's parameters" },
     CHILD_END
 };
-static const schema_t group_schema = { group_params, group_children, NULL, NULL };
+static int fill_group_model(const loader_t *ld, const ypair_t *pair, const char *path, void *base);
+static const char *group_model_key(size_t i);
+static void group_model_defaults(void *group);
+static const schema_t group_schema = { group_params, group_children, fill_group_model, group_model_key };
 
 static const seq_desc_t groups_seq = {
     "groups", SCENARIO_MAX_GROUPS, sizeof(robot_group_t), &group_default, &group_schema,
-    offsetof(scenario_t, groups), offsetof(scenario_t, group_count), check_group, 0
+    offsetof(scenario_t, groups), offsetof(scenario_t, group_count), check_group, 0, group_model_defaults
 };
 /* On the heap: a scenario holds the objects its file lists, not room for
  * SCENARIO_MAX_OBJECTS of them. */
 static const seq_desc_t objects_seq = {
     "objects", SCENARIO_MAX_OBJECTS, sizeof(object_def_t), &object_default, &object_schema,
-    offsetof(scenario_t, objects), offsetof(scenario_t, object_count), check_object, 1
+    offsetof(scenario_t, objects), offsetof(scenario_t, object_count), check_object, 1, NULL
 };
 static const seq_desc_t lights_seq = {
     "lights", SCENARIO_MAX_LIGHTS, sizeof(light_def_t), &light_default, &light_schema,
-    offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL, 0
+    offsetof(scenario_t, lights), offsetof(scenario_t, light_count), NULL, 0, NULL
 };
 
-static int check_host_message(const loader_t *ld, const ynode_t *item, const char *path, void *elem);
-static const seq_desc_t host_messages_seq = {
-    "messages", SCENARIO_MAX_HOST_MESSAGES, sizeof(host_message_def_t), &host_message_default,
-    &host_message_schema, offsetof(scenario_t, host.messages), offsetof(scenario_t, host.message_count),
-    check_host_message, 0
-};
-static const child_t host_children[] = {
-    { "messages", CHILD_SEQUENCE, NULL, &host_messages_seq, "one {robot, at, hex} per message" },
-    CHILD_END
-};
-static const schema_t host_schema = { NULL, host_children, NULL, NULL };
 
 static const child_t top_children[] = {
     { "arena", CHILD_MAPPING, &arena_schema, NULL, "walled rectangle" },
@@ -433,21 +248,10 @@ static const child_t top_children[] = {
     { "random_cylinders", CHILD_MAPPING, &random_cylinders_schema, NULL,
       "cylinders at random positions, drawn for each run (seed 003's obstacle tests)" },
     { "lights", CHILD_SEQUENCE, NULL, &lights_seq, "point lights (at most 16)" },
-    { "ir", CHILD_MAPPING, &ir_schema, NULL, "IR proximity sensors" },
-    { "ambient", CHILD_MAPPING, &ambient_schema, NULL, "ambient light sensors" },
-    { "camera", CHILD_MAPPING, &camera_schema, NULL, "front camera blobs" },
-    { "ircom", CHILD_MAPPING, &ircom_schema, NULL, "IR communication" },
-    { "wheels", CHILD_MAPPING, &wheels_schema, NULL, "wheel motors" },
-    { "tracker", CHILD_MAPPING, &tracker_schema, NULL, "overhead tracker (hal_pose)" },
-    { "sound", CHILD_MAPPING, &sound_schema, NULL, "speakers and microphones (seed 002's model)" },
-    { "host", CHILD_MAPPING, &host_schema, NULL,
-      "messages the host sends the robots (hal_host_receive; a planner's routes)" },
     { "output", CHILD_MAPPING, &output_schema, NULL, "output files" },
-    { "robot_telemetry", CHILD_MAPPING, &robot_telemetry_schema, NULL,
-      "the robots' own telemetry, in the loop" },
     CHILD_END
 };
-static const schema_t top_schema = { top_params, top_children, fill_task, task_key };
+static const schema_t top_schema = { top_params, top_children, fill_other, other_key };
 
 /* ---------------------------------------------------------------- defaults */
 
@@ -468,6 +272,7 @@ static int default_params_of(const controller_def_t *def, scenario_params_t *out
 static void group_defaults(robot_group_t *g, const controller_def_t *def)
 {
     *g = group_default;
+    group_model_defaults(g);
     if (def != NULL) {
         snprintf(g->controller, sizeof g->controller, "%s", def->name);
         g->def = def;
@@ -482,6 +287,7 @@ void scenario_defaults(scenario_t *out)
     out->duration = 60.0;
     out->control_period_ms = 100;
     out->physics_substeps = 4;
+    out->memory_limit_mb = SCENARIO_MEMORY_LIMIT_MB;
     out->arena.width = 4.0f;
     out->arena.height = 4.0f;
     out->arena.wall_thickness = 0.05f;
@@ -489,42 +295,6 @@ void scenario_defaults(scenario_t *out)
     group_defaults(&out->groups[0], registry_controller(DEFAULT_CONTROLLER));
     out->groups[0].count = 20;
     snprintf(out->groups[0].name, sizeof out->groups[0].name, "%s", DEFAULT_CONTROLLER);
-    out->ir.aperture = 15.0f;
-    out->ir.range = 0.1f;
-    out->ir.noise_rel = 0.01f;
-    out->ir.noise_abs = 5.0f;
-    out->ambient.dark = 4000.0f;
-    out->ambient.half = 1.0f;
-    out->ambient.noise_rel = 0.01f;
-    out->camera.fov = 56.0f;
-    out->camera.range = SCENARIO_CAMERA_EPUCK_REACH_M;
-    out->camera.width_px = EPUCK_CAMERA_WIDTH_PX;
-    out->camera.height_px = EPUCK_CAMERA_HEIGHT_PX;
-    out->camera.model = CAMERA_GEOMETRIC;
-    out->camera.fps = SCENARIO_CAMERA_EPUCK_FPS;
-    out->ircom.range = 0.25f;
-    out->ircom.loss = 0.1f;
-    out->ircom.bearing_noise = 5.0f;
-    out->ircom.range_noise_rel = 0.1f;
-    out->ircom.quantise_bearing = 1;
-    out->ircom.blocked_by_robots = 0;
-    out->ircom.payload_bits = 8;
-    out->ircom.bearing_noise_vec = 0.0f;
-    out->ircom.tx_per_period = 1;
-    out->ircom.slots = 0;
-    out->ircom.queue = 20;
-    out->wheels.speed_noise_rel = 0.0f;
-    out->wheels.bias_sd = 0.0f;
-    out->wheels.bias_per_step = 0;
-    out->tracker.enabled = 0;
-    out->sound.enabled = 0;
-    out->sound.a0 = 299.18;
-    out->sound.alpha = 0.12;
-    out->sound.ae = 48.18;
-    out->sound.noise = 0.06;
-    out->sound.silent_robots = SOUND_SILENT_AMBIENT;
-    out->sound.self_masking = 1;
-    out->sound.cutoff = 0.0;
     out->output.timeseries_every = 10;
     out->random_cylinders.count = 0;
     out->random_cylinders.radius_min = 0.05f;
@@ -532,10 +302,11 @@ void scenario_defaults(scenario_t *out)
     out->random_cylinders.height = 0.1f;
     out->random_cylinders.gap = 0.08f;
     out->random_cylinders.layout_seed = 0;
-    out->robot_telemetry.enabled = 0;
-    snprintf(out->robot_telemetry.channel_prefix, sizeof out->robot_telemetry.channel_prefix, "FW_");
-    out->robot_telemetry.baud = 115200;
-    out->robot_telemetry.dump = 0;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim_models[id]->default_config != NULL) {
+            sim_models[id]->default_config(scenario_model_config_mut(out, (sim_model_id_t)id));
+        }
+    }
 }
 
 uint32_t scenario_robot_count(const scenario_t *sc)
@@ -674,88 +445,6 @@ static int check_placement(const loader_t *ld, const ynode_t *item, const char *
     return 0;
 }
 
-/* After a group's keys: its controller, policy and params (over the
- * controller's defaults), placement. */
-/* A fault's value must mean something for its kind. */
-static int check_fault(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
-{
-    const fault_def_t *f = elem;
-    char p[SCHEMA_PATH_MAX];
-    if ((f->kind == FAULT_WHEEL_DRIFT && !(f->value >= 0.0f && f->value <= 2.0f))
-        || (f->kind == FAULT_IR_NOISE && !(f->value > 0.0f))
-        || (f->kind == FAULT_RADIO_BURSTS && !(f->value > 0.0f && f->duration > 0.0f))) {
-        schema_join(p, path, "value");
-        return schema_fail(ld, schema_node_of(item, "value"), p, "%s needs %s", scenario_fault_names[f->kind],
-                           f->kind == FAULT_WHEEL_DRIFT ? "a speed factor in [0, 2] (0.8: 20 % slow)"
-                           : f->kind == FAULT_IR_NOISE ? "a noise sd > 0, counts (e.g. 200)"
-                           : "a mean gap > 0 s (value) and a mean burst > 0 s (duration)");
-    }
-    if (!isnan(f->at) && f->rate > 0.0f) {
-        schema_join(p, path, "rate");
-        return schema_fail(ld, schema_node_of(item, "rate"), p, "give `at` or `rate`, not both");
-    }
-    return 0;
-}
-
-/* A host message's hex, decoded into its bytes. */
-static int check_host_message(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
-{
-    host_message_def_t *m = elem;
-    char p[SCHEMA_PATH_MAX];
-    size_t n = strlen(m->hex);
-    schema_join(p, path, "hex");
-    if (n == 0 || n % 2u != 0u) {
-        return schema_fail(ld, schema_node_of(item, "hex"), p,
-                           "%zu hex digits: a message is 1 to %u bytes, two digits each", n,
-                           (unsigned)HAL_HOST_MSG_MAX);
-    }
-    for (size_t k = 0; k < n; k++) {
-        char c = m->hex[k];
-        int v = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10
-              : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
-        if (v < 0) {
-            return schema_fail(ld, schema_node_of(item, "hex"), p, "'%c' (digit %zu) is not a hex digit",
-                               c, k + 1);
-        }
-        m->bytes[k / 2u] = (uint8_t)(k % 2u == 0u ? v << 4 : m->bytes[k / 2u] | v);
-    }
-    m->len = (uint8_t)(n / 2u);
-    return 0;
-}
-
-/* Every host message names a robot of the run, and a robot's come in time
- * order (hal_host_receive gives them in file order). */
-static int check_host_messages(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
-{
-    const ynode_t *seq = schema_find(root, "host.messages");
-    uint32_t robots = scenario_robot_count(sc);
-    char path[SCHEMA_PATH_MAX];
-    for (uint32_t i = 0; i < sc->host.message_count; i++) {
-        const host_message_def_t *m = &sc->host.messages[i];
-        const ynode_t *item = seq != NULL && seq->kind == YNODE_SEQUENCE && i < seq->count ? seq->items[i] : root;
-        schema_index_path(path, "host.messages", i);
-        if (m->robot >= robots) {
-            char q[SCHEMA_PATH_MAX];
-            schema_join(q, path, "robot");
-            return schema_fail(ld, schema_node_of(item, "robot"), q, "robot %u: the run has %u robots (ids 0 to %u)",
-                               m->robot, robots, robots ? robots - 1u : 0u);
-        }
-        for (uint32_t k = i + 1u; k < sc->host.message_count; k++) {
-            if (sc->host.messages[k].robot == m->robot && sc->host.messages[k].at < m->at) {
-                char q[SCHEMA_PATH_MAX], at[SCHEMA_PATH_MAX];
-                const ynode_t *later = seq != NULL && seq->kind == YNODE_SEQUENCE && k < seq->count
-                                       ? seq->items[k] : root;
-                schema_index_path(q, "host.messages", k);
-                schema_join(at, q, "at");
-                return schema_fail(ld, schema_node_of(later, "at"), at,
-                                   "%g s is before robot %u's message %u (%g s): list a robot's messages in time order",
-                                   sc->host.messages[k].at, m->robot, i, m->at);
-            }
-        }
-    }
-    return 0;
-}
-
 static int check_group(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
 {
     robot_group_t *g = elem;
@@ -805,6 +494,124 @@ static int name_groups(const loader_t *ld, const ynode_t *root, scenario_t *sc)
             snprintf(name, sizeof name, "%.20s_%u", grp->controller, g);
             memcpy(grp->name, name, sizeof name);
         }
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- models */
+
+/* Each model's config (and group config) at its own 16-byte aligned offset
+ * of the scenario's block, in list order (model.h). */
+static size_t model_offset(sim_model_id_t id, int group)
+{
+    size_t off = 0;
+    for (uint32_t k = 0; k < (uint32_t)id; k++) {
+        size_t n = group ? sim_models[k]->group_config_size : sim_models[k]->config_size;
+        off += (n + 15u) & ~(size_t)15u;
+    }
+    SIM_ASSERT(off + (group ? sim_models[id]->group_config_size : sim_models[id]->config_size)
+               <= (group ? (size_t)SCENARIO_GROUP_MODEL_CONFIG_BYTES : (size_t)SCENARIO_MODEL_CONFIG_BYTES));
+    return off;
+}
+
+const void *scenario_model_config(const scenario_t *sc, sim_model_id_t id)
+{
+    return sc->model_config.bytes + model_offset(id, 0);
+}
+
+void *scenario_model_config_mut(scenario_t *sc, sim_model_id_t id)
+{
+    return sc->model_config.bytes + model_offset(id, 0);
+}
+
+const void *scenario_group_model_config(const robot_group_t *g, sim_model_id_t id)
+{
+    return sim_models[id]->group_config_size ? g->model_config.bytes + model_offset(id, 1) : NULL;
+}
+
+void *scenario_group_model_config_mut(robot_group_t *g, sim_model_id_t id)
+{
+    return sim_models[id]->group_config_size ? g->model_config.bytes + model_offset(id, 1) : NULL;
+}
+
+/* A group's model keys take their defaults (seq_desc_t.init). */
+static void group_model_defaults(void *group)
+{
+    robot_group_t *g = group;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim_models[id]->default_group_config != NULL) {
+            sim_models[id]->default_group_config(scenario_group_model_config_mut(g, (sim_model_id_t)id));
+        }
+    }
+}
+
+/* A key of a group that a model declares (model_def_t.group_schema). */
+static int fill_group_model(const loader_t *ld, const ypair_t *pair, const char *path, void *base)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const model_def_t *m = sim_models[id];
+        if (m->group_schema != NULL) {
+            int rc = schema_fill_known(ld, pair, path, m->group_schema,
+                                       scenario_group_model_config_mut(base, (sim_model_id_t)id));
+            if (rc != 0) {
+                return rc;
+            }
+        }
+    }
+    return 0;
+}
+
+static const char *group_model_key(size_t i)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const char *key;
+        for (size_t k = 0; sim_models[id]->group_schema != NULL
+                           && (key = schema_key_at(sim_models[id]->group_schema, k)) != NULL; k++) {
+            if (i-- == 0) {
+                return key;
+            }
+        }
+    }
+    return NULL;
+}
+
+/* A top-level key of a model's (one of its sections), or of a task's. */
+static int fill_other(const loader_t *ld, const ypair_t *pair, const char *path, void *base)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        int rc = schema_fill_known(ld, pair, path, sim_models[id]->schema,
+                                   scenario_model_config_mut(base, (sim_model_id_t)id));
+        if (rc != 0) {
+            return rc;
+        }
+    }
+    return fill_task(ld, pair, path, base);
+}
+
+static const char *other_key(size_t i)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const char *key;
+        for (size_t k = 0; (key = schema_key_at(sim_models[id]->schema, k)) != NULL; k++) {
+            if (i-- == 0) {
+                return key;
+            }
+        }
+    }
+    return task_key(i);
+}
+
+/* Every model's cross-checks, in list order. */
+static int check_models(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const model_def_t *m = sim_models[id];
+        char path[SCHEMA_PATH_MAX] = "", shown[SCHEMA_PATH_MAX], msg[SIM_ERR_MAX] = "";
+        if (m->check == NULL || m->check(scenario_model_config(sc, (sim_model_id_t)id), sc, path, msg) == 0) {
+            continue;
+        }
+        schema_display_path(shown, path);
+        return schema_fail(ld, schema_find(root, path), shown, "%s", msg);
     }
     return 0;
 }
@@ -958,19 +765,6 @@ static int check_inside(const loader_t *ld, const ynode_t *root, const scenario_
     return 0;
 }
 
-/* What a controller needs of the platform the scenario models. */
-/* The registered task that lists `controller` as needing it, or NULL. */
-static const task_def_t *task_needed_by(const char *controller)
-{
-    const task_def_t *t;
-    for (size_t i = 0; (t = registry_task_at(i)) != NULL; i++) {
-        for (size_t k = 0; t->controllers != NULL && t->controllers[k] != NULL; k++) {
-            if (strcmp(t->controllers[k], controller) == 0) return t;
-        }
-    }
-    return NULL;
-}
-
 static int has_task(const scenario_t *sc, const task_def_t *def)
 {
     for (uint32_t t = 0; t < sc->task_count; t++) {
@@ -983,7 +777,7 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
 {
     for (uint32_t g = 0; g < sc->group_count; g++) {
         const robot_group_t *grp = &sc->groups[g];
-        const task_def_t *world = task_needed_by(grp->def->name);
+        const task_def_t *world = registry_task_for_controller(grp->def->name);
         if (grp->count > 0 && world != NULL && !has_task(sc, world)) {
             char path[SCHEMA_PATH_MAX], at[SCHEMA_PATH_MAX];
             snprintf(path, sizeof path, "robots.%u.controller", g);
@@ -995,57 +789,39 @@ static int check_needs(const loader_t *ld, const ynode_t *root, const scenario_t
                                "have nothing to do): add a `%s:` section (swarmsim --help lists its keys)",
                                grp->def->name, world->name, world->name);
         }
-        for (uint32_t k = 0; k < grp->fault_count; k++) {
-            if (grp->faults[k].kind == FAULT_LIAR && (world == NULL || world->lie == NULL)) {
-                char path[SCHEMA_PATH_MAX];
-                snprintf(path, sizeof path, "robots.%u.faults.%u.kind", g, k);
-                const ynode_t *node = schema_find(root, path);
-                snprintf(path, sizeof path, "robots[%u].faults[%u].kind", g, k);
-                return schema_fail(ld, node, path, "controller '%s' has no task that defines what a "
-                                   "lying robot sends (task_def_t.lie); use babble for random messages",
-                                   grp->def->name);
-            }
-        }
-        if (grp->count > 0 && grp->def->ircom_bits > sc->ircom.payload_bits) {
-            char path[SCHEMA_PATH_MAX];
-            snprintf(path, sizeof path, "robots.%u.controller", g);
-            const ynode_t *node = schema_find(root, path);
-            char at[SCHEMA_PATH_MAX];
-            schema_index_path(at, "robots", g);
-            schema_join(path, at, "controller");
-            return schema_fail(ld, node, path,
-                               "controller '%s' sends %u-bit IR messages but ircom.payload_bits is %u "
-                               "(set ircom.payload_bits: %u, the range-and-bearing turret)",
-                               grp->def->name, grp->def->ircom_bits, sc->ircom.payload_bits,
-                               grp->def->ircom_bits);
-        }
     }
     return 0;
 }
 
-/* The rendered camera is a pinhole camera over a frame the detector takes. */
-static int check_camera(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+void scenario_format_bytes(uint64_t bytes, char *out, size_t len)
 {
-    if (sc->camera.model != CAMERA_RENDERED) {
+    if (bytes >= UINT64_C(1000000000)) {
+        snprintf(out, len, "%.1f GB", (double)bytes / 1e9);
+    } else if (bytes >= UINT64_C(1000000)) {
+        snprintf(out, len, "%.0f MB", (double)bytes / 1e6);
+    } else {
+        snprintf(out, len, bytes < 10000u ? "%.1f kB" : "%.0f kB", (double)bytes / 1e3);
+    }
+}
+
+/* Before anything is allocated: a run must fit memory_limit_mb. */
+static int check_memory(const loader_t *ld, const ynode_t *root, const scenario_t *sc)
+{
+    sim_memory_t m;
+    sim_memory_estimate(sc, 1, &m);
+    if (m.total <= (uint64_t)sc->memory_limit_mb << 20) {
         return 0;
     }
-    const char *key = NULL;
-    if (sc->camera.fov > SCENARIO_CAMERA_PINHOLE_MAX_DEG) {
-        key = "camera.fov";
-    } else if (sc->camera.width_px > SCENARIO_CAMERA_RENDERED_MAX_PX) {
-        key = "camera.width_px";
-    } else if (sc->camera.height_px > SCENARIO_CAMERA_RENDERED_MAX_PX) {
-        key = "camera.height_px";
-    }
-    if (key == NULL) {
-        return 0;
-    }
-    const ynode_t *node = schema_find(root, key);
-    return schema_fail(ld, node != NULL ? node : root, key,
-                       "camera.model rendered needs a pinhole camera (fov <= %g deg) and a frame of at "
-                       "most %u x %u pixels (hal/blob_detect.c's limit)",
-                       (double)SCENARIO_CAMERA_PINHOLE_MAX_DEG, SCENARIO_CAMERA_RENDERED_MAX_PX,
-                       SCENARIO_CAMERA_RENDERED_MAX_PX);
+    char total[32], each[32];
+    scenario_format_bytes(m.total, total, sizeof total);
+    scenario_format_bytes(m.per_robot, each, sizeof each);
+    const ynode_t *limit = ytree_get(root, "memory_limit_mb"), *robots = ytree_get(root, "robots");
+    return schema_fail(ld, limit != NULL ? limit : robots != NULL ? robots : root,
+                       limit != NULL ? "memory_limit_mb" : "robots",
+                       "a run of this scenario needs about %s (%u robots at about %s each), more than "
+                       "memory_limit_mb %u: fewer robots, or a larger limit (--set memory_limit_mb=%llu)",
+                       total, m.robots, each, sc->memory_limit_mb,
+                       (unsigned long long)((m.total >> 20) * 5 / 4 + 1));
 }
 
 static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
@@ -1056,18 +832,13 @@ static int cross_check(const loader_t *ld, const ynode_t *root, scenario_t *sc)
                            "%g s is shorter than one control period (%g s)", sc->duration,
                            sc->control_period_ms / 1000.0);
     }
-    if (sc->ircom.slots > 0 && sc->ircom.tx_per_period > sc->ircom.slots) {
-        const ynode_t *d = schema_find(root, "ircom.tx_per_period");
-        return schema_fail(ld, d != NULL ? d : root, "ircom.tx_per_period",
-                           "%u messages a period do not fit in %u slots (ircom.slots)",
-                           sc->ircom.tx_per_period, sc->ircom.slots);
-    }
-    if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0 || check_camera(ld, root, sc) != 0
-        || check_inside(ld, root, sc) != 0 || check_host_messages(ld, root, sc) != 0) {
+    if (name_groups(ld, root, sc) != 0 || check_needs(ld, root, sc) != 0
+        || check_inside(ld, root, sc) != 0
+        || check_models(ld, root, sc) != 0) {
         return -1;
     }
     order_tasks(sc);
-    return check_tasks(ld, root, sc);
+    return check_tasks(ld, root, sc) != 0 ? -1 : check_memory(ld, root, sc);
 }
 
 /* ---------------------------------------------------------------- loading */
@@ -1141,9 +912,9 @@ static int old_syntax(const loader_t *ld, const ynode_t *root)
 }
 
 int scenario_load(const char *path, const scenario_override_t *overrides,
-                  size_t override_count, scenario_t *out, char err[SCENARIO_ERROR_MAX])
+                  size_t override_count, scenario_t *out, char err[SIM_ERR_MAX])
 {
-    loader_t ld = { path != NULL ? path : "(null)", err, SCENARIO_ERROR_MAX };
+    loader_t ld = { path != NULL ? path : "(null)", err, SIM_ERR_MAX };
     ynode_t *root = NULL;
     int rc;
     err[0] = '\0';
@@ -1151,12 +922,12 @@ int scenario_load(const char *path, const scenario_override_t *overrides,
     if (path == NULL || set_path_and_name(&ld, path, out) != 0) {
         return path == NULL ? schema_fail(&ld, NULL, "", "no scenario file") : -1;
     }
-    if (ytree_parse_file(path, &root, err, SCENARIO_ERROR_MAX) != 0) {
+    if (ytree_parse_file(path, &root, err, SIM_ERR_MAX) != 0) {
         return -1;
     }
     rc = check_root(&ld, &root, override_count);
     for (size_t i = 0; rc == 0 && i < override_count; i++) {
-        rc = ytree_apply_override(&root, overrides[i].text, err, SCENARIO_ERROR_MAX);
+        rc = ytree_apply_override(&root, overrides[i].text, err, SIM_ERR_MAX);
     }
     if (rc == 0) {
         rc = old_syntax(&ld, root);
@@ -1180,6 +951,11 @@ void scenario_free(scenario_t *sc)
         free(sc->objects);
         sc->objects = NULL;
         sc->object_count = 0;
+        for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+            if (sim_models[id]->free_config != NULL) {
+                sim_models[id]->free_config(scenario_model_config_mut(sc, (sim_model_id_t)id));
+            }
+        }
     }
 }
 
@@ -1198,19 +974,19 @@ int scenario_add_object(scenario_t *sc, const object_def_t *o)
 }
 
 int scenario_write_effective(const char *path, const scenario_override_t *overrides,
-                             size_t override_count, FILE *out, char err[SCENARIO_ERROR_MAX])
+                             size_t override_count, FILE *out, char err[SIM_ERR_MAX])
 {
-    loader_t ld = { path, err, SCENARIO_ERROR_MAX };
+    loader_t ld = { path, err, SIM_ERR_MAX };
     ynode_t *root = NULL;
-    if (ytree_parse_file(path, &root, err, SCENARIO_ERROR_MAX) != 0) {
+    if (ytree_parse_file(path, &root, err, SIM_ERR_MAX) != 0) {
         return -1;
     }
     int rc = check_root(&ld, &root, override_count);
     for (size_t i = 0; rc == 0 && i < override_count; i++) {
-        rc = ytree_apply_override(&root, overrides[i].text, err, SCENARIO_ERROR_MAX);
+        rc = ytree_apply_override(&root, overrides[i].text, err, SIM_ERR_MAX);
     }
     if (rc == 0) {
-        rc = ytree_write(out, root, err, SCENARIO_ERROR_MAX);
+        rc = ytree_write(out, root, err, SIM_ERR_MAX);
     }
     ytree_free(root);
     return rc == 0 ? 0 : -1;
@@ -1221,6 +997,18 @@ int scenario_write_effective(const char *path, const scenario_override_t *overri
 static void print_group_params(FILE *f, const char *prefix)
 {
     const controller_def_t *def;
+    /* The models' keys of a group first: "robots[]", the prefix without ".params". */
+    char group[SCHEMA_PATH_MAX];
+    snprintf(group, sizeof group, "%.*s", (int)(strlen(prefix) > 7 ? strlen(prefix) - 7 : 0), prefix);
+    robot_group_t *g = calloc(1, sizeof *g);
+    for (uint32_t id = 0; g != NULL && id < SIM_MODEL_COUNT; id++) {
+        if (sim_models[id]->group_schema != NULL) {
+            group_model_defaults(g);
+            schema_print(f, group, sim_models[id]->group_schema, scenario_group_model_config(g, (sim_model_id_t)id),
+                         NULL);
+        }
+    }
+    free(g);
     for (size_t i = 0; (def = registry_controller_at(i)) != NULL; i++) {
         scenario_params_t buf;
         if (default_params_of(def, &buf) != 0) {
@@ -1247,6 +1035,9 @@ void scenario_print_schema(FILE *file)
                   "the arena is centred on 0,0):\n");
     fprintf(file, "  %-34s %-6s %-12s %-22s %s\n", "key", "type", "default", "range", "meaning");
     schema_print(file, "", &top_schema, def, print_group_params);
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        schema_print(file, "", sim_models[id]->schema, scenario_model_config(def, (sim_model_id_t)id), NULL);
+    }
     for (size_t i = 0; (task = registry_task_at(i)) != NULL; i++) {
         union { uint8_t bytes[SCENARIO_TASK_CONFIG_MAX]; double d; uint64_t u; } cfg;
         memset(&cfg, 0, sizeof cfg);

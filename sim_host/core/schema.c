@@ -26,7 +26,7 @@ static void format_into(char *buf, size_t len, const char *fmt, ...)
 
 int schema_fail(const loader_t *ld, const ynode_t *node, const char *path, const char *fmt, ...)
 {
-    char msg[512], where[SCHEMA_PATH_MAX + 300];
+    char msg[SIM_ERR_MAX], where[SCHEMA_PATH_MAX + 300];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
@@ -60,6 +60,19 @@ void schema_join(char out[SCHEMA_PATH_MAX], const char *parent, const char *key)
         format_into(out, SCHEMA_PATH_MAX, "%.64s", key);
     } else {
         format_into(out, SCHEMA_PATH_MAX, "%s.%.64s", parent, key);
+    }
+}
+
+void schema_display_path(char out[SCHEMA_PATH_MAX], const char *dotted)
+{
+    size_t n = 0;
+    out[0] = '\0';
+    while (*dotted != '\0' && n + 1 < SCHEMA_PATH_MAX) {
+        size_t len = strcspn(dotted, ".");
+        int index = len > 0 && strspn(dotted, "0123456789") == len;
+        int w = snprintf(out + n, SCHEMA_PATH_MAX - n, index ? "[%.*s]" : n ? ".%.*s" : "%.*s", (int)len, dotted);
+        n = w < 0 ? n : n + (size_t)w < SCHEMA_PATH_MAX ? n + (size_t)w : SCHEMA_PATH_MAX - 1;
+        dotted += len + (dotted[len] == '.');
     }
 }
 
@@ -406,12 +419,21 @@ static int unknown_key(const loader_t *ld, const ynode_t *key, const char *path,
         schema_list_key(valid, sizeof valid, d->key);
     }
     for (c = schema->children; c != NULL && c->key != NULL; c++) {
-        schema_consider(key->text, c->key, &best, &dist);
-        schema_list_key(valid, sizeof valid, c->key);
+        if (c->kind != CHILD_DEFERRED) {
+            schema_consider(key->text, c->key, &best, &dist);
+            schema_list_key(valid, sizeof valid, c->key);
+        }
     }
     for (i = 0; schema->other_key != NULL && (other = schema->other_key(i)) != NULL; i++) {
         schema_consider(key->text, other, &best, &dist);
         schema_list_key(valid, sizeof valid, other);
+    }
+    /* Keys filled after the others (a group's params) come last. */
+    for (c = schema->children; c != NULL && c->key != NULL; c++) {
+        if (c->kind == CHILD_DEFERRED) {
+            schema_consider(key->text, c->key, &best, &dist);
+            schema_list_key(valid, sizeof valid, c->key);
+        }
     }
     if (best != NULL) {
         return schema_fail(ld, key, path, "unknown key '%.64s' (did you mean '%s'?)", key->text, best);
@@ -422,27 +444,52 @@ static int unknown_key(const loader_t *ld, const ynode_t *key, const char *path,
     return schema_fail(ld, key, path, "unknown key '%.64s' (valid keys: %s)", key->text, valid);
 }
 
-static int fill_entry(const loader_t *ld, const ypair_t *pair, const char *path,
-                      const schema_t *schema, void *base)
+int schema_fill_known(const loader_t *ld, const ypair_t *pair, const char *path, const schema_t *schema,
+                      void *base)
 {
     const param_desc_t *d = find_param(schema->params, pair->key->text);
     const child_t *c;
     if (d != NULL) {
-        return schema_fill_scalar(ld, d, pair->value, path, base);
+        return schema_fill_scalar(ld, d, pair->value, path, base) == 0 ? 1 : -1;
     }
     c = find_child(schema->children, pair->key->text);
     if (c == NULL) {
-        int rc = schema->other != NULL ? schema->other(ld, pair, path, base) : 0;
-        return rc != 0 ? (rc < 0 ? -1 : 0) : unknown_key(ld, pair->key, path, schema);
+        return 0;
     }
     switch (c->kind) {
     case CHILD_MAPPING:
-        return schema_fill_mapping(ld, pair->value, path, c->schema, base);
+        return schema_fill_mapping(ld, pair->value, path, c->schema, base) == 0 ? 1 : -1;
     case CHILD_SEQUENCE:
-        return schema_fill_sequence(ld, pair->value, path, c->seq, base);
+        return schema_fill_sequence(ld, pair->value, path, c->seq, base) == 0 ? 1 : -1;
     default:
-        return 0;   /* the parent fills it */
+        return 1;   /* the parent fills it */
     }
+}
+
+const char *schema_key_at(const schema_t *schema, size_t i)
+{
+    for (const param_desc_t *d = schema->params; d != NULL && d->key != NULL; d++) {
+        if (i-- == 0) {
+            return d->key;
+        }
+    }
+    for (const child_t *c = schema->children; c != NULL && c->key != NULL; c++) {
+        if (i-- == 0) {
+            return c->key;
+        }
+    }
+    return NULL;
+}
+
+static int fill_entry(const loader_t *ld, const ypair_t *pair, const char *path,
+                      const schema_t *schema, void *base)
+{
+    int rc = schema_fill_known(ld, pair, path, schema, base);
+    if (rc == 0) {
+        rc = schema->other != NULL ? schema->other(ld, pair, path, base) : 0;
+        return rc != 0 ? (rc < 0 ? -1 : 0) : unknown_key(ld, pair->key, path, schema);
+    }
+    return rc < 0 ? -1 : 0;
 }
 
 static int duplicate_key(const loader_t *ld, const ynode_t *map, size_t i, const char *path)
@@ -522,6 +569,9 @@ int schema_fill_sequence(const loader_t *ld, const ynode_t *node, const char *pa
             return schema_wrong_type(ld, item, ipath, "a mapping");
         }
         memcpy(elem, seq->defaults, seq->elem_size);
+        if (seq->init != NULL) {
+            seq->init(elem);
+        }
         if (schema_fill_mapping(ld, item, ipath, seq->schema, elem) != 0 ||
             (seq->check != NULL && seq->check(ld, item, ipath, elem) != 0)) {
             return -1;

@@ -23,6 +23,7 @@
 #include <stdio.h>
 
 #include "common/param.h"
+#include "swarmsim/base.h"
 #include "yaml_tree.h"
 
 #define SCHEMA_PATH_MAX 256
@@ -82,6 +83,8 @@ struct seq_desc {
     elem_check_fn check;   /**< after an entry is filled (or NULL) */
     int on_heap;           /**< the base holds a pointer, reallocated to the sequence's
                                 length (the owner frees it) */
+    void (*init)(void *elem);  /**< after an entry takes the defaults, before its keys
+                                    (what `defaults` cannot hold), or NULL */
 };
 
 /** "FILE:LINE: path: message" (or "--set TEXT: path: message" for a value
@@ -104,6 +107,19 @@ const ynode_t *schema_node_of(const ynode_t *item, const char *key);
 /** The node a dotted path names below `root` ("robots.0.count"), or the
  *  deepest node on the way (for a line to point at). */
 const ynode_t *schema_find(const ynode_t *root, const char *dotted);
+
+/** A dotted path as messages show it: "robots.0.faults.1.kind" gives
+ *  "robots[0].faults[1].kind". */
+void schema_display_path(char out[SCHEMA_PATH_MAX], const char *dotted);
+
+/** Fills `pair` when `schema` knows its key (a scalar or a child): 1 when
+ *  it did, 0 when the key is not the schema's, -1 on error (set).  For
+ *  keys a schema_t.other hook hands to another schema (the models'). */
+int schema_fill_known(const loader_t *ld, const ypair_t *pair, const char *path, const schema_t *schema,
+                      void *base);
+/** The i-th key of `schema` (its scalars, then its children), NULL past
+ *  the end: for schema_t.other_key. */
+const char *schema_key_at(const schema_t *schema, size_t i);
 
 /** Appends `key` to a ", "-separated list in buf. */
 void schema_list_key(char *buf, size_t len, const char *key);

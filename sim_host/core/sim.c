@@ -10,7 +10,6 @@
 
 #include "pool.h"
 #include "sim_internal.h"
-#include "sound.h"
 #include "units.h"
 
 static void build_obstacles(struct sim *sim)
@@ -49,7 +48,7 @@ static void build_obstacles(struct sim *sim)
 /* Every group's robots and their controllers, initialised with the
  * group's params (the scenario's, then its policy, then what the tasks
  * tell it). */
-static int build_robots(struct sim *sim, char err[256])
+static int build_robots(struct sim *sim, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
     uint32_t i = 0;
@@ -71,7 +70,7 @@ static int build_robots(struct sim *sim, char err[256])
         if (stride && grp->count) {
             sim->ctrl_blocks[g] = calloc(grp->count, stride);
             if (!sim->ctrl_blocks[g]) {
-                snprintf(err, 256, "out of memory for the controllers of group %u", g);
+                snprintf(err, SIM_ERR_MAX, "out of memory for the controllers of group %u", g);
                 return -1;
             }
         }
@@ -79,26 +78,10 @@ static int build_robots(struct sim *sim, char err[256])
             sim_robot_t *r = &sim->robots[i];
             r->hal.sim = sim;
             r->hal.index = i;
-            r->rx = sim->rx_store + (size_t)i * sc->ircom.queue;
-            r->ircom_tx_n = 0;
             r->group = g;
             r->def = def;
             r->moves = grp->moves;
             r->ctrl = stride ? (uint8_t *)sim->ctrl_blocks[g] + (size_t)k * stride : NULL;
-            sim_rand_seed(&r->noise, sim->seed, i, RAND_SENSORS);
-            sim_rand_seed(&r->ircom_rand, sim->seed, i, RAND_IRCOM);
-            sim_rand_seed(&r->wheel_rand, sim->seed, i, RAND_WHEELS);
-            sim_rand_seed(&r->tracker_rand, sim->seed, i, RAND_TRACKER);
-            sim_rand_seed(&r->sound_rand, sim->seed, i, RAND_SOUND);
-            r->bias_left = r->bias_right = 0.0;
-            if (sc->wheels.bias_sd > 0.0f) {
-                /* Eq 3's bias b, drawn once a run as ARGoS does (its own
-                 * stream: other streams and golden hashes are unchanged). */
-                sim_rand_seed(&r->bias_rand, sim->seed, i, RAND_WHEEL_BIAS);
-                const double sd_steps = sc->wheels.bias_sd / EPUCK_STEP_M;
-                r->bias_left = sd_steps * sim_rand_normal(&r->bias_rand);
-                r->bias_right = sd_steps * sim_rand_normal(&r->bias_rand);
-            }
             if (r->ctrl) {
                 def->init(r->ctrl, params.bytes, sim_rand_seed32(sim->seed, i, RAND_CONTROLLER));
             }
@@ -144,79 +127,20 @@ static void find_counters(struct sim *sim)
     }
 }
 
-/* The robots' own telemetry, when the scenario runs it in the loop. */
-static int create_robot_links(struct sim *sim, char err[256])
-{
-    const scenario_t *sc = sim->sc;
-    if (!sc->robot_telemetry.enabled) {
-        return 0;
-    }
-    size_t n = sim->n ? sim->n : 1;
-    sim->robot_tx = calloc(n, sizeof *sim->robot_tx);
-    sim->links = calloc(n, sizeof *sim->links);
-    if (!sim->robot_tx || !sim->links) {
-        snprintf(err, 256, "out of memory for the robots' telemetry links");
-        return -1;
-    }
-    for (uint32_t i = 0; i < sim->n; i++) {
-        robot_telemetry_init(&sim->robot_tx[i]);
-        robot_link_init(&sim->links[i]);
-    }
-    /* 8N1: ten bits a byte. */
-    uint64_t per_step = (uint64_t)sc->robot_telemetry.baud * sc->control_period_ms / 10000u;
-    sim->link_budget = sc->robot_telemetry.baud == 0 || per_step > UINT32_MAX ? UINT32_MAX : (uint32_t)per_step;
-    return 0;
-}
-
 void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p)
 {
     const sim_robot_t *r = &sim->robots[i];
-    p->wheel_left = r->cmd_left;
-    p->wheel_right = r->cmd_right;
+    p->wheel_left = p->wheel_right = 0;
     p->leds = (int16_t)r->leds;
-    p->ir_max = -1;
+    p->ir_max = -1;            /* the models fill what they read at `since` or later */
     p->ir_max_index = -1;
-    if (r->ir_stamp != 0 && r->ir_stamp >= since) {
-        uint16_t best = 0;
-        uint8_t at = 0;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-            if (r->ir[k] > best) {
-                best = r->ir[k];
-                at = k;
-            }
-        }
-        p->ir_max = (int16_t)best;
-        p->ir_max_index = (int8_t)at;
-    }
     p->ambient_min = -1;
-    if (r->ambient_stamp != 0 && r->ambient_stamp >= since) {
-        uint16_t low = HAL_RAW_MAX;
-        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
-            low = r->ambient[k] < low ? r->ambient[k] : low;
+    p->blobs = -1;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim->models[id].def->platform) {
+            sim->models[id].def->platform(sim, sim->models[id].self, i, since, p);
         }
-        p->ambient_min = (int16_t)low;
     }
-    p->blobs = r->camera_stamp != 0 && r->camera_stamp >= since ? (int8_t)r->blob_count : -1;
-}
-
-/* After robot r's step: its image's telemetry sender, as on the robot.
- * It reads only the robot's own state and this step's sensor caches, so
- * the run is the same with it or without it. */
-static void robot_telemetry_of(struct sim *sim, uint32_t i)
-{
-    sim_robot_t *r = &sim->robots[i];
-    robot_telemetry_t *tx = &sim->robot_tx[i];
-    robot_telemetry_platform_t p;
-    const robot_telemetry_platform_t *due = NULL;
-    robot_telemetry_source_t src = {
-        .controller = r->def->name, .observables = r->def->observables, .state = r->ctrl,
-    };
-    if (robot_telemetry_state_due(tx)) {
-        sim_robot_platform(sim, i, sim->step + 1, &p);
-        src.state_name = r->def->state_name(r->ctrl);
-        due = &p;
-    }
-    robot_telemetry_step(tx, &r->hal, &src, due);
 }
 
 /* Robots take a few microseconds each: chunks of 64 keep the pool's
@@ -231,18 +155,131 @@ static void step_robots(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
     for (uint32_t k = begin; k < end; k++) {
         uint32_t i = sim->step_order[k];
         sim_robot_t *r = &sim->robots[i];
-        if (r->ctrl && !faults_stopped(sim, i)) {
+        if (r->ctrl && !sim_robot_halted(sim, i)) {
             r->hal.worker = worker;
             r->def->step(r->ctrl, &r->hal);
-            if (sim->robot_tx) {
-                robot_telemetry_of(sim, i);
+            for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+                const sim_model_run_t *m = &sim->models[id];
+                if (m->def->after_robot) {
+                    m->def->after_robot(sim, m->self, i);
+                }
             }
             r->hal.worker = 0;
         }
     }
 }
 
-static int create_tasks(struct sim *sim, char err[256])
+/* ---------------------------------------------------------------- models */
+
+/* 64-byte aligned, zero-filled: a robot's element never shares a cache
+ * line with another model's. */
+static void *alloc_zeroed(size_t bytes)
+{
+    size_t size = (bytes + 63u) & ~(size_t)63u;
+    void *p = aligned_alloc(64, size ? size : 64);
+    if (p) {
+        memset(p, 0, size ? size : 64);
+    }
+    return p;
+}
+
+/* Every model's arrays and scratch, then its create, in list order. */
+static int create_models(struct sim *sim, char err[SIM_ERR_MAX])
+{
+    uint32_t workers = pool_threads(sim->pool);
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        sim_model_run_t *m = &sim->models[id];
+        m->def = sim_models[id];
+        m->config = scenario_model_config(sim->sc, (sim_model_id_t)id);
+        if (m->def->layout) {
+            m->def->layout(m->config, sim->sc, &m->layout);
+        }
+        SIM_ASSERT(m->layout.arrays <= MODEL_MAX_ARRAYS);
+        for (uint32_t k = 0; k < m->layout.arrays; k++) {
+            if (!(m->array[k] = alloc_zeroed((size_t)sim->n * m->layout.elem_size[k]))) {
+                snprintf(err, SIM_ERR_MAX, "out of memory for the %s model's state of %u robots", m->def->name, sim->n);
+                return -1;
+            }
+        }
+        if (m->layout.scratch_size) {
+            m->scratch_stride = (m->layout.scratch_size + 63u) & ~(size_t)63u;
+            if (!(m->scratch = alloc_zeroed(workers * m->scratch_stride))) {
+                snprintf(err, SIM_ERR_MAX, "out of memory for the %s model's working memory", m->def->name);
+                return -1;
+            }
+        }
+    }
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        sim_model_run_t *m = &sim->models[id];
+        m->created = 1;
+        if (m->def->create && m->def->create(sim, m->config, &m->self, err) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static void destroy_models(struct sim *sim)
+{
+    for (uint32_t id = SIM_MODEL_COUNT; id-- > 0;) {
+        sim_model_run_t *m = &sim->models[id];
+        if (m->created && m->def->destroy) {
+            m->def->destroy(m->self);
+        }
+        for (uint32_t k = 0; k < MODEL_MAX_ARRAYS; k++) {
+            free(m->array[k]);
+        }
+        free(m->scratch);
+    }
+}
+
+int sim_robot_halted(const struct sim *sim, uint32_t i)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        if (m->def->halts && m->def->halts(sim, m->self, i)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+typedef enum phase { PHASE_BEGIN, PHASE_BEFORE_CONTROL, PHASE_AFTER_CONTROL, PHASE_DRIVE, PHASE_END } phase_t;
+
+static void (*phase_hook(const model_def_t *d, phase_t p))(sim_t *, void *)
+{
+    switch (p) {
+    case PHASE_BEGIN: return d->begin_step;
+    case PHASE_BEFORE_CONTROL: return d->before_control;
+    case PHASE_AFTER_CONTROL: return d->after_control;
+    case PHASE_DRIVE: return d->drive;
+    default: return d->end_step;
+    }
+}
+
+/* One phase's hook of every model that takes part, in list order. */
+static void run_phase(struct sim *sim, phase_t p)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        void (*fn)(sim_t *, void *) = phase_hook(sim->models[id].def, p);
+        if (fn) {
+            fn(sim, sim->models[id].self);
+        }
+    }
+}
+
+static int models_serial(const struct sim *sim)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        if (m->def->serial && m->def->serial(sim, m->self)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static int create_tasks(struct sim *sim, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
     for (uint32_t t = 0; t < sc->task_count; t++) {
@@ -281,20 +318,69 @@ static int create_workers(struct sim *sim, uint32_t threads)
     return 0;
 }
 
-sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[256])
+/* Box2D v3's memory per body, bytes: a dynamic body with one circle
+ * shape (b2Body, its sim and state, the shape, its broad-phase proxy and
+ * tree node, its share of the contacts and islands at the benchmark
+ * worlds' density), and per static shape.  Measured on random walks at 20
+ * robots/m^2: swarmsim's peak resident memory grew by 2,823 B a robot from
+ * 10,000 to 100,000 robots (outputs and the runner included), a run's own
+ * growth in test_sim is 2,330 B a robot at 20,000; with this constant the
+ * estimate says 2,567 B a robot, between the two (test_sim keeps it
+ * within 25 % of the run's growth). */
+#define BOX2D_BYTES_PER_BODY 1800u
+#define BOX2D_BYTES_PER_SHAPE 400u
+/* The sim itself, the pool, the scenario's copy of the objects... */
+#define RUN_FIXED_BYTES (256u * 1024u)
+
+void sim_memory_estimate(const scenario_t *sc, uint32_t threads, sim_memory_t *out)
+{
+    uint64_t n = scenario_robot_count(sc), no = (uint64_t)sc->object_count + sc->random_cylinders.count;
+    uint64_t w = threads ? threads : 1;
+    uint64_t robots = n * (sizeof(sim_robot_t) + 2 * sizeof(float) + sizeof(uint32_t) + sizeof(world_velocity_t)
+                           + sizeof(uint32_t) + w * sizeof(uint32_t) + BOX2D_BYTES_PER_BODY);
+    for (uint32_t g = 0; g < sc->group_count; g++) {
+        const controller_def_t *def = sc->groups[g].def;
+        robots += (uint64_t)sc->groups[g].count * (def ? (def->state_size + 15u) & ~(size_t)15u : 0u);
+    }
+    uint64_t models = 0;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        model_layout_t lay = { 0 };
+        if (sim_models[id]->layout) {
+            sim_models[id]->layout(scenario_model_config(sc, (sim_model_id_t)id), sc, &lay);
+        }
+        for (uint32_t k = 0; k < lay.arrays && k < MODEL_MAX_ARRAYS; k++) {
+            robots += n * lay.elem_size[k];
+        }
+        models += w * lay.scratch_size + lay.run_bytes;
+    }
+    uint64_t tasks = 0;
+    for (uint32_t t = 0; t < sc->task_count; t++) {
+        const task_def_t *def = sc->tasks[t].def;
+        tasks += def->memory ? def->memory(sc->tasks[t].config.bytes, sc) : 0u;
+    }
+    /* Two grids over the arena (robots, obstacles), cells of 0.5 m at least. */
+    uint64_t cells = (uint64_t)(sc->arena.width / 0.5f + 2.0f) * (uint64_t)(sc->arena.height / 0.5f + 2.0f);
+    uint64_t world = no * (sizeof(obstacle_t) + sizeof(object_def_t) + w * sizeof(uint32_t) + sizeof(uint32_t)
+                           + BOX2D_BYTES_PER_SHAPE) + 2 * cells * sizeof(uint32_t);
+    out->robots = (uint32_t)n;
+    out->per_robot = n ? robots / n : 0;
+    out->total = RUN_FIXED_BYTES + robots + models + tasks + world;
+}
+
+sim_t *sim_create(const scenario_t *sc, uint64_t seed, char err[SIM_ERR_MAX])
 {
     return sim_create_threads(sc, seed, 1, err);
 }
 
-sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[256])
+sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads, char err[SIM_ERR_MAX])
 {
     if (threads < 1 || threads > POOL_MAX_THREADS) {
-        snprintf(err, 256, "threads in a run: %u is not in [1, %u]", threads, POOL_MAX_THREADS);
+        snprintf(err, SIM_ERR_MAX, "threads in a run: %u is not in [1, %u]", threads, POOL_MAX_THREADS);
         return NULL;
     }
     struct sim *sim = calloc(1, sizeof *sim);
     if (!sim) {
-        snprintf(err, 256, "out of memory");
+        snprintf(err, SIM_ERR_MAX, "out of memory");
         return NULL;
     }
     sim->sc = sc;
@@ -310,31 +396,38 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     sim->robots = calloc(n, sizeof *sim->robots);
     sim->ctrl_blocks = calloc(ng, sizeof *sim->ctrl_blocks);
     sim->step_order = calloc(n, sizeof *sim->step_order);
-    sim->rx_store = calloc(n * (sc->ircom.queue ? sc->ircom.queue : 1u), sizeof *sim->rx_store);
     sim->px = calloc(n, sizeof *sim->px);
     sim->py = calloc(n, sizeof *sim->py);
     sim->obstacles = calloc(no, sizeof *sim->obstacles);
     sim->objects = calloc(no, sizeof *sim->objects);
-    /* Cells a little larger than the IR reach: an IR query touches at
-     * most 3 x 3 cells. */
-    float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + sc->ir.range + 0.04f);
-    if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->rx_store || !sim->px
+    /* Cells a little larger than the farthest per-step query around a
+     * robot (the IR sensors' reach): such a query touches at most 3 x 3
+     * cells. */
+    float reach = 0.0f;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        model_layout_t lay = { 0 };
+        if (sim_models[id]->layout) {
+            sim_models[id]->layout(scenario_model_config(sc, (sim_model_id_t)id), sc, &lay);
+        }
+        reach = fmaxf(reach, lay.neighbour_reach_m);
+    }
+    float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + reach + 0.04f);
+    if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
         || !sim->py || !sim->obstacles || !sim->objects
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0
         || grid_init(&sim->obstacle_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0) {
-        snprintf(err, 256, "out of memory for %u robots", sim->n);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u robots", sim->n);
         sim_destroy(sim);
         return NULL;
     }
     if (create_workers(sim, threads) != 0) {
-        snprintf(err, 256, "cannot start %u threads for the run (or out of memory)", threads);
+        snprintf(err, SIM_ERR_MAX, "cannot start %u threads for the run (or out of memory)", threads);
         sim_destroy(sim);
         return NULL;
     }
     for (uint32_t i = 0; i < sim->n; i++) {
         sim->step_order[i] = i;
     }
-    sensors_init(sim);
     if (sc->object_count > 0) {
         memcpy(sim->objects, sc->objects, sc->object_count * sizeof *sim->objects);
     }
@@ -351,11 +444,11 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
     bad = bad || grid_build_boxes(&sim->obstacle_grid, (const float (*)[4])boxes, sim->n_obstacles) != 0;
     free(boxes);
     if (bad) {
-        snprintf(err, 256, "out of memory for %u obstacles", sim->n_obstacles);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u obstacles", sim->n_obstacles);
         sim_destroy(sim);
         return NULL;
     }
-    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0 || faults_create(sim, err) != 0) {
+    if (build_robots(sim, err) != 0 || placement_run(sim, err) != 0 || create_models(sim, err) != 0) {
         sim_destroy(sim);
         return NULL;
     }
@@ -364,10 +457,6 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         sim->py[i] = sim->robots[i].y;
     }
     find_counters(sim);
-    if (create_robot_links(sim, err) != 0) {
-        sim_destroy(sim);
-        return NULL;
-    }
     if (world_create(sim, err) != 0 || grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0
         || create_tasks(sim, err) != 0) {
         sim_destroy(sim);
@@ -386,6 +475,7 @@ void sim_destroy(sim_t *sim)
             sim->tasks[t].def->destroy(sim->tasks[t].self);
         }
     }
+    destroy_models(sim);
     world_destroy(sim);
     for (uint32_t w = 0; sim->scratch && w < pool_threads(sim->pool); w++) {
         free(sim->scratch[w].obstacle_mark);
@@ -394,8 +484,6 @@ void sim_destroy(sim_t *sim)
     }
     free(sim->scratch);
     pool_destroy(sim->pool);
-    faults_destroy(sim);
-    camera_destroy(sim);
     items_index_free(sim);
     grid_free(&sim->robot_grid);
     grid_free(&sim->obstacle_grid);
@@ -405,60 +493,62 @@ void sim_destroy(sim_t *sim)
     free(sim->ctrl_blocks);
     free(sim->robots);
     free(sim->step_order);
-    free(sim->rx_store);
     free(sim->px);
     free(sim->py);
     free(sim->obstacles);
     free(sim->objects);
     free(sim->events);
-    free(sim->robot_tx);
-    free(sim->links);
     free(sim);
+}
+
+/* The robot grid from this step's poses.  Its room for every robot was
+ * made when the run was built (the first binning), so this cannot fail
+ * unless memory is already gone. */
+static void rebin_robots(struct sim *sim)
+{
+    if (grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n) != 0) {
+        sim_out_of_memory("the robot grid");
+    }
 }
 
 void sim_step(sim_t *sim)
 {
     sim->n_events = 0;
-    faults_begin_step(sim);
+    run_phase(sim, PHASE_BEGIN);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->before_control) {
             sim->tasks[t].def->before_control(sim->tasks[t].self, sim);
         }
     }
-    for (uint32_t i = 0; sim->links && i < sim->n; i++) {
-        robot_link_begin_step(&sim->links[i], sim->link_budget);
-    }
-    /* Whole, before any controller reads it (sound.h). */
-    sound_update(sim);
-    /* Items stay put while the controllers step (items.h); out of memory,
-     * the camera scans every item instead, with the same result. */
-    (void)items_index_build(sim);
+    run_phase(sim, PHASE_BEFORE_CONTROL);
+    /* Items stay put while the controllers step (items.h). */
+    items_index_build(sim);
     /* Side by side when every sensor can be (not the rendered camera: one
      * GL context); each robot reads the start of the step, so the order
      * and the threads do not matter (test_sim: step order, thread count). */
-    if (camera_parallel(sim)) {
+    if (!models_serial(sim)) {
         pool_for(sim->pool, sim->n, CONTROL_CHUNK, step_robots, sim);
     } else {
         step_robots(0, sim->n, 0, sim);
     }
     items_index_drop(sim);
-    faults_transmit(sim);
-    ircom_deliver(sim);
+    run_phase(sim, PHASE_AFTER_CONTROL);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->after_control) {
             sim->tasks[t].def->after_control(sim->tasks[t].self, sim);
         }
     }
+    run_phase(sim, PHASE_DRIVE);
     world_drive(sim);
     world_advance(sim);
     world_read_poses(sim);
-    grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
+    rebin_robots(sim);
     for (uint32_t t = 0; t < sim->n_tasks; t++) {
         if (sim->tasks[t].def->after_physics) {
             sim->tasks[t].def->after_physics(sim->tasks[t].self, sim);
         }
     }
-    sound_end_step(sim);
+    run_phase(sim, PHASE_END);
     sim->step++;
     for (uint32_t t = 0; t < sim->n_tasks && !sim->done; t++) {
         if (sim->tasks[t].def->done) {
@@ -468,6 +558,18 @@ void sim_step(sim_t *sim)
 }
 
 int sim_done(const sim_t *sim) { return sim->done; }
+
+const char *sim_error(const sim_t *sim)
+{
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        const char *e = m->def->error ? m->def->error(sim, m->self) : NULL;
+        if (e) {
+            return e;
+        }
+    }
+    return NULL;
+}
 
 uint32_t sim_gather_obstacles(const struct sim *sim, sim_scratch_t *ws, float minx, float miny, float maxx,
                               float maxy, uint32_t *out, uint32_t max)
@@ -529,6 +631,65 @@ uint32_t sim_gather_robots(const struct sim *sim, float minx, float miny, float 
     return n;
 }
 
+/* ---------------------------------------------------------------- fields */
+
+#define CORE_FIELD(name, unit, doc, type, member) \
+    { name, unit, doc, type, 0, offsetof(sim_robot_t, member), 1 }
+/* What every robot has (array 0: sim->robots). */
+static const model_field_t core_fields[] = {
+    CORE_FIELD("pose.x", "m", "x of the centre at the start of the step", SIM_FIELD_F32, x),
+    CORE_FIELD("pose.y", "m", "y of the centre at the start of the step", SIM_FIELD_F32, y),
+    CORE_FIELD("pose.theta", "rad", "heading, CCW from +x", SIM_FIELD_F32, theta),
+    CORE_FIELD("leds", "", "LED word: bit k ring LED k, bit 8 body, bit 9 front", SIM_FIELD_U16, leds),
+    CORE_FIELD("group", "", "index into the scenario's groups", SIM_FIELD_U32, group),
+    { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
+};
+
+static void view_of(const model_field_t *f, const void *array, size_t stride, sim_field_t *out)
+{
+    out->name = f->name;
+    out->unit = f->unit;
+    out->doc = f->doc;
+    out->type = f->type;
+    out->base = array ? (const char *)array + f->offset : NULL;
+    out->stride = stride;
+    out->count = f->count;
+}
+
+int sim_field_at(const sim_t *sim, uint32_t k, sim_field_t *out)
+{
+    for (const model_field_t *f = core_fields; f->name; f++) {
+        if (k-- == 0) {
+            view_of(f, sim->n ? sim->robots : NULL, sizeof(sim_robot_t), out);
+            return 0;
+        }
+    }
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        const sim_model_run_t *m = &sim->models[id];
+        for (const model_field_t *f = m->def->fields; f && f->name; f++) {
+            /* Only what this run allocated: a model off holds nothing. */
+            if (f->array >= m->layout.arrays || m->layout.elem_size[f->array] == 0) {
+                continue;
+            }
+            if (k-- == 0) {
+                view_of(f, sim->n ? m->array[f->array] : NULL, m->layout.elem_size[f->array], out);
+                return 0;
+            }
+        }
+    }
+    return -1;
+}
+
+int sim_field(const sim_t *sim, const char *name, sim_field_t *out)
+{
+    for (uint32_t k = 0; sim_field_at(sim, k, out) == 0; k++) {
+        if (strcmp(out->name, name) == 0) {
+            return 0;
+        }
+    }
+    return -1;
+}
+
 /* ---------------------------------------------------------------- accessors */
 
 uint64_t sim_step_count(const sim_t *sim) { return sim->step; }
@@ -537,36 +698,50 @@ uint64_t sim_seed(const sim_t *sim) { return sim->seed; }
 const scenario_t *sim_scenario(const sim_t *sim) { return sim->sc; }
 const sim_metrics_t *sim_metrics(const sim_t *sim) { return &sim->metrics; }
 uint32_t sim_robot_count(const sim_t *sim) { return sim->n; }
-uint32_t sim_robot_group(const sim_t *sim, uint32_t i) { return sim->robots[i].group; }
-const controller_def_t *sim_robot_def(const sim_t *sim, uint32_t i) { return sim->robots[i].def; }
-void *sim_robot_controller(sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
-const void *sim_robot_controller_const(const sim_t *sim, uint32_t i) { return sim->robots[i].ctrl; }
-hal_t *sim_robot_hal(sim_t *sim, uint32_t i) { return &sim->robots[i].hal; }
-uint16_t sim_robot_leds(const sim_t *sim, uint32_t i) { return sim->robots[i].leds; }
+uint32_t sim_robot_group(const sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].group; }
+const controller_def_t *sim_robot_def(const sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].def; }
+void *sim_robot_controller(sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].ctrl; }
+const void *sim_robot_controller_const(const sim_t *sim, uint32_t i)
+{
+    SIM_ASSERT(i < sim->n);
+    return sim->robots[i].ctrl;
+}
+hal_t *sim_robot_hal(sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return &sim->robots[i].hal; }
+uint16_t sim_robot_leds(const sim_t *sim, uint32_t i) { SIM_ASSERT(i < sim->n); return sim->robots[i].leds; }
 uint32_t sim_obstacle_count(const sim_t *sim) { return sim->n_obstacles; }
 
 const char *sim_robot_state_name(const sim_t *sim, uint32_t i)
 {
+    SIM_ASSERT(i < sim->n);
     const sim_robot_t *r = &sim->robots[i];
     return r->def->state_name(r->ctrl);   /* ctrl is NULL for a stateless controller */
 }
 
+int sim_robot_observable(const sim_t *sim, uint32_t i, const char *name, float *value)
+{
+    SIM_ASSERT(i < sim->n);
+    const sim_robot_t *r = &sim->robots[i];
+    for (const observable_t *o = r->def->observables; r->ctrl && o && o->name; o++) {
+        if (strcmp(o->name, name) == 0) {
+            *value = observable_read(o, r->ctrl);
+            return 0;
+        }
+    }
+    return -1;
+}
+
 void sim_robot_pose(const sim_t *sim, uint32_t i, double *x, double *y, double *theta)
 {
+    SIM_ASSERT(i < sim->n);
     const sim_robot_t *r = &sim->robots[i];
     *x = r->x;
     *y = r->y;
     *theta = r->theta;
 }
 
-void sim_robot_wheels(const sim_t *sim, uint32_t i, int16_t *left, int16_t *right)
-{
-    *left = sim->robots[i].cmd_left;
-    *right = sim->robots[i].cmd_right;
-}
-
 void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta)
 {
+    SIM_ASSERT(i < sim->n);
     sim_robot_t *r = &sim->robots[i];
     r->x = (float)x;
     r->y = (float)y;
@@ -574,22 +749,14 @@ void sim_set_robot_pose(sim_t *sim, uint32_t i, double x, double y, double theta
     sim->px[i] = r->x;
     sim->py[i] = r->y;
     b2Body_SetTransform(r->body, (b2Vec2){ r->x, r->y }, b2MakeRot(r->theta));
-    grid_build_points(&sim->robot_grid, sim->px, sim->py, sim->n);
+    rebin_robots(sim);
     /* Sensors must see the new pose even within this step (the sound
      * field too, when it is read before the step's controllers run). */
-    r->ir_stamp = r->ambient_stamp = r->camera_stamp = r->pose_stamp = 0;
-    sim->sound_stamp = 0;
-}
-
-int sim_ircom_inject(sim_t *sim, uint32_t i, const hal_ircom_msg_t *msg)
-{
-    sim_robot_t *r = &sim->robots[i];
-    if (r->rx_count >= sim->sc->ircom.queue) {
-        return -1;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim->models[id].def->moved) {
+            sim->models[id].def->moved(sim, sim->models[id].self, i);
+        }
     }
-    r->rx[(r->rx_head + r->rx_count) % sim->sc->ircom.queue] = *msg;
-    r->rx_count++;
-    return 0;
 }
 
 void sim_arena_half(const sim_t *sim, float *hw, float *hh)
@@ -603,12 +770,11 @@ const object_def_t *sim_object(const sim_t *sim, uint32_t k)
     return k < sim->n_obstacles ? &sim->objects[k] : NULL;
 }
 
-int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
+int sim_obstacles_cut(const struct sim *sim, sim_scratch_t *ws, vec2_t p, vec2_t q)
 {
-    vec2_t p = v2((float)x0, (float)y0), q = v2((float)x1, (float)y1);
     uint32_t near[256];
-    uint32_t n = sim_gather_obstacles(sim, &sim->scratch[0], fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x),
-                                      fmaxf(p.y, q.y), near, 256);
+    uint32_t n = sim_gather_obstacles(sim, ws, fminf(p.x, q.x), fminf(p.y, q.y), fmaxf(p.x, q.x), fmaxf(p.y, q.y),
+                                      near, 256);
     for (uint32_t k = 0; k < n; k++) {
         const obstacle_t *o = &sim->obstacles[near[k]];
         if (o->shape == SHAPE_CYLINDER) {
@@ -620,6 +786,11 @@ int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
         }
     }
     return 0;
+}
+
+int sim_segment_blocked(sim_t *sim, double x0, double y0, double x1, double y1)
+{
+    return sim_obstacles_cut(sim, &sim->scratch[0], v2((float)x0, (float)y0), v2((float)x1, (float)y1));
 }
 
 void sim_obstacle_bounds(const sim_t *sim, uint32_t k, float out[4])
@@ -655,7 +826,7 @@ void sim_event(sim_t *sim, uint32_t robot, const char *kind, const char *detail,
         uint32_t cap = sim->events_cap ? 2 * sim->events_cap : 64;
         sim_event_rec_t *e = realloc(sim->events, cap * sizeof *e);
         if (!e) {
-            return;   /* telemetry only: losing an event cannot change the run */
+            sim_out_of_memory("a step's events");
         }
         sim->events = e;
         sim->events_cap = cap;
@@ -667,10 +838,6 @@ void sim_event(sim_t *sim, uint32_t robot, const char *kind, const char *detail,
     e->value = value;
 }
 
-const struct robot_link *sim_robot_link(const sim_t *sim, uint32_t i)
-{
-    return sim->links ? &sim->links[i] : NULL;
-}
 
 uint32_t sim_events(const sim_t *sim, const sim_event_rec_t **events)
 {
@@ -694,7 +861,7 @@ void sim_set_step_order(sim_t *sim, int order, uint64_t key)
     }
 }
 
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
+uint64_t sim_hash_bytes(uint64_t h, const void *p, size_t n)
 {
     const unsigned char *b = p;
     for (size_t k = 0; k < n; k++) {
@@ -706,14 +873,17 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
 uint64_t sim_state_hash(const sim_t *sim)
 {
     uint64_t h = UINT64_C(0xcbf29ce484222325);
-    h = fnv(h, &sim->step, sizeof sim->step);
+    h = sim_hash_bytes(h, &sim->step, sizeof sim->step);
     for (uint32_t i = 0; i < sim->n; i++) {
         const sim_robot_t *r = &sim->robots[i];
-        h = fnv(h, &r->x, sizeof r->x);
-        h = fnv(h, &r->y, sizeof r->y);
-        h = fnv(h, &r->theta, sizeof r->theta);
-        h = fnv(h, &r->steps_left, sizeof r->steps_left);
-        h = fnv(h, &r->steps_right, sizeof r->steps_right);
+        h = sim_hash_bytes(h, &r->x, sizeof r->x);
+        h = sim_hash_bytes(h, &r->y, sizeof r->y);
+        h = sim_hash_bytes(h, &r->theta, sizeof r->theta);
+        for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+            if (sim->models[id].def->hash) {
+                h = sim->models[id].def->hash(sim, sim->models[id].self, i, h);
+            }
+        }
     }
     return h;
 }

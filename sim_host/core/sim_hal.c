@@ -1,17 +1,17 @@
 /*
- * sim_hal.c - the simulator's implementation of hal.h.  Each robot's
- * controller gets its own hal_t; sensors are computed lazily, once per
- * control step, from the pose at the start of the step.
+ * sim_hal.c - the simulator's part of hal.h that is every robot's, whatever
+ * the models: its id, the clock and the LEDs.  The sensors and actuators
+ * are the models' (sim_host/models/): each defines the HAL calls it serves,
+ * computed lazily, once per control step, from the pose at the start of
+ * the step; hal/hal_common.c holds the platform-neutral ones.
  */
 #include <math.h>
 #include <string.h>
 
 #include "sim_internal.h"
-#include "sound.h"
 #include "units.h"
 
 static sim_robot_t *robot(hal_t *hal) { return &hal->sim->robots[hal->index]; }
-static uint64_t stamp(const hal_t *hal) { return hal->sim->step + 1; }
 
 uint16_t hal_robot_id(hal_t *hal) { return (uint16_t)hal->index; }
 
@@ -21,133 +21,6 @@ uint32_t hal_time_ms(hal_t *hal)
 }
 
 uint16_t hal_control_period_ms(hal_t *hal) { return hal->sim->sc->control_period_ms; }
-
-uint16_t hal_ir_proximity(hal_t *hal, uint8_t index)
-{
-    sim_robot_t *r = robot(hal);
-    if (index >= HAL_IR_COUNT) {
-        return 0;
-    }
-    if (r->ir_stamp != stamp(hal)) {
-        sensors_ir(hal->sim, hal->index, r->ir);
-        faults_ir(hal->sim, hal->index, r->ir);
-        r->ir_stamp = stamp(hal);
-    }
-    return r->ir[index];
-}
-
-uint16_t hal_ir_ambient(hal_t *hal, uint8_t index)
-{
-    sim_robot_t *r = robot(hal);
-    if (index >= HAL_IR_COUNT) {
-        return HAL_RAW_MAX;
-    }
-    if (r->ambient_stamp != stamp(hal)) {
-        sensors_ambient(hal->sim, hal->index, r->ambient);
-        r->ambient_stamp = stamp(hal);
-    }
-    return r->ambient[index];
-}
-
-uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
-{
-    sim_robot_t *r = robot(hal);
-    if (r->camera_stamp != stamp(hal)) {
-        camera_update(hal->sim, hal->index);   /* a frame only when one is due */
-        r->camera_stamp = stamp(hal);
-    }
-    uint8_t n = r->blob_count < max ? r->blob_count : max;
-    for (uint8_t k = 0; k < n; k++) {
-        out[k] = r->blobs[k];
-    }
-    return n;
-}
-
-hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px)
-{
-    *width_px = hal->sim->sc->camera.width_px;
-    *height_px = hal->sim->sc->camera.height_px;
-    return HAL_OK;
-}
-
-/* Sound (sound.h): the field is computed serially before the controllers
- * step; here only read.  Read between steps (tests), it is computed then:
- * the field the next step's controllers will see. */
-hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
-{
-    *level = 0;
-    if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
-        return HAL_ERR_RANGE;
-    }
-    if (!hal->sim->sc->sound.enabled) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    sound_update(hal->sim);
-    sim_robot_t *r = robot(hal);
-    if (hal->sim->sc->sound.self_masking && r->speaker_played != 0u) {
-        return HAL_ERR_BUSY;
-    }
-    /* The three microphones hear the same (sound.h). */
-    *level = r->sound_level[band];
-    return HAL_OK;
-}
-
-/* Plays from the next period on: the step's end makes it what played. */
-hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
-{
-    if (band >= HAL_SOUND_BANDS) {
-        return HAL_ERR_RANGE;
-    }
-    if (!hal->sim->sc->sound.enabled) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    robot(hal)->speaker_set = band;
-    return HAL_OK;
-}
-
-uint8_t hal_ircom_payload_bits(hal_t *hal) { return hal->sim->sc->ircom.payload_bits; }
-
-hal_status_t hal_ircom_send(hal_t *hal, uint16_t value)
-{
-    sim_robot_t *r = robot(hal);
-    if (r->ircom_tx_n >= hal->sim->sc->ircom.tx_per_period) {
-        return HAL_ERR_BUSY;
-    }
-    r->ircom_tx[r->ircom_tx_n++] = (uint16_t)(value & (uint16_t)((1u << hal->sim->sc->ircom.payload_bits) - 1u));
-    return HAL_OK;
-}
-
-hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
-{
-    sim_robot_t *r = robot(hal);
-    if (r->rx_count == 0) {
-        return HAL_ERR_EMPTY;
-    }
-    *out = r->rx[r->rx_head];
-    r->rx_head = (uint8_t)((r->rx_head + 1) % hal->sim->sc->ircom.queue);
-    r->rx_count--;
-    return HAL_OK;
-}
-
-static int16_t clamp_speed(int16_t v)
-{
-    return v > HAL_WHEEL_SPEED_MAX ? HAL_WHEEL_SPEED_MAX : (v < -HAL_WHEEL_SPEED_MAX ? -HAL_WHEEL_SPEED_MAX : v);
-}
-
-void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s)
-{
-    sim_robot_t *r = robot(hal);
-    r->cmd_left = clamp_speed(left_steps_s);
-    r->cmd_right = clamp_speed(right_steps_s);
-}
-
-void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right)
-{
-    sim_robot_t *r = robot(hal);
-    /* 16-bit counters wrap as on the robot. */
-    *left = (int16_t)(uint16_t)(int64_t)r->steps_left;
-    *right = (int16_t)(uint16_t)(int64_t)r->steps_right;
-}
 
 static void set_bit(uint16_t *bits, unsigned bit, uint8_t on)
 {
@@ -163,73 +36,3 @@ void hal_set_led(hal_t *hal, uint8_t index, uint8_t on)
 
 void hal_set_body_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_BODY_BIT, on); }
 void hal_set_front_led(hal_t *hal, uint8_t on) { set_bit(&robot(hal)->leds, HAL_LED_WORD_FRONT_BIT, on); }
-
-/* The overhead tracker: ground truth, with Gaussian noise and dropout from
- * the robot's own stream (drawn only when the tracker is on, so a run
- * without it is unchanged). */
-hal_status_t hal_pose(hal_t *hal, hal_pose_t *out)
-{
-    sim_robot_t *r = robot(hal);
-    const scenario_t *sc = hal->sim->sc;
-    if (!sc->tracker.enabled) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    if (r->pose_stamp != stamp(hal)) {
-        r->pose_stamp = stamp(hal);
-        r->pose_status = HAL_ERR_UNAVAILABLE;
-        if (sc->tracker.dropout <= 0.0f || sim_rand_uniform(&r->tracker_rand) >= sc->tracker.dropout) {
-            double x = 1000.0 * r->x + sc->tracker.noise_mm * sim_rand_normal(&r->tracker_rand);
-            double y = 1000.0 * r->y + sc->tracker.noise_mm * sim_rand_normal(&r->tracker_rand);
-            double h = r->theta + sc->tracker.noise_deg * UNITS_PI / 180.0 * sim_rand_normal(&r->tracker_rand);
-            h = atan2(sin(h), cos(h));
-            r->pose.x_mm = (int32_t)lround(x);
-            r->pose.y_mm = (int32_t)lround(y);
-            r->pose.heading_mrad = (int16_t)lround(1000.0 * h);
-            r->pose.age_ms = 0;   /* a fix every control step */
-            r->pose_status = HAL_OK;
-        }
-    }
-    *out = r->pose;
-    return r->pose_status;
-}
-
-/* The host's messages (scenario `host.messages`): a robot's next one in
- * file order, once its time has come.  No file section: no host link. */
-hal_status_t hal_host_receive(hal_t *hal, uint8_t *buf, uint8_t cap, uint8_t *len)
-{
-    sim_robot_t *r = robot(hal);
-    const scenario_t *sc = hal->sim->sc;
-    *len = 0;
-    if (sc->host.message_count == 0) {
-        return HAL_ERR_UNAVAILABLE;
-    }
-    uint32_t k = r->host_next;
-    while (k < sc->host.message_count && sc->host.messages[k].robot != hal->index) {
-        k++;
-    }
-    r->host_next = k;   /* the scan resumes here: messages of other robots are skipped once */
-    if (k == sc->host.message_count
-        || (double)hal_time_ms(hal) < 1000.0 * (double)sc->host.messages[k].at - 0.5) {
-        return HAL_ERR_EMPTY;
-    }
-    const host_message_def_t *m = &sc->host.messages[k];
-    if (m->len > cap) {
-        return HAL_ERR_RANGE;
-    }
-    memcpy(buf, m->bytes, m->len);
-    *len = m->len;
-    r->host_next = k + 1u;
-    return HAL_OK;
-}
-
-uint16_t hal_telemetry_write(hal_t *hal, const uint8_t *bytes, uint16_t len)
-{
-    /* The robot's own telemetry goes down its simulated UART when the
-     * scenario runs it in the loop (robot_link.h); otherwise the simulator
-     * publishes from its own view and these bytes are accepted and dropped. */
-    if (hal->sim->links) {
-        return robot_link_write(&hal->sim->links[hal->index], bytes, len);
-    }
-    (void)bytes;
-    return len;
-}

@@ -8,15 +8,15 @@
 
 #include <box2d/box2d.h>
 
-#include "faults.h"
-#include "geometry.h"
-#include "grid.h"
+#include "models/model.h"
+#include "swarmsim/geometry.h"
+#include "swarmsim/grid.h"
 #include "items.h"
 #include "hal.h"
-#include "rand.h"
-#include "sim.h"
+#include "swarmsim/rand.h"
+#include "swarmsim/sim.h"
 #include "robot_link.h"
-#include "task.h"
+#include "swarmsim/task.h"
 #include "telemetry/robot_telemetry.h"
 
 /** What a controller's `hal_t *` points to in the simulator. */
@@ -30,60 +30,12 @@ typedef struct sim_robot {
     hal_t hal;
     b2BodyId body;
     float x, y, theta;             /**< pose at the start of this control step */
-    int16_t cmd_left, cmd_right;   /**< commanded wheel speeds, steps/s */
-    double steps_left, steps_right;/**< commanded steps so far */
     uint16_t leds;                 /**< bits 0-7 ring, 8 body, 9 front */
-
-    /* Sensor caches, valid when *_stamp == sim->step + 1. */
-    uint64_t ir_stamp, ambient_stamp, camera_stamp, pose_stamp;
-    uint16_t ir[HAL_IR_COUNT];
-    uint16_t ambient[HAL_IR_COUNT];
-    hal_blob_t blobs[HAL_MAX_BLOBS];
-    uint8_t blob_count;
-    /* Camera frames (camera.c), with camera.fps > 0: `blobs` come from the
-     * last complete frame; `cam_next` from the one being captured. */
-    uint8_t cam_ready;             /**< cam_phase_s and cam_rand are drawn */
-    uint8_t cam_next_count;
-    int64_t cam_capture;           /**< index of the frame cam_next holds */
-    double cam_phase_s;            /**< when its frame 0 began, s */
-    hal_blob_t cam_next[HAL_MAX_BLOBS];
-    sim_rand_t cam_rand;           /**< phase and pixel noise (RAND_CAMERA) */
-    int8_t pose_status;            /**< of the tracker this step */
-    hal_pose_t pose;
-    uint32_t host_next;            /**< host.messages: where its next one may be */
-
-    uint16_t ircom_tx[SIM_IRCOM_TX_MAX]; /**< messages to send this step */
-    uint8_t ircom_tx_n;            /**< how many (ircom.tx_per_period at most) */
-    hal_ircom_msg_t *rx;           /**< its receive queue: ircom.queue slots of sim->rx_store */
-    uint8_t rx_head, rx_count;
-    uint32_t rx_dropped;
-
-    sim_rand_t noise;              /**< sensor noise */
-    sim_rand_t ircom_rand;         /**< loss and estimate noise at this receiver */
-    sim_rand_t wheel_rand;         /**< actuation noise */
-    double bias_left, bias_right;  /**< wheels.bias_sd's biases (this run's, or this step's), steps/s */
-    sim_rand_t bias_rand;          /**< their draws (RAND_WHEEL_BIAS) */
-    sim_rand_t tracker_rand;       /**< the overhead tracker's noise and dropout */
-    sim_rand_t sound_rand;         /**< eq 4's noise of every pair this robot hears */
-
-    /* Sound (sound.h): what the controller set this step plays during the
-     * next period; at the step's end it becomes what played. */
-    uint8_t speaker_set;           /**< band set this step (0: silence) */
-    uint8_t speaker_played;        /**< band that played during the last period */
-    uint32_t sound_level[HAL_SOUND_BANDS]; /**< counts per band over the last period ([0] unused) */
-    double sound_acc[HAL_SOUND_BANDS];     /**< sound_update's sums, units (working memory) */
     uint32_t group;                /**< index into the scenario's groups */
     const controller_def_t *def;   /**< what runs on this robot */
     void *ctrl;                    /**< controller state, or NULL when it has none */
     uint8_t moves;                 /**< 0: a static body */
     uint8_t escaped;
-
-    /* Faults (faults.h): how many of each kind are active, and their values. */
-    uint8_t fault_on[FAULT_KIND_COUNT];
-    uint8_t radio_bursting;        /**< in a radio_bursts dropout now */
-    float drift;                   /**< wheel_drift factor */
-    float ir_noise_sd;             /**< ir_noise, counts */
-    sim_rand_t fault_rand;         /**< babble bits, ir_noise, bursts */
 } sim_robot_t;
 
 /** A robot's body velocity for Box2D this step (world_drive), and how far
@@ -93,16 +45,6 @@ typedef struct world_velocity {
     float w;
     double moved;
 } world_velocity_t;
-
-/** One fault of one robot, as drawn for this run. */
-typedef struct fault_run {
-    uint32_t robot;
-    uint8_t kind;                  /**< fault_kind_t */
-    uint8_t active, bad;           /**< bad: in a radio burst */
-    uint64_t on_step, off_step;    /**< UINT64_MAX: never */
-    float value, duration;
-    double start_s, end_s;         /**< NaN until it happens */
-} fault_run_t;
 
 typedef struct obstacle {
     int shape;                     /**< object_shape_t */
@@ -114,16 +56,6 @@ typedef struct obstacle {
     float aabb[4];
 } obstacle_t;
 
-/** An angular interval seen from the camera, rad, and its nearest distance, m. */
-typedef struct sim_interval { float lo, hi, near; } sim_interval_t;
-
-/** An interval the all-round camera may turn into a blob, and the most
- *  pixels it could show. */
-typedef struct sim_cam_candidate { float bound; uint32_t index; } sim_cam_candidate_t;
-
-/** Most robots or obstacles the camera considers within its range. */
-#define SIM_CAMERA_MAX_NEAR 1024u
-
 /** One pool worker's working memory (pool.h): what a sensor query, a
  *  delivery or a listener's sum needs while it runs, so that robots are
  *  sensed side by side.  Worker 0 is the thread that steps the run, and
@@ -133,13 +65,6 @@ typedef struct sim_scratch {
     uint32_t mark_stamp;
     uint32_t *robots;              /**< n: a query's robots (sound, IR delivery) */
     uint32_t *items;               /**< item_index.cap: a query's items (items.h) */
-    struct {                       /**< sensors_camera's */
-        uint32_t obstacles[SIM_CAMERA_MAX_NEAR];
-        uint32_t robots[SIM_CAMERA_MAX_NEAR];
-        uint32_t occluder_object[2 * SIM_CAMERA_MAX_NEAR];
-        sim_interval_t intervals[2 * SIM_CAMERA_MAX_NEAR];
-        sim_cam_candidate_t candidates[2 * SIM_CAMERA_MAX_NEAR];   /**< the all-round camera's */
-    } cam;
 } sim_scratch_t;
 
 /** A counter the run's controllers declare (observable.h), and its keys in
@@ -158,6 +83,19 @@ typedef struct sim_group_counter {
     const observable_t *obs;
     uint8_t slot;              /**< in sim->counters */
 } sim_group_counter_t;
+
+/** A model in a run: its config, its arrays, its scratch per worker and
+ *  what its create made. */
+typedef struct sim_model_run {
+    const model_def_t *def;
+    const void *config;            /**< in the scenario */
+    void *self;
+    model_layout_t layout;
+    void *array[MODEL_MAX_ARRAYS]; /**< n elements each */
+    uint8_t *scratch;              /**< one block per worker, layout.scratch_size each */
+    size_t scratch_stride;
+    int created;                   /**< its create ran (destroy is due) */
+} sim_model_run_t;
 
 /** A running task. */
 typedef struct sim_task_run {
@@ -180,7 +118,6 @@ struct sim {
     float *px, *py;                /**< robot centres, for the grid */
     grid_t robot_grid;
     uint32_t *step_order;          /**< robots in the order they step (phase 2) */
-    hal_ircom_msg_t *rx_store;     /**< every robot's receive queue, ircom.queue each (libIrcom: 20) */
 
     uint32_t n_obstacles;          /**< the scenario's objects, then its random cylinders */
     object_def_t *objects;         /**< n_obstacles: what each obstacle is (placement_cylinders) */
@@ -202,24 +139,57 @@ struct sim {
     uint8_t n_group_counters[SCENARIO_MAX_GROUPS];
     sim_group_counter_t group_counters[SCENARIO_MAX_GROUPS][SIM_MAX_COUNTERS];
 
-    /* robot_telemetry.enabled: each robot's sender and the link it writes
-     * to (NULL otherwise). */
-    robot_telemetry_t *robot_tx;
-    robot_link_t *links;
-    uint32_t link_budget;          /**< bytes per step the UART carries */
-
-    fault_run_t *faults;           /**< faults.h */
-    uint32_t n_faults;
 
     sim_event_rec_t *events;       /**< of the current step */
     uint32_t n_events, events_cap;
 
-    struct camera_state *camera;   /**< camera.c's renderer and recorder (NULL until used) */
 
-    uint64_t sound_stamp;          /**< the sound field is this step's when == step + 1 */
-    vec2_t ir_dir[HAL_IR_COUNT];   /**< IR sensor directions, robot frame */
     sim_metrics_t metrics;
+
+    sim_model_run_t models[SIM_MODEL_COUNT];   /**< in list order (models/model_list.h) */
 };
+
+/** Model `id`'s config for this run. */
+static inline const void *sim_model_config(const struct sim *sim, sim_model_id_t id)
+{
+    return sim->models[id].config;
+}
+
+/** Array `k` of model `id`: robot i's element is at i x its elem_size. */
+static inline void *sim_model_array(const struct sim *sim, sim_model_id_t id, uint32_t k)
+{
+    return sim->models[id].array[k];
+}
+
+/** Model `id`'s working memory on pool worker `worker` (hal_t.worker). */
+static inline void *sim_model_scratch(const struct sim *sim, sim_model_id_t id, uint32_t worker)
+{
+    return sim->models[id].scratch + (size_t)worker * sim->models[id].scratch_stride;
+}
+
+/** What model `id`'s create left in its self (NULL: nothing). */
+static inline void *sim_model_self(const struct sim *sim, sim_model_id_t id)
+{
+    return sim->models[id].self;
+}
+
+/** The robot behind a controller's hal_t. */
+static inline sim_robot_t *sim_hal_robot(hal_t *hal)
+{
+    return &hal->sim->robots[hal->index];
+}
+
+/** The stamp of sensor readings taken in the current step (0: none yet). */
+static inline uint64_t sim_hal_stamp(const hal_t *hal)
+{
+    return hal->sim->step + 1;
+}
+
+/** FNV-1a 64 of `n` bytes folded into `h`: the state hash (sim_state_hash). */
+uint64_t sim_hash_bytes(uint64_t h, const void *p, size_t n);
+
+/** Non-zero when a model stops robot i's controller and motors this step. */
+int sim_robot_halted(const struct sim *sim, uint32_t i);
 
 /* sim.c */
 /** Robot i's commands and sensor summaries as robot_telemetry reports them:
@@ -228,46 +198,26 @@ struct sim {
 void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p);
 
 /* world.c: Box2D bodies */
-int world_create(struct sim *sim, char err[256]);
+int world_create(struct sim *sim, char err[SIM_ERR_MAX]);
 void world_destroy(struct sim *sim);
 void world_drive(struct sim *sim);
 void world_advance(struct sim *sim);
 void world_read_poses(struct sim *sim);
 
 /* placement.c: start poses of every group */
-int placement_run(struct sim *sim, char err[256]);
+int placement_run(struct sim *sim, char err[SIM_ERR_MAX]);
 /** Draws the scenario's random cylinders into sim->objects after its
  *  objects (placement.c).  Returns 0, or -1 with a message. */
-int placement_cylinders(struct sim *sim, char err[256]);
-
-/* sensors.c */
-/** Precomputes what the sensor models share (sensor directions). */
-void sensors_init(struct sim *sim);
-/** Noise-free calibrated proximity at distance d (m) from a surface. */
-float sensors_ir_curve(float d, float range);
-void sensors_ir(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
-void sensors_ambient(struct sim *sim, uint32_t i, uint16_t out[HAL_IR_COUNT]);
-uint8_t sensors_camera(struct sim *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
-
-
-/* camera.c: the camera's frames, either model */
-/** Brings robot i's blobs (robots[i].blobs, blob_count) up to this step:
- *  a new frame when one is due (hal_camera_blobs, once a step). */
-void camera_update(struct sim *sim, uint32_t i);
-/** Frees the renderer and the recorder. */
-void camera_destroy(struct sim *sim);
-/** Non-zero when robots' frames may be taken side by side: the geometric
- *  model and no recorder (the renderer has one GL context per run). */
-int camera_parallel(const struct sim *sim);
-
-/* ircom.c */
-void ircom_deliver(struct sim *sim);
+int placement_cylinders(struct sim *sim, char err[SIM_ERR_MAX]);
 
 /** Writes to `out` (at most `max`) the indices of obstacles whose bounding
  *  boxes meet [minx,maxx] x [miny,maxy], each once, in ascending order of
  *  first grid hit; returns how many.  `ws`: the calling worker's scratch. */
 uint32_t sim_gather_obstacles(const struct sim *sim, sim_scratch_t *ws, float minx, float miny, float maxx,
                               float maxy, uint32_t *out, uint32_t max);
+/** Non-zero when an obstacle cuts the segment from p to q (the first 256
+ *  whose boxes meet the segment's: line of sight). */
+int sim_obstacles_cut(const struct sim *sim, sim_scratch_t *ws, vec2_t p, vec2_t q);
 /** The scratch of the worker stepping robot i now (worker 0's outside the
  *  control phase). */
 sim_scratch_t *sim_robot_scratch(const struct sim *sim, uint32_t i);

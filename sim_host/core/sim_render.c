@@ -129,7 +129,7 @@ int sim_render_png(const sim_t *sim, render_ctx_t *ctx, const char *png_path, ch
 {
     sim_scene_t ss;
     if (scene_build(sim, &ss) != 0) {
-        snprintf(err, RENDER_ERR_MAX, "%s: out of memory", png_path);
+        snprintf(err, SIM_ERR_MAX, "%s: out of memory", png_path);
         return -1;
     }
     int rc = render_scene_png(ctx, &ss.scene, png_path, err);
@@ -141,7 +141,7 @@ int sim_render_rgb(const sim_t *sim, render_ctx_t *ctx, uint8_t *rgb, char *err)
 {
     sim_scene_t ss;
     if (scene_build(sim, &ss) != 0) {
-        snprintf(err, RENDER_ERR_MAX, "frame: out of memory");
+        snprintf(err, SIM_ERR_MAX, "frame: out of memory");
         return -1;
     }
     int rc = render_scene_rgb(ctx, &ss.scene, rgb, err);

@@ -4,15 +4,15 @@
 #define SIM_SIM_RENDER_H
 
 #include "render.h"
-#include "sim.h"
+#include "swarmsim/sim.h"
 
 /** Draws the current state of `sim` to `png_path`.  Returns 0 or -1 with a
- *  message in `err` (RENDER_ERR_MAX bytes). */
+ *  message in `err` (SIM_ERR_MAX bytes). */
 int sim_render_png(const sim_t *sim, render_ctx_t *ctx, const char *png_path, char *err);
 
 /** Draws the current state of `sim` into `rgb` (the context's width x
  *  height x 3 bytes, top row first).  Returns 0 or -1 with a message in
- *  `err` (RENDER_ERR_MAX bytes). */
+ *  `err` (SIM_ERR_MAX bytes). */
 int sim_render_rgb(const sim_t *sim, render_ctx_t *ctx, uint8_t *rgb, char *err);
 
 #endif

@@ -97,7 +97,7 @@ int video_check_options(const video_options_t *o)
         fprintf(stderr, "swarmsim: --video: '%s' is a folder\n", o->path);
         return -1;
     }
-    char err[VIDEO_ERR_MAX];
+    char err[SIM_ERR_MAX];
     if (video_find_ffmpeg(err) != 0) {
         fprintf(stderr, "swarmsim: %s\n", err);
         return -1;
@@ -105,29 +105,14 @@ int video_check_options(const video_options_t *o)
     return 0;
 }
 
-void video_print_usage(FILE *f)
-{
-    fprintf(f,
-"video (needs ffmpeg):\n"
-"  --video FILE.mp4  film the first repetition (seed N) as H.264 MP4, with the\n"
-"                  time stamp, legend and robot ids of the PNG frames; written\n"
-"                  to FILE.mp4.tmp and renamed when complete.  Other\n"
-"                  repetitions are not filmed.  Size: --frame-px, made even\n"
-"  --video-every N one frame every N control steps (default %d), and the last\n"
-"  --video-fps F   frames per second of the video (default %g): a 1200 s run\n"
-"                  at 100 ms steps lasts 12000 / %d / %g = %g s\n"
-"\n", VIDEO_DEFAULT_EVERY, VIDEO_DEFAULT_FPS, VIDEO_DEFAULT_EVERY, VIDEO_DEFAULT_FPS,
-            12000.0 / VIDEO_DEFAULT_EVERY / VIDEO_DEFAULT_FPS);
-}
-
 /* ---------------------------------------------------------------- recorder */
 
-/* "<path>: <msg>" in err, cut at VIDEO_ERR_MAX (the start says what failed). */
+/* "<path>: <msg>" in err, cut at SIM_ERR_MAX (the start says what failed). */
 static void path_error(char *err, const char *path, const char *msg)
 {
-    int n = snprintf(err, VIDEO_ERR_MAX, "%s: %s", path, msg);
-    if (n >= VIDEO_ERR_MAX) {
-        memcpy(err + VIDEO_ERR_MAX - 4, "...", 4);
+    int n = snprintf(err, SIM_ERR_MAX, "%s: %s", path, msg);
+    if (n >= SIM_ERR_MAX) {
+        memcpy(err + SIM_ERR_MAX - 4, "...", 4);
     }
 }
 
@@ -148,14 +133,14 @@ sim_video_t *sim_video_open(const video_options_t *o, const sim_t *sim, uint32_t
     sim_video_t *v = calloc(1, sizeof *v);
     if (!v || !(v->rgb = malloc((size_t)w * (size_t)h * 3))) {
         free(v);
-        snprintf(err, VIDEO_ERR_MAX, "%s: out of memory", o->path);
+        snprintf(err, SIM_ERR_MAX, "%s: out of memory", o->path);
         return NULL;
     }
     v->every = o->every;
     v->fps = o->fps;
     v->quiet = quiet;
     v->path = o->path;
-    char rerr[RENDER_ERR_MAX];
+    char rerr[SIM_ERR_MAX];
     if (!(v->ctx = render_create(w, h, rerr))) {
         path_error(err, o->path, rerr);
         recorder_free(v);
@@ -170,7 +155,7 @@ sim_video_t *sim_video_open(const video_options_t *o, const sim_t *sim, uint32_t
 
 static int add_frame(sim_video_t *v, const sim_t *sim, char *err)
 {
-    char rerr[RENDER_ERR_MAX];
+    char rerr[SIM_ERR_MAX];
     if (sim_render_rgb(sim, v->ctx, v->rgb, rerr) != 0) {
         path_error(err, v->path, rerr);
         return -1;
@@ -190,9 +175,9 @@ int sim_video_close(sim_video_t *v, const sim_t *sim, int keep, char *err)
     }
     int rc = keep ? add_frame(v, sim, err) : 0;
     uint64_t frames = video_frame_count(v->enc);
-    char cerr[VIDEO_ERR_MAX];
+    char cerr[SIM_ERR_MAX];
     if (video_close(v->enc, keep && rc == 0, cerr) != 0 && rc == 0) {
-        memcpy(err, cerr, VIDEO_ERR_MAX);
+        memcpy(err, cerr, SIM_ERR_MAX);
         rc = -1;
     }
     if (rc == 0 && keep && !v->quiet) {

@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "sim.h"
+#include "swarmsim/sim.h"
 
 /* Defaults: a 1200 s run at 100 ms steps is 1,201 frames, one minute. */
 #define VIDEO_DEFAULT_EVERY 10
@@ -38,14 +38,11 @@ int video_parse_option(const char *opt, const char *value, video_options_t *o, i
  *  exist, ffmpeg missing.  Returns 0, or -1 with the reason on stderr. */
 int video_check_options(const video_options_t *o);
 
-/** The options' part of --help. */
-void video_print_usage(FILE *f);
-
 typedef struct sim_video sim_video_t;
 
 /** Starts a video of `sim` at frame_px wide (rounded down to even, the
  *  height from the arena's aspect).  `quiet`: no line on stderr at the
- *  end.  NULL with a message in `err` (VIDEO_ERR_MAX bytes). */
+ *  end.  NULL with a message in `err` (SIM_ERR_MAX bytes). */
 sim_video_t *sim_video_open(const video_options_t *o, const sim_t *sim, uint32_t frame_px,
                             int quiet, char *err);
 

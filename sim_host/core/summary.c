@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "faults.h"
-#include "task.h"
+#include "sim_internal.h"
+#include "swarmsim/task.h"
 
 static void json_string(FILE *f, const char *s)
 {
@@ -74,8 +74,11 @@ void summary_write_run(FILE *f, const scenario_t *sc, const provenance_t *pv, co
                        uint64_t seed, uint64_t steps, uint64_t state_hash, const metric_list_t *m)
 {
     write_head(f, sc, pv);
-    if (sim != NULL && sim_has_faults(sc)) {
-        faults_write_json(sim, f);
+    for (uint32_t id = 0; sim != NULL && id < SIM_MODEL_COUNT; id++) {
+        const model_def_t *model = sim_models[id];
+        if (model->write_json) {
+            model->write_json(sim, sim_model_self(sim, (sim_model_id_t)id), f);
+        }
     }
     fprintf(f, "  \"seed\": %" PRIu64 ",\n  \"robots\": %u,\n  \"steps\": %" PRIu64 ",\n"
             "  \"control_period_ms\": %u,\n", seed, scenario_robot_count(sc), steps, sc->control_period_ms);

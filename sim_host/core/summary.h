@@ -16,8 +16,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "metrics.h"
-#include "scenario.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/scenario.h"
 
 #define SUMMARY_SCENARIO_COPY "scenario.yaml"
 /** Beside a run's summary.json: its metrics exactly, for --resume. */

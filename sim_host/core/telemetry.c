@@ -27,6 +27,7 @@
 
 #include <lcm/lcm.h>
 
+#include "models/uart/uart.h"
 #include "sim_internal.h"
 #include "swarmlcm_event_t.h"
 #include "swarmlcm_robot_state_t.h"
@@ -109,11 +110,11 @@ static int parse_hz(const char *text, const char *stop, double *out)
     return 0;
 }
 
-int telemetry_check_url(const char *url, char err[256])
+int telemetry_check_url(const char *url, char err[SIM_ERR_MAX])
 {
     lcm_t *lcm = lcm_create(url);
     if (!lcm) {
-        snprintf(err, 256, "--lcm %s: no LCM provider takes this URL (udpm://GROUP:PORT?ttl=0, "
+        snprintf(err, SIM_ERR_MAX, "--lcm %s: no LCM provider takes this URL (udpm://GROUP:PORT?ttl=0, "
                  "file://PATH?mode=w, memq://)", url);
         return -1;
     }
@@ -164,7 +165,7 @@ static void compute_hashes(void)
 }
 
 int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char *log_path,
-                   telemetry_t **out, char err[256])
+                   telemetry_t **out, char err[SIM_ERR_MAX])
 {
     const struct sim *sim = simp;
     *out = NULL;
@@ -191,23 +192,23 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
         t->scene = telemetry_scene_create(sim);
     }
     if (!t || !t->buf || !t->prev_counter || !t->prev_state || !t->prev_escaped || !t->scene) {
-        snprintf(err, 256, "telemetry: out of memory");
+        snprintf(err, SIM_ERR_MAX, "telemetry: out of memory");
         telemetry_close(t, 0, err);
         return -1;
     }
-    if (sim->links) {
+    if (uart_config(sim->sc)->enabled) {
         static const char *const names[TELEMETRY_CH_COUNT] = TELEMETRY_CHANNEL_NAMES;
         for (int c = 1; c < TELEMETRY_CH_COUNT; c++) {
             t->fw_channel_len[c] = snprintf(t->fw_channel[c], sizeof t->fw_channel[c], "%s%s",
-                                            sim->sc->robot_telemetry.channel_prefix, names[c]);
+                                            uart_config(sim->sc)->channel_prefix, names[c]);
         }
-        if (sim->sc->robot_telemetry.dump && log_path) {
+        if (uart_config(sim->sc)->dump && log_path) {
             const char *slash = strrchr(log_path, '/');
             size_t len = slash ? (size_t)(slash - log_path) : 0;
             snprintf(t->dump_dir, sizeof t->dump_dir, "%.*s%suart", (int)len, log_path, len ? "/" : "");
             t->dump = calloc(n, sizeof *t->dump);
             if (!t->dump || (mkdir(t->dump_dir, 0777) != 0 && errno != EEXIST)) {
-                snprintf(err, 256, "%.150s: cannot create: %.60s", t->dump_dir, strerror(errno ? errno : ENOMEM));
+                snprintf(err, SIM_ERR_MAX, "%.150s: cannot create: %.60s", t->dump_dir, strerror(errno ? errno : ENOMEM));
                 telemetry_close(t, 0, err);
                 return -1;
             }
@@ -228,20 +229,20 @@ int telemetry_open(const telemetry_options_t *opt, const sim_t *simp, const char
         t->summary_pause_s = strncmp(opt->url, "memq://", 7) ? 0.05 + 1e-4 * (double)n : 0.0;
         t->lcm = lcm_create(opt->url);
         if (!t->lcm) {
-            snprintf(err, 256, "telemetry: cannot open LCM URL '%s' (see lcm_create's message above)", opt->url);
+            snprintf(err, SIM_ERR_MAX, "telemetry: cannot open LCM URL '%s' (see lcm_create's message above)", opt->url);
             telemetry_close(t, 0, err);
             return -1;
         }
     } else {
         if (snprintf(t->path, sizeof t->path, "%s", log_path) >= (int)sizeof t->path) {
-            snprintf(err, 256, "telemetry: log path too long");
+            snprintf(err, SIM_ERR_MAX, "telemetry: log path too long");
             telemetry_close(t, 0, err);
             return -1;
         }
         snprintf(t->tmp, sizeof t->tmp, "%s.tmp", log_path);
         t->log = fopen(t->tmp, "wb");
         if (!t->log) {
-            snprintf(err, 256, "%.150s: cannot write: %.60s", t->tmp, strerror(errno));
+            snprintf(err, SIM_ERR_MAX, "%.150s: cannot write: %.60s", t->tmp, strerror(errno));
             t->tmp[0] = '\0';
             telemetry_close(t, 0, err);
             return -1;
@@ -324,7 +325,7 @@ static uint8_t *reserve(telemetry_t *t, int size)
  * bytes dumped when asked. */
 static void send_robot_frames(telemetry_t *t, const struct sim *sim, uint32_t i)
 {
-    const robot_link_t *l = &sim->links[i];
+    const robot_link_t *l = sim_robot_link(sim, i);
     for (uint8_t k = 0; k < l->n_frames; k++) {
         const robot_link_frame_t *f = &l->frames[k];
         int off = LOG_HEADER + t->fw_channel_len[f->channel];
@@ -682,7 +683,7 @@ void telemetry_step(telemetry_t *t, const sim_t *simp)
     for (uint32_t i = 0; i < sim->n; i++) {
         robot_events(t, sim, i);
     }
-    for (uint32_t i = 0; sim->links && i < sim->n; i++) {
+    for (uint32_t i = 0; sim_robot_link(sim, 0) && i < sim->n; i++) {
         send_robot_frames(t, sim, i);
     }
     int info_due = t->info_every && sim->step % t->info_every == 0;
@@ -729,7 +730,7 @@ void telemetry_end(telemetry_t *t, const sim_t *simp, const metric_list_t *final
     SEND(t, swarmlcm_run_summary_t, TELEMETRY_CHANNEL_RUN_SUMMARY, &m, m.utime);
 }
 
-int telemetry_close(telemetry_t *t, int keep, char err[256])
+int telemetry_close(telemetry_t *t, int keep, char err[SIM_ERR_MAX])
 {
     int rc = 0;
     if (!t) {
@@ -747,7 +748,7 @@ int telemetry_close(telemetry_t *t, int keep, char err[256])
             remove(t->tmp);
         }
         if (keep && t->write_error) {
-            snprintf(err, 256, "%.150s: cannot write: %.60s", t->path, strerror(t->write_error));
+            snprintf(err, SIM_ERR_MAX, "%.150s: cannot write: %.60s", t->path, strerror(t->write_error));
             rc = -1;
         }
     }

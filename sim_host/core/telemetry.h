@@ -31,8 +31,8 @@
 
 #include <stdint.h>
 
-#include "metrics.h"
-#include "sim.h"
+#include "swarmsim/metrics.h"
+#include "swarmsim/sim.h"
 
 #define TELEMETRY_CHANNEL_RUN_INFO "RUN_INFO"
 #define TELEMETRY_CHANNEL_SWARM_STATE "SWARM_STATE"
@@ -65,7 +65,7 @@ int telemetry_parse_rate(const char *text, telemetry_options_t *opt);
 
 /** Whether an LCM provider takes `url` (opened and closed at once).
  *  Returns 0, or -1 with a message in `err`. */
-int telemetry_check_url(const char *url, char err[256]);
+int telemetry_check_url(const char *url, char err[SIM_ERR_MAX]);
 
 typedef struct telemetry telemetry_t;
 
@@ -74,7 +74,7 @@ typedef struct telemetry telemetry_t;
  *  telemetry_close).  *out is NULL when opt->enabled is 0.  Returns 0, or
  *  -1 with a message in `err`. */
 int telemetry_open(const telemetry_options_t *opt, const sim_t *sim, const char *log_path,
-                   telemetry_t **out, char err[256]);
+                   telemetry_t **out, char err[SIM_ERR_MAX]);
 
 /** Before the first step of a run of `steps` steps: RUN_INFO and the
  *  states at step 0. */
@@ -92,7 +92,7 @@ void telemetry_end(telemetry_t *t, const sim_t *sim, const metric_list_t *final,
  *  place, otherwise removed.  Returns 0, or -1 with a message in `err` if
  *  writing failed (publishing to a URL never fails a run: messages that
  *  could not be sent are counted and reported on stderr). */
-int telemetry_close(telemetry_t *t, int keep, char err[256]);
+int telemetry_close(telemetry_t *t, int keep, char err[SIM_ERR_MAX]);
 
 /** Messages published so far. */
 uint64_t telemetry_message_count(const telemetry_t *t);

@@ -16,7 +16,7 @@
 #ifndef SIM_TELEMETRY_SCENE_H
 #define SIM_TELEMETRY_SCENE_H
 
-#include "sim.h"
+#include "swarmsim/sim.h"
 #include "swarmlcm_scene_t.h"
 #include "swarmlcm_task_drawing_t.h"
 

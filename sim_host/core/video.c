@@ -63,7 +63,7 @@ int video_find_ffmpeg(char *err)
         }
         p += n + (end ? 1 : 0);
     }
-    snprintf(err, VIDEO_ERR_MAX, "--video needs ffmpeg, which is not on PATH "
+    snprintf(err, SIM_ERR_MAX, "--video needs ffmpeg, which is not on PATH "
              "(Debian package ffmpeg: apt-get install ffmpeg, or make deps)");
     return -1;
 }
@@ -112,13 +112,13 @@ static void describe_exit(const video_t *v, char *err)
     char words[200];
     last_words(v->log, words, sizeof words);
     if (WIFEXITED(v->status) && WEXITSTATUS(v->status) == 0) {
-        snprintf(err, VIDEO_ERR_MAX, "%s: ffmpeg stopped reading after %llu frame(s)%s%s", v->path,
+        snprintf(err, SIM_ERR_MAX, "%s: ffmpeg stopped reading after %llu frame(s)%s%s", v->path,
                  (unsigned long long)v->frames, *words ? ": " : "", words);
     } else if (WIFEXITED(v->status)) {
-        snprintf(err, VIDEO_ERR_MAX, "%s: ffmpeg exited with status %d after %llu frame(s)%s%s", v->path,
+        snprintf(err, SIM_ERR_MAX, "%s: ffmpeg exited with status %d after %llu frame(s)%s%s", v->path,
                  WEXITSTATUS(v->status), (unsigned long long)v->frames, *words ? ": " : "", words);
     } else {
-        snprintf(err, VIDEO_ERR_MAX, "%s: ffmpeg was killed by signal %d after %llu frame(s)%s%s", v->path,
+        snprintf(err, SIM_ERR_MAX, "%s: ffmpeg was killed by signal %d after %llu frame(s)%s%s", v->path,
                  WIFSIGNALED(v->status) ? WTERMSIG(v->status) : 0, (unsigned long long)v->frames,
                  *words ? ": " : "", words);
     }
@@ -140,7 +140,7 @@ static void video_free(video_t *v)
 video_t *video_open(const char *path, int w, int h, double fps, char *err)
 {
     if (w <= 0 || h <= 0 || w % 2 || h % 2 || !(fps > 0.0)) {
-        snprintf(err, VIDEO_ERR_MAX, "%s: a video needs even sizes and a positive rate, not %dx%d at %g fps",
+        snprintf(err, SIM_ERR_MAX, "%s: a video needs even sizes and a positive rate, not %dx%d at %g fps",
                  path, w, h, fps);
         return NULL;
     }
@@ -151,7 +151,7 @@ video_t *video_open(const char *path, int w, int h, double fps, char *err)
             free(v->path);
             free(v);
         }
-        snprintf(err, VIDEO_ERR_MAX, "%s: out of memory", path);
+        snprintf(err, SIM_ERR_MAX, "%s: out of memory", path);
         return NULL;
     }
     memcpy(v->tmp, path, n);
@@ -212,7 +212,7 @@ video_t *video_open(const char *path, int w, int h, double fps, char *err)
     }
     v->fd = sv[0];
     if (rc != 0) {
-        snprintf(err, VIDEO_ERR_MAX, "%s: cannot start ffmpeg: %s", path, strerror(e));
+        snprintf(err, SIM_ERR_MAX, "%s: cannot start ffmpeg: %s", path, strerror(e));
         video_free(v);
         return NULL;
     }
@@ -233,7 +233,7 @@ int video_write(video_t *v, const uint8_t *rgb, char *err)
                 reap(v);
                 describe_exit(v, err);
             } else {
-                snprintf(err, VIDEO_ERR_MAX, "%s: cannot send a frame to ffmpeg: %s", v->path, strerror(e));
+                snprintf(err, SIM_ERR_MAX, "%s: cannot send a frame to ffmpeg: %s", v->path, strerror(e));
             }
             return -1;
         }
@@ -262,7 +262,7 @@ int video_close(video_t *v, int keep, char *err)
         describe_exit(v, err);
         rc = -1;
     } else if (keep && rename(v->tmp, v->path) != 0) {
-        snprintf(err, VIDEO_ERR_MAX, "%s: cannot rename '%s' to it: %s", v->path, v->tmp, strerror(errno));
+        snprintf(err, SIM_ERR_MAX, "%s: cannot rename '%s' to it: %s", v->path, v->tmp, strerror(errno));
         rc = -1;
     }
     if (!ok || !keep || rc != 0) {

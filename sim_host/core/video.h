@@ -12,8 +12,8 @@
 
 #include <stdint.h>
 
-/** Size of the `err` buffers the functions below write to. */
-#define VIDEO_ERR_MAX 256
+#include "swarmsim/base.h"
+
 
 typedef struct video video_t;
 

@@ -62,7 +62,7 @@ static void create_static(struct sim *sim)
  * turns for those two calls.  Everything else in a world is its own. */
 static pthread_mutex_t world_table_lock = PTHREAD_MUTEX_INITIALIZER;
 
-int world_create(struct sim *sim, char err[256])
+int world_create(struct sim *sim, char err[SIM_ERR_MAX])
 {
     b2WorldDef wd = b2DefaultWorldDef();
     wd.gravity = (b2Vec2){ 0.0f, 0.0f };
@@ -81,7 +81,7 @@ int world_create(struct sim *sim, char err[256])
     pthread_mutex_unlock(&world_table_lock);
     sim->drive = calloc(sim->n ? sim->n : 1, sizeof *sim->drive);
     if (!b2World_IsValid(sim->world) || !sim->drive) {
-        snprintf(err, 256, "cannot create the Box2D world (or out of memory)");
+        snprintf(err, SIM_ERR_MAX, "cannot create the Box2D world (or out of memory)");
         return -1;
     }
     create_static(sim);
@@ -118,74 +118,14 @@ void world_destroy(struct sim *sim)
     pthread_mutex_unlock(&world_table_lock);
 }
 
-/* pool_fn: robots [begin, end) turn their wheel commands into body
- * velocities (sim->drive), each with its own noise streams, side by side;
- * world_drive hands them to Box2D in one loop. */
-static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
-{
-    struct sim *sim = ctx;
-    const double noise = sim->sc->wheels.speed_noise_rel;
-    const int bias = sim->sc->wheels.bias_sd > 0.0f;
-    (void)worker;
-    for (uint32_t i = begin; i < end; i++) {
-        sim_robot_t *r = &sim->robots[i];
-        double l = r->cmd_left, rr = r->cmd_right;
-        if (faults_stopped(sim, i)) {
-            l = rr = 0.0;       /* a stopped robot's motors are off */
-        }
-        /* Motor steps are counted as commanded: a blocked stepper still steps. */
-        r->steps_left += l * sim->dt;
-        r->steps_right += rr * sim->dt;
-        if (!r->moves) {
-            continue;
-        }
-        if (bias && (l != 0.0 || rr != 0.0)) {
-            /* Seed 003's eq 3, read as ARGoS's differential-steering noise
-             * (the paper's simulator; its symbols were lost in our copy, but
-             * its words "a the actual actuation, f a random factor, w the
-             * ideal actuation, b a random bias, both Gaussian" are ARGoS's):
-             * a = f (w + b), b drawn once per robot and wheel per run
-             * (build_robots), f every step, and only while the robot is
-             * commanded to move: a stopped Robot_Node does not creep.  The
-             * motors cannot exceed HAL_WHEEL_SPEED_MAX (1000 steps/s =
-             * 12.9 cm/s): a bias above that saturates the wheels where the
-             * paper's robots (its Figure 17 goes to a 20 cm/s sd) did not. */
-            if (sim->sc->wheels.bias_per_step) {
-                /* The other reading of "a random bias drawn from a Gaussian":
-                 * a new b every step, which averages out along a path. */
-                const double sd_steps = sim->sc->wheels.bias_sd / EPUCK_STEP_M;
-                r->bias_left = sd_steps * sim_rand_normal(&r->bias_rand);
-                r->bias_right = sd_steps * sim_rand_normal(&r->bias_rand);
-            }
-            l += r->bias_left;
-            rr += r->bias_right;
-            if (noise > 0.0) {
-                l *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
-                rr *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
-            }
-            l = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, l));
-            rr = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, rr));
-        } else if (noise > 0.0) {
-            /* Without a bias: the factor f alone, at every step (as before
-             * the bias existed: golden hashes unchanged). */
-            l *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
-            rr *= 1.0 + noise * sim_rand_normal(&r->wheel_rand);
-        }
-        faults_wheels(sim, i, &l, &rr);
-        double v = 0.5 * (l + rr) * EPUCK_STEP_M;
-        double w = (rr - l) * EPUCK_STEP_M / EPUCK_AXLE_M;
-        sim->drive[i].v = (b2Vec2){ (float)(v * cos(r->theta)), (float)(v * sin(r->theta)) };
-        sim->drive[i].w = (float)w;
-    }
-}
-
-/* Bodies' velocities are set in one loop on the stepping thread: Box2D's
- * API is not promised to be safe from several threads at once. */
+/* Poses are read side by side. */
 #define DRIVE_CHUNK 256u
 
+/* The velocities the models' drive phase asked for (the wheels'), set in
+ * one loop on the stepping thread: Box2D's API is not promised to be safe
+ * from several threads at once. */
 void world_drive(struct sim *sim)
 {
-    pool_for(sim->pool, sim->n, DRIVE_CHUNK, drive_range, sim);
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_robot_t *r = &sim->robots[i];
         if (r->moves) {

@@ -12,6 +12,8 @@
 #include <sys/stat.h>
 #include <yaml.h>
 
+#include "swarmsim/base.h"
+
 /* Scenarios nest three levels; the limit only keeps hostile input from
  * exhausting the stack of the recursive builder and checker. */
 #define YTREE_MAX_DEPTH 64
@@ -187,7 +189,7 @@ typedef struct builder {
 
 static int fail_at(builder_t *b, int line, const char *fmt, ...)
 {
-    char msg[512];
+    char msg[SIM_ERR_MAX];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);

@@ -129,5 +129,32 @@ check "a grid spot on an obstacle names the obstacle and what helps" \
 sed -i 's/radius: 0.1}]/radius: 0.1}]\n/; s/shape: grid, width: 1, height: 1/shape: rectangle, width: 1, height: 1/' "$tmp/grid.yaml"
 check "...and the advice works" "'$sim' '$tmp/grid.yaml' --lcm off --quiet --out '$tmp/grid2'"
 
+# ---- the edit-and-run loop: without --out, out/<scenario> is the
+# scenario's own folder, replaced by each invocation when swarmsim made it
+# (and only then); a given --out keeps the refusal and says how to replace.
+mkdir -p "$tmp/loop" && printf 'duration: 5\nrobots: [{count: 3, controller: random_walk}]\n' >"$tmp/loop/walk.yaml"
+(cd "$tmp/loop" && "$sim" walk.yaml --steps 20 --lcm off --quiet && "$sim" walk.yaml --steps 30 --lcm off --quiet)
+check "without --out, a second run replaces out/<scenario>" \
+    "[ $? -eq 0 ] && grep -q '\"steps\": 30' '$tmp/loop/out/walk/run_1/summary.json'"
+mkdir -p "$tmp/loop2/out/walk" && echo mine >"$tmp/loop2/out/walk/notes.txt" && cp "$tmp/loop/walk.yaml" "$tmp/loop2/walk.yaml"
+(cd "$tmp/loop2" && "$sim" walk.yaml --steps 20 --lcm off --quiet 2>"$tmp/err")
+check "...but not a folder of that name swarmsim did not make (exit 2, nothing deleted)" \
+    "[ $? -eq 2 ] && grep -q 'the default --out: out/walk was not made by swarmsim' '$tmp/err' && [ -e '$tmp/loop2/out/walk/notes.txt' ]"
+"$sim" "$tmp/loop/walk.yaml" --steps 20 --lcm off --quiet --out "$tmp/loop/out/walk" 2>"$tmp/err"
+check "a given --out that is not empty: exit 2, and the message says how to replace it" \
+    "[ $? -eq 2 ] && grep -q 'add --replace to replace it' '$tmp/err'"
+
+# ---- the command line's table: --name=value as --name value, whole names only
+"$sim" $rw --steps=25 --lcm=off --quiet --out="$tmp/eq"
+check "--name=value works as --name value" "grep -q '\"steps\": 25' '$tmp/eq/run_1/summary.json'"
+"$sim" $rw --ste 25 --out "$tmp/abbrev" 2>"$tmp/err"
+check "an abbreviation is an unknown option (exit 2, nothing written)" \
+    "[ $? -eq 2 ] && grep -q \"unknown option '--ste'\" '$tmp/err' && [ ! -e '$tmp/abbrev' ]"
+"$sim" $rw --quiet=yes --out "$tmp/flag" 2>"$tmp/err"
+check "a flag given a value is an error" "[ $? -eq 2 ] && grep -q -- '--quiet takes no value' '$tmp/err'"
+"$sim" --help >"$tmp/help"
+check "--help lists every option of the table, and the models with the HAL calls they serve" \
+    "grep -q -- '--video-fps F' '$tmp/help' && grep -q -- '--camera-frames ROBOT' '$tmp/help' && grep -q 'serves: hal_ground' '$tmp/help'"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -158,6 +158,23 @@ expect_error "repetitions past the seed range" \
     "swarmsim: seeds 9007199254740990 + 3 repetitions pass the seed range [0, 9007199254740991]" \
     "$ok" --seed 9007199254740990 --reps 3
 
+# ---- the memory a run needs is estimated before anything is allocated:
+# 16 groups of 100,000 robots (4 GB) are refused, at the robots' line; a
+# larger memory_limit_mb lets them through (--check only: it allocates
+# nothing), and --check says what a run needs.
+{ echo "arena: {width: 400, height: 400}"; echo "robots:";
+  for g in $(seq 0 15); do echo "  - {name: g$g, count: 100000, controller: random_walk}"; done; } >"$tmp/huge.yaml"
+expect_error "a run past memory_limit_mb" \
+    "swarmsim: $tmp/huge.yaml:3: robots: a run of this scenario needs about 4.1 GB (1600000 robots at about 2.6 kB each), more than memory_limit_mb 2048" \
+    "$tmp/huge.yaml" --check
+n=$((n + 1))
+if "$sim" "$tmp/huge.yaml" --check --set memory_limit_mb=6000 >"$tmp/stdout" 2>&1 \
+   && grep -qF "huge.yaml: ok (a run needs about 4.1 GB)" "$tmp/stdout"; then
+    pass=$((pass + 1))
+else
+    echo "FAIL: --check with a larger memory_limit_mb: $(cat "$tmp/stdout")"; fail=$((fail + 1))
+fi
+
 # ---- --check validates and runs nothing: a bad override fails, a good one
 # exits 0 without creating the --out folder.
 expect_error "--check: a bad override" \

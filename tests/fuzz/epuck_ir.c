@@ -1,10 +1,10 @@
 /*
  * epuck_ir.c - fuzz target: the e-puck's IR receive path below the
- * controllers, hal/epuck: what the IR driver hands over (the e-RandB
+ * controllers, platforms/epuck1/hal: what the IR driver hands over (the e-RandB
  * turret's frame, or libIrcom's message with -DFUZZ_LIBIRCOM) becomes a
  * hal_ircom_msg_t in the HAL's inbox, which hal_ircom_receive gives the
  * controller.  Drivers are the e-puck library's stubs of the firmware
- * tests (tests/firmware/stubs/); their floats here are any 32 bits (NaN,
+ * tests (platforms/epuck1/tests/stubs/); their floats here are any 32 bits (NaN,
  * infinities, huge values: an I2C glitch or a library bug can give them).
  *
  * Properties: every message received carries the driver's data bits

@@ -1,6 +1,6 @@
 /*
  * ref_deframe.h - a second decoder of the robots' serial framing, written
- * from the format in firmware/telemetry/telemetry_frame.h alone, for the
+ * from the format in wire/telemetry/telemetry_frame.h alone, for the
  * harnesses to check the product's (sim_host/core/robot_link.c) against.
  * It shares no code with it: a whole run between two zeros is unstuffed at
  * once, the CRC is table-free and bytewise, and every rule of the format is

@@ -29,8 +29,11 @@
 
 #include "fuzz.h"
 
-#include "core/scenario.h"
-#include "core/sim.h"
+#include "swarmsim/scenario.h"
+/* The host model's messages live on the heap (compared apart). */
+#include "models/camera/camera.h"
+#include "models/host/host.h"
+#include "swarmsim/sim.h"
 #include "tasks/foraging/foraging.h"
 
 #define MAX_SETS 8
@@ -100,8 +103,8 @@ static size_t split(const uint8_t *data, size_t size, char *buf, scenario_overri
 /* The error names where the bad value came from. */
 static void check_error(const char *err, const scenario_override_t *sets, size_t n)
 {
-    size_t len = strnlen(err, SCENARIO_ERROR_MAX);
-    FUZZ_CHECK(len > 0 && len < SCENARIO_ERROR_MAX);
+    size_t len = strnlen(err, SIM_ERR_MAX);
+    FUZZ_CHECK(len > 0 && len < SIM_ERR_MAX);
     if (strncmp(err, file_in, strlen(file_in)) == 0) {
         return;
     }
@@ -122,14 +125,14 @@ static int too_big(const scenario_t *s)
     const foraging_config_t *fc = scenario_task_config(s, &foraging_task);
     return scenario_robot_count(s) > 40u || s->object_count > 64u || s->physics_substeps > 16u
            || s->arena.width > 20.0f || s->arena.height > 20.0f
-           || (uint32_t)s->camera.width_px * s->camera.height_px > 4096u
+           || (uint32_t)camera_config(s)->width_px * camera_config(s)->height_px > 4096u
            || (fc != NULL && fc->food_count > 50u);
 }
 
 /* The effective scenario, written and read back, is the scenario. */
 static void check_effective(const scenario_override_t *sets, size_t n)
 {
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     FILE *f = fopen(file_out, "wb");
     FUZZ_CHECK(f != NULL);
     FUZZ_CHECK(scenario_write_effective(file_in, sets, n, f, err) == 0);
@@ -140,16 +143,24 @@ static void check_effective(const scenario_override_t *sets, size_t n)
     }
     memset(again->path, 0, sizeof again->path);
     memset(sc->path, 0, sizeof sc->path);
-    /* The objects are on the heap: compared as arrays, their pointers
-     * left out of the struct's bytes. */
+    /* The objects and the host's messages are on the heap: compared as
+     * arrays, their pointers left out of the struct's bytes. */
     FUZZ_CHECK(sc->object_count == again->object_count);
     FUZZ_CHECK(sc->object_count == 0 ||
                memcmp(sc->objects, again->objects, sc->object_count * sizeof *sc->objects) == 0);
+    host_config_t *hs = host_config_mut(sc), *ha = host_config_mut(again);
+    FUZZ_CHECK(hs->message_count == ha->message_count);
+    FUZZ_CHECK(hs->message_count == 0 ||
+               memcmp(hs->messages, ha->messages, hs->message_count * sizeof *hs->messages) == 0);
     object_def_t *objects_sc = sc->objects, *objects_again = again->objects;
+    host_message_def_t *messages_sc = hs->messages, *messages_again = ha->messages;
     sc->objects = again->objects = NULL;
+    hs->messages = ha->messages = NULL;
     int differ = memcmp(sc, again, sizeof *sc) != 0;
     sc->objects = objects_sc;
     again->objects = objects_again;
+    hs->messages = messages_sc;
+    ha->messages = messages_again;
     scenario_free(again);
     if (differ) {
         const uint8_t *a = (const uint8_t *)sc, *b = (const uint8_t *)again;
@@ -165,7 +176,7 @@ static void check_effective(const scenario_override_t *sets, size_t n)
 
 static uint64_t run(uint32_t steps)
 {
-    char err[256];
+    char err[SIM_ERR_MAX];
     uint64_t h;
     sim_t *sim = sim_create(sc, sc->seed, err);
     if (sim == NULL) {
@@ -184,7 +195,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static char *buf;
     scenario_override_t sets[MAX_SETS];
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     size_t n;
 
     if (size > MAX_TEXT) {

@@ -1,6 +1,6 @@
 /*
  * telemetry_frame.c - fuzz target: the robots' serial framing
- * (firmware/telemetry/telemetry_frame.c: COBS, CRC-16, frames) and its
+ * (wire/telemetry/telemetry_frame.c: COBS, CRC-16, frames) and its
  * decoder on the host (sim_host/core/robot_link.c, which deframes as the
  * bridge does), both checked against ref_deframe.h, a decoder written in
  * the harness from the format alone.  The first byte picks one of:

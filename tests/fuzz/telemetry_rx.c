@@ -1,6 +1,6 @@
 /*
  * telemetry_rx.c - fuzz target: the robot's streaming decoder of the
- * frames a host sends it (firmware/telemetry/telemetry_rx.c: poses and
+ * frames a host sends it (wire/telemetry/telemetry_rx.c: poses and
  * routes over Bluetooth, docs/host_link.md), against the reference of
  * ref_deframe.h (its COBS and CRC, written from the format alone) applied
  * run by run with the decoder's rules: version 1, any channel, a body of

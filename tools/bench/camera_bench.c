@@ -4,7 +4,7 @@
  * after `warm` control steps have spread the robots out: every robot's
  * frame in turn, `rounds` times; the median of `reps` timings of each.
  * Rendered: draw (OSMesa), RGB565, hal/blob_detect.c; geometric:
- * sensors_camera.  Usage: camera_bench SCENARIO [reps rounds warm].
+ * camera_geometric_blobs.  Usage: camera_bench SCENARIO [reps rounds warm].
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,9 +12,9 @@
 #include <time.h>
 
 #include "blob_detect.h"
-#include "core/camera_render.h"
-#include "core/scenario.h"
-#include "core/sim_internal.h"
+#include "models/camera/camera.h"
+#include "models/camera/camera_render.h"
+#include "swarmsim/scenario.h"
 
 /* Wall time, and this thread's CPU time: on a machine shared with other
  * work the wall time is inflated, the CPU time much less (llvmpipe renders
@@ -46,7 +46,7 @@ int main(int argc, char **argv)
     }
     camera_render_set_threads();
     static scenario_t sc;
-    char err[SCENARIO_ERROR_MAX];
+    char err[SIM_ERR_MAX];
     if (scenario_load(argv[1], NULL, 0, &sc, err) != 0) {
         fprintf(stderr, "camera_bench: %s\n", err);
         return 2;
@@ -57,10 +57,10 @@ int main(int argc, char **argv)
         return 1;
     }
     for (int s = 0; s < warm; s++) sim_step(sim);
-    uint32_t n = sim->n;
-    size_t px = (size_t)sc.camera.width_px * sc.camera.height_px;
+    uint32_t n = sim_robot_count(sim);
+    size_t px = (size_t)camera_config(&sc)->width_px * camera_config(&sc)->height_px;
     uint8_t *rgb = malloc(px * 3), *f565 = malloc(px * 2);
-    camera_render_t *cr = camera_render_create(sc.camera.width_px, sc.camera.height_px, err);
+    camera_render_t *cr = camera_render_create(camera_config(&sc)->width_px, camera_config(&sc)->height_px, err);
     if (!cr || !rgb || !f565) {
         fprintf(stderr, "camera_bench: %s\n", cr ? "out of memory" : err);
         return 1;
@@ -83,7 +83,7 @@ int main(int argc, char **argv)
                     f565[2 * p + 1] = (uint8_t)v;
                 }
                 blob_detect_work_t work;
-                blobs_r += blob_detect(&bp, f565, sc.camera.width_px, sc.camera.height_px, &work, out, HAL_MAX_BLOBS);
+                blobs_r += blob_detect(&bp, f565, camera_config(&sc)->width_px, camera_config(&sc)->height_px, &work, out, HAL_MAX_BLOBS);
             }
         }
         t_r[r] = (now_s(CLOCK_MONOTONIC) - t0) / ((double)rounds * n);
@@ -91,7 +91,7 @@ int main(int argc, char **argv)
         t0 = now_s(CLOCK_MONOTONIC);
         c0 = now_s(CLOCK_THREAD_CPUTIME_ID);
         for (int k = 0; k < rounds; k++) {
-            for (uint32_t i = 0; i < n; i++) blobs_g += sensors_camera(sim, i, out);
+            for (uint32_t i = 0; i < n; i++) blobs_g += camera_geometric_blobs(sim, i, out);
         }
         t_g[r] = (now_s(CLOCK_MONOTONIC) - t0) / ((double)rounds * n);
         c_g[r] = (now_s(CLOCK_THREAD_CPUTIME_ID) - c0) / ((double)rounds * n);
@@ -101,7 +101,7 @@ int main(int argc, char **argv)
     qsort(c_r, (size_t)reps, sizeof c_r[0], by_value);
     qsort(c_g, (size_t)reps, sizeof c_g[0], by_value);
     printf("robot-frame, rendered (%ux%u, OSMesa + RGB565 + blob_detect): %.1f us wall, %.1f us CPU "
-           "(medians of %d x %d frames)\n", sc.camera.width_px, sc.camera.height_px, 1e6 * t_r[reps / 2],
+           "(medians of %d x %d frames)\n", camera_config(&sc)->width_px, camera_config(&sc)->height_px, 1e6 * t_r[reps / 2],
            1e6 * c_r[reps / 2], reps, rounds * (int)n);
     printf("robot-frame, geometric: %.2f us wall, %.2f us CPU\n", 1e6 * t_g[reps / 2], 1e6 * c_g[reps / 2]);
     printf("blobs per frame: rendered %.2f, geometric %.2f\n", (double)blobs_r / ((double)reps * rounds * n),

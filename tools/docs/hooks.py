@@ -1,7 +1,8 @@
 """hooks.py - MkDocs hooks of the site (mkdocs.yml `hooks:`): adds the pages
 that are generated from the programs and sources at every build, so that
 they are never typed twice (gen_reference.py), and the LCM types page from
-lcm_types/.  SWARMSIM and VENV name the simulator and the virtualenv
+lcm_types/; and writes the studies' costs (swarmtools.study.costs) where a
+page says `<!-- generated: study costs -->`.  SWARMSIM and VENV name the simulator and the virtualenv
 (default build/swarmsim and .venv, as `make docs` sets them)."""
 
 import glob
@@ -26,6 +27,30 @@ def lcm_types_page():
         with open(path, encoding='utf-8') as f:
             parts += [f'### `{os.path.basename(path)}`', '', '```c', f.read().rstrip(), '```', '']
     return '\n'.join(parts)
+
+
+COSTS_MARK = '<!-- generated: study costs -->'
+
+
+def study_costs_table():
+    """The full studies' measured costs and the --quick smoke runs, from
+    swarmtools.study.costs (what each study prints before it starts)."""
+    from swarmtools.study.costs import COSTS, QUICK
+    rows = ['| study | command | runs | core-hours | wall time on 2 cores | `--quick` |',
+            '|---|---|---:|---:|---|---|']
+    for key, c in COSTS.items():
+        q = QUICK.get(key)
+        quick = (f'{q.seeds} seed{"s" if q.seeds != 1 else ""} a cell, runs cut at {q.steps:,} steps'
+                 + (f'; {q.note}' if q.note else '')) if q else '-'
+        wall = c.wall + (f' ({c.note})' if c.note else '')
+        rows.append(f'| {c.study} | `{c.command}` | {c.runs:,} | {c.core_hours:g} | {wall} | {quick} |')
+    return '\n'.join(rows) + '\n'
+
+
+def on_page_markdown(markdown, page, config, files):
+    if COSTS_MARK in markdown:
+        markdown = markdown.replace(COSTS_MARK, study_costs_table())
+    return markdown
 
 
 def on_files(files, config):

@@ -22,7 +22,7 @@ FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_SECONDS ?= 300
 FUZZ_TEST_SECONDS ?= 3
 FUZZ_PY_EXAMPLES ?= 10000
-# epuck_ir.c is built once per IR backend of hal/epuck, as test_hal_epuck is.
+# epuck_ir.c is built once per IR backend of platforms/epuck1/hal, as test_hal_epuck is.
 FUZZ_ALL := $(filter-out epuck_ir,$(patsubst tests/fuzz/%.c,%,$(sort $(wildcard tests/fuzz/*.c)))) \
   epuck_ir_randb epuck_ir_libircom
 FUZZ_TARGETS ?= $(FUZZ_ALL)
@@ -45,6 +45,9 @@ $(FUZZ_DIR)/obj/firmware/%.o: firmware/%.c | $(FUZZ_GEN)
 $(FUZZ_DIR)/obj/hal/%.o: hal/%.c | $(FUZZ_GEN)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
+$(FUZZ_DIR)/obj/wire/%.o: wire/%.c | $(FUZZ_GEN)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
 $(FUZZ_DIR)/obj/sim_host/%.o: sim_host/%.c | $(FUZZ_GEN)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(SIM_CFLAGS) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
@@ -62,16 +65,16 @@ $(FUZZ_DIR)/bin/%: tests/fuzz/%.c $(FUZZ_DIR)/libswarm.a
 	@mkdir -p $(@D)
 	$(FUZZ_LINK) -o $@ $< $(FUZZ_DIR)/libswarm.a $(LDLIBS_SIM)
 
-# hal/epuck over the e-puck library's stubs (tests/firmware/stubs/), C99 as
+# platforms/epuck1/hal over the e-puck library's stubs (platforms/epuck1/tests/stubs/), C99 as
 # on the robot, with one IR backend each.
-FUZZ_EPUCK_SRC := tests/fuzz/epuck_ir.c hal/epuck/hal_epuck.c hal/epuck/host_link.c hal/blob_detect.c \
+FUZZ_EPUCK_SRC := tests/fuzz/epuck_ir.c platforms/epuck1/hal/hal_epuck.c platforms/epuck1/hal/host_link.c hal/blob_detect.c \
   hal/hal_common.c hal/units.c hal/tone_detect.c hal/tone_tables.c \
-  firmware/telemetry/telemetry_rx.c firmware/telemetry/telemetry_host.c firmware/telemetry/telemetry_frame.c \
-  tests/firmware/stubs/epuck_lib_stubs.c
-FUZZ_EPUCK_RANDB := hal/epuck/ircom_randb.c tests/firmware/stubs/adscan_stubs.c tests/firmware/stubs/randb_stubs.c
-FUZZ_EPUCK_IRCOM := hal/epuck/ircom_libircom.c tests/firmware/stubs/ircom_stubs.c
-FUZZ_EPUCK_H := tests/fuzz/fuzz.h $(wildcard hal/*.h hal/epuck/*.h tests/firmware/stubs/*.h)
-FUZZ_EPUCK = $(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer -Ihal/epuck -Ifirmware -Itests/firmware/stubs -o $@
+  wire/telemetry/telemetry_rx.c wire/telemetry/telemetry_host.c wire/telemetry/telemetry_frame.c \
+  platforms/epuck1/tests/stubs/epuck_lib_stubs.c
+FUZZ_EPUCK_RANDB := platforms/epuck1/hal/ircom_randb.c platforms/epuck1/tests/stubs/adscan_stubs.c platforms/epuck1/tests/stubs/randb_stubs.c
+FUZZ_EPUCK_IRCOM := platforms/epuck1/hal/ircom_libircom.c platforms/epuck1/tests/stubs/ircom_stubs.c
+FUZZ_EPUCK_H := tests/fuzz/fuzz.h $(wildcard hal/*.h platforms/epuck1/hal/*.h platforms/epuck1/tests/stubs/*.h)
+FUZZ_EPUCK = $(FUZZ_CC) $(FW_CFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer -Iplatforms/epuck1/hal -Iplatforms/epuck1/tests/stubs -o $@
 $(FUZZ_DIR)/bin/epuck_ir_randb: $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_RANDB) $(FUZZ_EPUCK_H) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(FUZZ_EPUCK) $(FUZZ_EPUCK_SRC) $(FUZZ_EPUCK_RANDB) -lm

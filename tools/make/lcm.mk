@@ -46,15 +46,15 @@ SIM_EXTRA_OBJ_ASAN += $(LCM_OBJ_ASAN)
 
 $(LCM_C_STAMP): $(LCM_TYPES) | $(BUILD)/config.mk
 	@rm -rf $(LCM_C_DIR) && mkdir -p $(LCM_C_DIR)
-	$(LCM_GEN) --c --c-cpath $(LCM_C_DIR) --c-hpath $(LCM_C_DIR) $(LCM_TYPES)
+	$(call show,LCM-GEN,C types into $(LCM_C_DIR))$(LCM_GEN) --c --c-cpath $(LCM_C_DIR) --c-hpath $(LCM_C_DIR) $(LCM_TYPES)
 	@touch $@
 $(LCM_C_SRC): $(LCM_C_STAMP) ;
 $(BUILD)/obj/lcm/%.o: $(LCM_C_DIR)/%.c $(LCM_C_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(LCM_GEN_CFLAGS) -c $< -o $@
+	$(call show,CC,$<)$(CC) $(LCM_GEN_CFLAGS) -c $< -o $@
 $(BUILD)/asan/lcm/%.o: $(LCM_C_DIR)/%.c $(LCM_C_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(LCM_GEN_CFLAGS) $(ASAN) -c $< -o $@
+	$(call show,CC-ASAN,$<)$(CC) $(LCM_GEN_CFLAGS) $(ASAN) -c $< -o $@
 
 # Sources that include generated headers wait for them.
 $(BUILD)/obj/sim_host/core/telemetry.o $(BUILD)/asan/sim_host/core/telemetry.o: $(LCM_C_STAMP)
@@ -66,15 +66,15 @@ $(patsubst tests/%.c,$(BUILD)/tests/asan/%,$(wildcard tests/test_telemetry*.c te
 # Python modules (package swarmlcm) for the tools.
 $(LCM_PY_STAMP): $(LCM_TYPES) | $(BUILD)/config.mk
 	@rm -rf $(LCM_PY_DIR) && mkdir -p $(LCM_PY_DIR)
-	$(LCM_GEN) --python --ppath $(LCM_PY_DIR) $(LCM_TYPES)
+	$(call show,LCM-GEN,Python types into $(LCM_PY_DIR))$(LCM_GEN) --python --ppath $(LCM_PY_DIR) $(LCM_TYPES)
 	@touch $@
 
 # Java classes for lcm-spy, when a JDK is present.
 $(LCM_TYPES_JAR): $(LCM_TYPES) | $(BUILD)/config.mk
 	@rm -rf $(LCM_JAVA_DIR) && mkdir -p $(LCM_JAVA_DIR)/src $(LCM_JAVA_DIR)/classes
-	$(LCM_GEN) --java --jpath $(LCM_JAVA_DIR)/src $(LCM_TYPES)
-	$(JAVAC) -nowarn -encoding UTF-8 -cp $(LCM_JAR) -d $(LCM_JAVA_DIR)/classes $(LCM_JAVA_DIR)/src/swarmlcm/*.java
-	$(JAR) cf $@ -C $(LCM_JAVA_DIR)/classes .
+	$(call show,LCM-GEN,Java types for lcm-spy)$(LCM_GEN) --java --jpath $(LCM_JAVA_DIR)/src $(LCM_TYPES)
+	$(call show,JAVAC,$(LCM_JAVA_DIR))$(JAVAC) -nowarn -encoding UTF-8 -cp $(LCM_JAR) -d $(LCM_JAVA_DIR)/classes $(LCM_JAVA_DIR)/src/swarmlcm/*.java
+	$(call show,JAR,$@)$(JAR) cf $@ -C $(LCM_JAVA_DIR)/classes .
 
 LCM_TYPE_OUTPUTS := $(LCM_C_STAMP) $(LCM_PY_STAMP) $(if $(and $(JAVAC),$(JAR)),$(LCM_TYPES_JAR))
 
@@ -101,16 +101,16 @@ endif
 monitor: deps
 	$(PYTHON) -m swarmtools.telemetry.monitor $(if $(LCM_URL),--lcm '$(LCM_URL)')
 
-# The robots' framing (firmware/telemetry/telemetry_frame.c, and the robot's
+# The robots' framing (wire/telemetry/telemetry_frame.c, and the robot's
 # decoder of a host's frames, telemetry_rx.c and telemetry_host.c) as a
 # shared library, so the Python tests check the bridge's decoder against the
 # very encoder the robots run, and the host's frames against their decoder.
 TELEMETRY_FRAME_SO := $(BUILD)/telemetry/libtelemetry_frame.so
-TELEMETRY_SO_SRC := firmware/telemetry/telemetry_frame.c firmware/telemetry/telemetry_rx.c \
-  firmware/telemetry/telemetry_host.c
+TELEMETRY_SO_SRC := wire/telemetry/telemetry_frame.c wire/telemetry/telemetry_rx.c \
+  wire/telemetry/telemetry_host.c
 $(TELEMETRY_FRAME_SO): $(TELEMETRY_SO_SRC) $(TELEMETRY_SO_SRC:.c=.h) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ $(TELEMETRY_SO_SRC)
+	$(call show,CC,$@)$(CC) $(FW_CFLAGS) -fPIC -shared -o $@ $(TELEMETRY_SO_SRC)
 
 .PHONY: clean-lcm
 clean: clean-lcm

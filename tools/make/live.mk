@@ -7,7 +7,7 @@
 #   make live-tests             the page in a real headless chromium (part of make test),
 #                               installing Debian's chromium and chromium-driver first
 #                               when run as root (tools/make/browser.sh)
-#   make live-figure            the README's picture, docs/figures/live_view.png
+#   make live-figure            the live view's picture in the docs, docs/figures/live_view.png
 LOG ?=
 LIVE_ARGS ?=
 LIVE_FIGURE := docs/figures/live_view.png

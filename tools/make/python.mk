@@ -7,7 +7,7 @@
 
 SWARMTOOLS_STAMP := $(VENV)/.swarmtools-installed
 $(SWARMTOOLS_STAMP): pyproject.toml $(LCM_PY_STAMP) | $(BUILD)/config.mk
-	$(VENV)/bin/pip install --disable-pip-version-check -q --no-deps --no-build-isolation -e .
+	$(call show,PIP,swarmtools into $(VENV) (editable))$(VENV)/bin/pip install --disable-pip-version-check -q --no-deps --no-build-isolation -e .
 	@touch $@
 
 deps: $(SWARMTOOLS_STAMP)
@@ -17,7 +17,7 @@ python-tests: deps $(LCM_TYPE_OUTPUTS) $(TELEMETRY_FRAME_SO) $(BUILD)/swarmsim
 	@SWARMSIM=$(BUILD)/swarmsim TELEMETRY_FRAME_SO=$(TELEMETRY_FRAME_SO) $(PYTHON) tools/tests/run.py
 
 lint: deps
-	@$(VENV)/bin/ruff check pyproject.toml tools/swarmtools tools/tests tools/bench tools/docs tests/firmware tests/fuzz tests/docs && echo "lint: ruff found nothing"
+	@$(VENV)/bin/ruff check pyproject.toml tools/swarmtools tools/tests tools/bench tools/docs tools/scaffold.py tools/make tests/firmware tests/fuzz tests/docs platforms && echo "lint: ruff found nothing"
 
 EXTRA_TESTS += lint python-tests
 TEST_BUILD += $(TELEMETRY_FRAME_SO)

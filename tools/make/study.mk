@@ -1,3 +1,7 @@
+# Every study says what it costs before it starts, and takes
+# STUDY_ARGS=--quick for a smoke run of under a minute into out/<study>_quick/
+# (swarmtools.study.costs; docs/studies/index.md).
+#
 # Seed 000's simulation study (swarmtools.study.drtm): `make study-drtm`
 # runs 5 conditions x {DRTM, ARTM, FRTM} x 50 runs.  Its unit tests are
 # among the Python tests (python.mk).
@@ -15,7 +19,7 @@ study-faults: deps $(BUILD)/swarmsim
 
 # Seed 002's study (swarmtools.study.repatt): Figures 3, 2c and 4 of the paper
 # at e-puck scale (studies/repatt_*.yaml), through the sweep engine.
-# STUDY_ARGS=--quick: 3 seeds a cell; --figures worlds for one sweep;
+# STUDY_ARGS=--quick: a smoke run (out/study_repatt_quick); --figures worlds for one sweep;
 # --figures worlds,alns adds Figure 3's ALNS bars (plans, then the routes run).
 .PHONY: study-repatt
 study-repatt: deps $(BUILD)/swarmsim
@@ -31,8 +35,8 @@ study-gains: deps $(BUILD)/swarmsim
 
 # Seed 003's study (swarmtools.study.eaipp): Figures 10-17 of the paper
 # (studies/eaipp_*.yaml: maze, distance, obstacles, bearing, loss, bias),
-# through the sweep engine, into out/study_eaipp/.  STUDY_ARGS=--quick: 5
-# seeds a cell; --figures maze,loss for some; --picture: the frame strip
+# through the sweep engine, into out/study_eaipp/.  STUDY_ARGS=--quick: a
+# smoke run (out/study_eaipp_quick); --figures maze,loss for some; --picture: the frame strip
 # docs/figures/eaipp_square_frames.png (no sweep).
 .PHONY: study-eaipp
 study-eaipp: deps $(BUILD)/swarmsim

@@ -14,11 +14,14 @@ SIM_OBJ_TSAN := $(call objs,tsan,$(SIM_SRC))
 EXTRA_TESTS += tsan-tests
 TEST_BUILD += $(BUILD)/tests/tsan/test_sim $(BUILD)/tsan/swarmsim
 
-$(BUILD)/tsan/firmware/%.o $(BUILD)/tsan/hal/%.o: | $(BUILD)/config.mk
+$(BUILD)/tsan/firmware/%.o $(BUILD)/tsan/hal/%.o $(BUILD)/tsan/wire/%.o: | $(BUILD)/config.mk
 $(BUILD)/tsan/firmware/%.o: firmware/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) $(TSAN) -MMD -MP -c $< -o $@
 $(BUILD)/tsan/hal/%.o: hal/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) $(TSAN) -MMD -MP -c $< -o $@
+$(BUILD)/tsan/wire/%.o: wire/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) $(TSAN) -MMD -MP -c $< -o $@
 $(BUILD)/tsan/sim_host/%.o: sim_host/%.c

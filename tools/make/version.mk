@@ -1,5 +1,6 @@
 # The code version swarmsim writes into every summary (its provenance):
-# `git describe --always --dirty` of the checkout, or "unknown" outside git.
+# tools/make/code_version.sh: `git describe --always --dirty` of the
+# checkout and, when it is dirty, the diff's hash; "unknown" outside git.
 # Looked up on every build; the header is replaced only when the text
 # changes, so only main.c recompiles, and only then.
 VERSION_H := $(BUILD)/gen/version.h
@@ -7,7 +8,7 @@ VERSION_H := $(BUILD)/gen/version.h
 .PHONY: version-header
 version-header:
 	@mkdir -p $(dir $(VERSION_H))
-	@v=$$(git describe --always --dirty --abbrev=12 2>/dev/null || echo unknown); \
+	@v=$$(bash tools/make/code_version.sh); \
 	 t=$(VERSION_H).tmp.$$$$; printf '#define SWARMSIM_VERSION "%s"\n' "$$v" > $$t; \
 	 if cmp -s $$t $(VERSION_H); then rm -f $$t; else mv $$t $(VERSION_H); fi
 $(VERSION_H): version-header ;

@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/geometry.h"
-#include "core/grid.h"
-#include "core/rand.h"
+#include "swarmsim/geometry.h"
+#include "swarmsim/grid.h"
+#include "swarmsim/rand.h"
 #include "foraging/forager.h"
 #include "foraging/forager_sense_all.h"
 #include "foraging/nest_beacon.h"
@@ -151,26 +151,26 @@ static uint32_t robots_running(const scenario_t *sc, const controller_def_t *def
     return n;
 }
 
-static int foraging_check(const void *config, const scenario_t *sc, char key[64], char msg[256])
+static int foraging_check(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX])
 {
     const foraging_config_t *c = config;
     double r = c->nest.diameter / 2.0;
     uint32_t beacons = robots_running(sc, &nest_beacon_def);
     if (!scenario_inside_arena(sc, c->nest.x, c->nest.y, r, r)) {
         snprintf(key, 64, "nest");
-        scenario_outside_message(sc, "the nest circle reaches", msg, 256);
+        scenario_outside_message(sc, "the nest circle reaches", msg, SIM_ERR_MAX);
         return -1;
     }
     if (c->information == FORAGING_INFO_BEACON && beacons != 1) {
         snprintf(key, 64, "information");
-        snprintf(msg, 256, "'beacon' needs one robot running nest_beacon at the nest (the scenario "
+        snprintf(msg, SIM_ERR_MAX, "'beacon' needs one robot running nest_beacon at the nest (the scenario "
                  "has %u); add a group {count: 1, controller: nest_beacon, moves: false} or use "
                  "'global'", beacons);
         return -1;
     }
     if (c->information == FORAGING_INFO_GLOBAL && beacons != 0) {
         snprintf(key, 64, "information");
-        snprintf(msg, 256, "'global' replaces the nest beacon by the simulator: remove the "
+        snprintf(msg, SIM_ERR_MAX, "'global' replaces the nest beacon by the simulator: remove the "
                  "nest_beacon group (or set its count to 0)");
         return -1;
     }
@@ -185,7 +185,7 @@ static int foraging_check(const void *config, const scenario_t *sc, char key[64]
         double u = held[i].v * held[i].scale;
         if (fabs(u - round(u)) > 1e-6 * fmax(1.0, fabs(u)) || u > 65535.0) {
             snprintf(key, 64, "%s", held[i].key);
-            snprintf(msg, 256, "%g is not what the nest beacon can count: it holds %s up to %g (use "
+            snprintf(msg, SIM_ERR_MAX, "%g is not what the nest beacon can count: it holds %s up to %g (use "
                      "such a value, or information: global)", held[i].v,
                      held[i].scale > 1.0 ? "multiples of 0.001 token/min" : "whole energy units",
                      65535.0 / held[i].scale);
@@ -291,14 +291,14 @@ static void foraging_destroy(void *self)
     free(f);
 }
 
-static void *foraging_create(sim_t *sim, const void *config, char err[256])
+static void *foraging_create(sim_t *sim, const void *config, char err[SIM_ERR_MAX])
 {
     const foraging_config_t *c = config;
     const scenario_t *sc = sim_scenario(sim);
     foraging_t *f = calloc(1, sizeof *f);
     uint32_t n = sim_robot_count(sim), n1 = n ? n : 1;
     if (!f) {
-        snprintf(err, 256, "out of memory for the foraging task");
+        snprintf(err, SIM_ERR_MAX, "out of memory for the foraging task");
         return NULL;
     }
     f->cfg = c;
@@ -321,10 +321,11 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
     sim_arena_half(sim, &hw, &hh);
     /* Cells of 0.5 m: a grasp's reach (a few cm) meets at most 4 of them,
      * and at seed 000's density (20 tokens on 16 m^2) a cell holds ~0.3. */
-    int grid_bad = grid_init(&f->token_grid, -hw, -hh, 2 * hw, 2 * hh, 0.5f) != 0;
+    int grid_bad = grid_init(&f->token_grid, -hw, -hh, 2 * hw, 2 * hh, 0.5f) != 0
+                   || grid_reserve(&f->token_grid, nt) != 0;
     if (!f->is_forager || !f->task || !f->leave_step || !f->tokens || !f->carrier || !f->carried
         || !f->oae_window || !f->floor_x || !f->floor_y || !f->near || grid_bad) {
-        snprintf(err, 256, "out of memory for %u food tokens", f->n_tokens);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u food tokens", f->n_tokens);
         foraging_destroy(f);
         return NULL;
     }
@@ -345,7 +346,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[256])
         f->tokens[k].height = c->token_height;
         f->tokens[k].colour = HAL_COLOUR_RED;
         if (place_token(f, sim, k) != 0) {
-            snprintf(err, 256, "cannot place food token %u of %u outside the nest and obstacles",
+            snprintf(err, SIM_ERR_MAX, "cannot place food token %u of %u outside the nest and obstacles",
                      k + 1, f->n_tokens);
             foraging_destroy(f);
             return NULL;
@@ -418,8 +419,7 @@ static void carry_and_grasp(foraging_t *f, sim_t *sim)
         f->floor_y[k] = floor ? f->tokens[k].y : NAN;
     }
     if (grid_build_points(&f->token_grid, f->floor_x, f->floor_y, f->n_tokens) != 0) {
-        fprintf(stderr, "swarmsim: out of memory for the foraging task's token grid\n");
-        abort();
+        sim_out_of_memory("the foraging task's token grid");
     }
     for (uint32_t i = 0; i < f->n_robots; i++) {
         double px, py, pt;
@@ -521,7 +521,6 @@ static void foraging_update(void *self, sim_t *sim)
 static void foraging_broadcast_truth(void *self, sim_t *sim)
 {
     foraging_t *f = self;
-    const scenario_t *sc = sim_scenario(sim);
     uint16_t frame;
     if (f->cfg->information != FORAGING_INFO_GLOBAL) {
         return;
@@ -546,7 +545,7 @@ static void foraging_broadcast_truth(void *self, sim_t *sim)
         sim_robot_pose(sim, i, &px, &py, &pt);
         float dx = f->cfg->nest.x - (float)px, dy = f->cfg->nest.y - (float)py;
         float d = sqrtf(dx * dx + dy * dy);
-        if (d > sc->ircom.range) {
+        if (d > sim_ircom_range_m(sim)) {
             continue;
         }
         hal_ircom_msg_t m;
@@ -659,10 +658,24 @@ static uint16_t foraging_lie(const void *self, const sim_t *sim, uint32_t robot)
 /* Robots of these controllers need the foraging world to do anything. */
 static const char *const foraging_controllers[] = { "forager", "forager_sense_all", "nest_beacon", NULL };
 
+/* What create allocates: per robot and per token, and the T2 window. */
+static size_t foraging_memory(const void *config, const scenario_t *sc)
+{
+    const foraging_config_t *c = config;
+    const foraging_t *f = NULL;
+    size_t n = scenario_robot_count(sc), nt = c->food_count;
+    size_t window = (size_t)fmax(1.0, floor(t2_s(sc, c) * 1000.0 / sc->control_period_ms + 0.5));
+    return sizeof *f + n * (sizeof *f->is_forager + sizeof *f->task + sizeof *f->leave_step + sizeof *f->carried)
+           + nt * (sizeof *f->tokens + sizeof *f->carrier + sizeof *f->floor_x + sizeof *f->floor_y
+                   + sizeof *f->near + sizeof(uint32_t))
+           + window * sizeof *f->oae_window;
+}
+
 const task_def_t foraging_task = {
     .name = "foraging",
     .doc = "seed 000: food tokens, the nest and its ground-truth energy ledger",
     .config_size = sizeof(foraging_config_t),
+    .memory = foraging_memory,
     .params = foraging_params,
     .sections = foraging_sections,
     .default_config = foraging_default_config,

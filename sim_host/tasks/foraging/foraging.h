@@ -28,7 +28,7 @@
 
 #include <stdint.h>
 
-#include "core/task.h"
+#include "swarmsim/task.h"
 
 typedef enum foraging_info {
     FORAGING_INFO_BEACON = 0,

@@ -52,13 +52,13 @@ static void gather_default_config(void *config)
     c->stop_fraction = 0.0f;
 }
 
-static int gather_check(const void *config, const scenario_t *sc, char key[64], char msg[256])
+static int gather_check(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX])
 {
     const gather_config_t *c = config;
     int x_out = fabsf(c->goal.x) > sc->arena.width / 2, y_out = fabsf(c->goal.y) > sc->arena.height / 2;
     if (x_out || y_out) {
         snprintf(key, 64, x_out ? "goal.x" : "goal.y");
-        scenario_outside_message(sc, "the goal's centre is", msg, 256);
+        scenario_outside_message(sc, "the goal's centre is", msg, SIM_ERR_MAX);
         return -1;
     }
     return 0;
@@ -73,12 +73,12 @@ static void gather_destroy(void *self)
     }
 }
 
-static void *gather_create(sim_t *sim, const void *config, char err[256])
+static void *gather_create(sim_t *sim, const void *config, char err[SIM_ERR_MAX])
 {
     gather_t *g = calloc(1, sizeof *g);
     uint32_t n = sim_robot_count(sim);
     if (!g || !(g->inside = calloc(n ? n : 1, 1))) {
-        snprintf(err, 256, "out of memory for the gather task");
+        snprintf(err, SIM_ERR_MAX, "out of memory for the gather task");
         gather_destroy(g);
         return NULL;
     }
@@ -158,10 +158,19 @@ static int gather_done(const void *self, const sim_t *sim)
            && (double)g->in_goal >= (double)g->cfg->stop_fraction * g->n;
 }
 
+/* What create allocates: a flag per robot. */
+static size_t gather_memory(const void *config, const scenario_t *sc)
+{
+    const gather_t *g = NULL;
+    (void)config;
+    return sizeof *g + scenario_robot_count(sc) * sizeof *g->inside;
+}
+
 const task_def_t gather_task = {
     .name = "gather",
     .doc = "example: robots in a goal circle; ends the run when enough are in (README)",
     .config_size = sizeof(gather_config_t),
+    .memory = gather_memory,
     .params = gather_params,
     .sections = gather_sections,
     .default_config = gather_default_config,

@@ -14,7 +14,7 @@
 #ifndef TASK_GATHER_H
 #define TASK_GATHER_H
 
-#include "core/task.h"
+#include "swarmsim/task.h"
 
 typedef struct gather_config {
     struct {

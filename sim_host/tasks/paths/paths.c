@@ -97,26 +97,26 @@ static int group_named(const scenario_t *sc, const char *name)
 }
 
 static int check_group(const scenario_t *sc, const char *name, const char *key, const char *what,
-                       char k[64], char msg[256])
+                       char k[64], char msg[SIM_ERR_MAX])
 {
     int g = group_named(sc, name);
     snprintf(k, 64, "%s", key);
     if (g < 0) {
-        snprintf(msg, 256, "no robot group is named '%s' (%s: name a group of robots[])", name, what);
+        snprintf(msg, SIM_ERR_MAX, "no robot group is named '%s' (%s: name a group of robots[])", name, what);
         return -1;
     }
     if (sc->groups[g].count == 0) {
-        snprintf(msg, 256, "group '%s' (%s) has no robot", name, what);
+        snprintf(msg, SIM_ERR_MAX, "group '%s' (%s) has no robot", name, what);
         return -1;
     }
     if (sc->groups[g].moves) {
-        snprintf(msg, 256, "group '%s' (%s) must not move: give it moves: false (a fixed source)", name, what);
+        snprintf(msg, SIM_ERR_MAX, "group '%s' (%s) must not move: give it moves: false (a fixed source)", name, what);
         return -1;
     }
     return 0;
 }
 
-static int paths_check(const void *config, const scenario_t *sc, char key[64], char msg[256])
+static int paths_check(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX])
 {
     const paths_config_t *c = config;
     if (check_group(sc, c->nest_group, "nest_group", "the nest", key, msg) != 0
@@ -125,12 +125,12 @@ static int paths_check(const void *config, const scenario_t *sc, char key[64], c
     }
     if (strcmp(c->nest_group, c->food_group) == 0) {
         snprintf(key, 64, "food_group");
-        snprintf(msg, 256, "the nest and the food are one group ('%s'): name two groups", c->food_group);
+        snprintf(msg, SIM_ERR_MAX, "the nest and the food are one group ('%s'): name two groups", c->food_group);
         return -1;
     }
     if (sc->duration + BUDGET_EPS_S < c->budget) {
         snprintf(key, 64, "budget");
-        snprintf(msg, 256, "%g s is longer than the run (duration %g s): a run must last its budget",
+        snprintf(msg, SIM_ERR_MAX, "%g s is longer than the run (duration %g s): a run must last its budget",
                  c->budget, sc->duration);
         return -1;
     }
@@ -154,7 +154,7 @@ static void paths_destroy(void *self)
     }
 }
 
-static void *paths_create(sim_t *sim, const void *config, char err[256])
+static void *paths_create(sim_t *sim, const void *config, char err[SIM_ERR_MAX])
 {
     const paths_config_t *c = config;
     const scenario_t *sc = sim_scenario(sim);
@@ -164,7 +164,7 @@ static void *paths_create(sim_t *sim, const void *config, char err[256])
         || !(p->from_nest = calloc(n1, sizeof *p->from_nest)) || !(p->from_food = calloc(n1, sizeof *p->from_food))
         || !(p->chain_pos = calloc(n1, sizeof *p->chain_pos)) || !(p->queue = calloc(n1, sizeof *p->queue))
         || !(p->chain = calloc(n1, sizeof *p->chain))) {
-        snprintf(err, 256, "out of memory for the paths task");
+        snprintf(err, SIM_ERR_MAX, "out of memory for the paths task");
         paths_destroy(p);
         return NULL;
     }
@@ -433,10 +433,21 @@ static int paths_done(const void *self, const sim_t *sim)
     return ((const paths_t *)self)->merged;
 }
 
+/* What create allocates: per robot. */
+static size_t paths_memory(const void *config, const scenario_t *sc)
+{
+    const paths_t *p = NULL;
+    (void)config;
+    return sizeof *p + scenario_robot_count(sc) * (sizeof *p->role + sizeof *p->node + sizeof *p->from_nest
+                                                   + sizeof *p->from_food + sizeof *p->chain_pos + sizeof *p->queue
+                                                   + sizeof *p->chain);
+}
+
 const task_def_t paths_task = {
     .name = "paths",
     .doc = "seed 003: link a fixed nest and food robot by a chain of still robots within range R",
     .config_size = sizeof(paths_config_t),
+    .memory = paths_memory,
     .params = paths_params,
     .default_config = paths_default_config,
     .check = paths_check,

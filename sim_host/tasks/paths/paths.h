@@ -48,7 +48,7 @@
 
 #include <stdint.h>
 
-#include "core/task.h"
+#include "swarmsim/task.h"
 
 #define PATHS_GROUP_NAME_MAX 32
 

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "core/rand.h"
+#include "swarmsim/rand.h"
 #include "units.h"
 
 /* Rejection sampling: draws per target before the layout is said not to fit. */
@@ -119,35 +119,35 @@ static int clusters_of(int distribution)
     return distribution == TARGETS_ONE ? 1 : distribution == TARGETS_TWO ? 2 : distribution == TARGETS_FOUR ? 4 : 0;
 }
 
-static int targets_check(const void *config, const scenario_t *sc, char key[64], char msg[256])
+static int targets_check(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX])
 {
     const targets_config_t *c = config;
     double half = c->layout_side / 2.0;
     if (!scenario_inside_arena(sc, c->nest.x, c->nest.y, c->nest.radius, c->nest.radius)) {
         snprintf(key, 64, "nest");
-        scenario_outside_message(sc, "the nest disc reaches", msg, 256);
+        scenario_outside_message(sc, "the nest disc reaches", msg, SIM_ERR_MAX);
         return -1;
     }
     if (!scenario_inside_arena(sc, c->nest.x, c->nest.y, half, half)) {
         snprintf(key, 64, "layout_side");
-        scenario_outside_message(sc, "the layout square (centred on the nest) reaches", msg, 256);
+        scenario_outside_message(sc, "the layout square (centred on the nest) reaches", msg, SIM_ERR_MAX);
         return -1;
     }
     if (c->nest.radius >= half) {
         snprintf(key, 64, "nest.radius");
-        snprintf(msg, 256, "the nest (radius %g m) must lie inside the layout square (half side %g m)",
+        snprintf(msg, SIM_ERR_MAX, "the nest (radius %g m) must lie inside the layout square (half side %g m)",
                  c->nest.radius, half);
         return -1;
     }
     if (clusters_of(c->distribution) > 0 && c->cluster_offset + c->cluster_radius > half) {
         snprintf(key, 64, "cluster_offset");
-        snprintf(msg, 256, "a cluster reaches out of the layout square: cluster_offset + cluster_radius "
+        snprintf(msg, SIM_ERR_MAX, "a cluster reaches out of the layout square: cluster_offset + cluster_radius "
                  "= %g m > layout_side / 2 = %g m", c->cluster_offset + c->cluster_radius, half);
         return -1;
     }
     if (c->pick_time * 1000.0 < sc->control_period_ms * 0.5) {
         snprintf(key, 64, "pick_time");
-        snprintf(msg, 256, "%g s is less than half a control period (%u ms): it rounds to no step",
+        snprintf(msg, SIM_ERR_MAX, "%g s is less than half a control period (%u ms): it rounds to no step",
                  c->pick_time, sc->control_period_ms);
         return -1;
     }
@@ -184,7 +184,7 @@ static void draw_candidate(const targets_config_t *c, sim_rand_t *r, uint32_t k,
     }
 }
 
-int targets_layout(const targets_config_t *c, float *x, float *y, char err[256])
+int targets_layout(const targets_config_t *c, float *x, float *y, char err[SIM_ERR_MAX])
 {
     sim_rand_t r;
     float tr = c->target_radius, half = c->layout_side / 2.0f - tr;
@@ -204,7 +204,7 @@ int targets_layout(const targets_config_t *c, float *x, float *y, char err[256])
             y[k] = c->nest.y + py;
         }
         if (!placed) {
-            snprintf(err, 256, "cannot place target %u of %u: no room left in its region outside the "
+            snprintf(err, SIM_ERR_MAX, "cannot place target %u of %u: no room left in its region outside the "
                      "nest (targets may not overlap)", k + 1, c->count);
             return -1;
         }
@@ -225,7 +225,7 @@ static void targets_destroy(void *self)
     }
 }
 
-static void *targets_create(sim_t *sim, const void *config, char err[256])
+static void *targets_create(sim_t *sim, const void *config, char err[SIM_ERR_MAX])
 {
     const targets_config_t *c = config;
     const scenario_t *sc = sim_scenario(sim);
@@ -234,7 +234,7 @@ static void *targets_create(sim_t *sim, const void *config, char err[256])
     float *x = malloc(m1 * sizeof *x), *y = malloc(m1 * sizeof *y);
     if (!t || !x || !y || !(t->items = calloc(m1, sizeof *t->items))
         || !(t->waiting_on = malloc(n1 * sizeof *t->waiting_on)) || !(t->still = calloc(n1, sizeof *t->still))) {
-        snprintf(err, 256, "out of memory for %u targets", c->count);
+        snprintf(err, SIM_ERR_MAX, "out of memory for %u targets", c->count);
         free(x);
         free(y);
         targets_destroy(t);
@@ -438,10 +438,20 @@ static int targets_done(const void *self, const sim_t *sim)
  * (its random walk is the same firmware with gains 1). */
 static const char *const targets_controllers[] = { "repatt", NULL };
 
+/* What create allocates: per target and per robot. */
+static size_t targets_memory(const void *config, const scenario_t *sc)
+{
+    const targets_config_t *c = config;
+    const targets_t *t = NULL;
+    return sizeof *t + (size_t)c->count * (sizeof *t->items + 2 * sizeof(float))
+           + scenario_robot_count(sc) * (sizeof *t->waiting_on + sizeof *t->still);
+}
+
 const task_def_t targets_task = {
     .name = "targets",
     .doc = "seed 002: red targets in Fig 1's layouts, a central nest, 5 s pick-ups, stop at 90 %",
     .config_size = sizeof(targets_config_t),
+    .memory = targets_memory,
     .params = targets_params,
     .sections = targets_sections,
     .default_config = targets_default_config,

@@ -52,7 +52,7 @@
 
 #include <stdint.h>
 
-#include "core/task.h"
+#include "swarmsim/task.h"
 
 typedef enum targets_distribution {
     TARGETS_ONE = 0,
@@ -85,7 +85,7 @@ extern const task_def_t targets_task;
 
 /** The layout of `c`: count positions into x, y (m).  Returns 0, or -1 with
  *  a message when the targets do not fit. */
-int targets_layout(const targets_config_t *c, float *x, float *y, char err[256]);
+int targets_layout(const targets_config_t *c, float *x, float *y, char err[SIM_ERR_MAX]);
 
 /** Targets that must be picked up to end the run: ceil(stop_fraction x
  *  count), 0 when stop_fraction is 0. */

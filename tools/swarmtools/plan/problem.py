@@ -34,7 +34,7 @@ import yaml
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 
-#: Seed 002 at e-puck scale (README "Seed 002").
+#: Seed 002 at e-puck scale (docs/studies/repatt.md).
 SPEED_M_S = 0.100
 CAPACITY = 5
 TIEBREAK = 0.01

@@ -1,6 +1,8 @@
 """What the seed studies share: picking their sweeps, running each through
-the sweep engine into OUT/<name>/, and writing results.md / results.json
-whole (atomic writes).  A study module keeps only its figures and tables."""
+the sweep engine into OUT/<name>/, a --quick smoke run's narrowing, its
+folder and its note, saying what the full study costs before it starts, and
+writing results.md / results.json whole (atomic writes).  A study module
+keeps only its figures and tables."""
 
 from __future__ import annotations
 
@@ -15,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from swarmtools.study.costs import COSTS, Quick
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep.spec import Sweep, SweepError
 from swarmtools.sweep.store import atomic_write
@@ -81,3 +84,42 @@ def write_results(out: Path, md: Sequence[str], results: dict[str, Any], tag: st
     atomic_write(out / "results.json", json.dumps(json_safe(results), indent=1) + "\n")
     print("\n".join(md))
     print(f"{tag}: wrote {out / 'results.md'}")
+
+
+def quick_out(out: str | None, default: Path, quick: bool) -> Path:
+    """The output folder: --out if given, else the study's own, with
+    _quick after its name for a --quick run (out/study_repatt_quick), so a
+    smoke run never mixes with the full study's runs."""
+    if out:
+        return Path(out)
+    return default.with_name(default.name + "_quick") if quick else default
+
+
+def narrow(sw: Sweep, quick: Quick | None) -> Sweep:
+    """The sweep as a --quick run makes it: its first seeds, every run cut."""
+    if quick is not None:
+        sw.seeds = sw.seeds[:quick.seeds]
+        sw.steps = min(sw.steps, quick.steps) if sw.steps else quick.steps
+    return sw
+
+
+def quick_words(quick: Quick) -> str:
+    return (f"--quick: {quick.seeds} seed{'s' if quick.seeds != 1 else ''} a cell, every run cut at "
+            f"{quick.steps:,} control steps" + (f", {quick.note}" if quick.note else ""))
+
+
+def announce(tag: str, study: str, runs_now: int, quick: Quick | None, at_most: bool = False) -> None:
+    """Says what the full study costs, and what this invocation runs, before it starts."""
+    c = COSTS[study]
+    print(f"{tag}: the full study is {c.runs:,} runs, {c.core_hours:g} core-hours, {c.wall} on 2 cores "
+          f"(measured{'; ' + c.note if c.note else ''}); this invocation: {'at most ' if at_most else ''}"
+          f"{runs_now:,} runs"
+          + (f" ({quick_words(quick)}: a smoke run)" if quick else ""), flush=True)
+
+
+def smoke_note(quick: Quick | None) -> list[str]:
+    """The line results.md starts with in a smoke run."""
+    if quick is None:
+        return []
+    return [f"> **A smoke run** ({quick_words(quick)}): it shows that the study runs end to end. "
+            "Its numbers are not the study's: do not compare them with the paper's.", ""]

@@ -102,7 +102,8 @@ Command line
 ``--policies L``     comma-separated subset of drtm,artm,frtm
 ``--sim PATH``       simulator binary, default build/swarmsim
 ``--scenario-dir D`` default sim_host/scenarios
-``--quick``          4 repetitions x 2000 steps unless --reps/--steps are given;
+``--quick``          a smoke run under a minute (swarmtools.study.costs.QUICK:
+                     2 repetitions x 1000 steps unless --reps/--steps are given);
                      results.md then says it is a smoke run
 ``--from-json PATH`` re-render results.md and the figures from a results.json
                      (into --out if given, else beside the json); runs nothing
@@ -141,7 +142,8 @@ from typing import Any
 
 import numpy as np
 
-from swarmtools.study.common import json_safe
+from swarmtools.study.common import announce, json_safe
+from swarmtools.study.costs import QUICK
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
@@ -160,7 +162,7 @@ ALPHA = 0.05
 
 THETA_KEY = "robots.0.params.drtm_theta"
 # The study's arms: a policy, and for DRTM how theta0 and the bounds enter
-# eq 6 (README, seed 000: "offset" is our reading, "clip" the other one).
+# eq 6 (docs/studies/drtm.md: "offset" is our reading, "clip" the other one).
 POLICIES: tuple[str, ...] = ("drtm", "drtm_clip", "artm", "frtm")
 ARM_OF = {("drtm", "offset"): "drtm", ("drtm", "clip"): "drtm_clip", ("artm", "offset"): "artm",
           ("frtm", "offset"): "frtm"}
@@ -958,6 +960,9 @@ def run_study(args: argparse.Namespace, command: str) -> dict[str, Any]:
     out_dir = Path(args.out)
     sweep_dir = out_dir / "sweep"
     nc, npol = len(args.conditions), len(args.policies)
+    speed = speed_sweep(args, sim) if not args.no_speed and "base" in args.conditions else None
+    announce("study_drtm", "drtm", len(sweep_plan.expand(sw)) + (len(sweep_plan.expand(speed)) if speed else 0),
+             QUICK["drtm"] if args.quick else None)
     print(f"study_drtm: {nc} condition{'s' if nc != 1 else ''} x {npol} "
           f"polic{'ies' if npol != 1 else 'y'} x {args.reps} reps"
           f" x {args.steps if args.steps is not None else 'scenario'} steps as sweep "
@@ -983,15 +988,15 @@ def run_study(args: argparse.Namespace, command: str) -> dict[str, Any]:
         lines += [f"  {r['scenario']} {arm_of(r)} seed {r['seed']}: {r['error']}" for r in failed[:5]]
         raise StudyError("\n".join(lines) if failed else f"sweep ended with status {rc}; see {table}")
     results = results_from_table(rows, sweep_dir, args, command, time.monotonic() - t_start)
-    if not args.no_speed and "base" in args.conditions:
-        results["speed"] = run_speed(args, sim, out_dir / "sweep_speed")
+    if speed is not None:
+        results["speed"] = run_speed(args, sim, speed, out_dir / "sweep_speed")
     results["wall_time_s"] = time.monotonic() - t_start
     return results
 
 
-def run_speed(args: argparse.Namespace, sim: Path, sweep_dir: Path) -> dict[str, Any]:
+def speed_sweep(args: argparse.Namespace, sim: Path) -> Sweep:
     """studies/drtm_speed.yaml (the base condition at 0.06, 0.07 and 0.10 m/s),
-    narrowed like the main sweep; per speed and arm, every run's metrics."""
+    narrowed like the main sweep."""
     try:
         sw = sweep_spec.load(SPEED_SWEEP_FILE, sweep_plan.seed_max(sim))
     except SweepError as e:
@@ -1002,6 +1007,12 @@ def run_speed(args: argparse.Namespace, sim: Path, sweep_dir: Path) -> dict[str,
     sw.steps = args.steps
     if args.quick:
         sw.name += "_quick"
+    return sw
+
+
+def run_speed(args: argparse.Namespace, sim: Path, sw: Sweep, sweep_dir: Path) -> dict[str, Any]:
+    """The robot-speed sweep (speed_sweep); per speed and arm, every run's metrics."""
+    arms = sw.axes[1]
     print(f"study_drtm: robot-speed sensitivity, {len(sw.axes[0].combos)} speeds x {len(arms.combos)} arms "
           f"x {args.reps} reps as sweep {sweep_dir}", flush=True)
     run_args = argparse.Namespace(**{**vars(args), "out": str(sweep_dir), "jobs": args.threads, "quiet": False})
@@ -1152,10 +1163,11 @@ def build_parser() -> argparse.ArgumentParser:
                     "writes results.md, results.json and figures.",
         epilog="Exit status: 0 done, 1 a run failed or its outputs are bad, 2 bad arguments "
                "or missing binary/scenario.")
-    ap.add_argument("--reps", type=int, default=None, help="repetitions per cell (default 50; 4 with --quick)")
+    ap.add_argument("--reps", type=int, default=None,
+                    help=f"repetitions per cell (default 50; {QUICK['drtm'].seeds} with --quick)")
     ap.add_argument("--seed", type=int, default=1, help="first seed (default 1)")
     ap.add_argument("--steps", type=int, default=None,
-                    help="steps per run (default: the scenario's, 12000; 2000 with --quick)")
+                    help=f"steps per run (default: the scenario's, 12000; {QUICK['drtm'].steps} with --quick)")
     ap.add_argument("--threads", "--jobs", type=int, default=os.cpu_count() or 1,
                     help="local backend: runs at a time (default: os.cpu_count() = %(default)s)")
     ap.add_argument("--out", default=None, help="output folder (default out/study_drtm)")
@@ -1166,7 +1178,9 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--scenario-dir", default=None,
                     help="take the conditions' scenario files from here (default: the sweep file's)")
     ap.add_argument("--sweep-file", default=None, help="default studies/drtm.yaml")
-    ap.add_argument("--quick", action="store_true", help="smoke run: 4 reps x 2000 steps")
+    ap.add_argument("--quick", action="store_true",
+                    help=f"a smoke run under a minute: {QUICK['drtm'].seeds} reps x {QUICK['drtm'].steps} steps, "
+                         "into out/study_drtm_quick")
     ap.add_argument("--from-json", metavar="PATH", default=None,
                     help="re-render results.md and figures from a results.json; runs nothing")
     ap.add_argument("--no-figures", action="store_true", help="do not draw the PNGs")
@@ -1207,9 +1221,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 0
 
         if args.reps is None:
-            args.reps = 4 if args.quick else PAPER_REPS
+            args.reps = QUICK["drtm"].seeds if args.quick else PAPER_REPS
         if args.steps is None and args.quick:
-            args.steps = 2000
+            args.steps = QUICK["drtm"].steps
         if args.reps < 1:
             raise SetupError("--reps must be at least 1")
         if args.steps is not None and args.steps < 1:

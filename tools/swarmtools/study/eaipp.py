@@ -50,10 +50,12 @@ eaipp_obstacles.yaml; nothing here changes.
 Cost (2 cores, this machine, EAIPP failing so every run goes the full
 1000 s): a square-arena run about 0.5 s, a maze run (40-70 robots) about 9 s;
 the full study (5,900 runs, 700 of them in the maze) about 9,000 CPU-s, some
-75 minutes on 2 cores; `--quick` (5 seeds) about 6 minutes.
+75 minutes on 2 cores (measured since: docs/studies/index.md); `--quick`,
+a smoke run, under a minute (swarmtools.study.costs.QUICK).
 
 Each sweep lives in OUT/<figure>/ with its frozen simulator copy and is
-resumable: rerun the same command.  `--quick` takes 5 seeds a cell, `--reps
+resumable: rerun the same command.  `--quick` takes 1 seed a cell and cuts
+the runs (into OUT_quick, its results.md marked as a smoke run), `--reps
 N` N seeds, `--steps N` cuts every run at N steps (a smoke test: a failure
 is then still recorded at the 1000 s budget, and results.md says the runs
 were cut).  `--studies DIR` reads the sweep files from DIR (tests).
@@ -84,7 +86,18 @@ from typing import Any
 
 import numpy as np
 
-from swarmtools.study.common import INTERRUPTED, pick, read_rows, run_sweep, write_results
+from swarmtools.study.common import (
+    INTERRUPTED,
+    announce,
+    narrow,
+    pick,
+    quick_out,
+    read_rows,
+    run_sweep,
+    smoke_note,
+    write_results,
+)
+from swarmtools.study.costs import QUICK
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
@@ -95,7 +108,6 @@ STUDIES = REPO_ROOT / "studies"
 SCENARIOS = REPO_ROOT / "sim_host" / "scenarios"
 BUDGET_S = 1000.0       # the paper's 10,000 steps (paths.budget in every eaipp scenario)
 STEPS_PER_S = 10        # control_period_ms: 100 in every eaipp scenario
-QUICK_SEEDS = 5
 METRICS = ("success", "merge_time_s", "merge_time_capped_s", "food_perceived", "food_time_s",
            "chain_nodes", "nodes_end", "distance_m")
 
@@ -443,11 +455,9 @@ def picture(sim: Path, out_png: Path, work: Path, scenario: Path, seed: str = "a
 # ------------------------------------------------------------------ driver
 def load_sweep(fig: Figure, studies: Path, sim: Path, reps: int | None, quick: bool,
                steps: int | None) -> sweep_spec.Sweep:
-    sw = sweep_spec.load(studies / fig.file, sweep_plan.seed_max(sim))
+    sw = narrow(sweep_spec.load(studies / fig.file, sweep_plan.seed_max(sim)), QUICK["eaipp"] if quick else None)
     if reps is not None:
         sw.seeds = list(range(1, reps + 1))
-    elif quick:
-        sw.seeds = sw.seeds[:QUICK_SEEDS]
     if steps is not None:
         sw.steps = steps
     return sw
@@ -459,11 +469,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--figures", default=",".join(FIGURES),
                     help="which sweeps to run, comma-separated: " + ", ".join(
                         f"{f.name} (Fig {f.figs})" for f in FIGURES.values()))
-    ap.add_argument("--quick", action="store_true", help=f"{QUICK_SEEDS} seeds per cell instead of the files' 100")
+    ap.add_argument("--quick", action="store_true",
+                    help=f"a smoke run under a minute: {QUICK['eaipp'].seeds} seed a cell, runs cut at "
+                         f"{QUICK['eaipp'].steps} steps, into out/study_eaipp_quick")
     ap.add_argument("--reps", type=int, default=None, help="seeds per cell (default the files' 100)")
     ap.add_argument("--steps", type=int, default=None,
                     help="cut every run at N steps (a smoke test; default the scenarios' 10,000)")
-    ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_eaipp"))
+    ap.add_argument("--out", default=None, help="default out/study_eaipp (out/study_eaipp_quick with --quick)")
     ap.add_argument("--sim", default=str(REPO_ROOT / "build" / "swarmsim"))
     ap.add_argument("--jobs", type=int, default=0, help="runs at a time (default: the CPUs)")
     ap.add_argument("--studies", default=str(STUDIES), help="folder of the eaipp_*.yaml sweep files")
@@ -480,7 +492,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     t0 = time.monotonic()
     try:
         sweep_cli.check_args(a)
-        sim, out = Path(a.sim), Path(a.out)
+        sim, out = Path(a.sim), quick_out(a.out, REPO_ROOT / "out" / "study_eaipp", a.quick)
         if not sim.is_file():
             raise SweepError(f"--sim {sim}: no such simulator (make build/swarmsim)")
         if a.picture:
@@ -496,12 +508,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         if a.steps is not None and a.steps < 1:
             raise SweepError("--steps must be at least 1")
         sweeps = {name: load_sweep(FIGURES[name], Path(a.studies), sim, a.reps, a.quick, a.steps) for name in figs}
+        quick = QUICK["eaipp"] if a.quick else None
+        announce("study_eaipp", "eaipp", sum(len(sweep_plan.expand(sw)) for sw in sweeps.values()), quick)
         rc_all = 0
-        md = ["# Seed 003 (EAIPP path formation): the simulation study", "", f"Command: `{command}`.", ""]
+        md = ["# Seed 003 (EAIPP path formation): the simulation study", "", *smoke_note(quick),
+              f"Command: `{command}`.", ""]
         if a.steps is not None:
             md += [f"**Every run was cut at {a.steps} steps** (`--steps`): a smoke test, not the study; a run "
                    f"that did not merge is still recorded at the {BUDGET_S:.0f} s budget.", ""]
-        results: dict[str, Any] = {"command": command, "steps_override": a.steps, "sweeps": {}, "cells": {},
+        results: dict[str, Any] = {"command": command, "steps_override": a.steps or (quick.steps if quick else None), "sweeps": {}, "cells": {},
                                    "runs": []}
         sections: list[str] = []
         for name, sw in sweeps.items():

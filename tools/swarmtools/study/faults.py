@@ -9,8 +9,11 @@ its largest belief max F_beacon(t) (the broadcast saturates at 128 tokens),
 and how far it is from the truth at the end, |F_beacon(T) - F(T)|, and 100 s
 after a lie stops.
 
-    .venv/bin/python -m swarmtools.study.faults [--reps N] [--steps N] [--out DIR]
+    .venv/bin/python -m swarmtools.study.faults [--quick] [--reps N] [--steps N] [--out DIR]
         [--backend slurm ...]        (make study-faults)
+
+`--quick` is a smoke run (swarmtools.study.costs.QUICK) into
+out/study_faults_quick/, its results.md marked as such.
 
 Exit status: 0 done; 1 a run failed; 2 bad arguments; 130 interrupted.
 """
@@ -27,6 +30,8 @@ from pathlib import Path
 
 import numpy as np
 
+from swarmtools.study.common import announce, narrow, quick_out, smoke_note
+from swarmtools.study.costs import QUICK, Quick
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
@@ -71,11 +76,11 @@ def beacon_figures(ts: Path, end_of_lie_s: float | None) -> dict[str, float]:
     return out
 
 
-def render(rows: list[dict[str, str]], sweep_dir: Path, command: str, wall: float) -> str:
+def render(rows: list[dict[str, str]], sweep_dir: Path, command: str, wall: float, quick: Quick | None = None) -> str:
     conds: dict[str, list[dict[str, str]]] = {}
     for r in rows:
         conds.setdefault(r[FAULT_KEY], []).append(r)
-    lines = ["# Seed 000 under faults (base condition, DRTM)", "",
+    lines = ["# Seed 000 under faults (base condition, DRTM)", "", *smoke_note(quick),
              f"Command: `{command}`; {len(rows)} runs in {wall:.0f} s; sweep `{sweep_dir}`.", "",
              "Mean +- sd over the seeds. The beacon: max F_beacon is the largest F(t) its ledger "
              "held (the broadcast carries at most 128 tokens); error = |F_beacon - F|, the "
@@ -103,7 +108,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.faults", description=__doc__.split("\n\n")[0])
     ap.add_argument("--reps", type=int, default=None, help="seeds per condition (default the file's, 20)")
     ap.add_argument("--steps", type=int, default=None, help="steps per run (default the scenario's)")
-    ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_faults"))
+    ap.add_argument("--quick", action="store_true",
+                    help=f"a smoke run under a minute: {QUICK['faults'].seeds} seeds a condition, runs cut at "
+                         f"{QUICK['faults'].steps} steps, into out/study_faults_quick")
+    ap.add_argument("--out", default=None, help="default out/study_faults (out/study_faults_quick with --quick)")
     ap.add_argument("--sim", default=str(REPO_ROOT / "build" / "swarmsim"))
     ap.add_argument("--jobs", type=int, default=0)
     sweep_cli.add_backend_options(ap)
@@ -113,13 +121,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         sweep_cli.check_args(a)
         sim = Path(a.sim)
-        sw = sweep_spec.load(SWEEP_FILE, sweep_plan.seed_max(sim))
+        quick = QUICK["faults"] if a.quick else None
+        sw = narrow(sweep_spec.load(SWEEP_FILE, sweep_plan.seed_max(sim)), quick)
         if a.reps is not None:
             if a.reps < 1:
                 raise SweepError("--reps must be at least 1")
             sw.seeds = list(range(1, a.reps + 1))
-        sw.steps = a.steps
-        out = Path(a.out)
+        if a.steps is not None:
+            sw.steps = a.steps
+        out = quick_out(a.out, REPO_ROOT / "out" / "study_faults", a.quick)
+        announce("study_faults", "faults", len(sweep_plan.expand(sw)), quick)
         sweep_dir = out / "sweep"
         rc = sweep_cli.run_sweep(sw, argparse.Namespace(**{**vars(a), "out": str(sweep_dir), "quiet": False}), sim)
         if rc in (130, 143):
@@ -129,7 +140,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 0
         with (sweep_dir / "results.csv").open(newline="") as f:
             rows = list(csv.DictReader(f))
-        md = render(rows, sweep_dir, command, time.monotonic() - t0)
+        md = render(rows, sweep_dir, command, time.monotonic() - t0, quick)
         from swarmtools.sweep.store import atomic_write
         atomic_write(out / "results.md", md)
         print(md)

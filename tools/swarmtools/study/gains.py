@@ -47,7 +47,18 @@ from typing import Any
 
 import numpy as np
 
-from swarmtools.study.common import INTERRUPTED, boot_ratio, read_rows, run_sweep, write_results
+from swarmtools.study.common import (
+    INTERRUPTED,
+    announce,
+    boot_ratio,
+    narrow,
+    quick_out,
+    read_rows,
+    run_sweep,
+    smoke_note,
+    write_results,
+)
+from swarmtools.study.costs import QUICK
 from swarmtools.study.repatt import world as repatt_world
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
@@ -69,6 +80,10 @@ WORLDS = ("One100m", "Uniform100m")
 # The paper's Figure 2 as its text gives it: best and worst normalised time.
 PAPER_RANGE = {"One100m": (0.30, 1.95), "Uniform100m": (0.74, 1.48)}
 CONFIRM_TOP, CONFIRM_SEEDS = 40, list(range(2, 7))
+#: --quick: the screen on these gain values only (8 combinations, the
+#: paper's two named ones among them), fewer confirmed and raced.
+QUICK_GRID = {"a_m": (1, 4), "a_d": (10, 100), "r_m": (1,), "r_d": (10, 100)}
+QUICK_CONFIRM_TOP, QUICK_CONFIRM_SEEDS, QUICK_TOP, QUICK_RACE_REPS, QUICK_N0Q1_REPS = 3, [2], 2, 2, 1
 
 
 def name(c: Combo) -> str:
@@ -279,10 +294,13 @@ def estimate(a: argparse.Namespace, sim: Path, out: Path) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.gains", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_gains"))
-    ap.add_argument("--top", type=int, default=20, help="combinations raced over 30 seeds (default 20)")
-    ap.add_argument("--race-reps", type=int, default=30, help="seeds of the race (default 30)")
-    ap.add_argument("--n0q1-reps", type=int, default=10,
+    ap.add_argument("--out", default=None, help="default out/study_gains (out/study_gains_quick with --quick)")
+    ap.add_argument("--quick", action="store_true",
+                    help=f"a smoke run under a minute: {QUICK['gains'].note}, runs cut at {QUICK['gains'].steps} "
+                         "steps, into out/study_gains_quick")
+    ap.add_argument("--top", type=int, default=None, help="combinations raced over 30 seeds (default 20)")
+    ap.add_argument("--race-reps", type=int, default=None, help="seeds of the race (default 30)")
+    ap.add_argument("--n0q1-reps", type=int, default=None,
                     help="seeds of N0-Q1 for the raced combinations (0: none; default 10)")
     ap.add_argument("--score", metavar="SWEEP_DIR", help="only rank a full sweep's results (repatt_gains.yaml)")
     ap.add_argument("--estimate", type=int, metavar="N", default=0,
@@ -297,16 +315,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     t0 = time.monotonic()
     try:
         sweep_cli.check_args(a)
+        quick = QUICK["gains"] if a.quick else None
+        for k, full, smoke in (("top", 20, QUICK_TOP), ("race_reps", 30, QUICK_RACE_REPS),
+                               ("n0q1_reps", 10, QUICK_N0Q1_REPS)):
+            if getattr(a, k) is None:
+                setattr(a, k, smoke if quick else full)
+        confirm_top, confirm_seeds = (QUICK_CONFIRM_TOP, QUICK_CONFIRM_SEEDS) if quick else (CONFIRM_TOP, CONFIRM_SEEDS)
         if a.top < 1 or a.race_reps < 2 or a.n0q1_reps < 0:
             raise SweepError("--top must be at least 1, --race-reps at least 2, --n0q1-reps at least 0")
-        sim, out = Path(a.sim), Path(a.out)
+        sim, out = Path(a.sim), quick_out(a.out, REPO_ROOT / "out" / "study_gains", a.quick)
         if a.estimate:
             return estimate(a, sim, out)
-        base = sweep_spec.load(SCREEN_FILE, sweep_plan.seed_max(sim))
-        md = ["# Seed 002's gains study, reduced (Figures 2a, 2b)", "", f"Command: `{command}`.", ""]
+        base = narrow(sweep_spec.load(SCREEN_FILE, sweep_plan.seed_max(sim)), quick)
+        if quick:
+            grid = next(ax for ax in base.axes if ax.kind == "grid")
+            grid.combos = [c for c in grid.combos
+                           if all(c[f"robots.0.params.{g}"] in vals for g, vals in QUICK_GRID.items())]
+        n_named, n_worlds = len(NAMED), len(WORLDS)
+        announce("study_gains", "gains", len(sweep_plan.expand(base))
+                 + n_worlds * ((confirm_top + n_named) * len(confirm_seeds)
+                               + (a.top + n_named) * (a.race_reps + a.n0q1_reps)), quick, at_most=True)
+        md = ["# Seed 002's gains study, reduced (Figures 2a, 2b)", "", *smoke_note(quick), f"Command: `{command}`.", ""]
         all_rows: dict[str, list[dict[str, str]]] = {}
 
         def stage(st: str, sw: sweep_spec.Sweep) -> int | None:
+            if quick:
+                sw.steps = quick.steps
             t1 = time.monotonic()
             rc = run_sweep(sw, a, sim, out / st, "study_gains")
             if rc is None or rc == INTERRUPTED:
@@ -320,8 +354,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         plans: list[tuple[str, Any]] = [
             ("screen", lambda: base),
             ("confirm", lambda: stage_sweep(base, "study_repatt_gains_confirm",
-                                            pick_top(rank_sums(cells(all_rows["screen"]), "N100-Q40"), CONFIRM_TOP),
-                                            CONFIRM_SEEDS)),
+                                            pick_top(rank_sums(cells(all_rows["screen"]), "N100-Q40"), confirm_top),
+                                            confirm_seeds)),
             ("race", lambda: stage_sweep(base, "study_repatt_gains_race", race_combos(all_rows, a.top),
                                          range(1, a.race_reps + 1), [{QUEUE: 40, NOISE: 0.06}], uncap=True)),
         ]

@@ -1,5 +1,5 @@
 """Seed 002's simulation study (RepAtt): Figures 3, 2c and 4 of the paper,
-run through the sweep engine, at e-puck scale (README, "Seed 002").
+run through the sweep engine, at e-puck scale (docs/studies/repatt.md).
 
     .venv/bin/python -m swarmtools.study.repatt [--figures fig3,queue,scale]
         [--quick] [--reps N] [--out DIR] [--backend slurm ...]   (make study-repatt)
@@ -40,7 +40,19 @@ from typing import Any
 import numpy as np
 
 from swarmtools.study import alns_bars
-from swarmtools.study.common import INTERRUPTED, boot_ratio, pick, read_rows, run_sweep, write_results
+from swarmtools.study.common import (
+    INTERRUPTED,
+    announce,
+    boot_ratio,
+    narrow,
+    pick,
+    quick_out,
+    read_rows,
+    run_sweep,
+    smoke_note,
+    write_results,
+)
+from swarmtools.study.costs import QUICK
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as sweep_plan
 from swarmtools.sweep import spec as sweep_spec
@@ -264,10 +276,9 @@ def plot_scale(res: dict[str, Any], path: Path) -> None:
 
 def load_sweep(name: str, sim: Path, reps: int | None, quick: bool) -> sweep_spec.Sweep:
     sw = sweep_spec.load(STUDIES / FIGURES[name], sweep_plan.seed_max(sim))
+    narrow(sw, QUICK["repatt"] if quick else None)
     if reps is not None:
         sw.seeds = list(range(1, reps + 1))
-    elif quick:
-        sw.seeds = sw.seeds[:3]
     return sw
 
 
@@ -289,12 +300,15 @@ def main(argv: Sequence[str] | None = None) -> int:
                     help="which sweeps to run: worlds (Figures 3 and 2c), slotted (the e-puck's listening "
                          "schedule, beside Figure 3), scale (Figure 4), alns (Figure 3's ALNS bars: plans, then "
                          "the routes followed; needs worlds); comma-separated")
-    ap.add_argument("--quick", action="store_true", help="3 seeds per cell instead of the files' 30")
+    ap.add_argument("--quick", action="store_true",
+                    help=f"a smoke run under a minute: {QUICK['repatt'].seeds} seed a cell, runs cut at "
+                         f"{QUICK['repatt'].steps} steps, into out/study_repatt_quick")
     ap.add_argument("--reps", type=int, default=None, help="seeds per cell (default the files' 30)")
-    ap.add_argument("--out", default=str(REPO_ROOT / "out" / "study_repatt"))
+    ap.add_argument("--out", default=None, help="default out/study_repatt (out/study_repatt_quick with --quick)")
     ap.add_argument("--sim", default=str(REPO_ROOT / "build" / "swarmsim"))
     ap.add_argument("--jobs", type=int, default=0)
-    ap.add_argument("--alns-iterations", type=int, default=25000, help="ALNS iterations per plan (the paper: 25,000)")
+    ap.add_argument("--alns-iterations", type=int, default=None,
+                    help="ALNS iterations per plan (default the paper's 25,000; 500 with --quick)")
     ap.add_argument("--alns-q", type=int, default=50, help="visits ALNS removes per iteration (the paper: 50 or 100)")
     sweep_cli.add_backend_options(ap)
     a = ap.parse_args(argv)
@@ -308,14 +322,19 @@ def main(argv: Sequence[str] | None = None) -> int:
                              "--figures worlds,alns (a finished worlds sweep resumes at once)")
         if a.reps is not None and a.reps < 1:
             raise SweepError("--reps must be at least 1")
-        sim, out = Path(a.sim), Path(a.out)
-        rc_all, results, md = 0, {}, ["# Seed 002 (RepAtt) at e-puck scale", "",
+        sim, out = Path(a.sim), quick_out(a.out, REPO_ROOT / "out" / "study_repatt", a.quick)
+        if a.alns_iterations is None:
+            a.alns_iterations = 500 if a.quick else 25000
+        quick = QUICK["repatt"] if a.quick else None
+        sweeps = {name: load_sweep(name, sim, a.reps, a.quick) for name in figs if name != "alns"}
+        announce("study_repatt", "repatt", sum(len(sweep_plan.expand(sw)) for sw in sweeps.values()), quick)
+        rc_all, results, md = 0, {}, ["# Seed 002 (RepAtt) at e-puck scale", "", *smoke_note(quick),
                                        f"Command: `{command}`.", ""]
         tables: dict[str, list[dict[str, str]]] = {}
         for name in figs:
             if name == "alns":
                 continue
-            sw = load_sweep(name, sim, a.reps, a.quick)
+            sw = sweeps[name]
             sweep_dir = out / name
             t1 = time.monotonic()
             rc = run_sweep(sw, a, sim, sweep_dir, "study_repatt")
@@ -335,8 +354,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if "alns" in figs:
             t1 = time.monotonic()
             plans = alns_bars.plan_layouts(out / "alns", sim, a.alns_iterations, a.alns_q, 1, 2000)
-            seeds = list(range(1, (a.reps or (3 if a.quick else 30)) + 1))
-            sw = sweep_spec.load(alns_bars.sweep_file(out / "alns", seeds), sweep_plan.seed_max(sim))
+            seeds = list(range(1, (a.reps or (quick.seeds if quick else 30)) + 1))
+            sw = narrow(sweep_spec.load(alns_bars.sweep_file(out / "alns", seeds), sweep_plan.seed_max(sim)), quick)
             rc = run_sweep(sw, a, sim, out / "alns" / "sweep", "study_repatt")
             if rc == INTERRUPTED:
                 return rc

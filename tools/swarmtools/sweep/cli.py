@@ -39,9 +39,11 @@ REPO_ROOT = Path(__file__).resolve().parents[3]
 
 
 def code_version() -> str:
-    """git describe of the checkout the tools run from ("unknown" outside git)."""
+    """The checkout's code version, as swarmsim's summaries give it
+    (tools/make/code_version.sh: git describe, and the diff's hash when the
+    tree is dirty; "unknown" outside git)."""
     try:
-        p = subprocess.run(["git", "-C", str(REPO_ROOT), "describe", "--always", "--dirty", "--abbrev=12"],
+        p = subprocess.run(["bash", str(REPO_ROOT / "tools" / "make" / "code_version.sh")],
                            capture_output=True, text=True, timeout=30, check=False)
         if p.returncode == 0 and p.stdout.strip():
             return p.stdout.strip()
@@ -225,7 +227,9 @@ def cmd_plot(a: argparse.Namespace) -> int:
     store = Store(Path(a.dir))
     plan = store.load_plan()
     out = Path(a.out) if a.out else store.root / f"{a.y}_by_{a.x}.png"
-    plot_metric(store.root / "results.parquet", a.x, a.y, a.by, out, title=plan["name"])
+    frozen = sorted((store.root / "bin").glob("swarmsim-*"))   # the sweep's own simulator documents its keys
+    plot_metric(store.root / "results.parquet", a.x, a.y, a.by, out, title=plan["name"],
+                sim=frozen[-1] if frozen else default_sim())
     print(f"swarm-sweep: wrote {out}")
     return 0
 

@@ -13,7 +13,10 @@ from .spec import SweepError
 from .store import atomic_write
 
 
-def plot_metric(table: Path, x: str, y: str, by: str | None, out: Path, title: str = "") -> None:
+def plot_metric(table: Path, x: str, y: str, by: str | None, out: Path, title: str = "",
+                sim: Path | None = None) -> None:
+    """The figure; with `sim`, the x axis and the legend name the keys by
+    their documented meaning and unit (swarmtools.keydocs)."""
     import io
 
     import matplotlib
@@ -21,6 +24,9 @@ def plot_metric(table: Path, x: str, y: str, by: str | None, out: Path, title: s
     import matplotlib.pyplot as plt
     import pandas as pd
     from scipy import stats
+
+    from swarmtools.keydocs import label as key_label
+    from swarmtools.keydocs import meaning
 
     try:
         df = pd.read_parquet(table)
@@ -36,9 +42,9 @@ def plot_metric(table: Path, x: str, y: str, by: str | None, out: Path, title: s
     for key, g in groups:
         s = g.groupby(x, sort=True)[y].agg(["mean", "std", "count"])
         half = s["std"] / s["count"] ** 0.5 * stats.t.ppf(0.975, (s["count"] - 1).clip(lower=1))
-        label = None if by is None else f"{by} = {key}"
+        label = None if by is None else f"{(meaning(by, sim) if sim else None) or by} = {key}"
         ax.errorbar(s.index, s["mean"], yerr=half.fillna(0), marker="o", capsize=3, label=label)
-    ax.set_xlabel(x)
+    ax.set_xlabel(key_label(x, sim) if sim else x)
     ax.set_ylabel(f"{y} (mean, 95 % CI)")
     ax.set_title(title)
     ax.grid(alpha=0.3)

@@ -27,7 +27,7 @@ class Vectors(unittest.TestCase):
             self.assertEqual(cobs_decode(enc), raw)
 
     def test_constants_match_the_firmware_header(self):
-        h = (ROOT / "firmware" / "telemetry" / "telemetry_frame.h").read_text()
+        h = (ROOT / "wire" / "telemetry" / "telemetry_frame.h").read_text()
         # The header's table of LCM channel names by id ...
         table = re.search(r"#define TELEMETRY_CHANNEL_NAMES \\\s*\{([^}]*)\}", h).group(1)
         names = re.findall(r'"(\w*)"', table)

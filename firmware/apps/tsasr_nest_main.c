@@ -1,7 +1,0 @@
-/*
- * tsasr_nest_main.c - seed 003's TSASR baseline image: the nest, a fixed robot that broadcasts TSASR NEST frames.
- * It is chain_main.c (the one source of the chain-baseline images).
- */
-#define APP_CHAIN_TSASR 1
-#define APP_CHAIN_ROLE PFIAS_ROLE_NEST
-#include "chain_main.c"

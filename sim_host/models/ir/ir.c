@@ -1,0 +1,332 @@
+/*
+ * ir.c - the eight IR sensors' proximity and ambient light (ir.h).
+ */
+#include "ir.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+
+#include "core/sim_internal.h"
+#include "models/faults/faults.h"
+#include "units.h"
+
+/* Where the sensors are: hal/units.h. */
+#define IR_MOUNT_RADIUS EPUCK_IR_MOUNT_RADIUS_M
+#define SENSOR_HEIGHT EPUCK_IR_HEIGHT_M
+
+#define C ir_config_t
+static const param_desc_t ir_params[] = {
+    { .key = "aperture", PARAM_FIELD(C, aperture, float), .min = 0.1, .max = 90,
+      .doc = "half-angle of the sensing cone, deg" },
+    { .key = "range", PARAM_FIELD(C, range, float), .min = 0.001, .max = 1,
+      .doc = "beyond this a sensor reads ~0, m" },
+    { .key = "noise_rel", PARAM_FIELD(C, noise_rel, float), .min = 0, .max = 1,
+      .doc = "relative Gaussian sd of the value" },
+    { .key = "noise_abs", PARAM_FIELD(C, noise_abs, float), .min = 0, .max = 4095,
+      .doc = "additive Gaussian sd, raw counts" },
+    PARAM_END
+};
+
+static const param_desc_t ambient_params[] = {
+    { .key = "dark", PARAM_FIELD(C, ambient.dark, float), .min = 0, .max = 4095,
+      .doc = "raw reading in the dark, counts" },
+    { .key = "half", PARAM_FIELD(C, ambient.half, float), .min = 1e-6, .max = 1e6,
+      .doc = "irradiance at which the reading halves (1 = unit lamp at 1 m)" },
+    { .key = "noise_rel", PARAM_FIELD(C, ambient.noise_rel, float), .min = 0, .max = 1,
+      .doc = "relative Gaussian sd" },
+    PARAM_END
+};
+#undef C
+
+static const schema_t ir_section = { ir_params, NULL, NULL, NULL };
+static const schema_t ambient_section = { ambient_params, NULL, NULL, NULL };
+static const child_t sections[] = {
+    { "ir", CHILD_MAPPING, &ir_section, NULL, "IR proximity sensors" },
+    { "ambient", CHILD_MAPPING, &ambient_section, NULL, "ambient light sensors" },
+    CHILD_END
+};
+static const schema_t ir_schema = { NULL, sections, NULL, NULL };
+
+/* About 1 % noise (Webots' calibration), 10 cm of reach, a 15 deg cone. */
+static void ir_defaults(void *config)
+{
+    ir_config_t *c = config;
+    c->aperture = 15.0f;
+    c->range = 0.1f;
+    c->noise_rel = 0.01f;
+    c->noise_abs = 5.0f;
+    c->ambient.dark = 4000.0f;
+    c->ambient.half = 1.0f;
+    c->ambient.noise_rel = 0.01f;
+}
+
+/* One robot's readings, valid when their stamp is the step's (sim_hal_stamp). */
+typedef struct ir_robot {
+    uint64_t prox_stamp, ambient_stamp;
+    uint16_t prox[HAL_IR_COUNT];
+    uint16_t ambient[HAL_IR_COUNT];
+    sim_rand_t noise;              /* both readings' (RAND_SENSORS) */
+} ir_robot_t;
+
+typedef struct ir {
+    const ir_config_t *cfg;
+    ir_robot_t *robot;
+    vec2_t dir[HAL_IR_COUNT];      /* the sensors' bearings as unit vectors, robot frame */
+} ir_t;
+
+static void ir_layout(const void *config, const scenario_t *sc, model_layout_t *out)
+{
+    const ir_config_t *c = config;
+    (void)sc;
+    out->arrays = 1;
+    out->elem_size[0] = sizeof(ir_robot_t);
+    out->run_bytes = sizeof(ir_t);
+    /* A proximity query looks this far around a robot's body. */
+    out->neighbour_reach_m = c->range;
+}
+
+static int ir_create(sim_t *sim, const void *config, void **self, char err[SIM_ERR_MAX])
+{
+    /* From the one table of bearings (units.h). */
+    static const int deg[HAL_IR_COUNT] = EPUCK_IR_BEARINGS_DEG;
+    ir_t *m = calloc(1, sizeof *m);
+    if (!m) {
+        snprintf(err, SIM_ERR_MAX, "out of memory for the IR sensors");
+        return -1;
+    }
+    *self = m;
+    m->cfg = config;
+    m->robot = sim_model_array(sim, SIM_MODEL_ir, 0);
+    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
+        m->dir[s] = v2((float)cos(deg[s] * UNITS_PI / 180.0), (float)sin(deg[s] * UNITS_PI / 180.0));
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_rand_seed(&m->robot[i].noise, sim->seed, i, RAND_SENSORS);
+    }
+    return 0;
+}
+
+static void ir_destroy(void *self) { free(self); }
+
+/* Proximity (raw counts) against distance from the sensor to a surface,
+ * measured on a real e-puck (the calibration of Webots' e-puck
+ * model, taken on the robot). */
+static const float ir_table_m[] = { 0.000f, 0.005f, 0.010f, 0.015f, 0.020f,
+                                    0.030f, 0.040f, 0.050f, 0.060f, 0.070f };
+static const float ir_table_v[] = { 4095, 2133, 1466, 601, 384, 235, 158, 120, 104, 67 };
+#define IR_TABLE_N (sizeof ir_table_m / sizeof ir_table_m[0])
+
+/** Calibrated proximity without noise at distance d (m).  Beyond the last
+ *  measured point (70 mm: 67) the value fades linearly to 0 at `range`:
+ *  an assumption, documented in the README. */
+float ir_curve(float d, float range)
+{
+    if (d <= 0.0f) {
+        return ir_table_v[0];
+    }
+    for (size_t k = 1; k < IR_TABLE_N; k++) {
+        if (d <= ir_table_m[k]) {
+            float u = (d - ir_table_m[k - 1]) / (ir_table_m[k] - ir_table_m[k - 1]);
+            return ir_table_v[k - 1] + u * (ir_table_v[k] - ir_table_v[k - 1]);
+        }
+    }
+    float last = ir_table_m[IR_TABLE_N - 1];
+    if (d >= range || range <= last) {
+        return 0.0f;
+    }
+    return ir_table_v[IR_TABLE_N - 1] * (range - d) / (range - last);
+}
+
+static uint16_t to_raw(double v)
+{
+    if (v <= 0.0) return 0;
+    if (v >= HAL_RAW_MAX) return HAL_RAW_MAX;
+    return (uint16_t)(v + 0.5);
+}
+
+static float nearest_obstacle(const obstacle_t *o, const cone_t *k)
+{
+    if (o->shape == SHAPE_CYLINDER) {
+        return geom_cone_circle(k, o->c, o->r);
+    }
+    float d = INFINITY;
+    for (int e = 0; e < 4; e++) {
+        d = fminf(d, geom_cone_segment(k, o->corner[e], o->corner[(e + 1) & 3]));
+    }
+    return d;
+}
+
+#define IR_MAX_NEAR 64
+
+static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t out[HAL_IR_COUNT])
+{
+    const sim_robot_t *r = &sim->robots[i];
+    const ir_config_t *cfg = m->cfg;
+    sim_rand_t *noise = &m->robot[i].noise;
+    float range = cfg->range;
+    float reach = IR_MOUNT_RADIUS + range;
+    uint32_t near_robot[IR_MAX_NEAR], near_obst[IR_MAX_NEAR];
+    float R = reach + EPUCK_BODY_RADIUS_M;
+    uint32_t nr = sim_gather_robots(sim, r->x - R, r->y - R, r->x + R, r->y + R, near_robot, IR_MAX_NEAR);
+    uint32_t no = sim_gather_obstacles(sim, sim_robot_scratch(sim, i), r->x - reach, r->y - reach, r->x + reach,
+                                       r->y + reach, near_obst, IR_MAX_NEAR);
+    /* Inner faces of the walls within reach. */
+    vec2_t wall[4][2];
+    int nw = 0;
+    float hw = sim->hw, hh = sim->hh;
+    if (r->x + reach > hw) { wall[nw][0] = v2(hw, -hh); wall[nw][1] = v2(hw, hh); nw++; }
+    if (r->x - reach < -hw) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(-hw, hh); nw++; }
+    if (r->y + reach > hh) { wall[nw][0] = v2(-hw, hh); wall[nw][1] = v2(hw, hh); nw++; }
+    if (r->y - reach < -hh) { wall[nw][0] = v2(-hw, -hh); wall[nw][1] = v2(hw, -hh); nw++; }
+
+    float ch = cosf(r->theta), sh = sinf(r->theta);
+    float half = cfg->aperture * (float)UNITS_PI / 180.0f, cos_half = cosf(half), sin_half = sinf(half);
+    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
+        float d = INFINITY;
+        if (nr > 1 || no > 0 || nw > 0) {
+            vec2_t a = v2_rot(m->dir[s], ch, sh);
+            vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
+            cone_t k = geom_cone_dir(p, a, half, cos_half, sin_half);
+            for (uint32_t j = 0; j < nr; j++) {
+                if (near_robot[j] != i) {
+                    const sim_robot_t *q = &sim->robots[near_robot[j]];
+                    d = fminf(d, geom_cone_circle(&k, v2(q->x, q->y), EPUCK_BODY_RADIUS_M));
+                }
+            }
+            for (uint32_t j = 0; j < no; j++) {
+                d = fminf(d, nearest_obstacle(&sim->obstacles[near_obst[j]], &k));
+            }
+            for (int w = 0; w < nw; w++) {
+                d = fminf(d, geom_cone_segment(&k, wall[w][0], wall[w][1]));
+            }
+        }
+        double v = (d < range) ? ir_curve(d, range) : 0.0f;
+        v += v * cfg->noise_rel * sim_rand_normal(noise);
+        v += cfg->noise_abs * sim_rand_normal(noise);
+        out[s] = to_raw(v);
+    }
+}
+
+static void sense_ambient(struct sim *sim, const ir_t *m, uint32_t i, uint16_t out[HAL_IR_COUNT])
+{
+    const sim_robot_t *r = &sim->robots[i];
+    const scenario_t *sc = sim->sc;
+    const ir_config_t *cfg = m->cfg;
+    sim_rand_t *noise = &m->robot[i].noise;
+    float ch = cosf(r->theta), sh = sinf(r->theta);
+    for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
+        vec2_t a = v2_rot(m->dir[s], ch, sh);
+        vec2_t p = v2(r->x + IR_MOUNT_RADIUS * a.x, r->y + IR_MOUNT_RADIUS * a.y);
+        /* Irradiance on the sensor: intensity * cos(incidence) / d^2 from
+         * each lamp, in 3D (lamps hang above the floor).  Shadows cast by
+         * robots and obstacles are not modelled. */
+        double e = 0.0;
+        for (uint32_t l = 0; l < sc->light_count; l++) {
+            const light_def_t *L = &sc->lights[l];
+            double hx = L->x - p.x, hy = L->y - p.y, dz = L->height - SENSOR_HEIGHT;
+            double d2 = hx * hx + hy * hy + dz * dz;
+            double along = (hx * a.x + hy * a.y) / sqrt(d2);
+            if (along > 0.0 && d2 > 1e-12) {
+                e += L->intensity * along / d2;
+            }
+        }
+        /* The raw value falls as light rises: dark at e = 0, dark/2 at
+         * e = half, towards 0 for bright light. */
+        double v = cfg->ambient.dark * cfg->ambient.half / (cfg->ambient.half + e);
+        v += v * cfg->ambient.noise_rel * sim_rand_normal(noise);
+        out[s] = to_raw(v);
+    }
+}
+
+
+static void ir_moved(sim_t *sim, void *self, uint32_t robot)
+{
+    ir_t *m = self;
+    (void)sim;
+    m->robot[robot].prox_stamp = m->robot[robot].ambient_stamp = 0;
+}
+
+/* The largest proximity and the lowest ambient reading the robot took at
+ * stamp `since` or later (telemetry's summary). */
+static void ir_platform(const sim_t *sim, const void *self, uint32_t robot, uint64_t since,
+                        robot_telemetry_platform_t *p)
+{
+    const ir_robot_t *r = &((const ir_t *)self)->robot[robot];
+    (void)sim;
+    if (r->prox_stamp != 0 && r->prox_stamp >= since) {
+        uint16_t best = 0;
+        uint8_t at = 0;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+            if (r->prox[k] > best) {
+                best = r->prox[k];
+                at = k;
+            }
+        }
+        p->ir_max = (int16_t)best;
+        p->ir_max_index = (int8_t)at;
+    }
+    if (r->ambient_stamp != 0 && r->ambient_stamp >= since) {
+        uint16_t low = HAL_RAW_MAX;
+        for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+            low = r->ambient[k] < low ? r->ambient[k] : low;
+        }
+        p->ambient_min = (int16_t)low;
+    }
+}
+
+/* ---------------------------------------------------------------- HAL */
+
+uint16_t hal_ir_proximity(hal_t *hal, uint8_t index)
+{
+    ir_t *m = sim_model_self(hal->sim, SIM_MODEL_ir);
+    ir_robot_t *r = &m->robot[hal->index];
+    if (index >= HAL_IR_COUNT) {
+        return 0;
+    }
+    if (r->prox_stamp != sim_hal_stamp(hal)) {
+        sense_proximity(hal->sim, m, hal->index, r->prox);
+        faults_ir(hal->sim, hal->index, r->prox);
+        r->prox_stamp = sim_hal_stamp(hal);
+    }
+    return r->prox[index];
+}
+
+uint16_t hal_ir_ambient(hal_t *hal, uint8_t index)
+{
+    ir_t *m = sim_model_self(hal->sim, SIM_MODEL_ir);
+    ir_robot_t *r = &m->robot[hal->index];
+    if (index >= HAL_IR_COUNT) {
+        return HAL_RAW_MAX;
+    }
+    if (r->ambient_stamp != sim_hal_stamp(hal)) {
+        sense_ambient(hal->sim, m, hal->index, r->ambient);
+        r->ambient_stamp = sim_hal_stamp(hal);
+    }
+    return r->ambient[index];
+}
+
+static const char *const ir_hal_calls[] = { "hal_ir_proximity", "hal_ir_ambient", NULL };
+
+static const model_field_t ir_fields[] = {
+    { "ir.proximity", "counts", "the proximity readings last taken (0..4095, larger is closer)", SIM_FIELD_U16, 0,
+      offsetof(ir_robot_t, prox), HAL_IR_COUNT },
+    { "ir.ambient", "counts", "the ambient readings last taken (0..4095, falls as light rises)", SIM_FIELD_U16, 0,
+      offsetof(ir_robot_t, ambient), HAL_IR_COUNT },
+    { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
+};
+
+const model_def_t ir_model = {
+    .name = "ir",
+    .doc = "the eight IR sensors: proximity (Webots' measured curve) and ambient light",
+    .config_size = sizeof(ir_config_t),
+    .default_config = ir_defaults,
+    .schema = &ir_schema,
+    .layout = ir_layout,
+    .create = ir_create,
+    .destroy = ir_destroy,
+    .moved = ir_moved,
+    .platform = ir_platform,
+    .hal_calls = ir_hal_calls,
+    .fields = ir_fields,
+};

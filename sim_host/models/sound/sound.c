@@ -1,0 +1,408 @@
+/*
+ * sound.c - the sound field (sound.h): seed 002's eqs 1, 2 and 4, every
+ * pair exact; with a cutoff, the pairs within it exact and the rest as one
+ * aggregate term per band.
+ *
+ * Per robot, as arrays (one each): the band its speaker was set to this
+ * step, the band that played during the last period, its levels, the sums
+ * being made, its noise stream.  The field's loops read every robot's
+ * `played` and write only the listener's own sums.
+ */
+#include "sound.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "core/pool.h"
+#include "core/sim_internal.h"
+
+/* The names of sound_silent_t, in its order. */
+static const char *const silent_names[] = { "ambient", "none", NULL };
+
+#define S sound_config_t
+static const param_desc_t sound_params[] = {
+    { .key = "enabled", PARAM_BOOL_FIELD(S, enabled),
+      .doc = "robots hear each other's speakers (hal_mic_level, hal_speaker_set)" },
+    { .key = "a0", PARAM_FIELD(S, a0, double), .min = 0, .max = 1e6,
+      .doc = "eq 1: level of a source at 0 m, units (1 unit = 1000 level counts)" },
+    { .key = "alpha", PARAM_FIELD(S, alpha, double), .min = 0, .max = 1000,
+      .doc = "eq 1: attenuation, 1/m (paper 0.12; e-puck scale 0.12/k = 0.726)" },
+    { .key = "ae", PARAM_FIELD(S, ae, double), .min = 0, .max = 1e6,
+      .doc = "eq 1: ambient term, units, once per robot in the sum" },
+    { .key = "noise", PARAM_FIELD(S, noise, double), .min = 0, .max = 1,
+      .doc = "eq 4: relative Gaussian sd of each pair's term (0.06 = N100, 0 = N0)" },
+    { .key = "silent_robots", PARAM_ENUM_FIELD(S, silent_robots, silent_names),
+      .doc = "a robot silent in a band adds its ambient term (ambient) or nothing (none)" },
+    { .key = "self_masking", PARAM_BOOL_FIELD(S, self_masking),
+      .doc = "a robot whose speaker played hears nothing that period (false: full duplex)" },
+    { .key = "cutoff", PARAM_FIELD(S, cutoff, double), .min = 0, .max = 1e6,
+      .doc = "m; > 0: sources farther away add only ae (error <= a0 e^(-alpha cutoff) each)" },
+    PARAM_END
+};
+#undef S
+
+MODEL_ONE_SECTION(sound_schema, "sound", sound_params, NULL,
+                  "speakers and microphones (seed 002's model)");
+
+/* Seed 002's values (DESIGN.md): A0, alpha, Ae, N100's noise. */
+static void sound_defaults(void *config)
+{
+    sound_config_t *c = config;
+    c->enabled = 0;
+    c->a0 = 299.18;
+    c->alpha = 0.12;
+    c->ae = 48.18;
+    c->noise = 0.06;
+    c->silent_robots = SOUND_SILENT_AMBIENT;
+    c->self_masking = 1;
+    c->cutoff = 0.0;
+}
+
+double sound_term(const sound_config_t *cfg, double d_m, int emits)
+{
+    if (!emits) {
+        return cfg->silent_robots == SOUND_SILENT_AMBIENT ? cfg->ae : 0.0;
+    }
+    if (cfg->cutoff > 0.0 && d_m > cfg->cutoff) {
+        return cfg->ae;
+    }
+    return cfg->a0 * exp(-cfg->alpha * d_m) + cfg->ae;
+}
+
+uint32_t sound_counts(double units)
+{
+    double c = 1000.0 * units;
+    if (!(c > 0.0)) {
+        return 0;
+    }
+    if (c >= 4294967295.0) {
+        return UINT32_MAX;
+    }
+    return (uint32_t)floor(c + 0.5);
+}
+
+/* ---------------------------------------------------------------- state */
+
+enum { SET, PLAYED, LEVEL, ACC, RAND, ARRAYS };
+
+typedef uint32_t levels_t[HAL_SOUND_BANDS];   /* counts per band ([0] unused) */
+typedef double sums_t[HAL_SOUND_BANDS];       /* sound_update's sums, units */
+
+/* The run: the step the field is of, and the arrays. */
+typedef struct sound {
+    const sound_config_t *cfg;
+    uint64_t stamp;          /* the field is this step's when == step + 1 */
+    uint8_t *set;            /* band set this step (0: silence) */
+    uint8_t *played;         /* band that played during the last period */
+    levels_t *level;
+    sums_t *acc;
+    sim_rand_t *rand;        /* RAND_SOUND: eq 4's noise of every pair the robot hears */
+} sound_t;
+
+/* Only when enabled: a run without sound holds nothing of it. */
+static void sound_layout(const void *config, const scenario_t *sc, model_layout_t *out)
+{
+    const sound_config_t *c = config;
+    (void)sc;
+    if (c->enabled) {
+        out->arrays = ARRAYS;
+        out->elem_size[SET] = sizeof(uint8_t);
+        out->elem_size[PLAYED] = sizeof(uint8_t);
+        out->elem_size[LEVEL] = sizeof(levels_t);
+        out->elem_size[ACC] = sizeof(sums_t);
+        out->elem_size[RAND] = sizeof(sim_rand_t);
+        out->run_bytes = sizeof(sound_t);
+    }
+}
+
+static int sound_create(sim_t *sim, const void *config, void **self, char err[SIM_ERR_MAX])
+{
+    const sound_config_t *c = config;
+    if (!c->enabled) {
+        return 0;
+    }
+    sound_t *s = calloc(1, sizeof *s);
+    if (!s) {
+        snprintf(err, SIM_ERR_MAX, "out of memory for the sound field");
+        return -1;
+    }
+    s->cfg = c;
+    s->set = sim_model_array(sim, SIM_MODEL_sound, SET);
+    s->played = sim_model_array(sim, SIM_MODEL_sound, PLAYED);
+    s->level = sim_model_array(sim, SIM_MODEL_sound, LEVEL);
+    s->acc = sim_model_array(sim, SIM_MODEL_sound, ACC);
+    s->rand = sim_model_array(sim, SIM_MODEL_sound, RAND);
+    for (uint32_t i = 0; i < sim->n; i++) {
+        sim_rand_seed(&s->rand[i], sim->seed, i, RAND_SOUND);
+    }
+    *self = s;
+    return 0;
+}
+
+static void sound_destroy(void *self) { free(self); }
+
+/* ---------------------------------------------------------------- the field */
+
+/* One term of listener i's sum in band k, with its eq 4 noise drawn from
+ * i's own stream. */
+static void add_term(sound_t *s, uint32_t i, uint8_t k, double a, double noise)
+{
+    s->acc[i][k] += noise > 0.0 ? a * (1.0 - noise * sim_rand_normal(&s->rand[i])) : a;
+}
+
+/* What source `src` adds to every band of listener `dst`: per band, a term
+ * when the source is in that band's sum (`loud`: its eq 1 term). */
+static void hear(sound_t *s, uint32_t dst, uint32_t src, double loud)
+{
+    const sound_config_t *cfg = s->cfg;
+    int ambient = cfg->silent_robots == SOUND_SILENT_AMBIENT;
+    for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+        if (s->played[src] == k) {
+            add_term(s, dst, k, loud, cfg->noise);
+        } else if (ambient) {
+            add_term(s, dst, k, cfg->ae, cfg->noise);
+        }
+    }
+}
+
+/* cutoff > 0: listener i's sums from the robot grid.  Robots within the
+ * cutoff, in id order, as the all-pairs loop meets them (same terms, same
+ * draws); every robot beyond it adds only ae to a band (in `none` mode only
+ * when it emits in that band), so their m terms ae (1 - noise N_j) sum to
+ * m ae - ae noise sqrt(m) N: one draw per band, the same distribution
+ * (a sum of independent Gaussians), and work per listener bounded by the
+ * robots within the cutoff, not by the swarm. */
+static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t i,
+                        const uint32_t emitters[HAL_SOUND_BANDS])
+{
+    const sound_config_t *cfg = s->cfg;
+    const sim_robot_t *a = &sim->robots[i];
+    double cutoff = cfg->cutoff;
+    float box = (float)cutoff + 0.01f;   /* a little more: the test below is in double */
+    uint32_t *near = ws->robots;
+    uint32_t n = sim_gather_robots(sim, a->x - box, a->y - box, a->x + box, a->y + box, near, sim->n);
+    uint32_t near_emit[HAL_SOUND_BANDS] = { 0 }, n_near = 0;
+    grid_sort_ids(near, n);
+    for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
+        s->acc[i][k] = 0.0;
+    }
+    for (uint32_t c = 0; c < n; c++) {
+        const sim_robot_t *b = &sim->robots[near[c]];
+        if (near[c] == i) {
+            continue;
+        }
+        double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
+        double d = sqrt(dx * dx + dy * dy);
+        if (d > cutoff) {
+            continue;
+        }
+        n_near++;
+        near_emit[s->played[near[c]]]++;
+        double loud = s->played[near[c]] ? cfg->a0 * exp(-cfg->alpha * d) + cfg->ae : 0.0;
+        hear(s, i, near[c], loud);
+    }
+    int ambient = cfg->silent_robots == SOUND_SILENT_AMBIENT;
+    for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+        uint32_t m = ambient ? sim->n - 1 - n_near
+                             : emitters[k] - near_emit[k] - (s->played[i] == k ? 1u : 0u);
+        if (m == 0) {
+            continue;
+        }
+        double sum = (double)m * cfg->ae;
+        if (cfg->noise > 0.0) {
+            sum -= cfg->ae * cfg->noise * sqrt((double)m) * sim_rand_normal(&s->rand[i]);
+        }
+        s->acc[i][k] += sum;
+    }
+}
+
+typedef struct listeners {
+    struct sim *sim;
+    sound_t *s;
+    uint32_t emitters[HAL_SOUND_BANDS];   /**< robots that played in each band */
+} listeners_t;
+
+/* pool_fn: listeners [begin, end), each its own sums and noise stream, so
+ * that they are summed side by side. */
+static void listen_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
+{
+    listeners_t *l = ctx;
+    sound_t *s = l->s;
+    int masking = s->cfg->self_masking != 0;
+    for (uint32_t i = begin; i < end; i++) {
+        if (masking && s->played[i]) {
+            for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
+                s->acc[i][k] = 0.0;
+            }
+        } else {
+            listen_near(l->sim, s, &l->sim->scratch[worker], i, l->emitters);
+        }
+    }
+}
+
+/* Listeners take a few microseconds each within a 2 m cutoff. */
+#define LISTEN_CHUNK 64u
+
+static void update_with_cutoff(struct sim *sim, sound_t *s)
+{
+    listeners_t l = { .sim = sim, .s = s };
+    for (uint32_t i = 0; i < sim->n; i++) {
+        l.emitters[s->played[i]]++;
+    }
+    pool_for(sim->pool, sim->n, LISTEN_CHUNK, listen_range, &l);
+}
+
+/* cutoff 0: eq 2 as written, every pair exact. */
+static void update_all_pairs(struct sim *sim, sound_t *s)
+{
+    const sound_config_t *cfg = s->cfg;
+    uint32_t n = sim->n;
+    int masking = cfg->self_masking != 0;
+    /* Every unordered pair once (one distance and at most one exponential
+     * for both directions), listener i's sum in acc.  Listener m meets its
+     * sources in id order: j < m at the outer loop's earlier rounds, then
+     * j > m at its own, so its draws and its sum's order are those of a
+     * plain loop over j. */
+    for (uint32_t i = 0; i < n; i++) {
+        for (uint8_t k = 0; k < HAL_SOUND_BANDS; k++) {
+            s->acc[i][k] = 0.0;
+        }
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        const sim_robot_t *a = &sim->robots[i];
+        int a_hears = !(masking && s->played[i]);
+        for (uint32_t j = i + 1; j < n; j++) {
+            const sim_robot_t *b = &sim->robots[j];
+            int b_hears = !(masking && s->played[j]);
+            if (!a_hears && !b_hears) {
+                continue;
+            }
+            /* A source's loud term, eq 1 at this pair's distance.  The
+             * distance is needed only when one of the two emits. */
+            double loud = 0.0;
+            if (s->played[i] || s->played[j]) {
+                double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
+                double d = sqrt(dx * dx + dy * dy);
+                loud = cfg->a0 * exp(-cfg->alpha * d) + cfg->ae;
+            }
+            if (a_hears) {
+                hear(s, i, j, loud);
+            }
+            if (b_hears) {
+                hear(s, j, i, loud);
+            }
+        }
+    }
+}
+
+/* Every robot's levels for the period just ended, unless already computed
+ * for this step. */
+static void sound_update(struct sim *sim, sound_t *s)
+{
+    if (s == NULL || s->stamp == sim->step + 1) {
+        return;
+    }
+    s->stamp = sim->step + 1;
+    if (s->cfg->cutoff > 0.0) {
+        update_with_cutoff(sim, s);
+    } else {
+        update_all_pairs(sim, s);
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        s->level[i][0] = 0;
+        for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+            s->level[i][k] = sound_counts(s->acc[i][k]);
+        }
+    }
+}
+
+/* Whole, before any controller reads it. */
+static void sound_before_control(sim_t *sim, void *self)
+{
+    sound_update(sim, self);
+}
+
+/* What each robot set this step is what plays during the period that
+ * follows. */
+static void sound_end_step(sim_t *sim, void *self)
+{
+    sound_t *s = self;
+    for (uint32_t i = 0; s && i < sim->n; i++) {
+        s->played[i] = s->set[i];
+    }
+}
+
+/* A robot moved by hand: the field must be made again from the new pose. */
+static void sound_moved(sim_t *sim, void *self, uint32_t robot)
+{
+    sound_t *s = self;
+    (void)sim;
+    (void)robot;
+    if (s) {
+        s->stamp = 0;
+    }
+}
+
+/* ---------------------------------------------------------------- HAL */
+
+/* The field is computed before the controllers step; here only read.  Read
+ * between steps (tests), it is computed then: the field the next step's
+ * controllers will see. */
+hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
+{
+    sound_t *s = sim_model_self(hal->sim, SIM_MODEL_sound);
+    *level = 0;
+    if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
+    if (s == NULL) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    sound_update(hal->sim, s);
+    if (s->cfg->self_masking && s->played[hal->index] != 0u) {
+        return HAL_ERR_BUSY;
+    }
+    /* The three microphones hear the same (sound.h). */
+    *level = s->level[hal->index][band];
+    return HAL_OK;
+}
+
+/* Plays from the next period on: the step's end makes it what played. */
+hal_status_t hal_speaker_set(hal_t *hal, uint8_t band)
+{
+    sound_t *s = sim_model_self(hal->sim, SIM_MODEL_sound);
+    if (band >= HAL_SOUND_BANDS) {
+        return HAL_ERR_RANGE;
+    }
+    if (s == NULL) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    s->set[hal->index] = band;
+    return HAL_OK;
+}
+
+static const char *const sound_hal_calls[] = { "hal_mic_level", "hal_speaker_set", NULL };
+
+static const model_field_t sound_fields[] = {
+    { "sound.played", "", "band its speaker played during the last period (0: silence)", SIM_FIELD_U8, PLAYED, 0, 1 },
+    { "sound.level", "counts", "level per band over the last period (index 0 unused)", SIM_FIELD_U32, LEVEL, 0,
+      HAL_SOUND_BANDS },
+    { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
+};
+
+const model_def_t sound_model = {
+    .name = "sound",
+    .doc = "speakers and microphones: seed 002's sound field (eqs 1-4)",
+    .config_size = sizeof(sound_config_t),
+    .default_config = sound_defaults,
+    .schema = &sound_schema,
+    .layout = sound_layout,
+    .create = sound_create,
+    .destroy = sound_destroy,
+    .before_control = sound_before_control,
+    .end_step = sound_end_step,
+    .moved = sound_moved,
+    .hal_calls = sound_hal_calls,
+    .fields = sound_fields,
+};

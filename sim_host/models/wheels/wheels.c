@@ -1,0 +1,218 @@
+/*
+ * wheels.c - the wheels and their actuation noise (wheels.h).
+ */
+#include "wheels.h"
+
+#include <math.h>
+#include <stddef.h>
+
+#include "core/pool.h"
+#include "core/sim_internal.h"
+#include "models/faults/faults.h"
+#include "units.h"
+
+#define W wheels_config_t
+static const param_desc_t wheels_params[] = {
+    { .key = "speed_noise_rel", PARAM_FIELD(W, speed_noise_rel, float), .min = 0, .max = 1,
+      .doc = "per-wheel relative speed noise (sd)" },
+    { .key = "bias_sd", PARAM_FIELD(W, bias_sd, float), .min = 0, .max = 1,
+      .doc = "sd of a per-robot, per-wheel speed bias drawn once a run, m/s (seed 003's eq 3; "
+             "the e-puck saturates at 0.129 m/s)" },
+    { .key = "bias_per_step", PARAM_BOOL_FIELD(W, bias_per_step),
+      .doc = "draw the bias anew every control step instead of once a run (another reading of eq 3)" },
+    PARAM_END
+};
+#undef W
+
+MODEL_ONE_SECTION(wheels_schema, "wheels", wheels_params, NULL,
+                  "wheel motors");
+
+/* One robot's motors. */
+typedef struct wheels_robot {
+    int16_t cmd_left, cmd_right;      /* commanded speeds, steps/s */
+    double steps_left, steps_right;   /* commanded steps so far */
+    double bias_left, bias_right;     /* b of eq 3 (this run's, or this step's), steps/s */
+    sim_rand_t rand;                  /* f of eq 3 (RAND_WHEELS) */
+    sim_rand_t bias_rand;             /* b's draws (RAND_WHEEL_BIAS) */
+} wheels_robot_t;
+
+static void wheels_layout(const void *config, const scenario_t *sc, model_layout_t *out)
+{
+    (void)config;
+    (void)sc;
+    out->arrays = 1;
+    out->elem_size[0] = sizeof(wheels_robot_t);
+}
+
+static wheels_robot_t *robots(const sim_t *sim)
+{
+    return sim_model_array(sim, SIM_MODEL_wheels, 0);
+}
+
+static int wheels_create(sim_t *sim, const void *config, void **self, char err[SIM_ERR_MAX])
+{
+    const wheels_config_t *c = config;
+    (void)self;
+    (void)err;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        wheels_robot_t *w = &robots(sim)[i];
+        sim_rand_seed(&w->rand, sim->seed, i, RAND_WHEELS);
+        if (c->bias_sd > 0.0f) {
+            /* Eq 3's bias b, drawn once a run as ARGoS does (its own stream:
+             * other streams and golden hashes are unchanged). */
+            sim_rand_seed(&w->bias_rand, sim->seed, i, RAND_WHEEL_BIAS);
+            const double sd_steps = c->bias_sd / EPUCK_STEP_M;
+            w->bias_left = sd_steps * sim_rand_normal(&w->bias_rand);
+            w->bias_right = sd_steps * sim_rand_normal(&w->bias_rand);
+        }
+    }
+    return 0;
+}
+
+/* pool_fn: robots [begin, end) turn their wheel commands into body
+ * velocities (sim->drive), each with its own noise streams, side by side;
+ * the core hands them to Box2D in one loop. */
+static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
+{
+    struct sim *sim = ctx;
+    const wheels_config_t *c = sim_model_config(sim, SIM_MODEL_wheels);
+    const double noise = c->speed_noise_rel;
+    const int bias = c->bias_sd > 0.0f;
+    (void)worker;
+    for (uint32_t i = begin; i < end; i++) {
+        const sim_robot_t *r = &sim->robots[i];
+        wheels_robot_t *wr = &robots(sim)[i];
+        double l = wr->cmd_left, rr = wr->cmd_right;
+        if (sim_robot_halted(sim, i)) {
+            l = rr = 0.0;       /* a stopped robot's motors are off */
+        }
+        /* Motor steps are counted as commanded: a blocked stepper still steps. */
+        wr->steps_left += l * sim->dt;
+        wr->steps_right += rr * sim->dt;
+        if (!r->moves) {
+            continue;
+        }
+        if (bias && (l != 0.0 || rr != 0.0)) {
+            /* Seed 003's eq 3, read as ARGoS's differential-steering noise
+             * (the paper's simulator; its symbols were lost in our copy, but
+             * its words "a the actual actuation, f a random factor, w the
+             * ideal actuation, b a random bias, both Gaussian" are ARGoS's):
+             * a = f (w + b), b drawn once per robot and wheel per run
+             * (wheels_create), f every step, and only while the robot is
+             * commanded to move: a stopped Robot_Node does not creep.  The
+             * motors cannot exceed HAL_WHEEL_SPEED_MAX (1000 steps/s =
+             * 12.9 cm/s): a bias above that saturates the wheels where the
+             * paper's robots (its Figure 17 goes to a 20 cm/s sd) did not. */
+            if (c->bias_per_step) {
+                /* The other reading of "a random bias drawn from a Gaussian":
+                 * a new b every step, which averages out along a path. */
+                const double sd_steps = c->bias_sd / EPUCK_STEP_M;
+                wr->bias_left = sd_steps * sim_rand_normal(&wr->bias_rand);
+                wr->bias_right = sd_steps * sim_rand_normal(&wr->bias_rand);
+            }
+            l += wr->bias_left;
+            rr += wr->bias_right;
+            if (noise > 0.0) {
+                l *= 1.0 + noise * sim_rand_normal(&wr->rand);
+                rr *= 1.0 + noise * sim_rand_normal(&wr->rand);
+            }
+            l = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, l));
+            rr = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, rr));
+        } else if (noise > 0.0) {
+            /* Without a bias: the factor f alone, at every step (as before
+             * the bias existed: golden hashes unchanged). */
+            l *= 1.0 + noise * sim_rand_normal(&wr->rand);
+            rr *= 1.0 + noise * sim_rand_normal(&wr->rand);
+        }
+        faults_wheels(sim, i, &l, &rr);
+        double v = 0.5 * (l + rr) * EPUCK_STEP_M;
+        double w = (rr - l) * EPUCK_STEP_M / EPUCK_AXLE_M;
+        sim->drive[i].v = (b2Vec2){ (float)(v * cos(r->theta)), (float)(v * sin(r->theta)) };
+        sim->drive[i].w = (float)w;
+    }
+}
+
+/* Robots take well under a microsecond each. */
+#define DRIVE_CHUNK 256u
+
+static void wheels_drive(sim_t *sim, void *self)
+{
+    (void)self;
+    pool_for(sim->pool, sim->n, DRIVE_CHUNK, drive_range, sim);
+}
+
+/* The step counters are part of the state hash (after the pose). */
+static uint64_t wheels_hash(const sim_t *sim, const void *self, uint32_t robot, uint64_t h)
+{
+    const wheels_robot_t *w = &robots(sim)[robot];
+    (void)self;
+    h = sim_hash_bytes(h, &w->steps_left, sizeof w->steps_left);
+    return sim_hash_bytes(h, &w->steps_right, sizeof w->steps_right);
+}
+
+static void wheels_platform(const sim_t *sim, const void *self, uint32_t robot, uint64_t since,
+                            robot_telemetry_platform_t *p)
+{
+    const wheels_robot_t *w = &robots(sim)[robot];
+    (void)self;
+    (void)since;
+    p->wheel_left = w->cmd_left;
+    p->wheel_right = w->cmd_right;
+}
+
+void sim_robot_wheels(const sim_t *sim, uint32_t i, int16_t *left, int16_t *right)
+{
+    SIM_ASSERT(i < sim->n);
+    *left = robots(sim)[i].cmd_left;
+    *right = robots(sim)[i].cmd_right;
+}
+
+/* ---------------------------------------------------------------- HAL */
+
+static int16_t clamp_speed(int16_t v)
+{
+    return v > HAL_WHEEL_SPEED_MAX ? HAL_WHEEL_SPEED_MAX : (v < -HAL_WHEEL_SPEED_MAX ? -HAL_WHEEL_SPEED_MAX : v);
+}
+
+void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s)
+{
+    wheels_robot_t *w = &robots(hal->sim)[hal->index];
+    w->cmd_left = clamp_speed(left_steps_s);
+    w->cmd_right = clamp_speed(right_steps_s);
+}
+
+void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right)
+{
+    const wheels_robot_t *w = &robots(hal->sim)[hal->index];
+    /* 16-bit counters wrap as on the robot. */
+    *left = (int16_t)(uint16_t)(int64_t)w->steps_left;
+    *right = (int16_t)(uint16_t)(int64_t)w->steps_right;
+}
+
+static const char *const wheels_hal_calls[] = { "hal_set_wheel_speeds", "hal_wheel_steps", NULL };
+
+#define F(name, unit, doc, type, field) { "wheels." name, unit, doc, type, 0, offsetof(wheels_robot_t, field), 1 }
+static const model_field_t wheels_fields[] = {
+    F("cmd_left", "steps/s", "commanded speed of the left wheel", SIM_FIELD_I16, cmd_left),
+    F("cmd_right", "steps/s", "commanded speed of the right wheel", SIM_FIELD_I16, cmd_right),
+    F("steps_left", "steps", "commanded steps of the left wheel so far", SIM_FIELD_F64, steps_left),
+    F("steps_right", "steps", "commanded steps of the right wheel so far", SIM_FIELD_F64, steps_right),
+    F("bias_left", "steps/s", "eq 3's bias b of the left wheel", SIM_FIELD_F64, bias_left),
+    F("bias_right", "steps/s", "eq 3's bias b of the right wheel", SIM_FIELD_F64, bias_right),
+    { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
+};
+#undef F
+
+const model_def_t wheels_model = {
+    .name = "wheels",
+    .doc = "the two stepper motors, with seed 003's actuation noise (eq 3)",
+    .config_size = sizeof(wheels_config_t),
+    .schema = &wheels_schema,
+    .layout = wheels_layout,
+    .create = wheels_create,
+    .drive = wheels_drive,
+    .hash = wheels_hash,
+    .platform = wheels_platform,
+    .hal_calls = wheels_hal_calls,
+    .fields = wheels_fields,
+};
