@@ -27,6 +27,7 @@ import argparse
 import asyncio
 import concurrent.futures
 import json
+import logging
 import math
 import signal
 import socket
@@ -271,6 +272,25 @@ def make_app(feed, options, hosts, workers):
     return app
 
 
+class OneLine(logging.Formatter):
+    """aiohttp's own server log as one line, without its traceback: a
+    request it cannot parse (a path over 8,190 bytes, a bad header) is
+    answered 400 by aiohttp and is the client's mistake, not ours."""
+
+    def format(self, record):
+        exc = record.exc_info[1] if record.exc_info else None
+        text = record.getMessage() + (f": {' '.join(str(exc).split())[:200]}" if exc else "")
+        return f"{PROG}: {text}"
+
+
+def one_line_server_log():
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(OneLine())
+    log = logging.getLogger("aiohttp.server")
+    log.addHandler(handler)
+    log.propagate = False
+
+
 def listen(host, number):
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     try:
@@ -281,6 +301,7 @@ def listen(host, number):
 
 async def serve(feed, sock, options, hosts):
     loop = asyncio.get_running_loop()
+    one_line_server_log()
     workers = concurrent.futures.ThreadPoolExecutor(max_workers=4, thread_name_prefix="swarm-live")
     runner = web.AppRunner(make_app(feed, options, hosts, workers), handle_signals=False, access_log=None,
                            shutdown_timeout=CLOSE_S)

@@ -218,6 +218,8 @@ class Commands(unittest.TestCase):
         finally:
             status, err = srv.stop()
         self.assertEqual(status, 0, err)
+        self.assertNotIn("Traceback", err)      # aiohttp's 400 for a path too long: one line
+        self.assertIn("swarm-live: Error handling request from 127.0.0.1: 400, message: Got more than 8190 bytes", err)
 
     async def _foreign(self, url):
         port = url.rstrip("/").rsplit(":", 1)[1]
@@ -243,7 +245,8 @@ class Commands(unittest.TestCase):
                 self.assertEqual(json.loads((await ws.receive()).data)["type"], "hello")
             # only the page's own files: no path, no folder, no 500 for a long name
             for path, status in (("static/live.js", 200), ("static/" + "a" * 5000, 404), ("static/", 404),
-                                 ("static/%2e%2e%2fserver.py", 404), ("static/../server.py", 404)):
+                                 ("static/%2e%2e%2fserver.py", 404), ("static/../server.py", 404),
+                                 ("static/" + "a" * 9000, 400), ("a" * 20000, 400)):
                 async with http.get(url + path) as r:
                     self.assertEqual(r.status, status, path[:40])
 
