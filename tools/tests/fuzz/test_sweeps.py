@@ -7,6 +7,9 @@ through:
   huge numbers, line breaks in names), is read or refused with a
   SweepError naming the file (and its line, when one is at fault);
   nothing else is raised, and nothing is expanded past the run cap;
+- a file right but for one value (any kind, at any key) or nested
+  thousands deep is read or refused the same way, and an accepted name,
+  key or metric is one whole word (no trailing line break);
 - what is read expands to exactly (combinations x seeds) runs, at most the
   cap, each with its own id, the same ids again in a second expansion;
 - run ids hash an unambiguous encoding: two different override lists never
@@ -17,7 +20,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from swarmtools.sweep import plan, spec
@@ -131,6 +134,36 @@ class SweepFiles(unittest.TestCase):
         sw = self.load(text)
         if sw is not None:
             self.check_expansion(sw)
+
+    @given(values(), st.sampled_from(["set: {{arena.width: {}}}", "steps: {}", "repetitions: {}", "seeds: {}",
+                                      "max_attempts: {}", "run_timeout: {}", "keep_timeseries: {}", "metrics: {}",
+                                      "axes: [{{grid: {{arena.width: {}}}}}]", "axes: [{{list: [{{a.b: {}}}]}}]"]))
+    def test_any_value_in_an_otherwise_valid_file(self, value, line):
+        # The rest of the file is right, so the reader reaches the value
+        # (tags, anchors, flows, huge numbers) and must say what is wrong.
+        sw = self.load(f"scenario: {SCENARIO}\nrepetitions: 1\n{line.format(value)}\n")
+        if sw is not None:
+            self.check_expansion(sw)
+
+    @settings(max_examples=min(settings().max_examples, 25))     # a deep document reads slowly
+    @given(st.integers(1, 1500), st.sampled_from(["[", "{a: ", "- "]), st.sampled_from(["set", "axes", "seeds", "x"]))
+    def test_deep_nesting_is_refused_not_a_traceback(self, depth, opener, key):
+        close = {"[": "]", "{a: ": "}", "- ": ""}[opener]
+        body = opener * depth + "1" + close * depth if opener != "- " else "".join(
+            "\n" + "  " * k + "- " for k in range(min(depth, 400))) + "1"
+        self.load(f"scenario: {SCENARIO}\nrepetitions: 1\n{key}: {body}\n")
+
+    @given(st.text(max_size=20), st.sampled_from(["name", "key", "metric"]))
+    def test_an_accepted_name_key_or_metric_is_one_whole_word(self, word, what):
+        # Names reach folder names and batch scripts: matched whole, so no
+        # trailing line break passes ('$' matches before one).
+        quoted = '"' + word.encode("unicode_escape").decode().replace('"', '\\"') + '"'
+        line = {"name": f"name: {quoted}", "key": f"set: {{{quoted}: 2}}", "metric": f"metrics: [{quoted}]"}[what]
+        sw = self.load(f"scenario: {SCENARIO}\nrepetitions: 1\n{line}\n")
+        if sw is not None:
+            got = {"name": sw.name, "key": sw.fixed[0][0] if sw.fixed else "", "metric": (sw.metrics or [""])[0]}[what]
+            self.assertEqual(got, word)
+            self.assertRegex(got, r"\A[A-Za-z0-9_.-]+\Z")
 
     @given(st.integers(1, 40), st.integers(1, 40), st.integers(1, 10**6))
     def test_the_cap_is_met_before_anything_is_expanded(self, a, b, reps):
