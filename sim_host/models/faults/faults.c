@@ -24,7 +24,7 @@ const char *const faults_kind_names[] = {
 #define FLT fault_def_t
 static const param_desc_t fault_params[] = {
     { .key = "kind", PARAM_ENUM_FIELD(FLT, kind, faults_kind_names),
-      .doc = "what goes wrong (README: faults)" },
+      .doc = "what goes wrong (docs: models, faults)" },
     { .key = "fraction", PARAM_FIELD(FLT, fraction, float), .min = 0, .max = 1,
       .doc = "of the group's robots, drawn per run (rounded)" },
     { .key = "at", PARAM_ANGLE_FIELD(FLT, at), .min = 0, .max = 1e7,

@@ -58,7 +58,7 @@ def _sbatch(args: list[str]) -> str:
                            timeout=120, check=False)
     except FileNotFoundError:
         raise SweepError("sbatch: not found; the slurm backend runs on a cluster's login node "
-                         "(README: run on a cluster)") from None
+                         "(docs: how-to, run on a cluster)") from None
     if p.returncode != 0:
         raise SweepError(f"sbatch {' '.join(args)} failed: {p.stderr.strip() or p.returncode}")
     return p.stdout.strip().split(";")[0]
