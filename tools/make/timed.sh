@@ -67,6 +67,8 @@ done
 [ $failed -eq 0 ] || exit 1
 if [ "$times" != /dev/null ]; then
     { for g in "${order[@]}"; do echo "$g ${took[$g]}"; done
-      awk -v run=" ${order[*]} " 'index(run, " " $1 " ") == 0' "$times" 2>/dev/null; } >"$times.$$" &&
+      if [ -f "$times" ]; then     # none on a fresh clone's first run
+          awk -v run=" ${order[*]} " 'index(run, " " $1 " ") == 0' "$times"
+      fi; } >"$times.$$" &&
         mv "$times.$$" "$times"      # and the times of the groups not run now
 fi
