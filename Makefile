@@ -61,6 +61,7 @@ ASAN := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recov
 #   SIM_EXTRA_OBJ / SIM_EXTRA_OBJ_ASAN  objects linked into libswarm
 #   EXTRA_TESTS                          targets `make test` also runs
 EXTRA_TESTS :=
+TEST_BUILD :=
 SIM_EXTRA_OBJ :=
 SIM_EXTRA_OBJ_ASAN :=
 include $(sort $(wildcard tools/make/*.mk))
@@ -123,8 +124,10 @@ $(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN) $(SIM_EXTRA_OBJ_ASAN)
 	@rm -f $@
 	$(call show,AR,$@)$(AR) rcs $@ $^
 
+# Linked under another name, then renamed: a run of the old binary (a test
+# group beside this build) keeps it whole.
 $(BUILD)/swarmsim: $(BUILD)/obj/sim_host/main.o $(BUILD)/libswarm.a
-	$(call show,LD,$@)$(CC) -o $@ $^ $(LDLIBS_SIM)
+	$(call show,LD,$@)$(CC) -o $@.tmp $^ $(LDLIBS_SIM) && mv $@.tmp $@
 
 # Test binaries record the headers they read (-MMD): a changed header
 # rebuilds them.
@@ -159,11 +162,18 @@ cli-tests: $(BUILD)/swarmsim
 firmware-hygiene: $(BUILD)/config.mk lcm-types firmware-images
 	@LCM_CFLAGS='$(LCM_CFLAGS)' LCM_C_DIR='$(BUILD)/lcm_c' FW_GEN='$(FW_GEN)' bash tests/firmware/hygiene.sh
 
-# Every group, one after the other, each saying how long it took.
+# Every group (a make target), TEST_JOBS at a time (default: the CPUs; 1:
+# one after the other), after one build of what they share (TEST_BUILD;
+# fragments add theirs), each group's output together with its time
+# (tools/make/timed.sh), the longest first by the last run's times.
 TEST_GROUPS = unit-tests asan-tests cli-tests firmware-hygiene $(EXTRA_TESTS)
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
+TEST_BUILD += all $(TESTS) $(TESTS_ASAN)
+.PHONY: test-build
+test-build: deps $(TEST_BUILD)
 test: deps
-	@set -e; for g in $(TEST_GROUPS); do \
-	  bash tools/make/timed.sh $$g $(MAKE) --no-print-directory $$g; done
+	@bash tools/make/timed.sh -- $(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(TEST_JOBS)) -- test-build
+	@bash tools/make/timed.sh -j $(TEST_JOBS) -t $(BUILD)/test_times.txt -- $(MAKE) --no-print-directory -- $(TEST_GROUPS)
 	@echo "make test: all test groups passed"
 
 # ---------------------------------------------------------------- bench

@@ -48,7 +48,7 @@ static const param_desc_t forager_params[] = {
       .doc = "steps of backing out of a deposited token" },
     { .key = "drtm_theta", PARAM_ENUM_U8_FIELD(FP, drtm_theta, drtm_theta_modes),
       .doc = "DRTM threshold: offset = theta0 + eq 6 in [theta_min, theta_max]; clip = eq 6 in the "
-             "bounds; raw = eq 6 (README, seed 000)" },
+             "bounds; raw = eq 6 (docs: studies, DRTM)" },
     { .key = "decide_each_step", PARAM_BOOL_FIELD(FP, decide_each_step),
       .doc = "true: once T1 has passed, draw every step (T1 a minimum wait); false: every T1" },
     { .key = "leave_nest", PARAM_BOOL_FIELD(FP, leave_nest),

@@ -19,7 +19,7 @@
  *     falls when the stimulus rises and rises when it falls.  The published
  *     update rule could not be found (papers paywalled); `ta_artm_update` is
  *     OUR RECONSTRUCTION, a discretised attractor selection between
- *     theta_min and theta_max (README, "Seed 000", the ARTM policy):
+ *     theta_min and theta_max (docs/studies/drtm.md, the ARTM policy):
  *         theta <- clip(theta - delta * sign(S - S_prev), theta_min, theta_max)
  *     applied at each of the robot's decisions, S_prev being the stimulus at
  *     its previous decision.

@@ -126,7 +126,7 @@ struct sim {
     void **ctrl_blocks;            /**< per group: its robots' controller states */
     float *px, *py;                /**< robot centres, for the grid: always equal to robots[i].x
                                         and .y (written together), and where neighbour loops read
-                                        them (sim_robot_at): a gather has just brought them into
+                                        them (sim_robot_at): the grid's pass has just brought them into
                                         the cache, 4 B a robot where a record is 72 */
     grid_t robot_grid;
     uint32_t *step_order;          /**< robots in the order they step (phase 2) */

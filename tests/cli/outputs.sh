@@ -15,6 +15,9 @@ tmp=$(mktemp -d "${TMPDIR:-/tmp}/outputs.XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
 check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
+# wait_until SECONDS TEST: polls TEST until it holds (status 0), or gives up
+# after SECONDS (status 1): generous, so that only a hang reaches it.
+wait_until() { local end=$((SECONDS + $1)); until eval "$2"; do [ $SECONDS -ge $end ] && return 1; sleep 0.05; done; }
 # Byte for byte but the "command" line (its provenance differs on purpose).
 same() { cmp -s <(grep -v '^  "command": ' "$1") <(grep -v '^  "command": ' "$2"); }
 field() { sed -n "s/^  \"$2\": \"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}\$/\1/p" "$1"; }
@@ -65,7 +68,9 @@ for sig in INT TERM; do
     o=$tmp/stop_$sig
     "$sim" $fb --reps 6 --threads 2 --lcm off --out "$o" >"$tmp/stdout" 2>"$tmp/stderr" &
     p=$!
-    for _ in $(seq 100); do [ -d "$o/run_1" ] && break; sleep 0.02; done
+    # The first whole run (its folder is renamed from run_N.partial when
+    # complete), however long a loaded machine takes; then the signal.
+    wait_until 600 "[ -d '$o/run_1' ] || [ -d '$o/run_2' ]" || echo "FAIL: SIG$sig: no run finished in 600 s"
     kill -"$sig" $p
     wait $p
     rc=$?

@@ -72,6 +72,8 @@ FW_IMAGE_TARGETS :=
 
 .PHONY: firmware-check firmware-gates firmware-images firmware-cpu
 EXTRA_TESTS += firmware-check
+# The mains both firmware groups read, written once before they run side by side.
+TEST_BUILD += firmware-images
 
 FW_HOST := $(FW_OUT)/host
 # $(call fw_generate,PLATFORM): writes the platform's mains (only those whose

@@ -99,8 +99,9 @@ $(addprefix fuzz-run-,$(FUZZ_ALL)): fuzz-run-%: $(FUZZ_DIR)/bin/%
 # examples a property); here at random and at length.
 fuzz-python: deps $(BUILD)/telemetry/libtelemetry_frame.so   # TELEMETRY_FRAME_SO, lcm.mk
 	@SWARM_HYPOTHESIS=long SWARM_HYPOTHESIS_EXAMPLES=$(FUZZ_PY_EXAMPLES) TELEMETRY_FRAME_SO=$(TELEMETRY_FRAME_SO) \
-	  $(PYTHON) -m unittest tools.tests.fuzz.test_hex tools.tests.fuzz.test_frames
+	  $(PYTHON) -m unittest discover -s tools/tests/fuzz -t .
 
 EXTRA_TESTS += fuzz-tests
+TEST_BUILD += fuzz-build
 
 -include $(shell find $(FUZZ_DIR) -name '*.d' 2>/dev/null)

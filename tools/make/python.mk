@@ -20,3 +20,4 @@ lint: deps
 	@$(VENV)/bin/ruff check pyproject.toml tools/swarmtools tools/tests tools/bench tools/docs docs/examples tools/scaffold.py tools/make tests/firmware tests/fuzz tests/docs platforms && echo "lint: ruff found nothing"
 
 EXTRA_TESTS += lint python-tests
+TEST_BUILD += $(TELEMETRY_FRAME_SO)

@@ -1,5 +1,5 @@
 # sim_library.mk - the simulator as a shared library, build/libswarmsim.so:
-# every object of libswarm.a and the code version (sim_host/version.c),
+# libswarm.a's objects (less one, below) and the code version (sim_host/version.c),
 # for the Python binding (tools/swarmtools/sim/: swarmtools.Sim and
 # swarmtools.run, in process) and for any program that loads the public
 # API (sim_host/include/swarmsim/) at run time.  Built by `make` (all).
@@ -25,9 +25,13 @@ $(PIC_STAMP):
 $(BUILD)/obj/sim_host/version.o: $(BUILD)/gen/version.h
 $(BUILD)/obj/sim_host/version.o: SIM_CFLAGS += -I$(BUILD)/gen
 
+# libswarm.a's objects, less the robot's end of the PIL protocol
+# (wire/pil/pil_robot.c), which calls its platform's pil_port_exchange and is
+# never part of a simulator (swarmsim, linking the archive, never pulls it in).
+SIM_SO_OBJ = $(filter-out $(BUILD)/obj/wire/pil/pil_robot.o,$(FW_OBJ)) $(SIM_OBJ) $(SIM_EXTRA_OBJ)
 $(SIM_SO): $(BUILD)/libswarm.a $(BUILD)/obj/sim_host/version.o
 	$(call show,LD,$@)$(CC) -shared -Wl,--no-undefined -Wl,-Bsymbolic -o $@.tmp $(BUILD)/obj/sim_host/version.o \
-	  -Wl,--whole-archive $(BUILD)/libswarm.a -Wl,--no-whole-archive $(LDLIBS_SIM) && mv $@.tmp $@
+	  $(SIM_SO_OBJ) $(LDLIBS_SIM) && mv $@.tmp $@
 
 all: $(SIM_SO)
 python-tests: $(SIM_SO)

@@ -13,6 +13,7 @@ TSAN := -fsanitize=thread -fno-omit-frame-pointer
 FW_OBJ_TSAN := $(call objs,tsan,$(FW_SRC))
 SIM_OBJ_TSAN := $(call objs,tsan,$(SIM_SRC))
 EXTRA_TESTS += tsan-tests
+TEST_BUILD += $(BUILD)/tests/tsan/test_sim $(BUILD)/tsan/swarmsim
 
 $(BUILD)/tsan/firmware/%.o $(BUILD)/tsan/hal/%.o $(BUILD)/tsan/wire/%.o: | $(BUILD)/config.mk
 $(BUILD)/tsan/firmware/%.o: firmware/%.c
@@ -43,7 +44,8 @@ $(BUILD)/tests/tsan/%: tests/%.c $(BUILD)/libswarm-tsan.a
 	$(CC) $(SIM_CFLAGS) $(TSAN) $(CMOCKA_CFLAGS) -MMD -MP -MF $@.d -o $@ $< $(BUILD)/libswarm-tsan.a \
 	  $(CMOCKA_LIBS) $(LDLIBS_SIM)
 
-$(BUILD)/tsan/sim_host/main.o: $(VERSION_H)
+# version.mk comes after this file: its VERSION_H is not yet set here.
+$(BUILD)/tsan/sim_host/main.o: $(BUILD)/gen/version.h
 $(BUILD)/tsan/sim_host/main.o: SIM_CFLAGS += -I$(BUILD)/gen
 $(BUILD)/tsan/swarmsim: $(BUILD)/tsan/sim_host/main.o $(BUILD)/libswarm-tsan.a
 	$(CC) $(TSAN) -o $@ $^ $(LDLIBS_SIM)

@@ -9,8 +9,8 @@ VERSION_H := $(BUILD)/gen/version.h
 version-header:
 	@mkdir -p $(dir $(VERSION_H))
 	@v=$$(bash tools/make/code_version.sh); \
-	 printf '#define SWARMSIM_VERSION "%s"\n' "$$v" > $(VERSION_H).tmp; \
-	 if cmp -s $(VERSION_H).tmp $(VERSION_H); then rm -f $(VERSION_H).tmp; else mv $(VERSION_H).tmp $(VERSION_H); fi
+	 t=$(VERSION_H).tmp.$$$$; printf '#define SWARMSIM_VERSION "%s"\n' "$$v" > $$t; \
+	 if cmp -s $$t $(VERSION_H); then rm -f $$t; else mv $$t $(VERSION_H); fi
 $(VERSION_H): version-header ;
 
 $(BUILD)/obj/sim_host/main.o: $(VERSION_H)

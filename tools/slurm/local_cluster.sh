@@ -360,7 +360,9 @@ cmd_start() {
     munged --socket="$MUNGE_SOCK" --key-file="$MUNGE_KEY" --pid-file="$MUNGE_PID" \
         --log-file="$MUNGE_LOG" --seed-file="$MUNGE_SEED" --force \
         </dev/null >>"$MUNGE_LOG" 2>&1 || fail "munged did not start" "$MUNGE_LOG"
-    for ((i = 0; i < 50; i++)); do
+    # (Each wait below is for an event, generous so that only a hang on a
+    # loaded machine reaches it.)
+    for ((i = 0; i < 600; i++)); do
         out=$(munge -n -S "$MUNGE_SOCK" 2>/dev/null | unmunge -S "$MUNGE_SOCK" 2>/dev/null) && break
         sleep 0.1
     done
@@ -376,19 +378,19 @@ cmd_start() {
     slurmctld -f "$CONF" -i </dev/null >>"$CTLD_LOG" 2>&1 ||
         fail "slurmctld exited with an error" "$CTLD_LOG"
     # slurmd registers right away; when slurmctld is not listening yet it
-    # retries only a second later, so wait for slurmctld first (10 s at most)
-    for ((i = 0; i < 200; i++)); do
+    # retries only a second later, so wait for slurmctld first (120 s at most)
+    for ((i = 0; i < 2400; i++)); do
         timeout 5 scontrol ping 2>/dev/null | grep -q 'is UP' && break
         if ((i % 20 == 19)) && daemon_died "$CTLD_PID" slurmctld; then fail "slurmctld died" "$CTLD_LOG"; fi
         sleep 0.05
     done
-    ((i < 200)) || fail "slurmctld does not answer after 10 s (scontrol ping)" "$CTLD_LOG"
+    ((i < 2400)) || fail "slurmctld does not answer after 120 s (scontrol ping)" "$CTLD_LOG"
     slurmd -f "$CONF" -N "$host" </dev/null >>"$SLURMD_LOG" 2>&1 ||
         fail "slurmd exited with an error" "$SLURMD_LOG" "$CTLD_LOG"
 
-    # ---- wait for the node to be idle (30 s at most)
+    # ---- wait for the node to be idle (120 s at most)
     state=""
-    for ((i = 0; i < 300; i++)); do
+    for ((i = 0; i < 1200; i++)); do
         state=$(timeout 5 sinfo -h -N -n "$host" -o %T 2>/dev/null | head -n 1) || state=""
         [[ $state == idle ]] && break
         if ((i % 10 == 9)); then
@@ -398,7 +400,7 @@ cmd_start() {
         sleep 0.1
     done
     [[ $state == idle ]] ||
-        fail "node $host not idle after 30 s (state: '${state:-none: no answer, or no node $host in slurm.conf}')" "$CTLD_LOG" "$SLURMD_LOG"
+        fail "node $host not idle after 120 s (state: '${state:-none: no answer, or no node $host in slurm.conf}')" "$CTLD_LOG" "$SLURMD_LOG"
 
     STARTED=0
     say "cluster up in $DIR: node $host (${state}), slurmctld port $cport, slurmd port $dport"

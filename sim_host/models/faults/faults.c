@@ -24,7 +24,7 @@ const char *const faults_kind_names[] = {
 #define FLT fault_def_t
 static const param_desc_t fault_params[] = {
     { .key = "kind", PARAM_ENUM_FIELD(FLT, kind, faults_kind_names),
-      .doc = "what goes wrong (README: faults)" },
+      .doc = "what goes wrong (docs: models, faults)" },
     { .key = "fraction", PARAM_FIELD(FLT, fraction, float), .min = 0, .max = 1,
       .doc = "of the group's robots, drawn per run (rounded)" },
     { .key = "at", PARAM_ANGLE_FIELD(FLT, at), .min = 0, .max = 1e7,
@@ -246,19 +246,22 @@ uint32_t faults_drawn(const sim_t *sim, const fault_run_t **out)
     return fs->n;
 }
 
+/* The summary's start_s / end_s are the times of the fault's events: the
+ * telemetry stamps what happened in a step with the time at its end. */
 static void set_active(struct sim *sim, faults_t *fs, fault_run_t *fr, int on)
 {
     faults_robot_t *r = &robots(sim)[fr->robot];
+    double step_end_s = (double)(sim->step + 1) * sim->sc->control_period_ms / 1000.0;
     fr->active = (uint8_t)on;
     fs->active = on ? fs->active + 1 : fs->active - 1;
     if (on) {
         r->on[fr->kind]++;
         if (fr->kind == FAULT_WHEEL_DRIFT) r->drift = fr->value;
         if (fr->kind == FAULT_IR_NOISE) r->ir_noise_sd = fr->value;
-        fr->start_s = (double)sim->step * sim->sc->control_period_ms / 1000.0;
+        fr->start_s = step_end_s;
     } else {
         r->on[fr->kind]--;
-        fr->end_s = (double)sim->step * sim->sc->control_period_ms / 1000.0;
+        fr->end_s = step_end_s;
     }
     sim_event(sim, fr->robot, "fault", faults_kind_names[fr->kind], on);
 }

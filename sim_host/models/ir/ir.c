@@ -123,7 +123,7 @@ static const float ir_table_v[] = { 4095, 2133, 1466, 601, 384, 235, 158, 120, 1
 
 /** Calibrated proximity without noise at distance d (m).  Beyond the last
  *  measured point (70 mm: 67) the value fades linearly to 0 at `range`:
- *  an assumption, documented in the README. */
+ *  an assumption, documented in docs/models/ir-proximity.md. */
 float ir_curve(float d, float range)
 {
     if (d <= 0.0f) {

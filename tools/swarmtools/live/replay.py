@@ -1,12 +1,14 @@
 """An LCM log played to a page at any speed, with pause and seek.
 
 The log is read and decoded once (the 1200 s log of `make run`, 64,000
-messages, in about a second); each page then plays it with its own Player
-and View.  Time is the log's: each event's timestamp from the first one's,
+messages, in about a second), each message cut to the view's limits
+(limits.py); each page then plays it with its own Player and View.  Time is the log's: each event's timestamp from the first one's,
 which for the simulator's own logs is the simulated time itself.
 """
 import bisect
+import collections
 
+from swarmtools.live import limits
 from swarmtools.live.view import View
 from swarmtools.telemetry import common
 
@@ -18,8 +20,15 @@ class Log:
         written by another version of the toolkit."""
         self.path = str(path)
         self.events = []              # (t, channel, message or None)
+        self.cuts = collections.Counter()   # what the limits cut, as every page's View.note says it
+
+        def decode(data, channel):
+            msg, cut = limits.decode(data, channel)
+            self.cuts.update(cut)
+            return msg
+
         t0 = None
-        for ev, msg in common.read_log(path, prog):
+        for ev, msg in common.read_log(path, prog, decoder=decode):
             if t0 is None:
                 t0 = ev.timestamp
             self.events.append(((ev.timestamp - t0) / 1e6, ev.channel, msg))
@@ -37,6 +46,8 @@ class Player:
     def __init__(self, log, speed=1.0, playing=True, prefix=""):
         self.log = log
         self.view = View(prefix)
+        for cut, n in log.cuts.items():
+            self.view.note([cut], n)
         self.speed = speed
         self.playing = playing
         self.time = 0.0

@@ -15,14 +15,24 @@ speed, with pause and seek in the page.  Real robots behind swarm-bridge
 show as tiles of their states and values, with the bridge's counters, and
 on the arena only if their pose is known (robot_state_t.pose_known).
 Everything the page needs is served from this package: no CDN, no build.
+
+Only this server's own pages are answered (hosts.py: the Host must be one
+of its names, a WebSocket's Origin its own), a page's commands are checked
+before they act (commands.py), and what one message may carry is bounded
+(limits.py; the page says what was cut).  Telemetry is taken in and frames
+are made on worker threads, so the event loop that answers every page
+stays free, and a signal stops the server at once.
 """
 import argparse
 import asyncio
+import concurrent.futures
 import json
+import logging
 import math
 import signal
 import socket
 import sys
+import threading
 from pathlib import Path
 
 try:
@@ -30,7 +40,9 @@ try:
 except ImportError as e:          # a .venv from before the live view
     raise SystemExit(f"swarm-live: the `aiohttp` Python module is missing ({e}): run `make deps`") from None
 
+from swarmtools.live import commands
 from swarmtools.live.bus import Bus
+from swarmtools.live.hosts import AllowedHosts
 from swarmtools.live.replay import Log, Player
 from swarmtools.telemetry import common
 
@@ -41,9 +53,15 @@ FRAME_S = 0.05
 #: Replay speeds the command line and the page accept.
 SPEED_MIN, SPEED_MAX = 0.01, 10000.0
 
+#: Seconds a closing WebSocket waits for the page's answer when the server stops.
+CLOSE_S = 2.0
+
 FEED = web.AppKey("feed", object)
 OPTIONS = web.AppKey("options", argparse.Namespace)
 SOCKETS = web.AppKey("sockets", set)
+HOSTS = web.AppKey("hosts", AllowedHosts)
+WORKERS = web.AppKey("workers", concurrent.futures.ThreadPoolExecutor)
+FILES = web.AppKey("files", dict)
 
 
 def speed(text):
@@ -68,15 +86,19 @@ def port(text):
 
 class Session:
     """One page: its playback (a log: its own Player) or the shared live
-    view, and what it has of it."""
+    view, and what it has of it.  Its methods run on worker threads, one at
+    a time (its lock; a live view's is the bus's, which applies messages
+    under it)."""
 
     def __init__(self, feed, options):
         if isinstance(feed, Log):
             self.player = Player(feed, speed=options.speed, playing=not options.paused, prefix=options.prefix)
             self.view = self.player.view
+            self.lock = threading.Lock()
         else:
             self.player = None
             self.view = feed.view
+            self.lock = feed.lock
         self.feed = feed
         self.frozen = False         # live: paused, the page keeps what it shows
         self.sync = {}
@@ -89,9 +111,27 @@ class Session:
             s["playing"] = not self.frozen
         return s
 
+    def handle(self, text):
+        """One WebSocket text message of the page: an error text or None."""
+        try:
+            what, fields = commands.parse(text)
+        except commands.BadCommand as e:
+            return str(e)
+        with self.lock:
+            return self.apply(what, fields)
+
     def command(self, cmd):
-        """Applies one command of the page; returns an error text or None."""
-        what, value = cmd.get("cmd"), cmd.get("value")
+        """Applies one decoded command (any JSON value); an error text or None."""
+        try:
+            what, fields = commands.check(cmd)
+        except commands.BadCommand as e:
+            return str(e)
+        with self.lock:
+            return self.apply(what, fields)
+
+    def apply(self, what, fields):
+        """A checked command (commands.COMMANDS): an error text or None."""
+        value = fields.get("value")
         if what in ("play", "pause"):
             if self.player and what == "play":
                 self.player.play()
@@ -102,17 +142,21 @@ class Session:
         elif what in ("speed", "seek"):
             if not self.player:
                 return f"{what}: only a log can be replayed at another speed or sought (this is a live bus)"
-            if not isinstance(value, (int, float)) or not math.isfinite(value):
-                return f"{what}: needs a number, got {value!r}"
             if what == "seek":
                 self.player.seek(float(value))
             elif not SPEED_MIN <= value <= SPEED_MAX:
                 return f"speed: {value:g} is outside [{SPEED_MIN:g}, {SPEED_MAX:g}]"
             else:
                 self.player.speed = float(value)
-        else:
-            return f"unknown command {what!r}"
         return None
+
+    def frame_text(self, wall_s):
+        """The next frame as the JSON text to send, or None."""
+        with self.lock:
+            frame = self.frame(wall_s)
+            # allow_nan=False: a NaN that slipped past convert.num is a bug
+            # to see, not invalid JSON for the page.
+            return None if frame is None else json.dumps(frame, separators=(",", ":"), allow_nan=False)
 
     def frame(self, wall_s):
         """The next frame for the page, or None when it has nothing new."""
@@ -133,9 +177,16 @@ class Session:
 
 
 async def send(ws, obj):
-    # allow_nan=False: a NaN that slipped past convert.num is a bug to see,
-    # not invalid JSON for the page.
     await ws.send_str(json.dumps(obj, separators=(",", ":"), allow_nan=False))
+
+
+@web.middleware
+async def only_our_host(request, handler):
+    """Every request names this server in its Host (hosts.py: DNS rebinding)."""
+    why = request.app[HOSTS].why_not(request.headers.get("Host"))
+    if why:
+        raise web.HTTPForbidden(text=f"{PROG}: {why}\n")
+    return await handler(request)
 
 
 async def websocket(request):
@@ -143,37 +194,36 @@ async def websocket(request):
     # Only this server's own page: a web site open in the same browser must
     # not read the telemetry or drive the replay (browsers send Origin).
     origin = request.headers.get("Origin")
-    if origin is not None and origin.split("://", 1)[-1] != request.host:
+    if origin is not None and origin.split("://", 1)[-1].lower() != request.host.lower():
         raise web.HTTPForbidden(text=f"{PROG}: WebSocket from another origin ({origin}) refused\n")
-    ws = web.WebSocketResponse(heartbeat=30)
+    # A text over max_msg_size closes the socket (1009); up to it, a command
+    # too long is answered (commands.MAX_TEXT).
+    ws = web.WebSocketResponse(heartbeat=30, timeout=CLOSE_S, max_msg_size=1 << 20)
     await ws.prepare(request)
     app[SOCKETS].add(ws)
-    session = Session(app[FEED], app[OPTIONS])
+    loop = asyncio.get_running_loop()
+    work = app[WORKERS]
     feed = app[FEED]
+    session = await loop.run_in_executor(work, Session, feed, app[OPTIONS])
     await send(ws, {"type": "hello", "mode": "log" if session.player else "live",
                     "source": feed.path if session.player else feed.url, **session.status()})
 
     async def push():
-        loop = asyncio.get_running_loop()
         last = loop.time()
         while not ws.closed:
             await asyncio.sleep(FRAME_S)
             now = loop.time()
-            frame = session.frame(now - last)
+            text = await loop.run_in_executor(work, session.frame_text, now - last)
             last = now
-            if frame is not None and not ws.closed:
-                await send(ws, frame)
+            if text is not None and not ws.closed:
+                await ws.send_str(text)
 
     pusher = asyncio.create_task(push())
     try:
         async for msg in ws:
             if msg.type != WSMsgType.TEXT:
                 continue
-            try:
-                cmd = json.loads(msg.data)
-                error = session.command(cmd) if isinstance(cmd, dict) else "a command is a JSON object"
-            except json.JSONDecodeError:
-                error = "a command is a JSON object"
+            error = await loop.run_in_executor(work, session.handle, msg.data)
             if error:
                 await send(ws, {"type": "error", "text": error})
     finally:
@@ -186,27 +236,59 @@ async def index(request):
     return web.FileResponse(STATIC / "index.html")
 
 
+async def static(request):
+    """The page's own files, by name: nothing else (no path, no folder)."""
+    path = request.app[FILES].get(request.match_info["name"])
+    if path is None:
+        raise web.HTTPNotFound(text=f"{PROG}: no such file\n")
+    return web.FileResponse(path)
+
+
 async def no_cache(request, response):
     # The page and its scripts change with the toolkit: never a stale copy.
     response.headers["Cache-Control"] = "no-cache"
 
 
 async def close_sockets(app):
-    for ws in list(app[SOCKETS]):
-        await ws.close(code=1001, message=b"server stopped")
+    # All at once, each waiting CLOSE_S at most for its page's answer.
+    closing = [asyncio.ensure_future(ws.close(code=1001, message=b"server stopped")) for ws in list(app[SOCKETS])]
+    if closing:
+        await asyncio.wait(closing)
 
 
-def make_app(feed, options):
-    app = web.Application()
+def make_app(feed, options, hosts, workers):
+    app = web.Application(middlewares=[only_our_host])
     app[FEED] = feed
     app[OPTIONS] = options
     app[SOCKETS] = set()
+    app[HOSTS] = hosts
+    app[WORKERS] = workers
+    app[FILES] = {p.name: p for p in STATIC.iterdir() if p.is_file()}
     app.router.add_get("/", index)
     app.router.add_get("/ws", websocket)
-    app.router.add_static("/static/", STATIC)
+    app.router.add_get("/static/{name}", static)
     app.on_response_prepare.append(no_cache)
     app.on_shutdown.append(close_sockets)
     return app
+
+
+class OneLine(logging.Formatter):
+    """aiohttp's own server log as one line, without its traceback: a
+    request it cannot parse (a path over 8,190 bytes, a bad header) is
+    answered 400 by aiohttp and is the client's mistake, not ours."""
+
+    def format(self, record):
+        exc = record.exc_info[1] if record.exc_info else None
+        text = record.getMessage() + (f": {' '.join(str(exc).split())[:200]}" if exc else "")
+        return f"{PROG}: {text}"
+
+
+def one_line_server_log():
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(OneLine())
+    log = logging.getLogger("aiohttp.server")
+    log.addHandler(handler)
+    log.propagate = False
 
 
 def listen(host, number):
@@ -217,13 +299,16 @@ def listen(host, number):
         raise SystemExit(f"{PROG}: cannot listen on {host}:{number}: {e.strerror or e}") from None
 
 
-async def serve(feed, sock, options):
+async def serve(feed, sock, options, hosts):
     loop = asyncio.get_running_loop()
-    runner = web.AppRunner(make_app(feed, options), handle_signals=False, access_log=None)
+    one_line_server_log()
+    workers = concurrent.futures.ThreadPoolExecutor(max_workers=4, thread_name_prefix="swarm-live")
+    runner = web.AppRunner(make_app(feed, options, hosts, workers), handle_signals=False, access_log=None,
+                           shutdown_timeout=CLOSE_S)
     await runner.setup()
-    await web.SockSite(runner, sock).start()
+    await web.SockSite(runner, sock, shutdown_timeout=CLOSE_S).start()
     if isinstance(feed, Bus):
-        feed.attach(loop)
+        feed.start()
     stop = asyncio.Event()
     for sig in (signal.SIGINT, signal.SIGTERM):     # before the address is out: a signal then stops it cleanly
         loop.add_signal_handler(sig, stop.set)
@@ -233,8 +318,9 @@ async def serve(feed, sock, options):
     print(f"{PROG}: http://{shown}:{number}/  ({what}; Ctrl-C stops)", flush=True)
     await stop.wait()
     if isinstance(feed, Bus):
-        feed.detach(loop)
+        feed.stop()
     await runner.cleanup()
+    workers.shutdown(wait=False, cancel_futures=True)    # a frame being made ends on its own
     print(f"{PROG}: stopped", file=sys.stderr, flush=True)
 
 
@@ -250,15 +336,26 @@ def main(argv=None):
     ap.add_argument("--paused", action="store_true", help="with --log: start paused at the beginning")
     ap.add_argument("--host", default="127.0.0.1", help="address to serve on (default %(default)s: this machine only)")
     ap.add_argument("--port", type=port, default=8080, help="port (default %(default)s; 0: any free one, printed)")
+    ap.add_argument("--allow-host", action="append", default=[], metavar="NAME[:PORT]",
+                    help="another name the page may be opened by (a DNS name, an ssh tunnel's localhost:PORT); "
+                         "by default only the server's own address and names")
     ap.add_argument("--prefix", default="",
                     help="show the channels with this prefix (FW_: the robots' own telemetry in a simulation)")
     options = ap.parse_args(argv)
     if not (STATIC / "index.html").is_file():
         raise SystemExit(f"{PROG}: the page is missing from the package ({STATIC}): reinstall it (make deps)")
-    feed = Log(options.log, PROG) if options.log else Bus(options.lcm, PROG, options.prefix)
+    try:
+        feed = Log(options.log, PROG) if options.log else Bus(options.lcm, PROG, options.prefix)
+    except KeyboardInterrupt:     # Ctrl-C while a long log is read
+        print(f"{PROG}: stopped", file=sys.stderr, flush=True)
+        return 130
     sock = listen(options.host, options.port)
     try:
-        asyncio.run(serve(feed, sock, options))
+        hosts = AllowedHosts(options.host, sock.getsockname()[1], options.allow_host)
+    except ValueError as e:
+        ap.error(str(e))
+    try:
+        asyncio.run(serve(feed, sock, options, hosts))
     except KeyboardInterrupt:     # a second Ctrl-C while it was stopping
         pass
     return 0

@@ -19,7 +19,7 @@ two points a second).
 """
 import collections
 
-from swarmtools.live import convert
+from swarmtools.live import convert, limits
 from swarmtools.telemetry import common
 
 #: Latest events kept for the page.
@@ -34,12 +34,14 @@ class Series:
     """Time series on one time axis: t, and one column a name, None where a
     column had no value (it appeared later)."""
 
-    def __init__(self, min_dt=0.0, max_points=SERIES_MAX):
+    def __init__(self, min_dt=0.0, max_points=SERIES_MAX, max_cols=limits.MAX_SERIES):
         self.t = []
         self.cols = {}
         self.units = {}
         self.min_dt = min_dt
         self.max_points = max_points
+        self.max_cols = max_cols
+        self.dropped = set()     # names of columns past max_cols, not kept
         self.epoch = 0           # bumps when points were dropped: pages take it whole again
 
     def add(self, t, values, units):
@@ -49,6 +51,9 @@ class Series:
         n = len(self.t)
         for name in values:
             if name not in self.cols:
+                if len(self.cols) >= self.max_cols:
+                    self.dropped.add(name)
+                    continue
                 self.cols[name] = [None] * n
                 self.units[name] = units.get(name, "")
         self.t.append(t)
@@ -73,6 +78,7 @@ class View:
         self.rev = 0
         self.epoch = 0
         self.time = 0.0          # the feed's time, s (a log's from its first event; live: since start)
+        self.cuts = collections.Counter()   # what the limits cut (limits.py) -> how many times
         self.reset()
 
     def reset(self):
@@ -91,6 +97,21 @@ class View:
         self.event_counts = collections.Counter()
         self.has_swarm = False
         self.clock = None        # simulated time of the run's latest message, s (None: real robots)
+        if self.cuts:
+            self._set("limits", self._limits_text)
+
+    def note(self, cuts, times=1):
+        """What limits.bound (or this view) cut, for the page to say."""
+        if cuts:
+            for c in cuts:
+                self.cuts[c] += times
+            self._set("limits", self._limits_text)
+
+    def _limits_text(self):
+        shown = sorted(self.cuts.items())
+        more = f"; and {len(shown) - 8} more" if len(shown) > 8 else ""
+        return ("Not all of the telemetry is shown (the live view's limits, swarmtools/live/limits.py): "
+                + "; ".join(f"{c} x{n:,}" if n > 1 else c for c, n in shown[:8]) + more)
 
     def _set(self, name, to_json, *args):
         self.rev += 1
@@ -124,6 +145,9 @@ class View:
             self._set("bridge", convert.bridge, msg)
             return
         if kind == "schema_t":
+            if self.schemas.count() >= limits.MAX_SCHEMAS and self.schemas.get(msg.kind, msg.name, msg.run) is None:
+                self.note([f"schemas past the first {limits.MAX_SCHEMAS}"])
+                return
             self.schemas.add(msg)
             self._set("schemas", convert.schemas, self.schemas)
             return
@@ -143,7 +167,12 @@ class View:
             self._robot(t, msg)
         elif kind == "event_t":
             self.events.append((msg, t))
-            self.event_counts[msg.kind] += 1
+            kinds = self.event_counts
+            if msg.kind not in kinds and len(kinds) >= limits.MAX_EVENT_KINDS:
+                self.note([f"event kinds past the first {limits.MAX_EVENT_KINDS} (counted as 'other')"])
+                kinds["other"] += 1
+            else:
+                kinds[msg.kind] += 1
             self._set("events", self._events_json)
         elif kind == "run_summary_t":
             self._set("summary", convert.summary, msg)
@@ -163,9 +192,18 @@ class View:
                 values[name], units[name] = convert.num(v), e.unit
         for name, count in zip(msg.state_names, msg.state_counts, strict=True):
             values[f"state.{name}"], units[f"state.{name}"] = count, "robots"
-        self.series.add(msg.utime / 1e6, values, units)
+        self._add_series(msg.utime / 1e6, values, units)
+
+    def _add_series(self, t, values, units):
+        dropped = len(self.series.dropped)
+        self.series.add(t, values, units)
+        if len(self.series.dropped) > dropped:
+            self.note([f"chart columns past the first {limits.MAX_SERIES}"], len(self.series.dropped) - dropped)
 
     def _robot(self, t, msg):
+        if msg.robot_id not in self.robots and len(self.robots) >= limits.MAX_ROBOTS:
+            self.note([f"robots past the first {limits.MAX_ROBOTS:,}"])
+            return
         self.rev += 1
         self.robots[msg.robot_id] = [self.rev, convert.robot, (msg, t), None]
         self._robot_msgs[msg.robot_id] = msg
@@ -188,7 +226,7 @@ class View:
                 e = schema.entry(k)
                 name = common.value_column(ctrl, e.name)
                 values[name], units[name] = (sum(got) / len(got) if got else None), e.unit
-        self.series.add(t, values, units)
+        self._add_series(t, values, units)
 
     def frame(self, sync):
         """What a page with `sync` (its dict, updated here; {} at first)

@@ -32,11 +32,10 @@ from . import plan as planmod
 from . import slurm
 from .execute import Executor, Interrupted, Progress, cpus
 from .plan import Run
-from .spec import Sweep, SweepError, load
-from .store import Store
+from .spec import MAX_RUNS, Sweep, SweepError, load
+from .store import FORMAT, Store
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
-FORMAT = "swarmtools-sweep/1"
 
 
 def code_version() -> str:
@@ -102,7 +101,7 @@ def report(store: Store, counts: dict[str, int], quiet: bool) -> int:
 # ------------------------------------------------------------------ commands
 def cmd_run(a: argparse.Namespace) -> int:
     sim = Path(a.sim) if a.sim else default_sim()
-    sw = load(a.sweep, planmod.seed_max(sim))
+    sw = load(a.sweep, planmod.seed_max(sim), a.max_runs)
     return run_sweep(sw, a, sim)
 
 
@@ -193,7 +192,7 @@ def run_sweep(sw: Sweep, a: argparse.Namespace, sim: Path) -> int:
 
 def cmd_plan(a: argparse.Namespace) -> int:
     sim = Path(a.sim) if a.sim else default_sim()
-    sw = load(a.sweep, planmod.seed_max(sim))
+    sw = load(a.sweep, planmod.seed_max(sim), a.max_runs)
     runs = planmod.expand(sw)
     planmod.check_runs(sw, runs, sim, a.jobs or cpus())
     cells = len(runs) // len(sw.seeds)
@@ -260,7 +259,13 @@ def add_run_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--jobs", type=int, default=0, help="local: runs at a time (default: the CPUs)")
     p.add_argument("--sim", help="simulator binary (default build/swarmsim)")
     p.add_argument("--quiet", action="store_true")
+    add_max_runs(p)
     add_backend_options(p)
+
+
+def add_max_runs(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--max-runs", type=int, default=MAX_RUNS,
+                   help="refuse a sweep of more runs than this (default %(default)s), counted before expanding it")
 
 
 def add_backend_options(p: argparse.ArgumentParser) -> None:
@@ -292,6 +297,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--sim")
     p.add_argument("--jobs", type=int, default=0)
     p.add_argument("--show", type=int, default=10, help="runs to list (default 10)")
+    add_max_runs(p)
     p = sub.add_parser("status", help="runs done, failed and left in a sweep folder")
     p.add_argument("dir")
     p = sub.add_parser("merge", help="write the table of a sweep folder")
@@ -313,10 +319,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def check_args(a: argparse.Namespace) -> None:
-    for name in ("jobs", "chunk_size", "cpus_per_task", "max_parallel"):
+    for name in ("jobs", "chunk_size", "cpus_per_task", "max_parallel", "max_runs"):
         v = getattr(a, name, None)
         if v is not None and v < (0 if name == "jobs" else 1):
             raise SweepError(f"--{name.replace('_', '-')} must be at least {0 if name == 'jobs' else 1}")
+    slurm.check_options([(f"--{n.replace('_', '-')}", getattr(a, n, None))
+                         for n in ("mem", "time", "partition", "account")]
+                        + [("--sbatch-arg", v) for v in getattr(a, "sbatch_arg", None) or []])
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -108,8 +108,11 @@ class Executor:
         timeout = float(self.plan.get("run_timeout") or 0) or None
         t0 = time.monotonic()
         try:
+            # The simulator holds the folder's lock too (store.py): a sweep
+            # killed outright leaves it locked until its simulators end.
             p = subprocess.Popen(self.command(run), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                                 text=True, errors="replace", start_new_session=True)
+                                 text=True, errors="replace", start_new_session=True,
+                                 pass_fds=() if self.store.lock_fd is None else (self.store.lock_fd,))
         except OSError as e:                 # the simulator cannot be started: a failed run, not a crash
             self.store.write_record({
                 "run_id": run.run_id, "seed": run.seed, "attempts": attempts, "exit_status": None,

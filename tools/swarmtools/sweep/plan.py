@@ -2,9 +2,10 @@
 
 A run is one simulator process: a scenario file, its overrides (the sweep's
 ``set`` then the axes' values, in file order), one seed and the step count.
-Its id is a hash of exactly those inputs (the scenario by its bytes), so the
-same run has the same id in every expansion, on every machine, and a rerun of
-a sweep finds the runs it already has.
+Its id is a hash of exactly those inputs (the scenario by its bytes) in one
+unambiguous encoding (canonical()), so the same run has the same id in every
+expansion, on every machine, a rerun of a sweep finds the runs it already
+has, and two different runs never share an id.
 """
 
 from __future__ import annotations
@@ -51,10 +52,23 @@ def file_sha256(path: str | Path) -> str:
     return h.hexdigest()
 
 
+def canonical(value: object) -> bytes:
+    """One unambiguous encoding of plain data (JSON: every string quoted and
+    escaped, lists bracketed), so that two different inputs never hash alike:
+    a value holding a newline and `--set ...` is not a second override."""
+    return json.dumps(value, ensure_ascii=True, separators=(",", ":"), sort_keys=True,
+                      allow_nan=False).encode()
+
+
 def scenario_hash(scenario_bytes_sha: str, overrides: Iterable[tuple[str, str]]) -> str:
     """The effective scenario's identity: its file's hash and its overrides."""
-    text = scenario_bytes_sha + "".join(f"\n--set {k}={v}" for k, v in overrides)
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
+    text = canonical({"scenario_sha256": scenario_bytes_sha, "overrides": [[k, v] for k, v in overrides]})
+    return hashlib.sha256(text).hexdigest()[:16]
+
+
+def run_id(shash: str, seed: int, steps: int | None) -> str:
+    """A run's id: its effective scenario, seed and step count."""
+    return hashlib.sha256(canonical({"scenario": shash, "seed": seed, "steps": steps})).hexdigest()[:16]
 
 
 def expand(sw: Sweep) -> list[Run]:
@@ -74,15 +88,14 @@ def expand(sw: Sweep) -> list[Run]:
             file_sha[scenario] = file_sha256(scenario)
         shash = scenario_hash(file_sha[scenario], overrides)
         for seed in sw.seeds:
-            ident = json.dumps({"scenario": shash, "seed": seed, "steps": sw.steps}, sort_keys=True)
-            run_id = hashlib.sha256(ident.encode()).hexdigest()[:16]
-            if run_id in seen:
-                other = ", ".join(f"{k}={set_text(v)}" for k, v in runs[seen[run_id]].params.items())
+            rid = run_id(shash, seed, sw.steps)
+            if rid in seen:
+                other = ", ".join(f"{k}={set_text(v)}" for k, v in runs[seen[rid]].params.items())
                 mine = ", ".join(f"{k}={set_text(v)}" for k, v in params.items())
                 raise SweepError(f"{sw.path}: the runs with {other} and with {mine} are the same run "
                                  "(same scenario content, overrides and seed); list it once")
-            seen[run_id] = len(runs)
-            runs.append(Run(len(runs), run_id, scenario, dict(params), overrides, seed, sw.steps, shash))
+            seen[rid] = len(runs)
+            runs.append(Run(len(runs), rid, scenario, dict(params), overrides, seed, sw.steps, shash))
     return runs
 
 

@@ -43,13 +43,22 @@ class SlurmOptions:
     poll_s: float = 2.0
 
 
+def check_options(options: list[tuple[str, str | None]]) -> None:
+    """Each goes into a batch script's `#SBATCH` line: one line of printable
+    text (a newline would end the line and start a command)."""
+    for flag, value in options:
+        if value is not None and not re.fullmatch(r"[^\x00-\x1f\x7f]*", value):
+            raise SweepError(f"{flag} {value!r}: a control character or line break cannot go into "
+                             "an #SBATCH line")
+
+
 def _sbatch(args: list[str]) -> str:
     try:
         p = subprocess.run(["sbatch", "--parsable", *args], capture_output=True, text=True,
                            timeout=120, check=False)
     except FileNotFoundError:
         raise SweepError("sbatch: not found; the slurm backend runs on a cluster's login node "
-                         "(README: run on a cluster)") from None
+                         "(docs: how-to, run on a cluster)") from None
     if p.returncode != 0:
         raise SweepError(f"sbatch {' '.join(args)} failed: {p.stderr.strip() or p.returncode}")
     return p.stdout.strip().split(";")[0]
@@ -85,6 +94,12 @@ def submit(store: Store, pending: list[Run], opt: SlurmOptions, sim: Path) -> tu
     """Writes the chunks and scripts, submits the arrays and the merge job.
 
     Returns (array job ids, merge job id)."""
+    check_options([("--out", str(store.root.resolve()))])
+    earlier = still_queued(store)
+    if earlier:
+        raise SweepError(f"{store.root}: jobs of an earlier submission are still queued "
+                         f"({', '.join(earlier)}): they run the same runs; wait for them (swarm-sweep status "
+                         f"{store.root}) or scancel them, then rerun")
     stamp = time.strftime("%Y%m%d-%H%M%S")
     sub = store.root.resolve() / "slurm" / stamp
     n = 1
@@ -122,6 +137,19 @@ def submit(store: Store, pending: list[Run], opt: SlurmOptions, sim: Path) -> tu
     atomic_write(sub / "jobs.json", json.dumps({"arrays": arrays, "merge": merge,
                                                 "chunks": len(chunks)}) + "\n")
     return arrays, merge
+
+
+def still_queued(store: Store) -> list[str]:
+    """The jobs of this folder's earlier submissions (slurm/*/jobs.json)
+    that squeue still lists."""
+    ids = []
+    for f in sorted((store.root / "slurm").glob("*/jobs.json")):
+        try:
+            doc = json.loads(f.read_text())
+            ids += [*doc["arrays"], doc["merge"]]
+        except (OSError, ValueError, KeyError, TypeError):
+            continue
+    return [j for j in ids if queued([j])] if ids else []
 
 
 def queued(job_ids: list[str]) -> dict[str, int]:

@@ -29,6 +29,10 @@ Keys under ``set`` and in the axes are the simulator's ``--set`` keys; the key
 ``scenario`` (axes only) varies the scenario file. Every combination of the
 axes runs with the same seeds (common random numbers), as a study compares
 conditions on the same seeds.
+
+Values are plain YAML scalars: explicit tags (``!!int``, ``!foo``) are
+refused, as are sweeps of more than MAX_RUNS runs (counted before anything
+is expanded; ``swarm-sweep --max-runs`` raises the cap).
 """
 
 from __future__ import annotations
@@ -45,6 +49,10 @@ TOP_KEYS = ("name", "scenario", "set", "steps", "axes", "seeds", "repetitions",
 AXIS_KINDS = ("grid", "zip", "list")
 SCENARIO_KEY = "scenario"
 Scalar = str | int | float | bool
+#: Runs a sweep may have unless the caller raises the cap (swarm-sweep
+#: --max-runs): the largest shipped sweep, studies/repatt_gains.yaml, has
+#: 540,000; a plan holds about 1 kB a run in memory and in sweep.json.
+MAX_RUNS = 1_000_000
 
 
 class SweepError(Exception):
@@ -93,27 +101,52 @@ def set_text(value: Scalar) -> str:
 
 
 _constructor = yaml.constructor.SafeConstructor()
-_KEY_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(\.([A-Za-z_][A-Za-z0-9_]*|[0-9]+))*$")
+_resolver = yaml.resolver.Resolver()
+# Names become paths and script text: matched whole (re.fullmatch; `$` would
+# also match before a final newline).
+_KEY_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(\.([A-Za-z_][A-Za-z0-9_]*|[0-9]+))*")
+NAME_RE = re.compile(r"[A-Za-z0-9_.-]{1,64}")
+METRIC_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_DEFAULT_TAGS = {yaml.MappingNode: "tag:yaml.org,2002:map", yaml.SequenceNode: "tag:yaml.org,2002:seq"}
+
+
+def _count(n: int) -> str:
+    """A run count as text: 1,000 or, past a million, 10^12."""
+    return f"{n:,}" if n < 10**7 else f"about 10^{len(str(n)) - 1}"
 
 
 class _Reader:
     """Walks the composed YAML nodes, so that every error has a line."""
 
-    def __init__(self, path: Path):
+    def __init__(self, path: Path, max_runs: int = MAX_RUNS):
         self.path = path
+        self.max_runs = max_runs
 
     def fail(self, node: yaml.Node | None, where: str, msg: str) -> SweepError:
         line = f":{node.start_mark.line + 1}" if node is not None else ""
         return SweepError(f"{self.path}{line}: {where}{': ' if where else ''}{msg}")
 
+    def untagged(self, node: yaml.Node, where: str) -> None:
+        """Refuses an explicit tag (`!!int "ten"`, `!foo`): a sweep's values
+        are what they look like."""
+        if isinstance(node, yaml.ScalarNode):
+            implied = _resolver.resolve(yaml.ScalarNode, node.value, (node.style is None, False))
+        else:
+            implied = _DEFAULT_TAGS.get(type(node))
+        if node.tag != implied:
+            raise self.fail(node, where, f"explicit YAML tag '{node.tag}' refused: write the value "
+                                         "plainly (quote it to make it a word)")
+
     def mapping(self, node: yaml.Node, where: str) -> list[tuple[str, yaml.Node, yaml.Node]]:
         if not isinstance(node, yaml.MappingNode):
             raise self.fail(node, where, "expected a mapping (key: value lines)")
+        self.untagged(node, where)
         seen: dict[str, int] = {}
         out = []
         for k, v in node.value:
             if not isinstance(k, yaml.ScalarNode):
                 raise self.fail(k, where, "a key must be a plain word")
+            self.untagged(k, where)
             if k.value in seen:
                 raise self.fail(k, where, f"'{k.value}' given twice (first on line {seen[k.value]})")
             seen[k.value] = k.start_mark.line + 1
@@ -123,7 +156,11 @@ class _Reader:
     def scalar(self, node: yaml.Node, where: str) -> Scalar:
         if not isinstance(node, yaml.ScalarNode):
             raise self.fail(node, where, "expected a single value")
-        value = _constructor.construct_object(node, deep=True)
+        self.untagged(node, where)
+        try:
+            value = _constructor.construct_object(node, deep=True)
+        except (yaml.YAMLError, ValueError, TypeError, OverflowError) as e:   # a safeguard: tags are refused above
+            raise self.fail(node, where, f"cannot read '{node.value}': {e}") from None
         if value is None or not isinstance(value, (str, int, float, bool)):
             raise self.fail(node, where, f"expected a number, a word or true/false, got '{node.value}'")
         return value
@@ -139,6 +176,7 @@ class _Reader:
     def sequence(self, node: yaml.Node, where: str) -> list[yaml.Node]:
         if not isinstance(node, yaml.SequenceNode):
             raise self.fail(node, where, "expected a list")
+        self.untagged(node, where)
         if not node.value:
             raise self.fail(node, where, "expected a non-empty list")
         return list(node.value)
@@ -147,8 +185,8 @@ class _Reader:
         key = knode.value
         if key == "seed":
             raise self.fail(knode, where, "seeds are not overrides: give them with `seeds:` or `repetitions:`")
-        if not _KEY_RE.match(key):
-            raise self.fail(knode, where, f"'{key}' is not a scenario key path (e.g. robots.0.count)")
+        if not _KEY_RE.fullmatch(key):
+            raise self.fail(knode, where, f"{key!r} is not a scenario key path (e.g. robots.0.count)")
         return key
 
 
@@ -158,8 +196,9 @@ def _suggest(word: str, choices: tuple[str, ...]) -> str:
     return f" (did you mean '{best[0]}'?)" if best else ""
 
 
-def load(path: str | Path, seed_max: int) -> Sweep:
-    """Read and check a sweep file; seeds must lie in [0, seed_max]."""
+def load(path: str | Path, seed_max: int, max_runs: int = MAX_RUNS) -> Sweep:
+    """Read and check a sweep file; seeds must lie in [0, seed_max], and it
+    may have at most max_runs runs."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -173,7 +212,9 @@ def load(path: str | Path, seed_max: int) -> Sweep:
         mark = getattr(e, "problem_mark", None)
         line = f":{mark.line + 1}" if mark is not None else ""
         raise SweepError(f"{path}{line}: YAML syntax error: {getattr(e, 'problem', e)}") from None
-    r = _Reader(path)
+    except RecursionError:
+        raise SweepError(f"{path}: nested too deeply to be a sweep file") from None
+    r = _Reader(path, max_runs)
     if root is None:
         raise SweepError(f"{path}: empty sweep file")
     entries = r.mapping(root, "")
@@ -187,7 +228,7 @@ def load(path: str | Path, seed_max: int) -> Sweep:
         raise r.fail(root, "scenario", "missing: the base scenario file")
     if "name" in have:
         sw.name = str(r.scalar(have["name"][1], "name"))
-        if not re.match(r"^[A-Za-z0-9_.-]{1,64}$", sw.name):
+        if not isinstance(sw.name, str) or not NAME_RE.fullmatch(sw.name) or sw.name in (".", ".."):
             raise r.fail(have["name"][1], "name", "use 1 to 64 letters, digits, '_', '.' or '-'")
     sw.scenario = _scenario_path(r, have["scenario"][1], "scenario")
     if "set" in have:
@@ -207,13 +248,16 @@ def load(path: str | Path, seed_max: int) -> Sweep:
             if k in seen:
                 raise SweepError(f"{path}:{sw.key_lines[k]}: axes[{i}]: '{k}' is already varied or set in {seen[k]}")
             seen[k] = f"axes[{i}]"
-    sw.seeds = _seeds(r, have, seed_max, root)
+    combos = 1
+    for axis in sw.axes:
+        combos *= len(axis.combos)
+    sw.seeds = _seeds(r, have, seed_max, root, combos)
     if "metrics" in have:
         sw.metrics = []
         for j, m in enumerate(r.sequence(have["metrics"][1], "metrics")):
             name = r.scalar(m, f"metrics[{j}]")
-            if not isinstance(name, str) or not re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", name):
-                raise r.fail(m, f"metrics[{j}]", f"'{m.value}' is not a metric name")
+            if not isinstance(name, str) or not METRIC_RE.fullmatch(name):
+                raise r.fail(m, f"metrics[{j}]", f"{m.value!r} is not a metric name")
             if name in sw.metrics:
                 raise r.fail(m, f"metrics[{j}]", f"'{name}' listed twice")
             sw.metrics.append(name)
@@ -276,6 +320,12 @@ def _axis(r: _Reader, node: yaml.Node, where: str, sw: Sweep) -> Axis:
             combos = [dict(zip(keys, vals, strict=True)) for vals in zip(*(v for _, v in columns), strict=True)]
         else:
             import itertools
+            import math
+            n = math.prod(len(v) for _, v in columns)
+            if n > r.max_runs:
+                raise r.fail(body, where, f"{' x '.join(str(len(v)) for _, v in columns)} = {_count(n)} "
+                                          f"combinations, more than the cap of {r.max_runs:,} runs "
+                                          "(swarm-sweep --max-runs N raises it)")
             combos = [dict(zip(keys, vals, strict=True)) for vals in itertools.product(*(v for _, v in columns))]
         return Axis(kind, keys, combos, line)
     combos = []
@@ -304,7 +354,8 @@ def _axis_value(r: _Reader, node: yaml.Node, where: str, key: str) -> Scalar:
     return r.scalar(node, where)
 
 
-def _seeds(r: _Reader, have: dict[str, Any], seed_max: int, root: yaml.Node) -> list[int]:
+def _seeds(r: _Reader, have: dict[str, Any], seed_max: int, root: yaml.Node, combos: int) -> list[int]:
+    """The seeds, refused at once if combos x seeds passes the cap."""
     if ("seeds" in have) == ("repetitions" in have):
         raise r.fail(root, "seeds", "give exactly one of `seeds:` (a list or {first, count}) and `repetitions:`")
     if "repetitions" in have:
@@ -317,6 +368,7 @@ def _seeds(r: _Reader, have: dict[str, Any], seed_max: int, root: yaml.Node) -> 
             seeds = [r.integer(s, f"seeds[{i}]", 0, seed_max) for i, s in enumerate(r.sequence(node, "seeds"))]
             if len(set(seeds)) != len(seeds):
                 raise r.fail(node, "seeds", "a seed is listed twice")
+            _cap(r, node, combos, len(seeds))
             return seeds
         fields = {k: v for k, _, v in r.mapping(node, "seeds")}
         extra = set(fields) - {"first", "count"}
@@ -326,4 +378,11 @@ def _seeds(r: _Reader, have: dict[str, Any], seed_max: int, root: yaml.Node) -> 
         n = r.integer(fields["count"], "seeds.count", 1, 10_000_000)
     if first + n - 1 > seed_max:
         raise r.fail(node, "seeds", f"seeds {first}..{first + n - 1} pass the simulator's seed range [0, {seed_max}]")
+    _cap(r, node, combos, n)
     return list(range(first, first + n))
+
+
+def _cap(r: _Reader, node: yaml.Node, combos: int, seeds: int) -> None:
+    if combos * seeds > r.max_runs:
+        raise r.fail(node, "", f"{_count(combos)} combinations x {seeds:,} seeds = {_count(combos * seeds)} runs, "
+                               f"more than the cap of {r.max_runs:,} (swarm-sweep --max-runs N raises it)")

@@ -4,6 +4,8 @@ Layout of ``--out DIR``::
 
     DIR/.swarmtools-sweep     marker: this folder is a sweep's (never delete
                               or reuse a folder without it)
+    DIR/.swarmtools-sweep.lock  held (flock) by the `swarm-sweep run` working
+                              in DIR and the simulators it started; it says who
     DIR/sweep.json            the expanded plan: every run, its id, overrides
     DIR/records/<id>.json     one finished run (ok or failed), written whole
     DIR/runs/<id>/run_<seed>/ the simulator's outputs of that run
@@ -13,14 +15,25 @@ Layout of ``--out DIR``::
 
 Every file is written under a temporary name in its folder and renamed when
 complete, so an interrupted sweep never leaves a half-written record or row.
+
+One `swarm-sweep run` works in a folder at a time: it holds an exclusive
+flock on the lock file, which its simulators inherit, so a second one is
+refused at once with the first one's pid, and the kernel releases the lock
+when the last of them ends, however it ends (a crash or `kill -9` leaves no
+stale lock; simulators left running by a killed sweep keep the folder
+until they finish).
 """
 
 from __future__ import annotations
 
+import datetime as _dt
+import fcntl
 import json
 import math
 import os
 import shutil
+import socket
+import sys
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
@@ -30,6 +43,10 @@ from .plan import Run
 from .spec import SCENARIO_KEY, SweepError
 
 MARKER = ".swarmtools-sweep"
+LOCK = ".swarmtools-sweep.lock"
+#: The plan's format: /2 hashes run ids from a canonical encoding (plan.canonical).
+FORMAT = "swarmtools-sweep/2"
+_HELD: dict[str, int] = {}     # lock file -> the descriptor this process holds it by
 FIXED_COLUMNS_BEFORE = ("run", "run_id")
 TEXT_COLUMNS = ("run_id", "status", "state_hash", "scenario_sha256", "code_version",
                 "sim_sha256", "host", "error", SCENARIO_KEY)
@@ -58,6 +75,7 @@ class Store:
         self.root = root
         self.records = root / "records"
         self.runs = root / "runs"
+        self.lock_fd: int | None = None    # held while this process works in the folder
 
     # ------------------------------------------------------------ the folder
     def open_for(self, plan: dict[str, Any]) -> None:
@@ -69,10 +87,43 @@ class Store:
                 raise SweepError(f"{self.root}: not empty and not a sweep's folder (no {MARKER}); "
                                  "give a new --out")
         self.root.mkdir(parents=True, exist_ok=True)
+        self.lock()
+        old = self.root / "sweep.json"
+        if old.exists():
+            try:
+                made = json.loads(old.read_text()).get("format")
+            except (OSError, ValueError, AttributeError):
+                made = None
+            if made != FORMAT:
+                raise SweepError(f"{self.root}: made by another version of swarm-sweep (format {made}, this "
+                                 f"one writes {FORMAT}: run ids are hashed differently), so its records cannot "
+                                 "be resumed; give a new --out")
         (self.root / MARKER).touch()
         self.records.mkdir(exist_ok=True)
         self.runs.mkdir(exist_ok=True)
         atomic_write(self.root / "sweep.json", json.dumps(plan, indent=1) + "\n")
+
+    def lock(self) -> None:
+        """Takes the folder's lock for as long as this process (and the
+        simulators it starts with lock_fd) live; refuses, naming the holder,
+        if another has it."""
+        path = self.root / LOCK
+        held = _HELD.get(str(path.resolve()))
+        if held is not None:             # this process has it (a study's second sweep into one folder)
+            self.lock_fd = held
+            return
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            holder = os.read(fd, 4096).decode(errors="replace").strip()
+            os.close(fd)
+            raise SweepError(f"{self.root}: in use by another swarm-sweep: {_holder(holder)}; wait for it to "
+                             "end (or stop it), or give another --out") from None
+        os.ftruncate(fd, 0)
+        since = _dt.datetime.now().astimezone().isoformat(timespec="seconds")
+        os.write(fd, f"pid {os.getpid()} on {socket.gethostname()} since {since}: {' '.join(sys.argv)}\n".encode())
+        self.lock_fd = _HELD[str(path.resolve())] = fd
 
     def load_plan(self) -> dict[str, Any]:
         if not (self.root / MARKER).exists():
@@ -170,6 +221,21 @@ class Store:
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
+
+
+def _holder(text: str) -> str:
+    """The lock file's "pid N on HOST since T: COMMAND", and whether N still runs."""
+    if not text:
+        return "a process that has not yet said who it is"
+    words = text.split()
+    if len(words) > 3 and words[0] == "pid" and words[1].isdigit() and words[3] == socket.gethostname():
+        try:
+            os.kill(int(words[1]), 0)
+        except ProcessLookupError:
+            return f"{text} (that process has ended; simulators it started still run and hold the folder)"
+        except OSError:
+            pass
+    return text
 
 
 def _cell(v: Any) -> str:

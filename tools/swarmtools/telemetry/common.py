@@ -153,13 +153,14 @@ def lcm_module():
     return lcm
 
 
-def read_log(path, prog):
+def read_log(path, prog, decoder=None):
     """Yields (log event, message) for each event of an LCM log file;
     message is None for another program's messages.  Events are read by the
     checked reader (logfile.py), never by the lcm package's C reader, so a
     corrupt length is an error naming its byte offset, not a crash.  Stops
     the tool with a clear message (SystemExit) when the file is missing, no
-    LCM log or corrupt, and at the first message of another toolkit version."""
+    LCM log or corrupt, and at the first message of another toolkit version.
+    decoder(data, channel) replaces decode (the live view's bounds it)."""
     from . import logfile
     path = str(path)
     if not os.path.isfile(path):
@@ -169,7 +170,7 @@ def read_log(path, prog):
         for ev in logfile.events(path):
             events += 1
             try:
-                msg = decode(ev.data, ev.channel)
+                msg = (decoder or decode)(ev.data, ev.channel)
             except IncompatibleMessage as e:
                 raise SystemExit(f"{prog}: {e.explain(path)}") from None
             yield ev, msg
@@ -266,6 +267,10 @@ class Schemas:
 
     def __iter__(self):
         return iter(self._latest.values())
+
+    def count(self):
+        """Schemas kept, every run's."""
+        return len(self._by_run)
 
 
 def value_column(schema_name, value_name):

@@ -208,7 +208,7 @@ def _selected(log_path, patterns, run):
     for ev, msg in common.read_log(log_path, PROG):
         if msg is None:
             continue
-        if patterns and not any(p.match(ev.channel) for p in patterns):
+        if patterns and not any(p.fullmatch(ev.channel) for p in patterns):
             continue
         if run is not None and getattr(msg, "run", run) != run:
             continue
@@ -237,10 +237,10 @@ def file_names(channels):
 
 def export(log_path, channels=None, out="-", fields_wanted=None, every=None, log_time=False, run=None):
     """Writes the CSV(s); returns {channel: rows}."""
-    patterns = [re.compile(f"^(?:{c})$") for c in channels] if channels else None
+    patterns = [re.compile(f"(?:{c})") for c in channels] if channels else None    # matched whole
     schemas, unknown, _ = _scan(log_path)
     if patterns:
-        unknown = {ch for ch in unknown if any(p.match(ch) for p in patterns)}
+        unknown = {ch for ch in unknown if any(p.fullmatch(ch) for p in patterns)}
     columns = {}
     for ev, msg in _selected(log_path, patterns, run):
         cols = [c for c, _, _ in fields(msg, schemas)]
@@ -301,7 +301,7 @@ def export_timeseries(log_path, every, out="-", run=None):
     steps, pending = [], None
     try:
         f.write(",".join(names) + "\n")
-        for _ev, msg in _selected(log_path, [re.compile("^SWARM_STATE$")], runs[0]):
+        for _ev, msg in _selected(log_path, [re.compile("SWARM_STATE")], runs[0]):
             if type(msg).__name__ != "swarm_state_t":
                 continue
             if len(msg.values) != len(names):

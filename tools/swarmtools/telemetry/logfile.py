@@ -17,7 +17,9 @@ tools die with SIGSEGV inside it. The log format is small and documented
 all big-endian. An event whose sync word, lengths or size do not fit the
 file is an error naming the byte offset where it starts (LogError). Channel
 names are bytes: a name that is not UTF-8 is rendered with backslash escapes
-(``chan\\xff``), never a decoding traceback.
+(``chan\\xff``), never a decoding traceback, and a backslash in a name is
+doubled (``a\\\\b``), so that two different names never read alike (the
+CSV export writes a file per name).
 """
 
 from __future__ import annotations
@@ -47,8 +49,10 @@ class Event(NamedTuple):
 
 
 def channel_name(raw: bytes) -> str:
-    """A channel's bytes as text: UTF-8, or escapes for the bytes that are not."""
-    return raw.decode("utf-8", errors="backslashreplace")
+    """A channel's bytes as text: UTF-8, with `\\xNN` for each byte that is
+    not and `\\\\` for a backslash: one text per name (0x5C is never part
+    of a multi-byte UTF-8 sequence, so doubling it in the bytes is safe)."""
+    return raw.replace(b"\\", b"\\\\").decode("utf-8", errors="backslashreplace")
 
 
 #: Bytes read from the file at a time (events are cut from these blocks:

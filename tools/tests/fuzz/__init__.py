@@ -1,6 +1,7 @@
 """Property tests (hypothesis) of the host tools' parsers of untrusted input:
 the flasher's .hex parser, the telemetry frame decoder, the LCM log reader
-and the CSV export's file names.
+and the CSV export's file names, sweep files and run ids, and what the live
+view takes from pages and telemetry.
 
 Two profiles: "ci" (the default: 300 examples a property, derandomized, so
 that `make test` is repeatable) and "long" (SWARM_HYPOTHESIS=long, random,

@@ -4,6 +4,9 @@ untrusted input:
 
 - any bytes as a log: the reader yields events or raises LogError naming a
   byte offset, never anything else, and reads nothing past the file;
+- two different channel names (any bytes, and a name beside the text an
+  escaping reader shows for it) never read as the same text, and a name in
+  UTF-8 without a backslash reads as itself;
 - well-formed logs of any events read back exactly, and a log cut anywhere
   inside an event is refused at that event's offset;
 - any channel names (slashes, dots, '..', non-ASCII): the export's file
@@ -68,6 +71,31 @@ class LogReader(unittest.TestCase):
         owner = max(s for s in starts if s < cut)
         with self.assertRaisesRegex(logfile.LogError, f"at byte {owner}"):
             self.read(blob[:cut])
+
+
+# Names made of the pieces an escape is made of (a backslash, 'x', hex
+# digits, bytes that are not UTF-8), so that near-collisions are common.
+escape_like = st.lists(st.sampled_from([b"\\", b"x", b"f", b"F", b"0", b"5", b"c", b"\xff", b"\xc3", b"\xa9",
+                                        b"\x80", b"a", b"/"]), max_size=12).map(b"".join)
+names = st.one_of(st.binary(max_size=30), escape_like)
+
+
+class ChannelNames(unittest.TestCase):
+    @given(names, names)
+    def test_two_names_never_read_alike(self, a, b):
+        # Before: b"X\xff" and the plain text "X\\xff" both read "X\\xff".
+        self.assertEqual(logfile.channel_name(a) == logfile.channel_name(b), a == b)
+
+    @given(names)
+    def test_a_name_and_its_escaped_text_read_apart(self, raw):
+        # A log may hold both a raw name and the text an escaping reader
+        # would show for it (b"X\xff" and b"X\\xff"): two channels.
+        twin = raw.decode("utf-8", errors="backslashreplace").encode()
+        self.assertEqual(logfile.channel_name(raw) == logfile.channel_name(twin), raw == twin)
+
+    @given(st.text(max_size=30).filter(lambda t: "\\" not in t))
+    def test_plain_names_read_as_they_are(self, text):
+        self.assertEqual(logfile.channel_name(text.encode()), text)     # hypothesis' text has no surrogates
 
 
 class ExportNames(unittest.TestCase):

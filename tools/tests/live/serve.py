@@ -10,12 +10,15 @@ from swarmtools.telemetry import common
 
 from ..telemetry.helpers import ROOT
 
+#: Seconds to wait for something that takes well under one: only a hang reaches it.
+LONG = 300
+
 
 class Server:
     """`python -m swarmtools.live ARGS --port 0` until stop(); .url is the
     address it printed."""
 
-    def __init__(self, *args, timeout=20):
+    def __init__(self, *args, timeout=LONG):
         self.proc = subprocess.Popen([sys.executable, "-m", "swarmtools.live", *map(str, args), "--port", "0"],
                                      cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         sel = selectors.DefaultSelector()
@@ -33,7 +36,7 @@ class Server:
         if self.proc.poll() is None:
             self.proc.send_signal(2)
         try:
-            _, err = self.proc.communicate(timeout=10)
+            _, err = self.proc.communicate(timeout=LONG)
         except subprocess.TimeoutExpired:
             self.proc.kill()
             _, err = self.proc.communicate()
@@ -58,7 +61,7 @@ def first(log, kind):
     return next(msg for _, msg in common.read_log(log, "test") if type(msg).__name__ == kind)
 
 
-def wait_for(check, what, timeout=15.0, every=0.05):
+def wait_for(check, what, timeout=LONG, every=0.05):
     """Polls check() until it returns something true; fails naming `what`
     and the last value."""
     end = time.monotonic() + timeout

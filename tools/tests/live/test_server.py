@@ -18,13 +18,14 @@ from pathlib import Path
 import aiohttp
 import swarmlcm
 
-from swarmtools.live import server
+from swarmtools.live import limits, server
 from swarmtools.live.bus import Bus
+from swarmtools.live.hosts import AllowedHosts
 from swarmtools.live.replay import Log
 from swarmtools.live.view import Series, View
 
-from ..telemetry.helpers import ROOT, robot_state, swarm_state, write_log
-from .serve import Server
+from ..telemetry.helpers import ROOT, event, robot_state, schema, swarm_state, write_log
+from .serve import LONG, Server
 
 STATIC = ROOT / "tools" / "swarmtools" / "live" / "static"
 LIVE = ROOT / "tools" / "swarmtools" / "live"
@@ -32,7 +33,7 @@ LIVE = ROOT / "tools" / "swarmtools" / "live"
 
 def live(*args):
     return subprocess.run([sys.executable, "-m", "swarmtools.live", *map(str, args)], cwd=ROOT,
-                          capture_output=True, text=True, timeout=30)
+                          capture_output=True, text=True, timeout=LONG)
 
 
 class CommandLine(unittest.TestCase):
@@ -85,7 +86,7 @@ class CommandLine(unittest.TestCase):
         for sig in (signal.SIGTERM, signal.SIGINT):     # as soon as it says where it is
             s = Server("--log", log)
             s.proc.send_signal(sig)
-            _, err = s.proc.communicate(timeout=10)
+            _, err = s.proc.communicate(timeout=LONG)
             self.assertEqual(s.proc.returncode, 0, err)
             self.assertEqual(err, "swarm-live: stopped\n")
 
@@ -192,9 +193,12 @@ class Commands(unittest.TestCase):
         self.assertIsNone(s.command({"cmd": "seek", "value": 0.05}))   # backwards: run 1 again
         self.assertEqual(s.view.run, 1)
         self.assertIn("outside", s.command({"cmd": "speed", "value": 0}))
-        self.assertIn("needs a number", s.command({"cmd": "seek", "value": "x"}))
-        self.assertIn("needs a number", s.command({"cmd": "seek", "value": math.nan}))
+        self.assertIn("value needs a finite number, got \"x\"", s.command({"cmd": "seek", "value": "x"}))
+        self.assertIn("needs a finite number", s.command({"cmd": "seek", "value": math.nan}))
+        self.assertIn("value needs a finite number, got true", s.command({"cmd": "speed", "value": True}))
         self.assertIn("unknown command 'jump'", s.command({"cmd": "jump"}))
+        self.assertIn("pause: unknown field 'value' (it takes none)", s.command({"cmd": "pause", "value": 1}))
+        self.assertEqual((s.player.speed, s.player.time), (2.0, 0.05))          # none of them acted
         self.assertIsNone(s.command({"cmd": "play"}))
         s.frame(100.0)                                                  # to the end, then stops
         self.assertEqual((s.player.time, s.player.playing, s.player.ended), (10.2, False, True))
@@ -214,24 +218,163 @@ class Commands(unittest.TestCase):
         finally:
             status, err = srv.stop()
         self.assertEqual(status, 0, err)
+        self.assertNotIn("Traceback", err)      # aiohttp's 400 for a path too long: one line
+        self.assertIn("swarm-live: Error handling request from 127.0.0.1: 400, message: Got more than 8190 bytes", err)
 
     async def _foreign(self, url):
+        port = url.rstrip("/").rsplit(":", 1)[1]
         async with aiohttp.ClientSession() as http:
             with self.assertRaises(aiohttp.WSServerHandshakeError) as cm:
                 await http.ws_connect(url + "ws", origin="http://example.com")
             self.assertEqual(cm.exception.status, 403)
+            # DNS rebinding: a site's name made to resolve to 127.0.0.1, so
+            # that Origin and Host agree; the Host is not this server's.
+            rebound = {"Host": f"attacker.example:{port}", "Origin": f"http://attacker.example:{port}"}
+            with self.assertRaises(aiohttp.WSServerHandshakeError) as cm:
+                await http.ws_connect(url + "ws", headers=rebound)
+            self.assertEqual(cm.exception.status, 403)
+            async with http.get(url, headers={"Host": rebound["Host"]}) as r:
+                self.assertEqual(r.status, 403)
+                self.assertIn("is not this server's name", await r.text())
+            async with http.get(url, headers={"Host": f"localhost:{int(port) + 1}"}) as r:   # another port
+                self.assertEqual(r.status, 403)
+            for host in (f"localhost:{port}", f"127.0.0.1:{port}"):
+                async with http.ws_connect(url + "ws", headers={"Host": host, "Origin": f"http://{host}"}) as ws:
+                    self.assertEqual(json.loads((await ws.receive()).data)["type"], "hello")
             async with http.ws_connect(url + "ws", origin=url.rstrip("/")) as ws:    # the page's own
                 self.assertEqual(json.loads((await ws.receive()).data)["type"], "hello")
+            # only the page's own files: no path, no folder, no 500 for a long name
+            for path, status in (("static/live.js", 200), ("static/" + "a" * 5000, 404), ("static/", 404),
+                                 ("static/%2e%2e%2fserver.py", 404), ("static/../server.py", 404),
+                                 ("static/" + "a" * 9000, 400), ("a" * 20000, 400)):
+                async with http.get(url + path) as r:
+                    self.assertEqual(r.status, status, path[:40])
+
+    def test_names_it_may_be_opened_by(self):
+        h = AllowedHosts("127.0.0.1", 8080, ["tunnel.example:9000", "box.lan"])
+        for host in ("127.0.0.1:8080", "localhost:8080", "LOCALHOST.:8080", "[::1]:8080", "tunnel.example:9000",
+                     "box.lan:8080"):
+            self.assertIsNone(h.why_not(host), host)
+        for host in ("attacker.example:8080", "127.0.0.1:8081", "localhost", "10.1.2.3:8080", "tunnel.example:8080",
+                     "", None, "[::1", "a:b", "localhost:99999999"):
+            self.assertIsNotNone(h.why_not(host), host)
+        every = AllowedHosts("0.0.0.0", 80)
+        for host in ("10.1.2.3", "192.168.0.7:80", "localhost", f"{socket.gethostname()}:80"):
+            self.assertIsNone(every.why_not(host), host)
+        self.assertIsNotNone(every.why_not("attacker.example"))
+        self.assertIsNotNone(every.why_not("10.1.2.3:81"))
+        with self.assertRaises(ValueError):
+            AllowedHosts("127.0.0.1", 80, ["a:b"])
 
     async def _talk(self, url):
         async with aiohttp.ClientSession() as http, http.ws_connect(url + "ws") as ws:
             hello = json.loads((await ws.receive()).data)
             self.assertEqual((hello["type"], hello["mode"], hello["playing"], hello["end"]), ("hello", "log", False, 10.2))
-            for cmd, text in (("not json", "a command is a JSON object"), ('{"cmd": "fly"}', "unknown command")):
+            # Each once ended the handler with a traceback (or did the wrong thing).
+            for cmd, text in (("not json", "a command is a JSON object"), ('{"cmd": "fly"}', "unknown command"),
+                              ("[" * 100_000 + "]" * 100_000, "a command is at most 1000 characters"),
+                              ("[" * 490 + "]" * 490, "a command is a JSON object"),
+                              ('{"cmd": "seek", "value": ' + "[" * 480 + "]" * 480 + "}", "value needs a finite"),
+                              ('{"cmd": "seek", "value": 1' + "0" * 900 + "}", "value needs a finite number, got 1000"),
+                              ('{"cmd": "seek", "value": 1e999}', "value needs a finite number, got Infinity"),
+                              ('{"cmd": "speed", "value": true}', "value needs a finite number, got true"),
+                              ('{"cmd": ["play"]}', "unknown command that"), ('"play"', "a command is a JSON object"),
+                              ('{"cmd": "seek"}', "seek: needs value")):
                 await ws.send_str(cmd)
-                while (msg := json.loads((await ws.receive()).data))["type"] != "error":
+                while (msg := json.loads((await ws.receive(timeout=LONG)).data))["type"] != "error":
                     pass
                 self.assertIn(text, msg["text"])
+            await ws.send_str('{"cmd": "seek", "value": 10.1}')              # and it still answers
+            while (msg := json.loads((await ws.receive(timeout=LONG)).data)).get("time") != 10.1:
+                pass
+
+
+class Bounded(unittest.TestCase):
+    """One log of huge messages must not block the server (defect: swarm
+    states of 32,000 values, 0.8 s each a page, on the one event loop)."""
+
+    VALUES = 32_000
+
+    @classmethod
+    def setUpClass(cls):
+        cls._tmp = tempfile.TemporaryDirectory(prefix="live_big.")
+        events = []
+        for step in range(40):
+            events.append((step * 100_000, "SWARM_STATE", swarm_state(step, range(cls.VALUES), run=1,
+                                                                        states=[(f"s{k}", k) for k in range(600)])))
+        events.append((0, "ROBOT_STATE", robot_state(1, "x" * 5000, run=1)))
+        cls.log = write_log(Path(cls._tmp.name) / "big.lcmlog", events)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls._tmp.cleanup()
+
+    def test_a_message_is_cut_and_the_page_says_so(self):
+        m = swarm_state(1, range(self.VALUES), states=[(f"s{k}", k) for k in range(600)])
+        cut = limits.bound(m, "SWARM_STATE ")
+        self.assertEqual((len(m.values), m.n_values, len(m.state_names), len(m.state_counts), m.n_states),
+                         (256, 256, 256, 256, 256))
+        self.assertIn("SWARM_STATE values: 32,000 (first 256 kept)", cut)
+        v = View()
+        v.note(cut)
+        v.apply(0.0, "SWARM_STATE", m)
+        f = v.frame({})
+        self.assertEqual(len(f["swarm"]["values"]), 256)
+        self.assertLessEqual(len(f["series"]["cols"]), limits.MAX_SERIES)
+        self.assertIn("SWARM_STATE values: 32,000 (first 256 kept)", f["limits"])
+        self.assertEqual(limits.bound(swarm_state(1, range(10))), [])           # a real run is never cut
+        d = swarmlcm.task_drawing_t()
+        shape = swarmlcm.scene_shape_t()
+        shape.text = "y" * 3000
+        d.shapes, d.n_shapes = [shape] * (limits.MAX_ITEMS + 1), limits.MAX_ITEMS + 1
+        d.fill_robot, d.fill_rgb, d.n_fills = [1, 2], [3, 4], 2
+        cut = limits.bound(d)
+        self.assertEqual((len(d.shapes), d.n_shapes, len(d.shapes[0].text), d.fill_rgb), (20_000, 20_000, 1000, [3, 4]))
+        self.assertEqual(cut, ["shapes: 20,001 (first 20,000 kept)",
+                               "shapes[].text: a text of 3,000 characters (first 1,000 kept)"])
+        s = schema("c", [f"v{k}" for k in range(300)])
+        limits.bound(s)
+        self.assertEqual((s.total, s.n, len(s.names), len(s.docs)), (256, 256, 256, 256))
+
+    def test_the_view_keeps_bounded_robots_schemas_and_event_kinds(self):
+        v = View()
+        for k in range(limits.MAX_ROBOTS + 5):
+            v.apply(0.0, "ROBOT_STATE", robot_state(k % 32768, run=1) if k < 32768 else robot_state(0, run=1))
+        self.assertLessEqual(len(v.robots), limits.MAX_ROBOTS)
+        for k in range(limits.MAX_EVENT_KINDS + 10):
+            v.apply(0.0, "SWARM_EVENT", event(1, kind=f"k{k}", run=1))
+        self.assertLessEqual(len(v.event_counts), limits.MAX_EVENT_KINDS + 1)
+        for k in range(limits.MAX_SCHEMAS + 10):
+            v.apply(0.0, "TELEMETRY_SCHEMA", schema(f"c{k}", ["a"], run=1))
+        self.assertLessEqual(v.schemas.count(), limits.MAX_SCHEMAS)
+        f = v.frame({})
+        for what in ("robots past the first 20,000", "event kinds past the first 64", "schemas past the first 256"):
+            self.assertIn(what, f["limits"])
+
+    def test_two_pages_of_a_huge_log_leave_the_server_answering(self):
+        srv = Server("--log", self.log, "--speed", 100, timeout=LONG)
+        try:
+            asyncio.run(self._two_pages(srv.url))
+            srv.proc.send_signal(signal.SIGTERM)     # stops at once, pages still open
+            _, err = srv.proc.communicate(timeout=LONG)
+        finally:
+            srv.proc.kill()
+        self.assertEqual((srv.proc.returncode, err), (0, "swarm-live: stopped\n"))
+
+    async def _two_pages(self, url):
+        async with aiohttp.ClientSession() as http:
+            pages = [await http.ws_connect(url + "ws") for _ in range(2)]
+            for ws in pages:                      # both playing: frames of the big states
+                while "swarm" not in (f := json.loads((await ws.receive(timeout=LONG)).data)):
+                    pass
+                self.assertEqual(len(f["swarm"]["values"]), 256)
+                self.assertIn("SWARM_STATE values: 32,000 (first 256 kept)", f["limits"])
+                self.assertIn("ROBOT_STATE state: a text of 5,000 characters", f["limits"])
+            async with http.get(url, timeout=aiohttp.ClientTimeout(total=LONG)) as r:
+                self.assertEqual(r.status, 200)
+                self.assertIn("swarm-live", await r.text())
+            for ws in pages:
+                await ws.send_str('{"cmd": "seek", "value": 0}')
 
 
 class ThePage(unittest.TestCase):

@@ -39,7 +39,7 @@ class SlurmBackend(unittest.TestCase):
             raise AssertionError(f"SLURM is not installed here: {check.stderr.strip()}")
         cls.cluster = cls.dir / "cluster"
         start = subprocess.run(["bash", str(CLUSTER), "start", str(cls.cluster)], capture_output=True,
-                               text=True, timeout=120, check=False)
+                               text=True, timeout=300, check=False)
         if start.returncode != 0:
             subprocess.run(["bash", str(CLUSTER), "stop", str(cls.cluster)], capture_output=True, check=False)
             cls._tmp.cleanup()
@@ -57,7 +57,7 @@ class SlurmBackend(unittest.TestCase):
     @classmethod
     def tearDownClass(cls) -> None:
         stop = subprocess.run(["bash", str(CLUSTER), "stop", str(cls.cluster)], capture_output=True,
-                              text=True, timeout=120, check=False)
+                              text=True, timeout=300, check=False)
         cls._tmp.cleanup()
         if stop.returncode != 0:
             raise AssertionError(f"stopping SLURM failed: {stop.stderr}")
@@ -65,7 +65,7 @@ class SlurmBackend(unittest.TestCase):
     @classmethod
     def swarm_sweep(cls, *args: str) -> subprocess.CompletedProcess:
         return subprocess.run([sys.executable, "-m", "swarmtools.sweep", *args, "--sim", str(SWARMSIM)],
-                              capture_output=True, text=True, timeout=240, check=False,
+                              capture_output=True, text=True, timeout=600, check=False,
                               env=getattr(cls, "env", None), cwd=ROOT)
 
     def run_slurm(self, out: Path, chunk: int) -> subprocess.CompletedProcess:
@@ -118,7 +118,7 @@ class SlurmBackend(unittest.TestCase):
             out = self.dir / f"study_{backend}"
             r = subprocess.run([sys.executable, "-m", "swarmtools.study.drtm", *narrow, "--out", str(out),
                                 "--backend", backend, "--chunk-size", "3", "--poll", "0.5"],
-                               capture_output=True, text=True, timeout=240, check=False, env=self.env, cwd=ROOT)
+                               capture_output=True, text=True, timeout=600, check=False, env=self.env, cwd=ROOT)
             self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
             self.assertIn("study_drtm: 8 runs; wrote", r.stdout)
             doc = json.loads((out / "results.json").read_text())

@@ -63,6 +63,31 @@ def fake_sim(folder: Path, body: str) -> Path:
     return p
 
 
+#: Seconds a test waits for something that takes well under one: only a hang reaches it.
+LONG = 300
+
+
+def wait_for(check, what: str, timeout: float = LONG):
+    """Polls check() until it gives something true; fails naming `what`."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        got = check()
+        if got:
+            return got
+        time.sleep(0.05)
+    raise AssertionError(f"timed out after {timeout:g} s waiting for {what}")
+
+
+def lock_is_free(folder: Path) -> bool:
+    import fcntl
+    with open(folder / ".swarmtools-sweep.lock", "rb") as f:
+        try:
+            fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            return False
+        return True
+
+
 class TempDir(unittest.TestCase):
     def setUp(self) -> None:
         self._tmp = tempfile.TemporaryDirectory(prefix="sweep_test.")
@@ -104,6 +129,31 @@ class SpecErrors(TempDir):
          ":4: axes[0].grid.a: expected a single value"),
         (f"scenario: {SMALL}\nrepetitions: 1\nmetrics: [M_T, M_T]\n", ":3: metrics[1]: 'M_T' listed twice"),
         ("scenario: [\n", ":2: YAML syntax error"),
+        # explicit tags: refused with their line, never a traceback
+        *((f"scenario: {SMALL}\nrepetitions: 1\nset:\n  arena.width: {v}\n",
+           f":4: set.arena.width: explicit YAML tag '{tag}' refused")
+          for v, tag in (("!foo x", "!foo"), ('!!int "ten"', "tag:yaml.org,2002:int"),
+                         ("!!bool 0", "tag:yaml.org,2002:bool"), ("!!timestamp 178", "tag:yaml.org,2002:timestamp"),
+                         ("!!binary aGk=", "tag:yaml.org,2002:binary"), ("!!str 10", "tag:yaml.org,2002:str"))),
+        (f"scenario: {SMALL}\nrepetitions: 1\nset: !!set {{a.b: null}}\n", ":3: set: explicit YAML tag"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes: !!omap [{{grid: {{a.b: [1]}}}}]\n", ":3: axes: explicit YAML tag"),
+        (f"scenario: {SMALL}\nrepetitions: 1\nset: {{a: " + "[" * 5000 + "]" * 5000 + "}\n",
+         ": nested too deeply to be a sweep file"),
+        # names and keys are matched whole: no trailing newline
+        (f'scenario: {SMALL}\nrepetitions: 1\nname: "t\\n"\n', ":3: name: use 1 to 64 letters"),
+        (f"scenario: {SMALL}\nrepetitions: 1\nname: ..\n", ":3: name: use 1 to 64 letters"),
+        (f'scenario: {SMALL}\nrepetitions: 1\nset: {{"robots.0.count\\n": 2}}\n',
+         ":3: set: 'robots.0.count\\n' is not a scenario key path"),
+        (f'scenario: {SMALL}\nrepetitions: 1\nmetrics: ["M_T\\n"]\n', ":3: metrics[0]: 'M_T\\n' is not a metric name"),
+        # a sweep too large is refused before it is expanded
+        (f"scenario: {SMALL}\nrepetitions: 1000\naxes:\n  - grid:\n"
+         + "".join(f"      k{i}.x: [0, 1, 2, 3, 4, 5, 6, 7, 8, 9]\n" for i in range(9)),
+         ":5: axes[0].grid: 10 x 10 x 10 x 10 x 10 x 10 x 10 x 10 x 10 = about 10^9 combinations, "
+         "more than the cap of 1,000,000 runs (swarm-sweep --max-runs N raises it)"),
+        (f"scenario: {SMALL}\nrepetitions: 1000\naxes:\n  - grid: {{a.b: [1, 2, 3]}}\n"
+         "  - zip: {c.d: [1, 2], e.f: [1, 2]}\n  - grid: {g.h: " + str(list(range(200))) + "}\n",
+         ":2: 1,200 combinations x 1,000 seeds = 1,200,000 runs, more than the cap of 1,000,000"),
+        (f"scenario: {SMALL}\nseeds: {{first: 0, count: 9000000}}\n", ":2: 1 combinations x 9,000,000 seeds"),
     )
 
     def test_each_mistake_is_named_with_its_line(self) -> None:
@@ -113,6 +163,31 @@ class SpecErrors(TempDir):
                 with self.assertRaises(spec.SweepError) as cm:
                     spec.load(p, 9007199254740991)
                 self.assertIn(f"{p}{want}", str(cm.exception))
+
+    def test_command_line_says_the_line_and_no_traceback(self) -> None:
+        p = self.write(f"scenario: {SMALL}\nrepetitions: 2\nset:\n  arena.width: !!int \"ten\"\n")
+        r = swarm_sweep("plan", str(p), "--sim", str(SWARMSIM))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn(f"{p}:4: set.arena.width: explicit YAML tag", r.stderr)
+        self.assertNotIn("Traceback", r.stderr)
+
+    def test_the_run_cap_can_be_raised(self) -> None:
+        p = self.write(sweep_text(reps=3))              # 12 runs
+        r = swarm_sweep("plan", str(p), "--sim", str(SWARMSIM), "--max-runs", "11")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("4 combinations x 3 seeds = 12 runs, more than the cap of 11", r.stderr)
+        r = swarm_sweep("plan", str(p), "--sim", str(SWARMSIM), "--max-runs", "12")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("= 12 runs; all check", r.stdout)
+
+    def test_a_line_break_never_reaches_a_batch_script(self) -> None:
+        p = self.write(sweep_text())
+        for flag in ("--partition", "--account", "--mem", "--time", "--sbatch-arg"):
+            r = swarm_sweep("run", str(p), "--backend", "slurm", f"{flag}=x\nrm -rf ~", "--sim", str(SWARMSIM),
+                            "--out", str(self.dir / "out"))
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn(f"{flag} 'x\\nrm -rf ~': a control character or line break", r.stderr)
+        self.assertFalse((self.dir / "out").exists())
 
     def test_bad_value_is_caught_by_the_simulator_before_anything_runs(self) -> None:
         p = self.write(sweep_text().replace("[2, 3]", "[2, 2.5]"))
@@ -156,6 +231,22 @@ class Expansion(TempDir):
         other = planmod.expand(spec.load(self.write(p.read_text().replace(str(SMALL), str(scen)), "o.yaml"),
                                          2**53 - 1))
         self.assertFalse({r.run_id for r in runs} & {r.run_id for r in other})
+
+    def test_run_ids_hash_an_unambiguous_encoding(self) -> None:
+        # Before: "sha\n--set k=v" joined, so a value holding a line break and
+        # "--set ..." hashed like a second override.
+        sha = "0" * 64
+        one = planmod.scenario_hash(sha, [("arena.width", "2\n--set arena.height=3")])
+        two = planmod.scenario_hash(sha, [("arena.width", "2"), ("arena.height", "3")])
+        self.assertNotEqual(one, two)
+        self.assertNotEqual(planmod.scenario_hash(sha, [("a", "b=c")]), planmod.scenario_hash(sha, [("a=b", "c")]))
+        self.assertNotEqual(planmod.run_id(one, 1, None), planmod.run_id(one, 1, 0))
+        # through sweep files: the two never share an id
+        a = spec.load(self.write(f"scenario: {SMALL}\nrepetitions: 1\nset:\n  arena.width: \"2\\n--set arena.height=3\"\n",
+                                 "a.yaml"), 2**53 - 1)
+        b = spec.load(self.write(f"scenario: {SMALL}\nrepetitions: 1\nset: {{arena.width: 2, arena.height: 3}}\n",
+                                 "b.yaml"), 2**53 - 1)
+        self.assertNotEqual(planmod.expand(a)[0].run_id, planmod.expand(b)[0].run_id)
 
     def test_list_axis_with_scenarios(self) -> None:
         scen = self.write(SMALL.read_text(), "second.yaml")
@@ -257,22 +348,28 @@ class LocalBackend(TempDir):
         self.assertTrue(all(x["error"].startswith("killed by SIGSEGV") for x in read_table(self.dir / "out2")))
 
     def test_interrupted_sweep_keeps_finished_runs_and_resumes_to_the_same_table(self) -> None:
-        sim = fake_sim(self.dir, '[ "$check" = 0 ] && sleep 0.4')
+        # Seeds 1 and 2 finish; each seed-3 run waits for a gate that never
+        # opens, so the SIGINT finds both workers busy, whatever the load.
+        gate = self.dir / "never"
+        sim = fake_sim(self.dir, f'[ "$check" = 0 ] && [ "$seed" = 3 ] && '
+                                 f'while [ ! -e "{gate}" ]; do sleep 0.05; done')
         p = self.write(sweep_text(reps=3))
         out = self.dir / "out"
         proc = subprocess.Popen([sys.executable, "-m", "swarmtools.sweep", "run", str(p), "--out", str(out),
                                  "--sim", str(sim), "--jobs", "2"], stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, text=True)
-        deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and len(list((out / "records").glob("*.json"))) < 3:
-            time.sleep(0.05)
-        proc.send_signal(signal.SIGINT)
-        _, err = proc.communicate(timeout=60)
+        try:
+            wait_for(lambda: len(list((out / "records").glob("*.json"))) == 4, "the 4 runs of seeds 1, 2 of the "
+                     "first two combinations")
+            proc.send_signal(signal.SIGINT)
+            _, err = proc.communicate(timeout=LONG)
+        finally:
+            proc.kill()
         self.assertEqual(proc.returncode, 130, err)
         self.assertIn("interrupted by SIGINT", err)
         self.assertEqual(list(out.rglob("*.tmp")), [], "no temporary file may be left")
         recs = list((out / "records").glob("*.json"))
-        self.assertTrue(3 <= len(recs) < 12, len(recs))
+        self.assertEqual(len(recs), 4)
         for f in recs:
             self.assertEqual(json.loads(f.read_text())["status"], "ok")   # whole, and not the killed ones
         self.assertEqual(len(read_table(out)), len(recs))
@@ -282,6 +379,64 @@ class LocalBackend(TempDir):
         self.assertEqual(swarm_sweep("run", str(p), "--out", str(ref), "--sim", str(SWARMSIM)).returncode, 0)
         drop = (*VOLATILE, "sim_sha256", "attempts")
         self.assertEqual(read_table(out, drop), read_table(ref, drop))
+
+    def test_one_sweep_at_a_time_in_a_folder_and_no_stale_lock(self) -> None:
+        # Each run waits (the fake simulator) until the test releases it.
+        gate = self.dir / "release"
+        sim = fake_sim(self.dir, f'[ -n "$seed" ] && [ "$check" = 0 ] && {{ touch "{self.dir}/started.$$"; '
+                                 f'while [ ! -e "{gate}" ]; do sleep 0.05; done; }}')
+        p = self.write(sweep_text())
+        out = self.dir / "out"
+        argv = [sys.executable, "-m", "swarmtools.sweep", "run", str(p), "--out", str(out), "--sim", str(sim),
+                "--jobs", "1"]
+
+        def started() -> list[Path]:
+            return sorted(self.dir.glob("started.*"))
+
+        first = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        try:
+            wait_for(started, "the first sweep's first run")
+            plan = (out / "sweep.json").stat().st_mtime_ns
+            r = self.run_sweep(p, out, sim=sim)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn(f"{out}: in use by another swarm-sweep: pid {first.pid} on ", r.stderr)
+            self.assertEqual(((out / "sweep.json").stat().st_mtime_ns, list((out / "records").iterdir())), (plan, []))
+            gate.touch()
+            _, err = first.communicate(timeout=LONG)
+        finally:
+            first.kill()
+        self.assertEqual(first.returncode, 0, err)
+        self.assertIn("8 of 8 runs ok", err)
+        # Killed outright: its simulator still runs and holds the folder;
+        # once that ends, the folder is free (no stale lock to remove).
+        gate.unlink()
+        for f in started():
+            f.unlink()
+        out = self.dir / "crashed"
+        crashed = subprocess.Popen([*argv[:6], str(out), *argv[7:]], stderr=subprocess.DEVNULL)
+        wait_for(started, "the crashing sweep's first run")
+        crashed.kill()
+        crashed.wait(timeout=LONG)
+        r = self.run_sweep(p, out)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn(f"pid {crashed.pid} ", r.stderr)
+        self.assertIn("that process has ended; simulators it started still run and hold the folder", r.stderr)
+        gate.touch()
+        wait_for(lambda: lock_is_free(out), "the orphaned simulator to end")
+        r = self.run_sweep(p, out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("8 of 8 runs ok", r.stderr)
+
+    def test_a_folder_of_another_format_is_not_resumed(self) -> None:
+        out = self.dir / "old"
+        out.mkdir()
+        (out / ".swarmtools-sweep").touch()
+        (out / "sweep.json").write_text(json.dumps({"format": "swarmtools-sweep/1", "runs": []}))
+        r = self.run_sweep(self.write(sweep_text()), out)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("made by another version of swarm-sweep (format swarmtools-sweep/1", r.stderr)
+        self.assertEqual(sorted(x.name for x in out.iterdir()), [".swarmtools-sweep", ".swarmtools-sweep.lock",
+                                                                 "sweep.json"])
 
     def test_chunked_workers_give_byte_identical_metrics(self) -> None:
         """What slurm array tasks run, at two chunkings, against the local backend."""

@@ -6,6 +6,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 from pathlib import Path
 
@@ -22,6 +23,21 @@ FRAME_SO = Path(os.environ.get("TELEMETRY_FRAME_SO", ROOT / "build" / "telemetry
 if not FRAME_SO.is_absolute():
     FRAME_SO = ROOT / FRAME_SO
 SCENARIOS = ROOT / "sim_host" / "scenarios"
+#: Seconds a test waits for something that takes well under one: only a
+#: hang reaches it (a loaded machine only makes the wait longer).
+LONG = 300
+
+
+def wait_for(check, what, timeout=LONG, every=0.02):
+    """Polls check() until it gives something true (and returns it);
+    fails naming `what`."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        got = check()
+        if got:
+            return got
+        time.sleep(every)
+    raise AssertionError(f"timed out after {timeout:g} s waiting for {what}")
 
 
 def c_encoder():
@@ -148,7 +164,7 @@ def run_sim(out_dir, *args):
     return r
 
 
-def tool(name, *args, check=True, timeout=120):
+def tool(name, *args, check=True, timeout=LONG):
     """Runs python -m swarmtools.telemetry.<name> with `args`."""
     r = subprocess.run([PYTHON, "-m", f"swarmtools.telemetry.{name}", *map(str, args)], cwd=ROOT,
                        capture_output=True, text=True, timeout=timeout)

@@ -84,7 +84,7 @@ class StderrLines:
         return self.proc.returncode, "".join(self.lines)
 
 
-def pump(br, until, timeout=5.0):
+def pump(br, until, timeout=120.0):   # a bound for a hang only: a busy machine is slow
     t0 = time.monotonic()
     while not until():
         if time.monotonic() - t0 > timeout:

@@ -84,3 +84,22 @@ class HostileLogs(TempDir):
         for p in written:
             self.assertEqual(p.parent.as_posix(), "deep/cwd/out", written)
         self.assertIn("deep/cwd/out/ROBOT_STATE.csv", [p.as_posix() for p in written])
+
+    def test_a_raw_name_and_its_escaped_text_stay_two_channels(self):
+        # Before: b"X\xff" read as "X\\xff", which is also what the plain
+        # name "X\xff" (a backslash, x, f, f) reads as: one file held both.
+        path = self.tmp / "twins.lcmlog"
+        path.write_bytes(raw_event(0, b"X\xffROBOT_STATE", self.good(1))
+                         + raw_event(1, b"X\\xffROBOT_STATE", self.good(2))
+                         + raw_event(2, b"X\\xffROBOT_STATE", self.good(2)))
+        names = [e.channel for e in logfile.events(path)]
+        self.assertEqual(names, ["X\\xffROBOT_STATE", "X\\\\xffROBOT_STATE", "X\\\\xffROBOT_STATE"])
+        out = self.tmp / "csv"
+        r = run_tool("export_csv", path, "-o", f"{out}/")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = {}
+        for f in out.iterdir():
+            lines = f.read_text().splitlines()
+            col = lines[0].split(",").index("robot_id")
+            rows[f.name] = sorted(line.split(",")[col] for line in lines[1:])
+        self.assertEqual(sorted(rows.values()), [["1"], ["2", "2"]], rows)

@@ -12,11 +12,24 @@ import unittest
 
 from swarmtools.telemetry import bus, common
 
-from .helpers import ROOT, SCENARIOS, SWARMSIM, TempDir
+from .helpers import LONG, ROOT, SCENARIOS, SWARMSIM, TempDir, wait_for
 
 
 def udpm_url():
     return f"udpm://239.255.76.67:{random.randint(20000, 60000)}?ttl=0"
+
+
+def port_of(url):
+    return int(url.split(":")[2].split("?")[0])
+
+
+def nothing_unread(port):
+    """True when no socket bound to this UDP port has a datagram waiting
+    (/proc/net/udp's rx_queue): LCM's receive threads have taken them all."""
+    with open("/proc/net/udp") as f:
+        rows = [line.split() for line in f.readlines()[1:]]
+    mine = [r for r in rows if int(r[1].split(":")[1], 16) == port]
+    return bool(mine) and all(int(r[4].split(":")[1], 16) == 0 for r in mine)
 
 
 def lcm_or_skip(url):
@@ -45,18 +58,24 @@ class ToolsListen(unittest.TestCase):
         bus.subscribe(tools, "BURST", lambda c, d: heard.__setitem__("tools", heard["tools"] + 1))
         for k in range(100):                     # 100 messages before anyone handles one
             publisher.publish("BURST", bytes([k]) * 300)
-        time.sleep(0.3)
-        for lc in (plain, tools):
-            while lc.handle_timeout(50) > 0:
-                pass
+        wait_for(lambda: nothing_unread(port_of(url)), "LCM to receive the 100 datagrams")
+        while plain.handle_timeout(50) > 0:
+            pass
+        end = time.monotonic() + LONG
+        while heard["tools"] < 100 and time.monotonic() < end:
+            tools.handle_timeout(50)
         self.assertEqual(heard, {"lcm": 30, "tools": 100})   # LCM's default queue keeps 30
 
 
 class SimulatorOnABus(TempDir):
     """A listener as any LCM program listens (LCM's default queue), that
-    needs some time for messages, watching 40 robots at --realtime 10."""
+    needs some time for messages, watching 40 robots at --realtime 2 (a
+    step's robot states spread over 25 ms: a listener that a loaded machine
+    stops for a few milliseconds still keeps up; sent at once, 10 of each
+    40 were lost whatever the load)."""
 
-    ARGS = [SCENARIOS / "random_walk.yaml", "--set", "robots.0.count=40", "--steps", 300, "--realtime", 10]
+    STEPS = 100
+    ARGS = [SCENARIOS / "random_walk.yaml", "--set", "robots.0.count=40", "--steps", STEPS, "--realtime", 2]
 
     def setUp(self):
         super().setUp()
@@ -90,7 +109,7 @@ class SimulatorOnABus(TempDir):
                 pass
 
         heard = self.listen(udpm_url(), [*self.ARGS, "--out", self.tmp / "live"], decode)
-        sent = 40 * 31                           # every robot at steps 0, 10, ..., 300
+        sent = 40 * (self.STEPS // 10 + 1)       # every robot at steps 0, 10, ..., STEPS
         lost = sent - heard.get("ROBOT_STATE", 0)
         # Before: every burst of 40 states and a swarm state overflowed the
         # queue of 30; about 30 % of the states were lost.
@@ -103,7 +122,7 @@ class SimulatorOnABus(TempDir):
         drawn = []
 
         def draw_before_the_end(channel, data):
-            if channel == "SWARM_STATE" and not drawn and common.decode(data, channel).step == 299:
+            if channel == "SWARM_STATE" and not drawn and common.decode(data, channel).step == self.STEPS - 1:
                 drawn.append(1)
                 time.sleep(0.04)
 

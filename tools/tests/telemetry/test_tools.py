@@ -39,6 +39,9 @@ from .helpers import tool as run_tool
 
 FORAGING = SCENARIOS / "foraging_base.yaml"
 RANDOM_WALK = SCENARIOS / "random_walk.yaml"
+#: The monitor's --exit-idle on a log: it prints once, at the log's end,
+#: which comes long before (a short idle could end it early on a loaded machine).
+LONG_IDLE = 120
 
 #: A message of each telemetry v1 type: its fingerprint, then whatever.
 V1 = {name: bytes.fromhex(fp) + bytes(range(40)) for name, fp in [
@@ -247,7 +250,7 @@ class RoundTrip(SimulatedRuns):
             self.assertNotIn("Traceback", r.stderr)
 
     def test_monitor_replays_the_log(self):
-        r = tool("monitor", "--log", self.log, "--speed", "0", "--plain", "--exit-idle", "0.5", timeout=60)
+        r = tool("monitor", "--log", self.log, "--speed", "0", "--plain", "--exit-idle", LONG_IDLE)
         out = r.stdout
         m = self.summary["metrics"]
         self.assertIn("run foraging_base seed 4: 21 robots, 100 ms steps, arena 4 x 4 m, tasks: foraging", out)
@@ -284,6 +287,26 @@ class RoundTrip(SimulatedRuns):
             self.assertEqual(p.read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
             self.assertGreater(p.stat().st_size, 10000)
         self.assertEqual(sorted(Path(p).name for p in r.stdout.split()), names)
+
+
+class FaultTimes(TempDir):
+    def test_fault_events_and_the_summary_agree(self):
+        # Before: the events came 0.1 s (one control step) after start_s and end_s.
+        out = self.tmp / "faults"
+        run_sim(out, SCENARIOS / "random_walk.yaml", "--steps", 60, "--set", "robots.0.count=4",
+                "--set", "robots.0.faults=[{kind: stop, fraction: 0.5, at: 1, duration: 2}, "
+                         "{kind: ir_fail, fraction: 0.25, at: 2.5}]")
+        summary = json.loads((out / "run_1" / "summary.json").read_text())
+        told = {}
+        for ch, m in read_log(out / "run_1" / "telemetry.lcmlog"):
+            if ch == "SWARM_EVENT" and m.kind == "fault":
+                told.setdefault((m.robot_id, m.detail), []).append(m.utime / 1e6)
+        listed = {(f["robot"], f["kind"]): [f["start_s"]] + ([f["end_s"]] if f["end_s"] is not None else [])
+                  for f in summary["faults"]}
+        self.assertEqual(len(listed), 3, summary["faults"])
+        self.assertEqual(told, listed)
+        self.assertEqual(sorted(v[0] for v in listed.values()), [1.1, 1.1, 2.6])   # the end of the first faulty step
+        self.assertEqual(sorted(v[1] - v[0] for v in listed.values() if len(v) == 2), [2.0, 2.0])
 
 
 class Formats(unittest.TestCase):
@@ -367,11 +390,11 @@ class RobotsOwnTelemetry(TempDir):
         self.assertEqual({r["robot_id"] for r in fw}, {str(k) for k in range(21)})
 
     def test_monitor_and_plots_keep_them_apart(self):
-        r = tool("monitor", "--log", self.log, "--speed", "0", "--plain", "--exit-idle", "0.5")
+        r = tool("monitor", "--log", self.log, "--speed", "0", "--plain", "--exit-idle", LONG_IDLE)
         self.assertIn("not shown  FW_ROBOT_STATE", r.stdout)
         self.assertIn("--prefix FW_", r.stdout)
         self.assertRegex(r.stdout, r"\n +0 foragers ")
-        r = tool("monitor", "--log", self.log, "--speed", "0", "--plain", "--exit-idle", "0.5", "--prefix", "FW_")
+        r = tool("monitor", "--log", self.log, "--speed", "0", "--plain", "--exit-idle", LONG_IDLE, "--prefix", "FW_")
         self.assertIn("forager: 20 robots", r.stdout)
         self.assertRegex(r.stdout, r"\n +0 - +\w+ ")             # a robot has no group name
         self.assertIn("not shown  ", r.stdout)
@@ -456,7 +479,7 @@ class OtherVersions(TempDir):
         for name in tools:
             args = {"export_csv": [log, "-o", str(self.tmp / "csv") + "/"],
                     "plot_run": [log, "-o", self.tmp / "plots"],
-                    "monitor": ["--log", log, "--speed", "0", "--plain", "--exit-idle", "0.5"]}[name]
+                    "monitor": ["--log", log, "--speed", "0", "--plain", "--exit-idle", LONG_IDLE]}[name]
             r = tool(name, *args, check=False)
             self.assertEqual(r.returncode, 1, (name, r.stderr))
             self.assertIn(text, r.stderr, name)

@@ -16,7 +16,7 @@
     return colours.get(state);
   };
   const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 5, 10, 20, 50, 100, 1000];
-  const PARTS = ["info", "schemas", "scene", "drawing", "swarm", "summary", "bridge", "events", "error"];
+  const PARTS = ["info", "schemas", "scene", "drawing", "swarm", "summary", "bridge", "events", "error", "limits"];
   const CHART_EVERY_MS = 250;   // charts are redrawn at most this often (the arena every frame)
 
   const $ = (id) => document.getElementById(id);
@@ -97,6 +97,8 @@
     Panels.bridge(model);
     Panels.events(model);
     if (model.error) showError(model.error, true);
+    $("limits").textContent = model.limits || "";      // what the server cut (swarmtools/live/limits.py)
+    $("limits").hidden = !model.limits;
     const wait = CHART_EVERY_MS - (performance.now() - chartsAt);
     if (chartsNow || wait <= 0) {
       charts();
@@ -132,7 +134,7 @@
       stateColours: Object.fromEntries(colours),
       summary: model.summary ? model.summary.state_hash : null,
       bridgeDevices: model.bridge ? model.bridge.devices.length : 0,
-      error: model.error,
+      error: model.error, limits: model.limits,
     };
   }
 
