@@ -17,7 +17,8 @@
  * its robots start with the parameters and the seed its declaration gives
  * (the run loop's), whichever platform runs them.  `platform: pil_avr`
  * puts each of its robots on an emulated ATmega2560 (platforms/pil_avr/:
- * the image's ELF, run by the emulator program, one per robot); `host`
+ * the image's ELF, run by the emulator program, one per robot), `pil_m4`
+ * on an emulated Cortex-M4F (platforms/pil_m4/: QEMU, one per robot); `host`
  * (the default) runs the controller built into the simulator.  So one
  * scenario with `platform` flipped gives the host-built run and the PIL
  * run, which must end in the same state hash.
