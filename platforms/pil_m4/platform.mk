@@ -32,13 +32,17 @@ $(PIL_M4_OUT)/m4/%.elf: $(PIL_AVR_GEN)/%_main.c $(PIL_M4_OUT)/libpil.a $(PIL_M4_
 $(PIL_M4_OUT)/m4/misbehave.elf: $(PIL_AVR)/tests/misbehave_main.c $(PIL_M4_OUT)/libpil.a $(PIL_M4_START)
 	@mkdir -p $(@D)
 	$(call show,M4-LD,$@)$(PIL_M4_CC) $(PIL_M4_CFLAGS) $(PIL_M4_LDFLAGS) -o $@ $< $(PIL_M4_START) $(PIL_M4_OUT)/libpil.a
+# The counts' check: a step of a known number of instructions (tests/).
+$(PIL_M4_OUT)/m4/calibrate.elf: $(PIL_M4)/tests/calibrate_main.c $(PIL_M4_OUT)/libpil.a $(PIL_M4_START)
+	@mkdir -p $(@D)
+	$(call show,M4-LD,$@)$(PIL_M4_CC) $(PIL_M4_CFLAGS) $(PIL_M4_LDFLAGS) -o $@ $< $(PIL_M4_START) $(PIL_M4_OUT)/libpil.a
 # Each image's state map: its controller state on the M4 and in the host build.
 $(PIL_M4_OUT)/m4/%.map: $(PIL_M4_OUT)/m4/%.elf $(PIL_AVR_OUT)/host/% $(PIL_AVR)/state_map.py
 	$(call show,MAP,$@)$(PYTHON) $(PIL_AVR)/state_map.py $< $(PIL_AVR_OUT)/host/$* $@
 
 pil-m4: pil-avr-images lcm-types
 	@$(MAKE) --no-print-directory pil-m4-build PIL_NAMES='$(pil_avr_names)'
-pil-m4-build: $(PIL_M4_OUT)/m4/misbehave.elf $(foreach i,$(PIL_NAMES),$(PIL_M4_OUT)/m4/$(i).elf $(PIL_M4_OUT)/m4/$(i).map)
+pil-m4-build: $(PIL_M4_OUT)/m4/misbehave.elf $(PIL_M4_OUT)/m4/calibrate.elf $(foreach i,$(PIL_NAMES),$(PIL_M4_OUT)/m4/$(i).elf $(PIL_M4_OUT)/m4/$(i).map)
 	@:
 
 # ------------------------------------------------ the simulator's end

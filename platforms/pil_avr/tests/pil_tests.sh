@@ -79,6 +79,16 @@ if [ -n "$m4" ]; then
     stack=() stack_words="step 3: its emulator was killed by signal 6"
     halt=(--timeout 500) halt_words="step 3: its emulator gave no answer within 500 ms"
     expect "step 0: its MCU ran past its cycle budget" "${rw[@]}" --budget 2000
+    # The counts count instructions: a step of 100,001 between the marks
+    # (tests/calibrate_main.c) reads that, plus a mark's few, to the
+    # SysTick's resolution of about 6.
+    if "$cmp" --m4 "$m4/m4/calibrate.elf" --steps 5 --json "$m4/calibrate.json" > /dev/null 2>&1 \
+        && python3 -c 'import json, sys; m = json.load(open(sys.argv[1])); sys.exit(not 100001 <= m["control_mean"] <= m["control_max"] <= 100060)' \
+            "$m4/calibrate.json" 2> /dev/null; then
+        ok
+    else
+        bad "the calibration image's 100,001 instructions: $(cat "$m4/calibrate.json" 2>/dev/null)"
+    fi
 else
     stack=() stack_words="step 3: its MCU overflowed its stack"
     halt=() halt_words="step 3: its MCU halted"
