@@ -28,9 +28,9 @@ const char *pil_emu_event_name(uint8_t event)
     switch (event) {
     case PIL_EMU_FRAME: return "handed over a frame";
     case PIL_EMU_BUDGET: return "ran past its cycle budget without answering";
-    case PIL_EMU_CRASH: return "crashed (the emulator's crashed state: an access outside its RAM or "
-                               "the program counter past its flash)";
-    case PIL_EMU_RESET: return "reset (jumped to the reset vector)";
+    case PIL_EMU_CRASH: return "crashed (an access outside its memory or the program counter past its "
+                               "flash: simavr's crashed state, a Cortex-M fault)";
+    case PIL_EMU_RESET: return "reset (jumped to the reset vector, or reset itself)";
     case PIL_EMU_HALT: return "halted (slept with interrupts off, or its main returned)";
     case PIL_EMU_STACK: return "overflowed its stack into its static data";
     case PIL_EMU_BAD_MAILBOX: return "rang with a mailbox outside its RAM";
