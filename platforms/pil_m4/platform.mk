@@ -6,7 +6,11 @@
 # (Debian's qemu-system-arm) is the emulator: one process per robot.
 #
 #   make pil-m4           every image's ELF (build/firmware/pil_m4/m4/<image>.elf)
-#                         and its state map
+#                         and its state map, and the test images (misbehave, calibrate)
+#   make pil-m4-tests     each image on the M4 beside its host build, step by step,
+#                         the counts' calibration, every error (part of firmware-check)
+#   make pil-m4-compare   the same, longer; its measurement feeds make readme-pil-cpu
+#   make pil-m4-bench     the cost of an M4 robot-step (tools/bench/pil.sh)
 PIL_M4 := platforms/pil_m4
 PIL_M4_OUT := $(FW_OUT)/pil_m4
 PIL_M4_INC := -Ihal -Iwire -Ifirmware -I$(PIL_M4)/hal -I$(PIL_AVR)/hal -I$(PIL_AVR)/run -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
