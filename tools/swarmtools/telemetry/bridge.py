@@ -20,7 +20,7 @@ hang-up, removed node) is closed and opened again every --reopen seconds
 until it comes back.  A device that cannot be opened at start (a mistyped
 path, a port not bound yet) ends the bridge at once with status 1, unless
 --wait asks it to wait for the device.  Counts per device go to BRIDGE_STATUS
-(swarmlcm.bridge_status_t) every --status-every seconds and to stderr every
+(swarmlcm.bridge_status_t) every --status-every seconds and once at exit, and to stderr every
 --report-every seconds and at exit.
 
     swarm-bridge /dev/rfcomm0 /dev/rfcomm1 --lcm 'udpm://239.255.76.67:7667?ttl=0' --baud 115200
@@ -359,6 +359,13 @@ def serve(args, ids, signals):
             next_report = now + args.report_every
             if not args.quiet:
                 print(f"{PROG}: {bridge.report()}", file=sys.stderr, flush=True)
+    # A last BRIDGE_STATUS, so that a log ends with the final counts (not
+    # those of up to --status-every earlier).
+    if args.status_every > 0:
+        try:
+            lc.publish(status_channel, bridge.status_message(int(time.time() * 1e6)).encode())
+        except Exception:
+            bridge.publish_errors += 1
     # The last line names why the bridge stopped, then what it counted
     # (each device as it was: reported before it is closed).
     print(f"{PROG}: {why}" + ("" if args.quiet else f"; {bridge.report()}")
