@@ -62,6 +62,10 @@ void pil_m4_resume(void);
 /** Reports `event` (pil_emu_event_t) with `pc` and halts for good: the
  *  fault and SysTick handlers. */
 void pil_m4_fatal(uint8_t event, uint32_t pc);
+/** Sends the EMU frame of how the core ran since it was resumed (event
+ *  pil_emu_event_t, pc where it stopped, 0: not known) and stops the
+ *  SysTick until pil_m4_resume. */
+void pil_m4_report(uint8_t event, uint32_t pc);
 /** Halts for good, saying nothing (the simulator has gone). */
 void pil_m4_halt(void);
 

@@ -111,7 +111,6 @@ static uint32_t stack_used(void)
     return (uint32_t)((uintptr_t)pil_m4_stack_top - (uintptr_t)p);
 }
 
-void pil_m4_report(uint8_t event, uint32_t pc);
 void pil_m4_report(uint8_t event, uint32_t pc)
 {
     uint8_t buf[PIL_FRAME_BYTES(32u)];

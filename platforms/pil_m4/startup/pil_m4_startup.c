@@ -21,7 +21,6 @@ extern uint32_t pil_m4_bss_start[], pil_m4_bss_end[];
 
 int main(void);
 void pil_m4_reset(void);
-void pil_m4_report(uint8_t event, uint32_t pc);
 void pil_m4_fault(void);
 void pil_m4_fault_c(const uint32_t *frame);
 void pil_m4_systick(void);
