@@ -32,7 +32,7 @@ const char *pil_emu_event_name(uint8_t event)
                                "flash: simavr's crashed state, a Cortex-M fault)";
     case PIL_EMU_RESET: return "reset (jumped to the reset vector, or reset itself)";
     case PIL_EMU_HALT: return "halted (slept with interrupts off, or its main returned)";
-    case PIL_EMU_STACK: return "overflowed its stack into its static data";
+    case PIL_EMU_STACK: return "overflowed its stack (into its static data, or the guard below it)";
     case PIL_EMU_BAD_MAILBOX: return "rang with a mailbox outside its RAM";
     }
     return "stopped for an unknown reason";

@@ -13,9 +13,9 @@
  *
  * It builds for the emulated Cortex-M4F too (platforms/pil_m4/), where
  * cases 1, 3, 4 and 6 are that core's: a write to unmapped memory (a
- * fault), a system reset (SYSRESETREQ), a recursion off the bottom of the
- * SRAM (the stack is below the static data there: the core locks up) and
- * WFI with interrupts off.  (A test image: the only chip-specific code of
+ * fault), a system reset (SYSRESETREQ), a recursion into the stack's
+ * guard (the stack is below the static data there) and WFI with
+ * interrupts off.  (A test image: the only chip-specific code of
  * an image, under the compiler's own macros.)
  */
 #include <stdint.h>

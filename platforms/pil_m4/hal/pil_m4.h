@@ -22,6 +22,13 @@
 /* The system control block. */
 #define PIL_M4_SHPR3 PIL_M4_REG(0xE000ED20u)
 #define PIL_M4_CPACR PIL_M4_REG(0xE000ED88u)
+#define PIL_M4_SHCSR PIL_M4_REG(0xE000ED24u)
+#define PIL_M4_MMFAR PIL_M4_REG(0xE000ED34u)
+/* The MPU (ARMv7-M PMSAv7): control, region number, base, attributes. */
+#define PIL_M4_MPU_CTRL PIL_M4_REG(0xE000ED94u)
+#define PIL_M4_MPU_RNR PIL_M4_REG(0xE000ED98u)
+#define PIL_M4_MPU_RBAR PIL_M4_REG(0xE000ED9Cu)
+#define PIL_M4_MPU_RASR PIL_M4_REG(0xE000EDA0u)
 #define PIL_M4_CFSR PIL_M4_REG(0xE000ED28u)
 
 /** The SysTick's clock on QEMU's netduinoplus2, Hz (its SYSCLK).  With

@@ -15,7 +15,7 @@
 #include "pil/pil_msg.h"
 #include "pil_m4.h"
 
-extern uint32_t pil_m4_stack_bottom[], pil_m4_stack_top[];
+extern uint32_t pil_m4_stack_guard[], pil_m4_stack_bottom[], pil_m4_stack_top[], pil_m4_handler_stack_top[];
 extern uint32_t pil_m4_data_start[], pil_m4_data_end[], pil_m4_data_load[];
 extern uint32_t pil_m4_bss_start[], pil_m4_bss_end[];
 
@@ -44,19 +44,30 @@ void pil_m4_fatal(uint8_t event, uint32_t pc)
     pil_m4_halt();
 }
 
-/* A fault: the stacked frame's PC (the frame is on the main stack; a
- * stack that ran off the SRAM locks the core up instead, and the
- * simulator's wall-time bound names it). */
+/* A fault, on the handlers' stack: the stacked frame's PC from the stack
+ * the core was on (the image's, the process stack, unless a handler
+ * faulted).  A MemManage fault in the stack's guard, or one while
+ * stacking, is the stack's overflow. */
 __attribute__((naked)) void pil_m4_fault(void)
 {
-    __asm__ __volatile__("mrs r0, msp\n\tb pil_m4_fault_c");
+    __asm__ __volatile__("tst lr, #4\n\tite eq\n\tmrseq r0, msp\n\tmrsne r0, psp\n\tb pil_m4_fault_c");
 }
+
+/* MMFSR (CFSR's low byte): MSTKERR (4), DACCVIOL (1), MMARVALID (7). */
+#define PIL_M4_MSTKERR 0x10u
+#define PIL_M4_DACCVIOL 0x02u
+#define PIL_M4_MMARVALID 0x80u
 
 void pil_m4_fault_c(const uint32_t *frame)
 {
-    uint32_t pc = ((uintptr_t)frame >= (uintptr_t)pil_m4_stack_bottom && (uintptr_t)frame + 32u <= (uintptr_t)pil_m4_stack_top)
+    uint32_t cfsr = PIL_M4_CFSR, at = PIL_M4_MMFAR;
+    uintptr_t guard = (uintptr_t)pil_m4_stack_guard, bottom = (uintptr_t)pil_m4_stack_bottom;
+    int overflow = (cfsr & PIL_M4_MSTKERR) != 0u
+                   || ((cfsr & (PIL_M4_DACCVIOL | PIL_M4_MMARVALID)) == (PIL_M4_DACCVIOL | PIL_M4_MMARVALID)
+                       && at >= guard && at < bottom);
+    uint32_t pc = !overflow && (uintptr_t)frame >= bottom && (uintptr_t)frame + 32u <= (uintptr_t)pil_m4_handler_stack_top
                       ? frame[6] : 0u;
-    pil_m4_fatal(PIL_EMU_CRASH, pc);
+    pil_m4_fatal(overflow ? PIL_EMU_STACK : PIL_EMU_CRASH, pc);
 }
 
 void pil_m4_systick(void)
@@ -92,9 +103,21 @@ void pil_m4_reset(void)
         PIL_M4_SCRATCH(w) = 0u;
     }
     PIL_M4_CPACR |= PIL_M4_CPACR_FPU;
+    /* The stack's guard: MPU region 0, 32 bytes (SIZE 4), no access, never
+     * executed; the rest of memory as without an MPU (PRIVDEFENA).
+     * MemManage faults taken as such. */
+    PIL_M4_MPU_RNR = 0u;
+    PIL_M4_MPU_RBAR = (uint32_t)(uintptr_t)pil_m4_stack_guard;
+    PIL_M4_MPU_RASR = (1u << 28) | (4u << 1) | 1u;
+    PIL_M4_MPU_CTRL = (1u << 2) | 1u;
+    PIL_M4_SHCSR |= 1u << 16;
     __asm__ __volatile__("dsb\n\tisb" ::: "memory");
     /* The SysTick's exception (the budget) at the highest priority. */
     PIL_M4_SHPR3 &= 0x00FFFFFFu;
+    /* The image on the process stack, from here down; the handlers on
+     * their own (the main stack). */
+    __asm__ __volatile__("mrs r0, msp\n\tmsr psp, r0\n\tmovs r0, #2\n\tmsr control, r0\n\tisb\n\tmsr msp, %0"
+                         : : "r"(pil_m4_handler_stack_top) : "r0", "memory");
     pil_m4_resume();
     (void)main();
     pil_m4_fatal(PIL_EMU_HALT, 0u);
