@@ -4,7 +4,8 @@
  * the stack, copy .data, zero .bss, enable the FPU, start the SysTick on
  * the boot budget, call main) and the handlers
  * of what can go wrong, each of which tells the simulator in an EMU frame
- * (pil_msg.h) and halts: a fault (PIL_EMU_CRASH, with the faulting PC), the
+ * (pil_msg.h) and halts: a fault (PIL_EMU_CRASH, with the faulting PC; in
+ * the stack's MPU guard, PIL_EMU_STACK), the
  * SysTick reaching zero (PIL_EMU_BUDGET: the exchange ran past its
  * budget), main returning (PIL_EMU_HALT), a reset after the image had run
  * (PIL_EMU_RESET).  Our own code, no vendor
@@ -82,7 +83,7 @@ void pil_m4_unexpected(void)
 
 void pil_m4_reset(void)
 {
-    /* Paint the stack below this function's own frame. */
+    /* Paint the stack below this function's own frame (not its guard). */
     volatile uint32_t *p = pil_m4_stack_bottom;
     volatile uint32_t *here = (volatile uint32_t *)__builtin_frame_address(0) - 16;
     while (p < here) {
