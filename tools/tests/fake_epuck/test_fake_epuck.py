@@ -21,7 +21,7 @@ from swarmtools.telemetry.host_link import HostLink
 PYTHON = sys.executable
 
 
-def wait_for(what, until, timeout=20.0, detail=None):
+def wait_for(what, until, timeout=120.0, detail=None):   # a bound for a hang only
     end = time.monotonic() + timeout
     while not until():
         if time.monotonic() > end:

@@ -70,14 +70,14 @@ class StderrLines:
                 self.lines.append(line)
                 self.cond.notify_all()
 
-    def wait_for(self, text, timeout=30.0):
+    def wait_for(self, text, timeout=120.0):   # a bound for a hang only
         """Waits for a line that contains `text`."""
         with self.cond:
             ok = self.cond.wait_for(lambda: any(text in line for line in self.lines), timeout)
         if not ok:
             raise AssertionError(f"timed out waiting for {text!r} on stderr: {''.join(self.lines)}")
 
-    def end(self, timeout=10.0):
+    def end(self, timeout=120.0):              # a bound for a hang only
         """The process's exit status and all its stderr, once it ended."""
         self.proc.wait(timeout)
         self.thread.join(timeout)
@@ -299,13 +299,13 @@ class StartAndStop(TempDir):
 
     def test_a_missing_device_is_refused_at_once(self):
         missing = self.tmp / "rfcomm9"
-        t0 = time.monotonic()
         p = self.bridge("/dev/null", missing)
         try:
-            _, err = p.communicate(timeout=10)   # before: ran on, reopening the missing port every second
+            # It ends by itself (before: it ran on, reopening the missing port
+            # every second, until this bound for a hang stopped the test).
+            _, err = p.communicate(timeout=120)
         finally:
             p.kill()
-        self.assertLess(time.monotonic() - t0, 5.0)
         self.assertEqual(p.returncode, 1, err)
         self.assertEqual(err, f"swarm-bridge: cannot open {missing} (No such file or directory); bind the robot's "
                               f"port first (sudo rfcomm bind ...), or pass --wait to wait for it\n")
@@ -347,7 +347,7 @@ class StartAndStop(TempDir):
             self.assertEqual(status, 143, err)
             self.assertTrue(err.splitlines()[-1].startswith("swarm-bridge: stopped by SIGTERM; "), err)
             p = self.bridge(robot.link, "--duration", "0.5", "--quiet")
-            _, err = p.communicate(timeout=10)
+            _, err = p.communicate(timeout=120)
             self.assertEqual((p.returncode, err), (0, "swarm-bridge: stopped after --duration 0.5 s\n"))
         finally:
             robot.close()
