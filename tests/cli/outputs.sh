@@ -15,9 +15,7 @@ tmp=$(mktemp -d "${TMPDIR:-/tmp}/outputs.XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
 check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
-# wait_until SECONDS TEST: polls TEST until it holds (status 0), or gives up
-# after SECONDS (status 1): generous, so that only a hang reaches it.
-wait_until() { local end=$((SECONDS + $1)); until eval "$2"; do [ $SECONDS -ge $end ] && return 1; sleep 0.05; done; }
+. tests/lib/wait_until.sh
 # Byte for byte but the "command" line (its provenance differs on purpose).
 same() { cmp -s <(grep -v '^  "command": ' "$1") <(grep -v '^  "command": ' "$2"); }
 field() { sed -n "s/^  \"$2\": \"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}\$/\1/p" "$1"; }

@@ -24,6 +24,7 @@ set -u
 sim=${1:-build/swarmsim}
 case $sim in /*) ;; *) sim="$PWD/$sim" ;; esac
 cd "$(dirname "$0")/../.." || exit 1
+. tests/lib/wait_until.sh
 pil=$(dirname "$sim")/firmware/pil_avr
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/pil.XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT
@@ -149,23 +150,14 @@ fails "a PIL group without an image" 2 "runs a robot image: give image: NAME" \
     > /dev/null 2>&1 &
 run=$!
 children=""
-for _ in $(seq 400); do
-    children=$(pgrep -P "$run" 2>/dev/null | tr '\n' ' ')
-    [ "$(echo "$children" | wc -w)" -ge 4 ] && break
-    sleep 0.05
-done
+wait_until 120 'children=$(pgrep -P "$run" 2>/dev/null | tr "\n" " "); [ "$(echo "$children" | wc -w)" -ge 4 ]'
 kill -9 "$run" 2>/dev/null
 wait "$run" 2>/dev/null
 if [ -z "$children" ]; then
     bad "the simulator started no emulator"
 else
-    for _ in $(seq 200); do
-        alive=0
-        for c in $children; do kill -0 "$c" 2>/dev/null && alive=1; done
-        [ $alive = 0 ] && break
-        sleep 0.05
-    done
-    if [ $alive = 0 ]; then ok; else bad "an emulator outlived its killed simulator"; kill -9 $children 2>/dev/null; fi
+    gone() { for c in $children; do kill -0 "$c" 2>/dev/null && return 1; done; return 0; }
+    if wait_until 120 gone; then ok; else bad "an emulator outlived its killed simulator"; kill -9 $children 2>/dev/null; fi
 fi
 
 echo "$pass passed, $fail failed"

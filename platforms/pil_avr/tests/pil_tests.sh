@@ -15,6 +15,7 @@
 # the same host build, its counts instructions; the misbehaving image's
 # chip-specific faults are that chip's (tests/misbehave_main.c).
 set -u
+. "$(dirname "$0")/../../../tests/lib/wait_until.sh"
 out=${PIL_OUT:?}
 m4=${M4_OUT:-}
 chip=$([ -n "$m4" ] && echo pil-m4 || echo pil-avr)
@@ -111,21 +112,14 @@ expect "step 4: its emulator gave no answer within 300 ms" "${rw[@]}" --stop-at 
 "$cmp" "${rw[@]}" --steps 100000000 > /dev/null 2>&1 &
 driver=$!
 child=""
-for _ in $(seq 200); do
-    child=$(pgrep -P "$driver" 2>/dev/null | head -1)
-    [ -n "$child" ] && break
-    sleep 0.05
-done
+wait_until 120 'child=$(pgrep -P "$driver" 2>/dev/null | head -1); [ -n "$child" ]'
 if [ -z "$child" ]; then
     bad "the driver started no emulator"
     kill -9 "$driver" 2>/dev/null
 else
     kill -9 "$driver"
     wait "$driver" 2>/dev/null
-    for _ in $(seq 200); do
-        kill -0 "$child" 2>/dev/null || break
-        sleep 0.05
-    done
+    wait_until 120 '! kill -0 "$child" 2>/dev/null'
     if kill -0 "$child" 2>/dev/null; then bad "the emulator outlived its simulator"; kill -9 "$child"; else ok; fi
 fi
 
