@@ -1,15 +1,15 @@
 /*
  * pil_m4_startup.c - bare-metal start of a PIL image on QEMU's
  * netduinoplus2 (Cortex-M4F): the vector table, the reset handler (paint
- * the stack, copy .data, zero .bss, enable the FPU, start the SysTick on
- * the boot budget, call main) and the handlers
- * of what can go wrong, each of which tells the simulator in an EMU frame
- * (pil_msg.h) and halts: a fault (PIL_EMU_CRASH, with the faulting PC; in
- * the stack's MPU guard, PIL_EMU_STACK), the
- * SysTick reaching zero (PIL_EMU_BUDGET: the exchange ran past its
- * budget), main returning (PIL_EMU_HALT), a reset after the image had run
- * (PIL_EMU_RESET).  Our own code, no vendor
- * start-up file: the e-puck2's port builds on it.
+ * the stack, copy .data, zero .bss, enable the FPU, set the stack's MPU
+ * guard, move the image to the process stack, start the SysTick on the
+ * boot budget, call main) and the handlers of what can go wrong.  Each
+ * tells the simulator in an EMU frame (pil_msg.h) and halts: a fault
+ * (PIL_EMU_CRASH, with the faulting PC; in the stack's guard,
+ * PIL_EMU_STACK), the SysTick reaching zero (PIL_EMU_BUDGET: the exchange
+ * ran past its budget), main returning (PIL_EMU_HALT), a reset after the
+ * image had run (PIL_EMU_RESET).  Our own code, no vendor start-up file:
+ * the e-puck2's port builds on it.
  */
 #include <stdint.h>
 
