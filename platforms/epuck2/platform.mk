@@ -69,3 +69,70 @@ epuck2-tone-coeffs:
 epuck2-tests: $(FW_HOST)/test_hal_epuck2_randb $(FW_HOST)/test_hal_epuck2_libircom epuck2-tone-coeffs
 	@set -e; for t in $(FW_HOST)/test_hal_epuck2_randb $(FW_HOST)/test_hal_epuck2_libircom; do \
 	  ASAN_OPTIONS=detect_leaks=1 $$t; done
+
+# ------------------------------------------------ the real build
+# Our side of an image (the controllers, hal/, wire/, this HAL, the image's
+# main, lcm-gen's C for telemetry) compiled here with the e-puck2's flags
+# into one archive per image; the library's Makefile (ChibiOS 3.1's rules,
+# through chibios/Makefile) builds the library, ChibiOS and the glue
+# (chibios/epuck2_os.c) and links the archive: one library build, shared by
+# every image (EPUCK2_REAL/chibios), one relink per image.
+EPUCK2_LIB_DIR ?=
+ROBOT_ID ?= 0
+EPUCK2_IMAGES = $(call fw_images,epuck2,ir telemetry)
+EPUCK2_FIRMWARE_IMAGES = $(or $(FIRMWARE_IMAGES),$(foreach r,$(EPUCK2_IMAGES),$(call fw_field,$(r),1)))
+EPUCK2_REAL := $(FW_OUT)/epuck2/real
+EPUCK2_ARCH := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16
+EPUCK2_REAL_CFLAGS := $(EPUCK2_ARCH) -std=c99 -pedantic $(WARN) -O2 -ggdb -ffunction-sections -fdata-sections \
+  $(FW_INC) $(EPUCK2_INC) -I$(FW_LCM_C_DIR) $(LCM_CFLAGS)
+EPUCK2_REAL_COMMON := $(filter-out $(FW_ROBOT_TELEMETRY_SRC),$(FW_SRC)) \
+  $(EPUCK2)/hal/hal_epuck2.c $(EPUCK2)/hal/host_link.c $(EPUCK2)/hal/tone_coeffs_16k.c
+EPUCK2_REAL_TELEMETRY := $(FW_ROBOT_TELEMETRY_SRC) $(EPUCK2)/run/image_telemetry.c $(FW_LCM_SRC)
+epuck2_real_obj = $(patsubst %.c,$(EPUCK2_REAL)/obj/%.o,$(1))
+epuck2_row = $(filter $(1):%,$(EPUCK2_IMAGES))
+# The sources of image $(1): ours, its IR backend, its telemetry.
+epuck2_real_srcs = $(EPUCK2_GEN)/$(1)_main.c $(EPUCK2_REAL_COMMON) \
+  $(EPUCK2)/hal/ircom_$(call fw_field,$(call epuck2_row,$(1)),2).c \
+  $(if $(filter yes,$(call fw_field,$(call epuck2_row,$(1)),3)),$(EPUCK2_REAL_TELEMETRY))
+
+$(EPUCK2_REAL)/obj/%.o: %.c $(FW_LCM_STAMP) | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,E2-CC,$<)arm-none-eabi-gcc $(EPUCK2_REAL_CFLAGS) -c $< -o $@
+
+# Defined for the goals that build images (make epuck2-firmware runs them
+# in a sub-make), so other goals do not read the declarations.
+ifneq ($(filter $(EPUCK2_REAL)/%,$(MAKECMDGOALS)),)
+EPUCK2_IMAGES := $(EPUCK2_IMAGES)
+define EPUCK2_IMAGE_RULES
+$(EPUCK2_REAL)/lib/lib$(1).a: $(call epuck2_real_obj,$(call epuck2_real_srcs,$(1)))
+	@mkdir -p $$(@D)
+	$$(call show,AR,$$@)rm -f $$@ && arm-none-eabi-ar rcs $$@ $$^
+$(EPUCK2_REAL)/$(1).bin: $(EPUCK2_REAL)/lib/lib$(1).a $(EPUCK2)/chibios/Makefile $(EPUCK2)/chibios/epuck2_os.c
+	@mkdir -p $(EPUCK2_REAL)/chibios
+	$$(MAKE) --no-print-directory -C $(EPUCK2_REAL)/chibios -f $(abspath $(EPUCK2)/chibios/Makefile) \
+	  GLOBAL_PATH=$(abspath $(EPUCK2_LIB_DIR)) PROJECT=$(1) IMAGE_LIB=$(abspath $(EPUCK2_REAL)/lib/lib$(1).a) \
+	  ROBOT_ID=$(ROBOT_ID)
+	cp $(EPUCK2_REAL)/chibios/build/$(1).elf $(EPUCK2_REAL)/$(1).elf
+	cp $(EPUCK2_REAL)/chibios/build/$(1).bin $$@
+	@arm-none-eabi-size $(EPUCK2_REAL)/$(1).elf
+	@echo "epuck2-firmware: $$@ (flash it: docs/hardware/epuck2.md)"
+endef
+$(foreach r,$(EPUCK2_IMAGES),$(eval $(call EPUCK2_IMAGE_RULES,$(call fw_field,$(r),1))))
+endif
+
+# Says exactly what is missing, then builds what was asked.
+epuck2-firmware:
+	@missing=0; say() { echo "epuck2-firmware: $$*" >&2; missing=1; }; \
+	command -v arm-none-eabi-gcc > /dev/null || say "arm-none-eabi-gcc not found: install gcc-arm-none-eabi (make deps)"; \
+	if [ -z "$(EPUCK2_LIB_DIR)" ]; then \
+	  say "EPUCK2_LIB_DIR is not set: git clone --recursive https://github.com/e-puck2/e-puck2_main-processor and pass EPUCK2_LIB_DIR=/path/to/e-puck2_main-processor"; \
+	elif [ ! -f "$(EPUCK2_LIB_DIR)/Makefile" ] || [ ! -f "$(EPUCK2_LIB_DIR)/src/motors.h" ]; then \
+	  say "EPUCK2_LIB_DIR=$(EPUCK2_LIB_DIR) is not the e-puck2_main-processor library (no Makefile and src/motors.h there)"; \
+	elif [ ! -f "$(EPUCK2_LIB_DIR)/ChibiOS/os/rt/rt.mk" ] || [ ! -f "$(EPUCK2_LIB_DIR)/src/msgbus/messagebus.h" ]; then \
+	  say "$(EPUCK2_LIB_DIR): its submodules are missing (ChibiOS, src/msgbus, ...): run git submodule update --init there"; fi; \
+	case "$(ROBOT_ID)" in ''|*[!0-9]*) say "ROBOT_ID must be a number 0..65534 (not '$(ROBOT_ID)')";; esac; \
+	for i in $(EPUCK2_FIRMWARE_IMAGES); do case " $(EPUCK2_IMAGES) " in *" $$i:"*) ;; \
+	  *) say "unknown image '$$i' (images: $(foreach r,$(EPUCK2_IMAGES),$(call fw_field,$(r),1)))";; esac; done; \
+	if [ $$missing != 0 ]; then echo "epuck2-firmware: nothing built (make epuck2-gates checks the images without the library)" >&2; exit 1; fi
+	@$(MAKE) --no-print-directory lcm-types epuck2-images
+	@$(MAKE) --no-print-directory $(foreach i,$(EPUCK2_FIRMWARE_IMAGES),$(EPUCK2_REAL)/$(i).bin)
