@@ -44,7 +44,7 @@ EPUCK2_HOST_CFLAGS := -std=c99 -pedantic -Wall -Wextra -Werror -Wshadow -Wstrict
   -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 EPUCK2_HAL_COMMON := $(EPUCK2)/hal/hal_epuck2.c $(EPUCK2)/hal/host_link.c $(EPUCK2)/hal/tone_coeffs_16k.c \
   hal/blob_detect.c hal/hal_common.c hal/units.c hal/tone_detect.c hal/tone_tables.c \
-  $(EPUCK2_STUBS)/epuck2_lib_stubs.c wire/telemetry/telemetry_rx.c wire/telemetry/telemetry_host.c \
+  $(EPUCK2_STUBS)/epuck2_lib_stubs.c $(EPUCK2_STUBS)/epuck2_os_stubs.c wire/telemetry/telemetry_rx.c wire/telemetry/telemetry_host.c \
   wire/telemetry/telemetry_frame.c
 EPUCK2_HAL_DEPS := $(EPUCK2_HAL_COMMON) $(wildcard $(EPUCK2)/hal/*.h $(EPUCK2_STUBS)/*.h hal/*.h wire/*/*.h)
 
@@ -136,3 +136,37 @@ epuck2-firmware:
 	if [ $$missing != 0 ]; then echo "epuck2-firmware: nothing built (make epuck2-gates checks the images without the library)" >&2; exit 1; fi
 	@$(MAKE) --no-print-directory lcm-types epuck2-images
 	@$(MAKE) --no-print-directory $(foreach i,$(EPUCK2_FIRMWARE_IMAGES),$(EPUCK2_REAL)/$(i).bin)
+
+# ------------------------------------------------ processor in the loop
+# Images with telemetry on QEMU's netduinoplus2 (the e-puck2's Cortex-M4F
+# core): our objects of the real build (the e-puck2's flags, -O2), the
+# library's stubs, and a glue over the emulated SysTick and USART1
+# (tests/qemu/epuck2_qemu_os.c) instead of ChibiOS.  tests/pil_qemu.py runs
+# each for 3 s of emulated time, sends the host link's frames to the one
+# with it, and decodes what comes out of its UART with the bridge's frame
+# decoder (swarmtools.telemetry.frames) and the LCM types.
+EPUCK2_PIL_IMAGES ?= phototaxis forager waypoint
+EPUCK2_PIL := $(FW_OUT)/epuck2/pil
+EPUCK2_PIL_CFLAGS := $(EPUCK2_ARCH) -std=c99 -pedantic $(WARN) -O2 -ffunction-sections -fdata-sections \
+  -I$(EPUCK2)/hal -I$(EPUCK2_STUBS)
+EPUCK2_PIL_SUPPORT := $(EPUCK2_PIL)/obj/epuck2_qemu_os.o $(EPUCK2_PIL)/obj/epuck2_lib_stubs.o $(EPUCK2_PIL)/obj/ircom_stubs.o
+$(EPUCK2_PIL)/obj/%.o: $(EPUCK2)/tests/qemu/%.c $(EPUCK2)/hal/epuck2_os.h | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,E2-CC,$<)arm-none-eabi-gcc $(EPUCK2_PIL_CFLAGS) -c $< -o $@
+$(EPUCK2_PIL)/obj/%.o: $(EPUCK2_STUBS)/%.c $(wildcard $(EPUCK2_STUBS)/*.h $(EPUCK2)/hal/*.h) | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,E2-CC,$<)arm-none-eabi-gcc $(EPUCK2_PIL_CFLAGS) -c $< -o $@
+ifneq ($(filter $(EPUCK2_PIL)/%,$(MAKECMDGOALS)),)
+EPUCK2_IMAGES := $(EPUCK2_IMAGES)
+define EPUCK2_PIL_RULES
+$(EPUCK2_PIL)/$(1).elf: $(call epuck2_real_obj,$(call epuck2_real_srcs,$(1))) $(EPUCK2_PIL_SUPPORT) $(EPUCK2)/tests/qemu/epuck2_qemu.ld
+	$$(call show,E2-LD,$$@)arm-none-eabi-gcc $(EPUCK2_ARCH) -nostartfiles --specs=nano.specs \
+	  -T $(EPUCK2)/tests/qemu/epuck2_qemu.ld -Wl,--gc-sections -o $$@ $$(filter %.o,$$^) -lm
+endef
+$(foreach r,$(EPUCK2_IMAGES),$(eval $(call EPUCK2_PIL_RULES,$(call fw_field,$(r),1))))
+endif
+
+.PHONY: epuck2-pil
+epuck2-pil: lcm-types epuck2-images deps
+	@$(MAKE) --no-print-directory $(foreach i,$(EPUCK2_PIL_IMAGES),$(EPUCK2_PIL)/$(i).elf)
+	@$(PYTHON) $(EPUCK2)/tests/pil_qemu.py --elf-dir $(EPUCK2_PIL) $(EPUCK2_PIL_IMAGES)

@@ -50,7 +50,7 @@ HYGIENE_COMPILERS = ['cc -fno-pie -O2', 'arm-none-eabi-gcc ' + ARCH + ' -Os']
 GATES = {
     'include': [HERE + '/hal', HERE + '/run', STUBS],
     'sources': [HERE + '/hal/hal_epuck2.c', HERE + '/hal/host_link.c', HERE + '/hal/tone_coeffs_16k.c'],
-    'stubs': [STUBS + '/epuck2_lib_stubs.c'],
+    'stubs': [STUBS + '/epuck2_lib_stubs.c', STUBS + '/epuck2_os_stubs.c'],
     'when': {
         ('ir', 'randb'): ([HERE + '/hal/ircom_randb.c'], []),
         ('ir', 'libircom'): ([HERE + '/hal/ircom_libircom.c'], [STUBS + '/ircom_stubs.c']),

@@ -1,12 +1,12 @@
 /* epuck2_lib_stubs.c - epuck2_stubs.h: the library's proximity, motors,
- * LEDs, camera, audio, I2C and ground functions, and the ChibiOS glue. */
+ * LEDs, camera, audio, I2C and ground functions (the ChibiOS glue's are
+ * epuck2_os_stubs.c). */
 #include "epuck2_stubs.h"
 
 #include <stddef.h>
 #include <string.h>
 
 #include "epuck2_lib.h"
-#include "epuck2_os.h"
 
 epuck2_stub_state_t epuck2_stub;
 
@@ -14,35 +14,6 @@ void epuck2_stub_reset(void)
 {
     memset(&epuck2_stub, 0, sizeof epuck2_stub);
     epuck2_stub.tx_room = -1;
-}
-
-/* ChibiOS glue */
-void epuck2_os_init(void) { epuck2_stub.os_inits++; }
-uint32_t epuck2_os_time_ms(void) { return epuck2_stub.now_ms; }
-void epuck2_os_idle(void)
-{
-    epuck2_stub.idles++;
-    epuck2_stub.now_ms += epuck2_stub.idle_step_ms;
-}
-uint16_t epuck2_os_robot_id(void) { return epuck2_stub.robot_id; }
-uint16_t epuck2_os_serial_write(const uint8_t *bytes, uint16_t len)
-{
-    uint16_t n = len, i;
-    if (epuck2_stub.tx_room >= 0 && n > (uint16_t)epuck2_stub.tx_room) {
-        n = (uint16_t)epuck2_stub.tx_room;
-    }
-    for (i = 0; i < n && epuck2_stub.tx_len < EPUCK2_STUB_LOG; i++) {
-        epuck2_stub.tx_log[epuck2_stub.tx_len++] = bytes[i];
-    }
-    return n;
-}
-uint16_t epuck2_os_serial_read(uint8_t *buf, uint16_t cap)
-{
-    uint16_t n = 0u;
-    while (n < cap && epuck2_stub.rx != NULL && epuck2_stub.rx_pos < epuck2_stub.rx_len) {
-        buf[n++] = epuck2_stub.rx[epuck2_stub.rx_pos++];
-    }
-    return n;
 }
 
 /* motors */
