@@ -16,6 +16,9 @@
 #                         link, the camera's averaging, the microphones'
 #                         tone levels at 16 kHz) and an image run against the
 #                         stubs, its telemetry frames decoded (ASan/UBSan)
+#   make epuck2-pil       phototaxis, forager and waypoint on QEMU's Cortex-M4F
+#                         (netduinoplus2), their UART's telemetry decoded, the
+#                         waypoint's route and poses sent on it (tests/pil_qemu.py)
 #   make epuck2-firmware  .elf and .bin files: EPUCK2_LIB_DIR=/path/to/
 #                         e-puck2_main-processor (a checkout with its
 #                         submodules: ChibiOS 3.1), FIRMWARE_IMAGES (every
@@ -28,7 +31,7 @@ EPUCK2_INC := -I$(EPUCK2)/hal -I$(EPUCK2)/run
 .PHONY: epuck2-images epuck2-gates epuck2-tests epuck2-firmware
 FW_IMAGE_TARGETS += epuck2-images
 FW_GATES += epuck2-gates
-PLATFORM_CHECKS += epuck2-gates epuck2-tests
+PLATFORM_CHECKS += epuck2-gates epuck2-tests epuck2-pil
 
 epuck2-images:
 	@$(call fw_generate,epuck2)
