@@ -17,8 +17,11 @@
 #                         tone levels at 16 kHz) and an image run against the
 #                         stubs, its telemetry frames decoded (ASan/UBSan)
 #   make epuck2-pil       phototaxis, forager and waypoint on QEMU's Cortex-M4F
-#                         (netduinoplus2), their UART's telemetry decoded, the
-#                         waypoint's route and poses sent on it (tests/pil_qemu.py)
+#                         (netduinoplus2), their UART's telemetry through the
+#                         bridge, the waypoint's route and poses sent on it
+#                         (tests/pil_qemu.py); the flasher's tests, its load and
+#                         verify through QEMU's gdbstub (tools/tests/flash/test_epuck2.py)
+#   make epuck2-flash ELF=build/firmware/epuck2/real/forager.elf PORT=/dev/ttyACM0
 #   make epuck2-firmware  .elf and .bin files: EPUCK2_LIB_DIR=/path/to/
 #                         e-puck2_main-processor (a checkout with its
 #                         submodules: ChibiOS 3.1), FIRMWARE_IMAGES (every
@@ -173,3 +176,13 @@ endif
 epuck2-pil: lcm-types epuck2-images deps
 	@$(MAKE) --no-print-directory $(foreach i,$(EPUCK2_PIL_IMAGES),$(EPUCK2_PIL)/$(i).elf)
 	@$(PYTHON) $(EPUCK2)/tests/pil_qemu.py --elf-dir $(EPUCK2_PIL) $(EPUCK2_PIL_IMAGES)
+	@$(PYTHON) tools/tests/flash/test_epuck2.py $(EPUCK2_PIL)/phototaxis.elf
+
+# ------------------------------------------------ flashing
+ELF ?=
+PORT ?=
+.PHONY: epuck2-flash
+epuck2-flash:
+	@if [ -z "$(ELF)" ] || [ -z "$(PORT)" ]; then \
+	  echo "usage: make epuck2-flash ELF=build/firmware/epuck2/real/forager.elf PORT=/dev/ttyACM0" >&2; exit 2; fi
+	$(PYTHON) -m swarmtools.flash.epuck2 $(ELF) $(PORT)
