@@ -139,7 +139,7 @@ def main(argv=None):
     tcp = re.fullmatch(r'[\w.-]*:\d+', args.port) is not None
     if not tcp and not os.path.exists(args.port):
         print(f'{PROG}: {args.port}: no such port: plug the robot in by USB and switch it on '
-              '(its programmer is the first of its two serial ports, /dev/ttyACM0 on Linux)', file=sys.stderr)
+              '(ls /dev/serial/by-id/ shows its two serial ports: the programmer is one of them)', file=sys.stderr)
         return 2
     gdb = shutil.which(args.gdb)
     if gdb is None:
