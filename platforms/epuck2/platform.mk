@@ -16,8 +16,8 @@
 #                         link, the camera's averaging, the microphones'
 #                         tone levels at 16 kHz) and an image run against the
 #                         stubs, its telemetry frames decoded (ASan/UBSan)
-#   make epuck2-pil       phototaxis, forager and waypoint on QEMU's Cortex-M4F
-#                         (netduinoplus2), their UART's telemetry through the
+#   make epuck2-pil       phototaxis, forager and waypoint, as the gates built
+#                         them, on QEMU's Cortex-M4F (netduinoplus2), their UART's telemetry through the
 #                         bridge, the waypoint's route and poses sent on it
 #                         (tests/pil_qemu.py); the flasher's tests, its load and
 #                         verify through QEMU's gdbstub (tools/tests/flash/test_epuck2.py)
@@ -145,27 +145,27 @@ epuck2-firmware:
 
 # ------------------------------------------------ processor in the loop
 # Images with telemetry on QEMU's netduinoplus2 (the e-puck2's Cortex-M4F
-# core): our objects of the real build (the e-puck2's flags, -O2), the
-# library's stubs, and a glue over the emulated SysTick and USART1
-# (tests/qemu/epuck2_qemu_os.c) instead of ChibiOS.  tests/pil_qemu.py runs
-# each for 3 s of emulated time, sends the host link's frames to the one
-# with it, and decodes what comes out of its UART with the bridge's frame
-# decoder (swarmtools.telemetry.frames) and the LCM types.
+# core): the very objects the gates measured (epuck2-gates: the e-puck2's
+# flags, -Os), the library's stubs, and a glue over the emulated SysTick
+# and USART1 (tests/qemu/epuck2_qemu_os.c) instead of ChibiOS.
+# tests/pil_qemu.py runs each for 3 s of emulated time, sends the host
+# link's frames to the one with it, and passes what comes out of its UART
+# through the serial bridge (swarmtools.telemetry.bridge) to the LCM types.
 EPUCK2_PIL_IMAGES ?= phototaxis forager waypoint
 EPUCK2_PIL := $(FW_OUT)/epuck2/pil
-EPUCK2_PIL_CFLAGS := $(EPUCK2_ARCH) -std=c99 -pedantic $(WARN) -O2 -ffunction-sections -fdata-sections \
-  -I$(EPUCK2)/hal -I$(EPUCK2_STUBS)
-EPUCK2_PIL_SUPPORT := $(EPUCK2_PIL)/obj/epuck2_qemu_os.o $(EPUCK2_PIL)/obj/epuck2_lib_stubs.o $(EPUCK2_PIL)/obj/ircom_stubs.o
+EPUCK2_GATE_OBJ := $(FW_OUT)/epuck2/arm/obj
+epuck2_gate_obj = $(patsubst %.c,$(EPUCK2_GATE_OBJ)/%.o,$(1))
+EPUCK2_PIL_CFLAGS := $(EPUCK2_ARCH) -std=c99 -pedantic $(WARN) -Os -ffunction-sections -fdata-sections \
+  -I$(EPUCK2)/hal
 $(EPUCK2_PIL)/obj/%.o: $(EPUCK2)/tests/qemu/%.c $(EPUCK2)/hal/epuck2_os.h | $(BUILD)/config.mk
-	@mkdir -p $(@D)
-	$(call show,E2-CC,$<)arm-none-eabi-gcc $(EPUCK2_PIL_CFLAGS) -c $< -o $@
-$(EPUCK2_PIL)/obj/%.o: $(EPUCK2_STUBS)/%.c $(wildcard $(EPUCK2_STUBS)/*.h $(EPUCK2)/hal/*.h) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
 	$(call show,E2-CC,$<)arm-none-eabi-gcc $(EPUCK2_PIL_CFLAGS) -c $< -o $@
 ifneq ($(filter $(EPUCK2_PIL)/%,$(MAKECMDGOALS)),)
 EPUCK2_IMAGES := $(EPUCK2_IMAGES)
 define EPUCK2_PIL_RULES
-$(EPUCK2_PIL)/$(1).elf: $(call epuck2_real_obj,$(call epuck2_real_srcs,$(1))) $(EPUCK2_PIL_SUPPORT) $(EPUCK2)/tests/qemu/epuck2_qemu.ld
+$(EPUCK2_PIL)/$(1).elf: $(call epuck2_gate_obj,$(call epuck2_real_srcs,$(1)) $(EPUCK2_STUBS)/epuck2_lib_stubs.c \
+    $(EPUCK2_STUBS)/ircom_stubs.c) $(EPUCK2_PIL)/obj/epuck2_qemu_os.o $(EPUCK2)/tests/qemu/epuck2_qemu.ld
+	@mkdir -p $$(@D)
 	$$(call show,E2-LD,$$@)arm-none-eabi-gcc $(EPUCK2_ARCH) -nostartfiles --specs=nano.specs \
 	  -T $(EPUCK2)/tests/qemu/epuck2_qemu.ld -Wl,--gc-sections -o $$@ $$(filter %.o,$$^) -lm
 endef
@@ -173,7 +173,7 @@ $(foreach r,$(EPUCK2_IMAGES),$(eval $(call EPUCK2_PIL_RULES,$(call fw_field,$(r)
 endif
 
 .PHONY: epuck2-pil
-epuck2-pil: lcm-types epuck2-images deps
+epuck2-pil: epuck2-gates deps
 	@$(MAKE) --no-print-directory $(foreach i,$(EPUCK2_PIL_IMAGES),$(EPUCK2_PIL)/$(i).elf)
 	@$(PYTHON) $(EPUCK2)/tests/pil_qemu.py --elf-dir $(EPUCK2_PIL) $(EPUCK2_PIL_IMAGES)
 	@$(PYTHON) tools/tests/flash/test_epuck2.py $(EPUCK2_PIL)/phototaxis.elf
