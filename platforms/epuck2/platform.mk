@@ -84,7 +84,8 @@ epuck2-tests: $(FW_HOST)/test_hal_epuck2_randb $(FW_HOST)/test_hal_epuck2_libirc
 # (chibios/epuck2_os.c) and links the archive: one library build, shared by
 # every image (EPUCK2_REAL/chibios), one relink per image.
 EPUCK2_LIB_DIR ?=
-ROBOT_ID ?= 0
+# ROBOT_ID is shared with the e-puck1's flasher (empty there when not given).
+EPUCK2_ROBOT_ID = $(or $(ROBOT_ID),0)
 EPUCK2_IMAGES = $(call fw_images,epuck2,ir telemetry)
 EPUCK2_FIRMWARE_IMAGES = $(or $(FIRMWARE_IMAGES),$(foreach r,$(EPUCK2_IMAGES),$(call fw_field,$(r),1)))
 EPUCK2_REAL := $(FW_OUT)/epuck2/real
@@ -113,11 +114,14 @@ define EPUCK2_IMAGE_RULES
 $(EPUCK2_REAL)/lib/lib$(1).a: $(call epuck2_real_obj,$(call epuck2_real_srcs,$(1)))
 	@mkdir -p $$(@D)
 	$$(call show,AR,$$@)rm -f $$@ && arm-none-eabi-ar rcs $$@ $$^
-$(EPUCK2_REAL)/$(1).bin: $(EPUCK2_REAL)/lib/lib$(1).a $(EPUCK2)/chibios/Makefile $(EPUCK2)/chibios/epuck2_os.c
+$(EPUCK2_REAL)/$(1).bin: $(EPUCK2_REAL)/lib/lib$(1).a $(EPUCK2)/chibios/Makefile $(EPUCK2)/chibios/epuck2_os.c \
+    $(EPUCK2_REAL)/robot_id
 	@mkdir -p $(EPUCK2_REAL)/chibios
+	@# The glue holds ROBOT_ID, which the library's rules do not track.
+	@rm -f $(EPUCK2_REAL)/chibios/build/obj/epuck2_os.o
 	$$(MAKE) --no-print-directory -C $(EPUCK2_REAL)/chibios -f $(abspath $(EPUCK2)/chibios/Makefile) \
 	  GLOBAL_PATH=$(abspath $(EPUCK2_LIB_DIR)) PROJECT=$(1) IMAGE_LIB=$(abspath $(EPUCK2_REAL)/lib/lib$(1).a) \
-	  ROBOT_ID=$(ROBOT_ID)
+	  ROBOT_ID=$(EPUCK2_ROBOT_ID)
 	cp $(EPUCK2_REAL)/chibios/build/$(1).elf $(EPUCK2_REAL)/$(1).elf
 	cp $(EPUCK2_REAL)/chibios/build/$(1).bin $$@
 	@arm-none-eabi-size $(EPUCK2_REAL)/$(1).elf
@@ -136,11 +140,15 @@ epuck2-firmware:
 	  say "EPUCK2_LIB_DIR=$(EPUCK2_LIB_DIR) is not the e-puck2_main-processor library (no Makefile and src/motors.h there)"; \
 	elif [ ! -f "$(EPUCK2_LIB_DIR)/ChibiOS/os/rt/rt.mk" ] || [ ! -f "$(EPUCK2_LIB_DIR)/src/msgbus/messagebus.h" ]; then \
 	  say "$(EPUCK2_LIB_DIR): its submodules are missing (ChibiOS, src/msgbus, ...): run git submodule update --init there"; fi; \
-	case "$(ROBOT_ID)" in ''|*[!0-9]*) say "ROBOT_ID must be a number 0..65534 (not '$(ROBOT_ID)')";; esac; \
+	case "$(EPUCK2_ROBOT_ID)" in *[!0-9]*) say "ROBOT_ID must be a number 0..65534 (not '$(ROBOT_ID)')";; \
+	  *) [ "$(EPUCK2_ROBOT_ID)" -le 65534 ] || say "ROBOT_ID must be 0..65534 (not $(ROBOT_ID))";; esac; \
 	for i in $(EPUCK2_FIRMWARE_IMAGES); do case " $(EPUCK2_IMAGES) " in *" $$i:"*) ;; \
 	  *) say "unknown image '$$i' (images: $(foreach r,$(EPUCK2_IMAGES),$(call fw_field,$(r),1)))";; esac; done; \
 	if [ $$missing != 0 ]; then echo "epuck2-firmware: nothing built (make epuck2-gates checks the images without the library)" >&2; exit 1; fi
 	@$(MAKE) --no-print-directory lcm-types epuck2-images
+	@# The id the images are built with: rewritten when it changes, so they are rebuilt.
+	@mkdir -p $(EPUCK2_REAL) && echo $(EPUCK2_ROBOT_ID) | cmp -s - $(EPUCK2_REAL)/robot_id \
+	  || echo $(EPUCK2_ROBOT_ID) > $(EPUCK2_REAL)/robot_id
 	@$(MAKE) --no-print-directory $(foreach i,$(EPUCK2_FIRMWARE_IMAGES),$(EPUCK2_REAL)/$(i).bin)
 
 # ------------------------------------------------ processor in the loop
