@@ -15,6 +15,9 @@ run through the sweep engine, at e-puck scale (docs/studies/repatt.md).
   10 worlds, normalised by the worlds sweep's RW: a column beside Figure 3.
 - scale (studies/repatt_scale.yaml): Figure 4, relative efficiency E_r
   (eqs 7-8, tp = 180) for 1..100 robots in One100m and Uniform100m.
+- half (studies/repatt_half.yaml, not in the default set): Half50m and
+  Half100m under both readings of Figure 1d (targets.half_shape cluster
+  and strip) with RW, N0-Q1 and N100-Q40, each normalised by its own RW.
 
 Each figure's sweep lives in OUT/<figure>/ (resumable: rerun the same
 command); results.md, results.json and PNG figures are written to OUT.
