@@ -17,7 +17,8 @@ run through the sweep engine, at e-puck scale (docs/studies/repatt.md).
   (eqs 7-8, tp = 180) for 1..100 robots in One100m and Uniform100m.
 - half (studies/repatt_half.yaml, not in the default set): Half50m and
   Half100m under both readings of Figure 1d (targets.half_shape cluster
-  and strip) with RW, N0-Q1 and N100-Q40, each normalised by its own RW.
+  and strip) with RW, N0-Q1 and N100-Q40, each normalised by its own RW;
+  half_slotted (studies/repatt_half_slotted.yaml) adds the slotted arm.
 
 Each figure's sweep lives in OUT/<figure>/ (resumable: rerun the same
 command); results.md, results.json and PNG figures are written to OUT.
@@ -64,7 +65,7 @@ from swarmtools.sweep.spec import SweepError
 REPO_ROOT = Path(__file__).resolve().parents[3]
 STUDIES = REPO_ROOT / "studies"
 FIGURES = {"worlds": "repatt_worlds.yaml", "slotted": "repatt_slotted.yaml", "scale": "repatt_scale.yaml",
-           "half": "repatt_half.yaml"}
+           "half": "repatt_half.yaml", "half_slotted": "repatt_half_slotted.yaml"}
 TIME = "time_capped_s"  # the time to 90 %, or the run's length when it did not finish
 FINISHED = "finished"
 # The override keys the sweep files vary (one place: the files and this script agree).
@@ -220,7 +221,7 @@ def half_table(rows: Sequence[dict[str, str]]) -> dict[str, Any]:
     by = group(rows, lambda r: (world(r)[1], r.get(HALF_SHAPE, ""), arm(r)))
     for (size, shape) in sorted({(k[0], k[1]) for k in by}):
         rw, _ = times(by.get((size, shape, "RW"), []))
-        for a in ("RW", "N0-Q1", "N100-Q40"):
+        for a in ("RW", "N0-Q1", "N100-Q40", SLOTTED):
             t, unfinished = times(by.get((size, shape, a), []))
             if not t.size:
                 continue
@@ -236,8 +237,8 @@ def render_half(res: dict[str, Any]) -> list[str]:
              "`half_shape` cluster: 100 targets in One's disc, 100 uniform over the square; strip: all 200 "
              "uniform over the half x >= 0. Time to 90 %, mean; normalised by the same shape's RW "
              "[95 % bootstrap CI]. Paper (N0-Q1, Half100m): 0.29.", "",
-             "| world | half_shape | runs | RW (s) | N0-Q1 / RW | N100-Q40 / RW | unfinished |",
-             "|---|---|---:|---:|---:|---:|---:|"]
+             "| world | half_shape | runs | RW (s) | N0-Q1 / RW | N100-Q40 / RW | N100-Q40 slotted / RW | unfinished |",
+             "|---|---|---:|---:|---:|---:|---:|---:|"]
     for (w, shape) in sorted({(x["world"], x["half_shape"]) for x in res.values()}, key=lambda k: (len(k[0]), k)):
         def cell(a: str) -> str:
             x = res.get(f"{w}/{shape}/{a}")
@@ -246,7 +247,7 @@ def render_half(res: dict[str, Any]) -> list[str]:
         runs = sum(x["ok"] for x in res.values() if x["world"] == w and x["half_shape"] == shape)
         unf = sum(x["unfinished"] for x in res.values() if x["world"] == w and x["half_shape"] == shape)
         lines.append(f"| {w} | {shape} | {runs} | {fmt(rw.get('mean_s', math.nan), 0)} | {cell('N0-Q1')} | "
-                     f"{cell('N100-Q40')} | {unf} |")
+                     f"{cell('N100-Q40')} | {cell(SLOTTED)} | {unf} |")
     return lines + [""]
 
 
@@ -340,7 +341,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.repatt", description=__doc__.split("\n\n")[0])
     ap.add_argument("--figures", default="worlds,slotted,scale",
                     help="which sweeps to run: worlds (Figures 3 and 2c), slotted (the e-puck's listening "
-                         "schedule, beside Figure 3), scale (Figure 4), half (Half's two layouts), alns (Figure 3's ALNS bars: plans, then "
+                         "schedule, beside Figure 3), scale (Figure 4), half (Half's two layouts), half_slotted (their slotted arm; needs half), alns (Figure 3's ALNS bars: plans, then "
                          "the routes followed; needs worlds); comma-separated")
     ap.add_argument("--quick", action="store_true",
                     help=f"a smoke run under a minute: {QUICK['repatt'].seeds} seed a cell, runs cut at "
@@ -362,6 +363,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         if "alns" in figs and "worlds" not in figs:
             raise SweepError("--figures alns needs worlds too (ALNS is normalised by its random walk): "
                              "--figures worlds,alns (a finished worlds sweep resumes at once)")
+        if "half_slotted" in figs and "half" not in figs:
+            raise SweepError("--figures half_slotted needs half too (normalised by its random walk): "
+                             "--figures half,half_slotted")
         if a.reps is not None and a.reps < 1:
             raise SweepError("--reps must be at least 1")
         sim, out = Path(a.sim), quick_out(a.out, REPO_ROOT / "out" / "study_repatt", a.quick)
@@ -434,7 +438,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             md.append("![Figure 2c](fig2c_queue.png)\n")
             results["fig3"], results["fig2c"] = res, qres
         if "half" in tables:
-            res = half_table(tables["half"])
+            # the slotted arm (its own sweep) is normalised by the half sweep's RW
+            res = half_table(tables["half"] + tables.get("half_slotted", []))
             md += render_half(res)
             results["half"] = res
         if "scale" in tables:

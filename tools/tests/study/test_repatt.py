@@ -59,8 +59,8 @@ class Arithmetic(unittest.TestCase):
         self.assertAlmostEqual(res["Half100m/strip/N0-Q1"]["normalised"], 0.5)
         self.assertNotIn("Half100m/strip/N100-Q40", res)
         md = "\n".join(R.render_half(res))
-        self.assertIn("| Half100m | cluster | 6 | 200 | 0.25 [0.25, 0.25] | - | 0 |", md)
-        self.assertIn("| Half100m | strip | 6 | 100 | 0.50 [0.50, 0.50] | - | 0 |", md)
+        self.assertIn("| Half100m | cluster | 6 | 200 | 0.25 [0.25, 0.25] | - | - | 0 |", md)
+        self.assertIn("| Half100m | strip | 6 | 100 | 0.50 [0.50, 0.50] | - | - | 0 |", md)
 
     def test_run_entry(self) -> None:
         r = row("two100", "repatt", 40, 0.06, 812.5, finished=1) | {"seed": "7", "run_id": "ab", "picked": "180"}
