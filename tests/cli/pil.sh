@@ -138,7 +138,7 @@ fails "an emulator that stops in the middle of the run" 1 "robot [0-9]* (image [
     "$walk" --set "pil.dir=$tmp/eof"
 fake hang "exec sleep 600"
 fails "an emulator that never answers" 2 "robot 0 (robots.0, image random_walk on pil_avr), boot: its emulator gave no answer within 500 ms" \
-    "$walk" --set "pil.dir=$tmp/hang" --set pil.timeout_s=0.5
+    "$walk" --set "pil.dir=$tmp/hang" --set pil.boot_timeout_s=0.5
 fake stale "exec \"$pil/pil_avr_emu\" \"\$@\""
 cp "$pil/avr/phototaxis.elf" "$tmp/stale/avr/random_walk.elf"
 fails "an image that is another" 2 "its ELF says it is image phototaxis" "$walk" --set "pil.dir=$tmp/stale"
