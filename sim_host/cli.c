@@ -89,6 +89,8 @@ static const cli_option_t options[] = {
       "inspect.  Each is an event in the telemetry and a line of summary.json's \"control\"; a moved "
       "robot marks the run touched.  On a loopback-only bus (" CONTROL_DEFAULT_URL ") unless "
       "--control-lcm names another" },
+    { "--paused", NULL, NULL, 0, 0, F(control_paused), NO_FIELD, NULL, NULL,
+      "with --control: wait for a command (resume, step) before the first step" },
     { "--control-lcm", NULL, "URL", 0, 0, NO_FIELD, NO_FIELD, set_control_url, NULL,
       "the bus --control listens on (another machine's commands need ttl=1: anyone on the network may "
       "then steer the run)" },

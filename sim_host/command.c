@@ -127,8 +127,9 @@ int swarmsim_command(int argc, char **argv, const char *code_version, volatile s
         free(sc);
         return 2;
     }
-    if (cli.control_url && !cli.control) {
-        fprintf(stderr, "swarmsim: --control-lcm names the bus of --control, which is not given\n");
+    if ((cli.control_url || cli.control_paused) && !cli.control) {
+        fprintf(stderr, "swarmsim: %s is for a run under --control, which is not given\n",
+                cli.control_url ? "--control-lcm" : "--paused");
         scenario_free(sc);
         free(sc);
         return 2;
@@ -197,6 +198,7 @@ int swarmsim_command(int argc, char **argv, const char *code_version, volatile s
         .progress = !quiet,
         .telemetry = telemetry,
         .control_url = control_url,
+        .control_paused = cli.control_paused,
         .out_mode = out_mode,
         .scenario_text = text,
         .provenance = { .code_version = code_version, .command = command, .overrides = sets,

@@ -34,6 +34,7 @@ struct control {
     telemetry_t *tel;
     char token[33];
     int paused;
+    int64_t steps;               /* the run's */
     int64_t pending;             /* steps of a `step` command still to run */
     double realtime;
     int32_t selected;            /* -1: none */
@@ -84,7 +85,7 @@ static void send_status(control_t *c)
     m.run = (int64_t)sim->seed;
     m.token = c->token;
     m.step = (int64_t)sim->step;
-    m.steps = -1;
+    m.steps = c->steps;
     m.paused = c->paused && c->pending == 0;
     m.steps_pending = c->pending;
     m.realtime = c->realtime;
@@ -288,7 +289,8 @@ static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, const sw
     apply(c, m);
 }
 
-int control_open(const char *url, sim_t *sim, telemetry_t *tel, control_t **out, char err[SIM_ERR_MAX])
+int control_open(const char *url, int paused, sim_t *sim, uint64_t steps, telemetry_t *tel, control_t **out,
+                 char err[SIM_ERR_MAX])
 {
     control_t *c = calloc(1, sizeof *c);
     *out = NULL;
@@ -299,6 +301,8 @@ int control_open(const char *url, sim_t *sim, telemetry_t *tel, control_t **out,
     c->sim = sim;
     c->tel = tel;
     c->selected = -1;
+    c->steps = (int64_t)steps;
+    c->paused = paused != 0;
     c->seq = -1;
     c->ok = 1;
     c->realtime = telemetry_realtime(tel);

@@ -47,10 +47,13 @@
 
 typedef struct control control_t;
 
-/** Subscribes to the commands on `url` for the run of `sim`, whose
- *  telemetry `tel` records them and paces it.  Returns 0, or -1 with a
- *  message in `err`. */
-int control_open(const char *url, sim_t *sim, telemetry_t *tel, control_t **out, char err[SIM_ERR_MAX]);
+/** Subscribes to the commands on `url` for the run of `sim` (of `steps`
+ *  steps), whose
+ *  telemetry `tel` records them and paces it; with `paused` the run waits
+ *  for a command before its first step.  Returns 0, or -1 with a message
+ *  in `err`. */
+int control_open(const char *url, int paused, sim_t *sim, uint64_t steps, telemetry_t *tel, control_t **out,
+                 char err[SIM_ERR_MAX]);
 
 /** Before each step: takes the commands that came and, while paused,
  *  waits for one that lets the next step run.  Returns 0 when it may run,

@@ -204,7 +204,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
     }
     telemetry_begin(tel, sim, opt->steps);
     control_t *ctl = NULL;
-    if (opt->control_url && control_open(opt->control_url, sim, tel, &ctl, err) != 0) {
+    if (opt->control_url && control_open(opt->control_url, opt->control_paused, sim, opt->steps, tel, &ctl, err) != 0) {
         fail(job, "%s%s", "", err);
         fclose(ts);
         remove(tmp);
