@@ -32,7 +32,7 @@ struct control {
     swarmlcm_control_t_subscription_t *sub;
     sim_t *sim;
     telemetry_t *tel;
-    char token[33];
+    char key[33];
     int paused;
     int64_t steps;               /* the run's */
     int64_t pending;             /* steps of a `step` command still to run */
@@ -40,7 +40,7 @@ struct control {
     int32_t selected;            /* -1: none */
     int32_t commands;            /* recorded */
     int touched;
-    uint64_t foreign;            /* commands with another token, ignored */
+    uint64_t foreign;            /* commands with another key, ignored */
     /* The answer to the latest command. */
     int64_t seq;
     int ok;
@@ -61,7 +61,7 @@ static double wall_s(void)
 
 /* 16 random bytes as hex: from the system's source, never from the run's
  * streams (the run must not know it is controlled). */
-static int make_token(char out[33])
+static int make_key(char out[33])
 {
     uint8_t b[16];
     FILE *f = fopen("/dev/urandom", "rb");
@@ -83,7 +83,7 @@ static void send_status(control_t *c)
     m.version = SWARMLCM_CONTROL_STATUS_T_VERSION;
     m.utime = (int64_t)sim->step * sim->sc->control_period_ms * 1000;
     m.run = (int64_t)sim->seed;
-    m.token = c->token;
+    m.key = c->key;
     m.step = (int64_t)sim->step;
     m.steps = c->steps;
     m.paused = c->paused && c->pending == 0;
@@ -202,7 +202,7 @@ static int refuse(control_t *c, const char *fmt, ...)
     return -1;
 }
 
-/* One command with the right token: done, or refused with a reason. */
+/* One command with the right key: done, or refused with a reason. */
 static void apply(control_t *c, const swarmlcm_control_t *m)
 {
     struct sim *sim = c->sim;
@@ -279,9 +279,9 @@ static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, const sw
     control_t *c = user;
     (void)rbuf;
     (void)channel;
-    if (strcmp(m->token, c->token) != 0) {
+    if (strcmp(m->key, c->key) != 0) {
         if (c->foreign++ == 0) {
-            fprintf(stderr, "swarmsim: control: a command without this run's token was ignored "
+            fprintf(stderr, "swarmsim: control: a command without this run's key was ignored "
                     "(a stale page, or another run's)\n");
         }
         return;
@@ -307,8 +307,8 @@ int control_open(const char *url, int paused, sim_t *sim, uint64_t steps, teleme
     c->ok = 1;
     c->realtime = telemetry_realtime(tel);
     c->record_f = open_memstream(&c->record, &c->record_len);
-    if (!c->record_f || make_token(c->token) != 0) {
-        snprintf(err, SIM_ERR_MAX, "control: %s", c->record_f ? "cannot read /dev/urandom for the token" : "out of memory");
+    if (!c->record_f || make_key(c->key) != 0) {
+        snprintf(err, SIM_ERR_MAX, "control: %s", c->record_f ? "cannot read /dev/urandom for the key" : "out of memory");
         control_close(c);
         return -1;
     }

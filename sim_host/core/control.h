@@ -12,9 +12,9 @@
  *   ROBOT_DETAIL          robot_detail_t    the selected robot's readings,
  *                                           every control step
  * The default bus is LCM's multicast with ttl 0: what the run sends never
- * leaves this machine.  Its status carries a token drawn from the system's
+ * leaves this machine.  Its status carries a key drawn from the system's
  * random source when the run starts, and a command counts only with that
- * token, so a sender elsewhere on the network, which cannot hear the
+ * key, so a sender elsewhere on the network, which cannot hear the
  * status, cannot steer the run even though multicast reaches it.
  *
  * Every command but `select` is recorded: a SWARM_EVENT of kind "control"

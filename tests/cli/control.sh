@@ -6,7 +6,7 @@
 # telemetry and a line of summary.json; a moved robot marks the run touched
 # (and changes it); a command for a robot that does not exist, a pose
 # outside the arena, a step of 0 are refused with a reason and change
-# nothing; a command without the run's token is ignored; options that
+# nothing; a command without the run's key is ignored; options that
 # cannot work are exit-2 errors.  Each run under control waits (--paused)
 # for the commands, which wait for the run's answers: no fixed sleeps.
 #
@@ -94,7 +94,7 @@ ctl step 0 2>"$tmp/e3"
 check "step 0 is refused" "[ $? -eq 1 ] && grep -q 'not a number of control steps' '$tmp/e3'"
 ctl status >"$tmp/s3"
 check "after three refusals nothing is recorded and the run has not moved" "grep -q 'step 0, paused; 0 command' '$tmp/s3'"
-# A command with another token: ignored, said once on the run's stderr.
+# A command with another key: ignored, said once on the run's stderr.
 "$py" - "$url" <<'EOF'
 import sys
 from swarmtools.control import Controller, CHANNEL, message
@@ -102,8 +102,8 @@ c = Controller(sys.argv[1])
 c.wait(lambda s: True, 120)
 c.lcm.publish(CHANNEL, message("0" * 32, 1, "resume"))
 EOF
-wait_until 120 "grep -q 'without this run.s token was ignored' '$tmp/moved.err'"
-check "a command without the run's token is ignored (said on stderr)" "[ $? -eq 0 ]"
+wait_until 120 "grep -q 'without this run.s key was ignored' '$tmp/moved.err'"
+check "a command without the run's key is ignored (said on stderr)" "[ $? -eq 0 ]"
 ctl status >"$tmp/s4"
 check "... and the run stays paused" "grep -q 'step 0, paused; 0 command' '$tmp/s4'"
 ctl select 3 >/dev/null

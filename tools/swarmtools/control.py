@@ -11,7 +11,7 @@ LCM, from a script or a shell; swarm-live's buttons send the same ones.
 
 Each waits for the run's answer (its control_status_t) and prints it; a
 refused command exits 1 with the run's reason, no run heard exits 2.  The
-run announces a token with its status (sim_host/core/control.h); a command
+run announces a key with its status (sim_host/core/control.h); a command
 counts only with it, so this listens for a status before it sends.
 """
 import argparse
@@ -40,11 +40,11 @@ class Refused(RuntimeError):
     """The run refused a command: its reason."""
 
 
-def message(token, seq, command, robot_id=-1, steps=0, value=0.0, x=0.0, y=0.0, theta=0.0):
+def message(key, seq, command, robot_id=-1, steps=0, value=0.0, x=0.0, y=0.0, theta=0.0):
     """An encoded control_t."""
     m = common.type_class("control_t")()
     m.version = m.VERSION
-    m.seq, m.token, m.command = int(seq), token, command
+    m.seq, m.key, m.command = int(seq), key, command
     m.robot_id, m.steps, m.value = int(robot_id), int(steps), float(value)
     m.x, m.y, m.theta = float(x), float(y), float(theta)
     return m.encode()
@@ -117,7 +117,7 @@ class Controller:
         status = self.wait(lambda s: True, timeout)
         self._seq += 1
         seq = self._seq
-        self.lcm.publish(CHANNEL, message(status.token, seq, command, **fields))
+        self.lcm.publish(CHANNEL, message(status.key, seq, command, **fields))
         answer = self.wait(lambda s: s.seq == seq, timeout)
         if not answer.ok:
             raise Refused(answer.text)
