@@ -89,7 +89,7 @@ def schemas(book):
 
 
 def control(m):
-    """A run under control's status (control_status_t), without its token:
+    """A run under control's status (control_status_t), without its key:
     the page never needs it, the server sends the commands."""
     return {"step": m.step, "steps": m.steps, "paused": bool(m.paused), "pending": m.steps_pending,
             "realtime": num(m.realtime), "selected": m.selected, "commands": m.commands, "seq": m.seq,
