@@ -97,7 +97,7 @@ class View:
         self.event_counts = collections.Counter()
         self.has_swarm = False
         self.clock = None        # simulated time of the run's latest message, s (None: real robots)
-        self.control = None      # the latest control_status_t (its token: what commands carry)
+        self.control = None      # the latest control_status_t (its key: what commands carry)
         if self.cuts:
             self._set("limits", self._limits_text)
 
