@@ -53,6 +53,17 @@ FRAME_S = 0.05
 #: Replay speeds the command line and the page accept.
 SPEED_MIN, SPEED_MAX = 0.01, 10000.0
 
+#: A replay's default speed plays the log in about this many seconds (a
+#: 20-minute run at 20x), at one of these speeds (the page's), at least 1.
+WATCH_S = 60.0
+DEFAULT_SPEEDS = (1, 2, 5, 10, 20, 50, 100, 1000)
+
+
+def default_speed(end_s):
+    """The speed that replays a log of end_s seconds in about WATCH_S."""
+    return max([s for s in DEFAULT_SPEEDS if s <= end_s / WATCH_S] or [1])
+
+
 #: Seconds a closing WebSocket waits for the page's answer when the server stops.
 CLOSE_S = 2.0
 
@@ -363,8 +374,9 @@ def main(argv=None):
     ap.add_argument("--control-lcm", default=common.DEFAULT_URL, metavar="URL",
                     help="the bus of a run under swarmsim --control, which the page's buttons steer (default "
                          "%(default)s, loopback-only, as swarmsim's)")
-    ap.add_argument("--speed", type=speed, default=1.0,
-                    help="with --log: replay speed, a factor of the recorded time (default 1)")
+    ap.add_argument("--speed", type=speed, default=None,
+                    help=f"with --log: replay speed, a factor of the recorded time (default: the log in about "
+                         f"{WATCH_S:g} s of watching, at least 1: a 20-minute run at 20x)")
     ap.add_argument("--paused", action="store_true", help="with --log: start paused at the beginning")
     ap.add_argument("--host", default="127.0.0.1", help="address to serve on (default %(default)s: this machine only)")
     ap.add_argument("--port", type=port, default=8080, help="port (default %(default)s; 0: any free one, printed)")
@@ -381,6 +393,8 @@ def main(argv=None):
     except KeyboardInterrupt:     # Ctrl-C while a long log is read
         print(f"{PROG}: stopped", file=sys.stderr, flush=True)
         return 130
+    if options.speed is None:
+        options.speed = default_speed(feed.end) if options.log else 1.0
     sock = listen(options.host, options.port)
     try:
         hosts = AllowedHosts(options.host, sock.getsockname()[1], options.allow_host)

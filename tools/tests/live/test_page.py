@@ -391,6 +391,11 @@ class ControlledRun(BrowserTest):
                  / math.hypot(far["x"] - before[3]["x"], far["y"] - before[3]["y"]))
         self.assertAlmostEqual(grown, st["zoom"]["k"], delta=0.02 * st["zoom"]["k"])
         self.assertLess(st["scaleM"], 1.0)
+        # Follow robot 3: it comes to the middle of the canvas, and stays there.
+        self.click("follow")
+        st = wait_for(lambda: (s := self.state()) and (p := {q["id"]: q for q in s["placed"]}[3])
+                      and abs(p["x"] - 320) < 1 and abs(p["y"] - 320) < 1 and s, "robot 3 in the middle")
+        self.click("follow")
         # Fast to the end: the summary says what was done.
         self.js("const s = document.getElementById('speed'); s.append(new Option('1000x', '1000')); s.value = '1000';"
                 "s.dispatchEvent(new Event('change'));")

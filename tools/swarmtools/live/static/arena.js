@@ -270,5 +270,5 @@ const Arena = (() => {
     return { layout: L, drawn, radius: r, scale };
   }
 
-  return { draw, hex };
+  return { draw, hex, layout };
 })();

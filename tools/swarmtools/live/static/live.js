@@ -94,7 +94,21 @@
   }
 
   function render(chartsNow) {
-    const robots = [...model.robots.values()].sort((a, b) => a.id - b.id);
+    // The selected robot as of its latest details (every step), when newer
+    // than its state (the robot rate): where a drag put it, at once.
+    const d = model.detail;
+    const robots = [...model.robots.values()].sort((a, b) => a.id - b.id).map((r) => (
+      d && r.id === d.id && r.id === selected && d.clock >= r.clock
+        ? Object.assign({}, r, { x: d.x, y: d.y, theta: d.theta, state: d.state, leds: d.leds, pose: true }) : r));
+    const followed = $("follow").checked && selected !== null ? robots.find((r) => r.id === selected) : null;
+    if (followed && followed.pose && Number.isFinite(followed.x) && Number.isFinite(followed.y)) {
+      const L0 = Arena.layout(canvas, model, robots.filter((r) => r.pose), { k: zoom.k, px: 0, py: 0 });
+      if (L0) {
+        const [u, v] = L0.toCanvas(followed.x, followed.y);
+        zoom.px = canvas.width / 2 - u;
+        zoom.py = canvas.height / 2 - v;
+      }
+    }
     drawn = Arena.draw(canvas, model, robots, colourOf, zoom, selected, model.detail);
     if (press && press.robot !== null && press.moved && drawn.layout) {   // where a dragged robot would go
       const ctx = canvas.getContext("2d");
@@ -285,6 +299,7 @@
     zoom.k = k;
     redraw();
   }, { passive: false });
+  $("follow").addEventListener("change", redraw);
   canvas.addEventListener("dblclick", () => { Object.assign(zoom, { k: 1, px: 0, py: 0 }); redraw(); });
 
   window.liveView = {
