@@ -12,6 +12,8 @@ const Arena = (() => {
   };
   const MARGIN = 12;          // px around the walls
   const MIN_ROBOT_PX = 4;     // a robot's radius is never drawn smaller
+  const DETAIL_PX = 6;        // below this radius a robot is its body and heading only (no LEDs, no id):
+                              // 2,000 robots' ids cost more than the rest of the frame (tools/bench/live_page.py)
   const LED_BODY = 8, LED_FRONT = 9;   // robot_state_t.leds bits
 
   const hex = (rgb) => "#" + ((rgb >>> 0) & 0xffffff).toString(16).padStart(6, "0");
@@ -140,6 +142,15 @@ const Arena = (() => {
     }
     disc(ctx, x, y, r, C.outline);
     disc(ctx, x, y, r - rim, fill);
+    if (r < DETAIL_PX) {
+      ctx.strokeStyle = C.heading;
+      ctx.lineWidth = 1;
+      ctx.beginPath();
+      ctx.moveTo(x, y);
+      ctx.lineTo(x + r * c, y + r * s);
+      ctx.stroke();
+      return { id: rb.id, x, y };
+    }
     if (rb.leds & (1 << LED_BODY)) disc(ctx, x, y, Math.max(0.3 * r, 1), C.ledGreen);
     ctx.strokeStyle = C.heading;
     ctx.lineWidth = Math.max(1.2, 0.18 * r);
