@@ -28,8 +28,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from tools.tests.live.browser import Browser          # noqa: E402  the tests' headless Chromium
-from tools.tests.live.serve import Server, wait_for   # noqa: E402
+from tools.tests.live.browser import Browser  # noqa: E402  the tests' headless Chromium
+from tools.tests.live.serve import Server, wait_for  # noqa: E402
 
 # Counts animation frames and times Arena.draw from now on.
 MEASURE_JS = """
