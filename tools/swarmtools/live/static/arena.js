@@ -225,6 +225,8 @@ const Arena = (() => {
     const want = 100 / L.s, p = 10 ** Math.floor(Math.log10(want));
     const m = [1, 2, 5, 10].map((k) => k * p).filter((v) => v <= want).pop() || p;
     const px = m * L.s, x0 = 12, y0 = canvas.height - 12;
+    ctx.fillStyle = "rgba(255, 255, 255, 0.8)";        // readable over the wall or the floor
+    ctx.fillRect(x0 - 4, y0 - 18, px + 8, 22);
     ctx.strokeStyle = ctx.fillStyle = "#222";
     ctx.lineWidth = 2;
     ctx.beginPath();
