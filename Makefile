@@ -125,9 +125,10 @@ $(BUILD)/libswarm-asan.a: $(FW_OBJ_ASAN) $(SIM_OBJ_ASAN) $(SIM_EXTRA_OBJ_ASAN)
 	$(call show,AR,$@)$(AR) rcs $@ $^
 
 # Linked under another name, then renamed: a run of the old binary (a test
-# group beside this build) keeps it whole.
+# group beside this build) keeps it whole, and two test groups that relink
+# it at once (the checkout changed under them) each rename their own.
 $(BUILD)/swarmsim: $(BUILD)/obj/sim_host/main.o $(BUILD)/libswarm.a
-	$(call show,LD,$@)$(CC) -o $@.tmp $^ $(LDLIBS_SIM) && mv $@.tmp $@
+	$(call show,LD,$@)$(CC) -o $@.tmp.$$$$ $^ $(LDLIBS_SIM) && mv $@.tmp.$$$$ $@
 
 # Test binaries record the headers they read (-MMD): a changed header
 # rebuilds them.
