@@ -113,8 +113,9 @@ static void test_inputs(void **state)
     hal.proximity[7] = 1000;                 /* front-left: half of ir_full */
     hal.proximity[2] = 4000;                 /* right: saturates */
     hal.has_ground = 1;
-    hal.ground[0] = hal.ground[2] = 1000;
-    hal.ground[1] = 100;                     /* the centre sensor over black: the nest */
+    hal.ground[0] = 120;
+    hal.ground[1] = 100;                     /* all three over black: the nest */
+    hal.ground[2] = 90;
     assert_int_equal(fake_hal_push(&hal, NNEA_MSG_TAG | 1u, 300, 300), 1);   /* ahead-left, R/2 */
     assert_int_equal(fake_hal_push(&hal, NNEA_MSG_TAG, 150, -2000), 1);      /* back-right */
     assert_int_equal(fake_hal_push(&hal, NNEA_MSG_TAG, 450, -2100), 1);      /* farther: weaker */
@@ -148,10 +149,20 @@ static void test_trips_between_areas(void **state)
     zero_genome(&p);
     nnea_init(&self, &p, 1u);
     for (i = 0; i < sizeof floor_seq / sizeof floor_seq[0]; i++) {
-        hal.ground[1] = floor_seq[i];
+        hal.ground[0] = hal.ground[1] = hal.ground[2] = floor_seq[i];
         nnea_step(&self, &hal);
         assert_int_equal(self.trips, trips_after[i]);
     }
+    /* One sensor alone in a band (noise, or the disc's edge) is no area. */
+    hal.ground[0] = 1000;
+    hal.ground[1] = 500;
+    hal.ground[2] = 1000;
+    nnea_step(&self, &hal);
+    assert_int_equal(self.area, 0);
+    hal.ground[0] = 500;
+    hal.ground[2] = 100;
+    nnea_step(&self, &hal);
+    assert_int_equal(self.area, 0);
     /* Without the module the floor reads as bare. */
     hal.has_ground = 0;
     nnea_step(&self, &hal);

@@ -58,7 +58,7 @@ void nnea_default_params(nnea_params_t *params)
     params->sense_range_mm = 600u;   /* R: the turret's range in seed 003 */
     params->ir_full = 2000u;
     params->ground_dark_max = 250u;  /* black ~0, grey 0.5 ~500, white ~1000 counts */
-    params->ground_grey_max = 750u;
+    params->ground_grey_max = 750u;  /* white's noise (sd 10 %) dips below now and then: see sense_floor */
     params->role = NNEA_ROLE_ROBOT;
     (void)sizeof(w_in_fits); (void)sizeof(w_rec_fits); (void)sizeof(b_hidden_fits);
     (void)sizeof(tau_fits); (void)sizeof(w_out_fits); (void)sizeof(b_out_fits);
@@ -129,15 +129,31 @@ static void sense_obstacles(nnea_t *self, hal_t *hal)
     self->input[IN_IR + 3u] = q12_of(max_u16(p[5], p[6]), self->params.ir_full);
 }
 
-/* The floor under the centre ground sensor: the nest's black disc, the
- * food's grey one, or neither; counts a trip on entering the area other
- * than the one last visited. */
+/* The floor under the three ground sensors: the nest's black disc or the
+ * food's grey one when all three read it (one sensor's noise on the white
+ * floor can dip into the grey band; three at once do not), else neither;
+ * counts a trip on entering the area other than the one last visited. */
+static uint8_t area_of(const nnea_params_t *p, uint16_t g)
+{
+    return g < p->ground_dark_max ? 1u : g < p->ground_grey_max ? 2u : 0u;
+}
+
 static void sense_floor(nnea_t *self, hal_t *hal)
 {
     uint16_t g = 0;
-    uint8_t area = 0;
-    if (hal_ground(hal, 1u, &g) == HAL_OK) {
-        area = g < self->params.ground_dark_max ? 1u : g < self->params.ground_grey_max ? 2u : 0u;
+    uint8_t area = 0, i;
+    for (i = 0; i < HAL_GROUND_COUNT; i++) {
+        uint8_t a;
+        if (hal_ground(hal, i, &g) != HAL_OK) {
+            area = 0;
+            break;
+        }
+        a = area_of(&self->params, g);
+        if (i > 0u && a != area) {
+            area = 0;
+            break;
+        }
+        area = a;
     }
     self->input[IN_GROUND + 0u] = area == 1u ? NNEA_ONE : 0;
     self->input[IN_GROUND + 1u] = area == 2u ? NNEA_ONE : 0;

@@ -50,8 +50,8 @@ const observable_t nnea_observables[] = {
       .doc = "hidden neuron 2's activation" },
     { .name = "h3", OBS_FIELD(nnea_t, hidden[3], int16_t), .scale = 1.0f / NNEA_ONE, .unit = "",
       .doc = "hidden neuron 3's activation" },
-    { .name = "trips", OBS_FIELD(nnea_t, trips, uint32_t), .kind = OBS_COUNTER, .scale = 1.0f,
-      .unit = "trips", .doc = "arrivals in the area (nest, food) other than the last one visited" },
+    { .name = "floor_trips", OBS_FIELD(nnea_t, trips, uint32_t), .kind = OBS_COUNTER, .scale = 1.0f,
+      .unit = "trips", .doc = "arrivals, by its own ground sensor, in the area other than the last visited" },
     OBS_END
 };
 
