@@ -18,7 +18,7 @@
  * value is a YAML sequence of exactly as many numbers as the field has
  * elements, each checked against the key's one range:
  *
- *     { .key = "weights", PARAM_ARRAY_FIELD(nnea_params_t, weights, int16_t),
+ *     { .key = "weights", PARAM_ARRAY_FIELD(net_params_t, weights, int16_t),
  *       .min = -2048, .max = 2047, .doc = "synaptic weights, Q8 (1/256)" },
  *
  * The tables are const data: on the robot they cost flash only if an image
