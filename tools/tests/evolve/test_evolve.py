@@ -94,6 +94,11 @@ class Files(unittest.TestCase):
         self.assertEqual(sp.decode([0.0, 0.5, 1.0]), {"robots.2.params.b_out": (-100, 0, 100)})
         self.assertEqual(len(set(sp.trial_seeds(0) + sp.trial_seeds(1))), 4)   # new seeds each generation
 
+    def test_the_shipped_evolutions_load(self) -> None:
+        for f in sorted((ROOT / "studies").glob("*evolve*.yaml")):
+            with self.subTest(f=f.name):
+                self.assertEqual(load(f).dimension, 95)
+
     def test_each_mistake_is_named_with_its_line(self) -> None:
         cases = (
             (self.BASE + "trails: 3\n", ":8: trails: unknown key 'trails' (did you mean 'trials'?)"),
