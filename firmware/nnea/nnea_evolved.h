@@ -1,19 +1,15 @@
 /*
- * nnea_evolved.h - the genome NNEA runs by default (nnea_default_params):
- * written by `swarm-evolve` (tools/swarmtools/evolve) as its best
- * genome's C initialisers.  Replace it with a run's best_params.h.
- *
- * Placeholder: the zero genome (every output 1/2: the robot stands still).
+ * swarm-evolve nnea_evolve: the best genome (generation 61, fitness 1.08666666667),
+ * the defaults of nnea's genome keys as C initialisers.  Generated: do not edit.
  */
-#ifndef FW_NNEA_EVOLVED_H
-#define FW_NNEA_EVOLVED_H
+#ifndef NNEA_EVOLVED_GENOME_H
+#define NNEA_EVOLVED_GENOME_H
 
-#define NNEA_EVOLVED_W_IN { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
-    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 }
-#define NNEA_EVOLVED_W_REC { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 }
-#define NNEA_EVOLVED_B_HIDDEN { 0, 0, 0, 0 }
-#define NNEA_EVOLVED_TAU { 0, 0, 0, 0 }
-#define NNEA_EVOLVED_W_OUT { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 }
-#define NNEA_EVOLVED_B_OUT { 0, 0, 0 }
+#define NNEA_EVOLVED_W_IN { 1110, -57, 1077, -625, -356, 2020, -1727, -204, -1190, -300, 1829, 23, -451, 406, -344, 114, 197, -1460, 970, -1758, -1277, -253, -1658, 150, -1420, 1824, -840, -354, 386, -1478, 1925, 260, 226, -770, -65, -2013, -41, 2032, 1164, 1105, 1667, -1012, 1711, -830, 1681, 2017, 275, -180, 1128, 2023, 1449, -68, 774, -971, 83, -432 }
+#define NNEA_EVOLVED_W_REC { 1206, 1654, -1078, -1779, 2003, 1567, 1183, -594, -2023, -2037, 59, 1961, 1254, -1282, 247, 1998 }
+#define NNEA_EVOLVED_B_HIDDEN { 530, -837, 2047, -2047 }
+#define NNEA_EVOLVED_TAU { 247, 160, 134, 111 }
+#define NNEA_EVOLVED_W_OUT { -1493, -1513, 1156, 977, 163, -1137, -13, -128, -1627, 31, -1469, 125 }
+#define NNEA_EVOLVED_B_OUT { 595, 33, -1276 }
 
 #endif

@@ -206,19 +206,21 @@ class SpecErrors(TempDir):
     def test_array_values_reach_the_simulator_and_the_table(self) -> None:
         nnea = ROOT / "sim_host" / "scenarios" / "nnea_square.yaml"
         text = (f"name: arr\nscenario: {nnea}\nsteps: 20\nset:\n  robots.2.count: 3\n"
-                "  robots.2.params.tau: [1, 2, 3, 4]\naxes:\n  - grid:\n"
+                "  robots.2.params.tau: [1, 2, 3, 4]\n  robots.2.params.w_out: [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n"
+                "axes:\n  - grid:\n"
                 "      robots.2.params.b_out: [[0, 0, 0], [2047, 2000, 5]]\nrepetitions: 1\n")
         sw = spec.load(self.write(text), 2**53 - 1)
         runs = planmod.expand(sw)
         self.assertEqual(runs[1].params, {"robots.2.params.b_out": (2047, 2000, 5)})
         self.assertEqual(runs[1].overrides, [("robots.2.count", "3"), ("robots.2.params.tau", "[1, 2, 3, 4]"),
+                                             ("robots.2.params.w_out", "[" + ", ".join(["0"] * 12) + "]"),
                                              ("robots.2.params.b_out", "[2047, 2000, 5]")])
         out = self.dir / "out"
         r = swarm_sweep("run", str(self.write(text)), "--out", str(out), "--sim", str(SWARMSIM))
         self.assertEqual(r.returncode, 0, r.stderr)
         rows = read_table(out)
         self.assertEqual([row["robots.2.params.b_out"] for row in rows], ["[0, 0, 0]", "[2047, 2000, 5]"])
-        self.assertEqual(float(rows[0]["distance_per_robot_m"]), 0.0)    # sigma(0): in the stop band
+        self.assertEqual(float(rows[0]["distance_per_robot_m"]), 0.0)    # no weights out, sigma(0): stopped
         self.assertGreater(float(rows[1]["distance_per_robot_m"]), 0.0)
         import pandas as pd
         self.assertEqual(list(pd.read_parquet(out / "results.parquet")["robots.2.params.b_out"]),
@@ -227,7 +229,7 @@ class SpecErrors(TempDir):
         bad = self.write(text.replace("2047, 2000, 5", "2047, -2048, 5"), "bad.yaml")
         r = swarm_sweep("run", str(bad), "--out", str(self.dir / "bad"), "--sim", str(SWARMSIM))
         self.assertEqual(r.returncode, 2, r.stderr)
-        self.assertIn(f"{bad}:9: the simulator rejects the run with robots.2.params.b_out=[2047, -2048, 5]",
+        self.assertIn(f"{bad}:10: the simulator rejects the run with robots.2.params.b_out=[2047, -2048, 5]",
                       r.stderr)
         self.assertIn("robots[2].params.b_out[1]: -2048 is out of range [-2047, 2047]", r.stderr)
 
