@@ -44,6 +44,7 @@ void calib_reset(calib_t *self)
     self->mode = CALIB_IDLE;
     self->arg = 0u;
     self->dropped = 0u;
+    self->latched = 0u;
     self->unavailable = 0u;
     self->bad_msgs = 0u;
     self->drive_left = 0u;
@@ -61,6 +62,7 @@ static void take_command(calib_t *self, hal_t *hal, const calib_cmd_t *cmd)
     clear_window(self);
     clear_values(self);
     self->dropped = 0u;
+    self->latched = 0u;
     self->unavailable = 0u;
     self->arg = cmd->arg;
     hal_set_wheel_speeds(hal, 0, 0);
@@ -172,6 +174,7 @@ static void sample(calib_t *self, hal_t *hal)
                 self->var[k] = 0.0f;
             }
         }
+        self->latched = 1u;
     }
     clear_window(self);
 }
@@ -221,7 +224,7 @@ const char *calib_state_name(const calib_t *self)
     if (self->unavailable) {
         return "no_sound";
     }
-    if (self->dropped < self->params.settle_windows) {
+    if (!self->latched) {
         return "settle";
     }
     switch (self->mode) {

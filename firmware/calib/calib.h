@@ -9,7 +9,9 @@
  * window_steps periods (default ROBOT_TELEMETRY_STEPS: one window per
  * robot_state_t message, so each message carries one window).  After a
  * command the first settle_windows windows are dropped (the robot was just
- * placed, a sensor's filter settles) and the state says "settle"; then
+ * placed, a sensor's filter settles) and the state says "settle" until
+ * the first window after them is latched (at least one whole window: one
+ * robot_state_t says "settle" at least once); then
  * every window's mean and variance per channel is latched into the
  * observables mean0..7 and var0..7 until the next command:
  *
@@ -61,6 +63,7 @@ typedef struct calib {
     uint8_t mode;              /**< calib_mode_t */
     uint8_t arg;               /**< the band (mic) or colour (camera) asked */
     uint8_t dropped;           /**< windows dropped since the command (to settle_windows) */
+    uint8_t latched;           /**< 1: a window was latched since the command */
     uint8_t samples;           /**< readings in the current window */
     uint8_t unavailable;       /**< the sensor asked for is not on this robot */
     uint16_t bad_msgs;         /**< malformed commands ignored */

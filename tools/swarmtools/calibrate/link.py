@@ -6,7 +6,6 @@ back on the same device as HOST_MSG frames (docs/host_link.md)."""
 
 from __future__ import annotations
 
-import os
 import time
 
 from ..telemetry import common
@@ -31,7 +30,7 @@ class RobotLink:
 
     def __init__(self, device: str, robot_id: int | None = None, baud: int = 115200, timeout_s: float = 10.0,
                  clock=time.monotonic):
-        self.device = Device(device, baud=baud)
+        self.device = Device(device, baud=baud, writable=True)
         self.bridge = Bridge([self.device], self._publish, clock=clock)
         self.robot_id = robot_id
         self.timeout_s = timeout_s
@@ -106,10 +105,9 @@ class RobotLink:
     # ------------------------------------------------------------ output
 
     def send(self, payload: bytes):
-        if self.device.fd is None:
-            raise LinkError(f"{self.device.path}: the link is down")
         frame = self.host.message(self.robot_id if self.robot_id is not None else BROADCAST_ID, payload)
-        os.write(self.device.fd, frame)
+        if not self.device.write(frame):
+            raise LinkError(f"{self.device.path}: the link is down ({self.device.last_error or 'closed'})")
         self.commands += 1
 
     def command(self, payload: bytes, started, what: str, resend_s: float = 2.5) -> protocol.Window:

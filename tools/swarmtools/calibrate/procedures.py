@@ -1,0 +1,165 @@
+"""The procedures an owner goes through, step by step: what to set up, where
+to put the robot, what the robot streams meanwhile.  Each step is a
+Placement; running a procedure (run) asks the operator (operator.py) to make
+each placement, has the robot stream its readings or drive, and records
+what came back (a Recording, saved as JSON by record.py).
+
+Distances are what a ruler gives: the gap between the robot's body and the
+surface (IR) or the lamp's foot (ambient), in mm.  The models' distances
+follow from hal/units.h (geometry.py).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+
+from . import geometry, protocol
+from .link import RobotLink
+
+#: Body-to-wall gaps of the IR procedure, mm (the table's points at 5..60
+#: mm from the sensor, less the 2 mm by which the body stands in front of it).
+IR_GAPS_MM = (3, 8, 13, 18, 28, 38, 58)
+#: Body-to-lamp-foot distances of the ambient procedure, mm.
+AMBIENT_DISTANCES_MM = (150, 250, 400, 600, 900)
+#: Wheel runs: (left, right steps/s, control periods).  Straight runs at
+#: three speeds and turns in place both ways.
+WHEEL_RUNS = ((300, 300, 30), (600, 600, 20), (900, 900, 15), (400, -400, 15), (-400, 400, 15))
+
+PROCEDURES = ("ir", "ambient", "wheels")
+
+
+@dataclass
+class Setup:
+    """What the owner sets up before a procedure's steps (lamp height and
+    intensity for ambient light)."""
+    lamp_height_mm: float = 100.0
+    lamp_intensity: float = 1.0      # the lab's lamp is the unit: the scenario's lamp has intensity 1
+    period_ms: int = 100             # the image's control period
+    windows: int = 2                 # windows recorded per placement
+
+
+@dataclass
+class Placement:
+    procedure: str
+    sensor: int | None = None        # ir / ambient: the sensor facing the wall or the lamp
+    gap_mm: float | None = None      # ir: body to wall; None: nothing within reach
+    distance_mm: float | None = None  # ambient: body to the lamp's foot
+    left: int = 0                    # wheels
+    right: int = 0
+    periods: int = 0
+
+    def describe(self) -> str:
+        b = geometry.ir_bearings_deg()
+        if self.procedure == "ir" and self.gap_mm is None:
+            return "the robot in open space: nothing within 15 cm of it (the IR sensors' offsets)"
+        if self.procedure == "ir":
+            return (f"IR{self.sensor} (at {b[self.sensor]:+d} deg) facing a flat white wall square on, "
+                    f"the body {self.gap_mm:g} mm from it")
+        if self.procedure == "ambient":
+            return (f"IR{self.sensor} (at {b[self.sensor]:+d} deg) facing the lamp, the body "
+                    f"{self.distance_mm:g} mm from the lamp's foot")
+        return (f"the robot on a start mark with room around it; it drives left {self.left}, right "
+                f"{self.right} steps/s for {self.periods} periods")
+
+
+@dataclass
+class Step:
+    """A placement and what was recorded at it."""
+    placement: Placement
+    windows: list = field(default_factory=list)     # [(mean[8], var[8]), ...]
+    moved: tuple | None = None                      # wheels: (dx_mm, dy_mm, dtheta_deg) measured
+    steps: tuple | None = None                      # wheels: (left, right) counted
+
+    def as_dict(self) -> dict:
+        return {"placement": asdict(self.placement), "windows": [list(map(list, w)) for w in self.windows],
+                "moved": list(self.moved) if self.moved is not None else None,
+                "steps": list(self.steps) if self.steps is not None else None}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> Step:
+        w = [(tuple(m), tuple(v)) for m, v in d.get("windows") or []]
+        return cls(Placement(**d["placement"]), w, tuple(d["moved"]) if d.get("moved") is not None else None,
+                   tuple(d["steps"]) if d.get("steps") is not None else None)
+
+
+SETUP_TEXT = {
+    "ir": "IR proximity: a flat, white, matt wall (a sheet of white card on a box), a ruler; room lights "
+          "as in your experiments; keep other robots and hands away from the sensors.",
+    "ambient": "Ambient light: a dark room with one lamp (the lamp your scenarios model, intensity 1) at "
+               "{h:g} mm above the table, a ruler or tape from the lamp's foot.",
+    "wheels": "Wheels: a flat floor with 40 cm of room around a start mark, a ruler (or the tracker) to "
+              "measure where the robot ends: forward and left of its start in mm, and how far it turned "
+              "(degrees, counter-clockwise positive).",
+}
+
+
+def placements(procedure: str, sensors=range(8)) -> list[Placement]:
+    if procedure == "ir":
+        out = [Placement("ir")]
+        out += [Placement("ir", sensor=s, gap_mm=g) for s in sensors for g in IR_GAPS_MM]
+        return out
+    if procedure == "ambient":
+        return [Placement("ambient", sensor=s, distance_mm=r) for s in (0, 3) for r in AMBIENT_DISTANCES_MM]
+    if procedure == "wheels":
+        return [Placement("wheels", left=left, right=right, periods=n) for left, right, n in WHEEL_RUNS]
+    raise ValueError(f"no procedure {procedure!r} (procedures: {', '.join(PROCEDURES)})")
+
+
+def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> list[Step]:
+    """Goes through a procedure's placements with the operator and the
+    robot; the steps recorded."""
+    steps = steps if steps is not None else placements(procedure)
+    operator.setup(procedure, SETUP_TEXT[procedure].format(h=setup.lamp_height_mm))
+    out = []
+    for k, p in enumerate(steps):
+        what = f"{procedure} step {k + 1}/{len(steps)} ({p.describe()})"
+        operator.place(p, f"[{k + 1}/{len(steps)}] Put {p.describe()}.")
+        if procedure in ("ir", "ambient"):
+            cmd = protocol.prox() if procedure == "ir" else protocol.ambient()
+            ws = link.stream(cmd, setup.windows, what)
+            out.append(Step(p, [(w.mean, w.var) for w in ws]))
+        else:
+            w = link.drive(p.left, p.right, p.periods, what)
+            moved = operator.measure_move(p, f"[{k + 1}/{len(steps)}] Where did it end, from its start mark? "
+                                             f"forward mm, left mm, turned deg (CCW +)")
+            out.append(Step(p, moved=tuple(float(x) for x in moved), steps=(w.mean[0], w.mean[1])))
+        operator.progress(f"{procedure}: {k + 1}/{len(steps)} done")
+    link.send(protocol.stop())
+    return out
+
+
+# ---------------------------------------------------------------- geometry of a placement
+
+def ir_distance_m(p: Placement) -> float:
+    """From the sensor to the wall: the gap plus the body's lead on the sensor."""
+    return p.gap_mm / 1000.0 + geometry.body_radius_m() - geometry.ir_mount_m()
+
+
+def robot_pose_for(p: Placement) -> tuple:
+    """(x, y, heading) of the robot's centre in the placement's own frame:
+    the wall's face on x = 0 (IR, the wall beyond +x), the lamp's foot at
+    the origin (ambient); heading so that the placement's sensor looks
+    along +x."""
+    b = math.radians(geometry.ir_bearings_deg()[p.sensor])
+    if p.procedure == "ir":
+        return (-(ir_distance_m(p) + geometry.ir_mount_m()), 0.0, -b)
+    return (-(p.distance_mm / 1000.0 + geometry.body_radius_m()), 0.0, -b)
+
+
+def irradiance(p: Placement, setup: Setup) -> list[float]:
+    """Each sensor's irradiance from the lamp at an ambient placement, in
+    the ambient model's terms (sim_host/models/ir/ir.c): intensity x
+    cos(incidence) / d^2, 0 for a sensor looking away."""
+    x0, y0, th = robot_pose_for(p)
+    h = setup.lamp_height_mm / 1000.0 - geometry.ir_height_m()
+    out = []
+    for deg in geometry.ir_bearings_deg():
+        a = th + math.radians(deg)
+        ax, ay = math.cos(a), math.sin(a)
+        px, py = x0 + geometry.ir_mount_m() * ax, y0 + geometry.ir_mount_m() * ay
+        hx, hy = -px, -py
+        d2 = hx * hx + hy * hy + h * h
+        along = (hx * ax + hy * ay) / math.sqrt(d2)
+        out.append(setup.lamp_intensity * along / d2 if along > 0 else 0.0)
+    return out
