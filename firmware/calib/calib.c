@@ -193,7 +193,9 @@ static void drive(calib_t *self, hal_t *hal)
         self->drive_left--;
         self->driven++;
     } else {
+        /* Stopped: this period's counts include the last period driven. */
         hal_set_wheel_speeds(hal, 0, 0);
+        self->latched = 1u;
     }
     self->mean[0] = (float)self->steps_left;
     self->mean[1] = (float)self->steps_right;
@@ -216,7 +218,7 @@ void calib_step(calib_t *self, hal_t *hal)
 const char *calib_state_name(const calib_t *self)
 {
     if (self->mode == CALIB_DRIVE) {
-        return self->drive_left > 0u ? "drive" : "driven";
+        return self->latched ? "driven" : "drive";
     }
     if (self->mode == CALIB_IDLE) {
         return "idle";

@@ -22,8 +22,9 @@
  *   camera     k = 0 bearing, 1 width of the widest blob of the colour
  *              asked (mrad; 0 when none), 2 blobs of it in view
  *   drive      mean0, mean1: left and right steps counted since the
- *   driven     command; mean2: periods driven ("driven": stopped, the
- *              counts final); no settling
+ *   driven     command; mean2: periods driven ("driven": stopped, and
+ *              the counts read after the last period driven: final); no
+ *              settling
  *   idle       nothing (after power-on and 'S')
  *   no_sound   a mic command on an image or platform without sound
  *

@@ -43,13 +43,12 @@ def _plot_ir(fit, path):
         ax.plot(xs, [p["simulated"] for p in pts], "-", label="model, fitted")
         ax.set_title(f"IR{s}: gain {fit.params['sensors'][s]['gain']:.3g}, "
                      f"offset {fit.params['sensors'][s]['offset']:.3g}", fontsize=9)
-        ax.set_yscale("log")
     axes[0][0].legend(fontsize=8)
     for ax in axes[1]:
         ax.set_xlabel("sensor to wall, mm")
     for ax in axes[:, 0]:
         ax.set_ylabel("proximity, counts")
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.1, top=0.93, wspace=0.1, hspace=0.3)
     _save(fig, path)
 
 
@@ -68,7 +67,7 @@ def _plot_generic(fit, path, xlabel):
     b.set_xlabel(xlabel)
     b.set_ylabel(f"residual, {fit.unit}")
     b.set_title(f"residuals (rms {fit.rms:.3g} {fit.unit})")
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.13, top=0.9, wspace=0.3)
     _save(fig, path)
 
 
