@@ -6,7 +6,8 @@
 
 `run` guides the owner through each procedure in the terminal, records the
 robot's readings through the bridge's decoder on its serial port (the robot
-runs the calibration image: make flash IMAGE=calib ROBOT_ID=...), and
+runs the calibration image: make flash HEX=build/firmware/xc16/calib.hex
+DEVICE=/dev/rfcomm0 ROBOT_ID=7), and
 writes into --out: recording.json (every reading), fragment.yaml (the
 models' parameters for the robot's id) and report/ (plots and report.md).
 Nothing is written unless every procedure asked for completed and was

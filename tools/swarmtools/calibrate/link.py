@@ -73,7 +73,7 @@ class RobotLink:
     def _not_answering(self, what: str) -> LinkError:
         if self.other_controller is not None:
             return LinkError(f"{self.device.path}: the robot runs {self.other_controller!r}, not the calibration "
-                             f"image: flash it (make flash IMAGE=calib ROBOT_ID=...)")
+                             f"image: flash it (make flash HEX=build/firmware/xc16/calib.hex DEVICE=... ROBOT_ID=...)")
         return LinkError(f"{self.device.path}: the robot did not answer within {self.timeout_s:g} s ({what}): "
                          f"is it on, flashed with the calibration image, its link up?")
 
