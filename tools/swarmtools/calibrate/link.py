@@ -14,7 +14,6 @@ from ..telemetry.frames import BROADCAST_ID
 from ..telemetry.host_link import HostLink
 from . import protocol
 
-
 #: A robot_state_t goes out every 10 periods (ROBOT_TELEMETRY_STEPS): a
 #: drive this long is seen driving at least once.
 MIN_DRIVE_PERIODS = 12

@@ -14,6 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from ..sweep.store import atomic_write  # noqa: E402
+from . import geometry  # noqa: E402
 
 NOT_MEASURED = {
     "ir": "the sensing cone (ir.aperture) and reach (ir.range); surfaces other than white card",
@@ -41,6 +42,7 @@ def _plot_ir(fit, path):
         xs = [p["x"] * 1000 for p in pts]
         ax.plot(xs, [p["measured"] for p in pts], "o", ms=4, label="measured")
         ax.plot(xs, [p["simulated"] for p in pts], "-", label="model, fitted")
+        ax.plot(xs, [geometry.ir_curve(p["x"]) for p in pts], ":", color="grey", label="default model")
         ax.set_title(f"IR{s}: gain {fit.params['sensors'][s]['gain']:.3g}, "
                      f"offset {fit.params['sensors'][s]['offset']:.3g}", fontsize=9)
     axes[0][0].legend(fontsize=8)
