@@ -206,13 +206,19 @@ typedef struct ir_robot {
     uint64_t prox_stamp, ambient_stamp;
     uint16_t prox[HAL_IR_COUNT];
     uint16_t ambient[HAL_IR_COUNT];
-    per_robot_cache_t cal, ambient_cal;   /* its `robots` entries */
     sim_rand_t noise;              /* both readings' (RAND_SENSORS) */
 } ir_robot_t;
+
+/* Which `robots` entries a robot takes (an array only when the scenario
+ * lists some: other runs pay nothing). */
+typedef struct ir_cal_cache {
+    per_robot_cache_t prox, ambient;
+} ir_cal_cache_t;
 
 typedef struct ir {
     const ir_config_t *cfg;
     ir_robot_t *robot;
+    ir_cal_cache_t *cal;           /* NULL: no `robots` entries */
     vec2_t dir[HAL_IR_COUNT];      /* the sensors' bearings as unit vectors, robot frame */
     float half, cos_half, sin_half;   /* the cone's half-angle, rad, its cosine and sine */
 } ir_t;
@@ -221,8 +227,9 @@ static void ir_layout(const void *config, const scenario_t *sc, model_layout_t *
 {
     const ir_config_t *c = config;
     (void)sc;
-    out->arrays = 1;
+    out->arrays = (c->robot_count > 0 || c->ambient.robot_count > 0) ? 2 : 1;
     out->elem_size[0] = sizeof(ir_robot_t);
+    out->elem_size[1] = sizeof(ir_cal_cache_t);
     out->run_bytes = sizeof(ir_t);
     /* A proximity query looks this far around a robot's body. */
     out->neighbour_reach_m = c->range;
@@ -248,7 +255,12 @@ static int ir_create(sim_t *sim, const void *config, void **self, char err[SIM_E
     m->sin_half = sinf(m->half);
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_rand_seed(&m->robot[i].noise, sim->seed, i, RAND_SENSORS);
-        m->robot[i].cal.id = m->robot[i].ambient_cal.id = -1;
+    }
+    if (m->cfg->robot_count > 0 || m->cfg->ambient.robot_count > 0) {
+        m->cal = sim_model_array(sim, SIM_MODEL_ir, 1);
+        for (uint32_t i = 0; i < sim->n; i++) {
+            m->cal[i].prox.id = m->cal[i].ambient.id = -1;
+        }
     }
     return 0;
 }
@@ -367,8 +379,11 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
     if (r->y + reach > hh) wall[nw++] = (wall_t){ v2(-hw, hh), v2(hw, hh), 1, 1.0f, hh };
     if (r->y - reach < -hh) wall[nw++] = (wall_t){ v2(-hw, -hh), v2(hw, -hh), 1, -1.0f, -hh };
 
-    const ir_robot_cal_t *e = per_robot_entry(&m->robot[i].cal, cfg->robots, cfg->robot_count, sizeof *cfg->robots,
-                                              offsetof(ir_robot_cal_t, id), r->id);
+    const ir_robot_cal_t *e = NULL;
+    if (m->cal != NULL) {
+        e = per_robot_entry(&m->cal[i].prox, cfg->robots, cfg->robot_count, sizeof *cfg->robots,
+                            offsetof(ir_robot_cal_t, id), r->id);
+    }
     const ir_sensor_cal_t *gains = (e != NULL && e->sensor_count) ? e->sensor
                                    : (cfg->sensor_count ? cfg->sensor : NULL);
     float noise_rel = (e != NULL && !isnan(e->noise_rel)) ? e->noise_rel : cfg->noise_rel;
@@ -414,9 +429,11 @@ static void sense_ambient(struct sim *sim, const ir_t *m, uint32_t i, uint16_t o
     const scenario_t *sc = sim->sc;
     const ir_config_t *cfg = m->cfg;
     sim_rand_t *noise = &m->robot[i].noise;
-    const ambient_robot_cal_t *e = per_robot_entry(&m->robot[i].ambient_cal, cfg->ambient.robots,
-                                                   cfg->ambient.robot_count, sizeof *cfg->ambient.robots,
-                                                   offsetof(ambient_robot_cal_t, id), r->id);
+    const ambient_robot_cal_t *e = NULL;
+    if (m->cal != NULL) {
+        e = per_robot_entry(&m->cal[i].ambient, cfg->ambient.robots, cfg->ambient.robot_count,
+                            sizeof *cfg->ambient.robots, offsetof(ambient_robot_cal_t, id), r->id);
+    }
     float dark = (e != NULL && !isnan(e->dark)) ? e->dark : cfg->ambient.dark;
     float halfe = (e != NULL && !isnan(e->half)) ? e->half : cfg->ambient.half;
     float noise_rel = (e != NULL && !isnan(e->noise_rel)) ? e->noise_rel : cfg->ambient.noise_rel;

@@ -102,15 +102,17 @@ typedef struct wheels_robot {
     double bias_left, bias_right;     /* b of eq 3 (this run's, or this step's), steps/s */
     sim_rand_t rand;                  /* f of eq 3 (RAND_WHEELS) */
     sim_rand_t bias_rand;             /* b's draws (RAND_WHEEL_BIAS) */
-    per_robot_cache_t cal;            /* its `robots` entry */
 } wheels_robot_t;
 
+/* Array 1, only when the scenario lists `robots` entries (other runs pay
+ * nothing): which entry each robot takes. */
 static void wheels_layout(const void *config, const scenario_t *sc, model_layout_t *out)
 {
-    (void)config;
+    const wheels_config_t *c = config;
     (void)sc;
-    out->arrays = 1;
+    out->arrays = c->robot_count > 0 ? 2 : 1;
     out->elem_size[0] = sizeof(wheels_robot_t);
+    out->elem_size[1] = sizeof(per_robot_cache_t);
 }
 
 static wheels_robot_t *robots(const sim_t *sim)
@@ -126,7 +128,9 @@ static int wheels_create(sim_t *sim, const void *config, void **self, char err[S
     for (uint32_t i = 0; i < sim->n; i++) {
         wheels_robot_t *w = &robots(sim)[i];
         sim_rand_seed(&w->rand, sim->seed, i, RAND_WHEELS);
-        w->cal.id = -1;
+        if (c->robot_count > 0) {
+            ((per_robot_cache_t *)sim_model_array(sim, SIM_MODEL_wheels, 1))[i].id = -1;
+        }
         if (c->bias_sd > 0.0f) {
             /* Eq 3's bias b, drawn once a run as ARGoS does (its own stream:
              * other streams and golden hashes are unchanged). */
@@ -147,12 +151,16 @@ static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
     struct sim *sim = ctx;
     const wheels_config_t *c = sim_model_config(sim, SIM_MODEL_wheels);
     const int bias = c->bias_sd > 0.0f;
+    per_robot_cache_t *cal = c->robot_count > 0 ? sim_model_array(sim, SIM_MODEL_wheels, 1) : NULL;
     (void)worker;
     for (uint32_t i = begin; i < end; i++) {
         const sim_robot_t *r = &sim->robots[i];
         wheels_robot_t *wr = &robots(sim)[i];
-        const wheels_robot_cal_t *e = per_robot_entry(&wr->cal, c->robots, c->robot_count, sizeof *c->robots,
-                                                      offsetof(wheels_robot_cal_t, id), r->id);
+        const wheels_robot_cal_t *e = NULL;
+        if (cal != NULL) {
+            e = per_robot_entry(&cal[i], c->robots, c->robot_count, sizeof *c->robots,
+                                offsetof(wheels_robot_cal_t, id), r->id);
+        }
         const double noise = (e != NULL && !isnan(e->speed_noise_rel)) ? e->speed_noise_rel : c->speed_noise_rel;
         const double gain_l = (e != NULL && !isnan(e->gain_left)) ? e->gain_left : c->gain_left;
         const double gain_r = (e != NULL && !isnan(e->gain_right)) ? e->gain_right : c->gain_right;
