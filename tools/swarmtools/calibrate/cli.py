@@ -41,6 +41,8 @@ def fit_recording(rec: Recording) -> dict:
             out[proc] = fitting.fit_ambient(steps, rec.setup)
         elif proc == "wheels":
             out[proc] = fitting.fit_wheels(steps, rec.setup)
+        elif proc == "camera":
+            out[proc] = fitting.fit_camera(steps)
     return out
 
 
@@ -92,7 +94,7 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--out", required=True, type=Path, help="folder for recording.json, fragment.yaml, report/")
     r.add_argument("--robot-id", type=int, help="expect this id (default: the id the robot reports)")
     r.add_argument("--procedures", type=_procedures, default=list(procedures.PROCEDURES),
-                   help="comma-separated, in order (default: ir,ambient,wheels)")
+                   help="comma-separated, in order (default: ir,ambient,wheels,camera)")
     r.add_argument("--lamp-height-mm", type=float, default=100.0)
     r.add_argument("--lamp-intensity", type=float, default=1.0,
                    help="the lamp's intensity in the scenarios' units (1: it defines the unit)")

@@ -19,6 +19,8 @@ from . import procedures
 
 ARENA_M = 2.4
 LAMP = {"x": 0.0, "y": 0.0, "height": 0.1, "intensity": 1.0}
+#: The camera procedure's card, far from the other procedures' places.
+CARD = (0.0, 0.9)
 
 
 def perturbed(rng: random.Random, spread: float = 1.0) -> dict:
@@ -32,6 +34,8 @@ def perturbed(rng: random.Random, spread: float = 1.0) -> dict:
                     "noise_rel": round(rng.uniform(0.005, 0.02), 4)},
         "wheels": {"gain_left": round(1 + rng.uniform(-0.05, 0.05) * spread, 4),
                    "gain_right": round(1 + rng.uniform(-0.05, 0.05) * spread, 4)},
+        "camera": {"range": round(0.9 + rng.uniform(-0.3, 0.3) * spread, 3),
+                   "fov": round(56 + rng.uniform(-8, 8) * spread, 2)},
     }
 
 
@@ -47,6 +51,9 @@ def world(robot_id: int, truth: dict) -> dict:
         "ir": {"robots": [{"id": robot_id, **truth["ir"]}]},
         "ambient": {"robots": [{"id": robot_id, **truth["ambient"]}]},
         "wheels": {"robots": [{"id": robot_id, **truth["wheels"]}]},
+        "camera": dict(truth["camera"]),    # no per-robot keys: the world's own
+        "objects": [{"shape": "cylinder", "x": CARD[0], "y": CARD[1], "radius": procedures.CARD_DIAMETER_MM / 2000,
+                     "height": 0.08, "colour": "red"}],
     }
 
 
@@ -77,6 +84,9 @@ class SimOperator:
         elif placement.procedure == "ir":
             x, y, th = procedures.robot_pose_for(placement)   # the wall's face at x = 0
             pose = (hw + x, -0.4, th)
+        elif placement.procedure == "camera":
+            x, y, th = procedures.camera_pose_for(placement)  # the card's centre at the origin, looking along +y here
+            pose = (CARD[0] - y, CARD[1] + x, th + math.pi / 2)
         elif placement.procedure == "ambient":
             x, y, th = procedures.robot_pose_for(placement)   # the lamp's foot at the origin
             pose = (LAMP["x"] + x, LAMP["y"] + y, th)

@@ -22,7 +22,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from . import geometry
-from .procedures import Setup, Step, ir_distance_m, irradiance
+from .procedures import CARD_DIAMETER_MM, Setup, Step, ir_distance_m, irradiance, seen
 
 #: A mean at or above this is saturated (the ADC's 4095, less the noise).
 SATURATED = 4000.0
@@ -193,3 +193,44 @@ def fit_wheels(steps: list[Step], setup: Setup) -> Fit:
     r = res(fit.x)
     return Fit("wheels", {"gain_left": round(gl, 5), "gain_right": round(gr, 5)}, points,
                float(np.sqrt(np.mean(r ** 2))), "mm / deg")
+
+
+def _threshold(rows, what, redo):
+    """The midpoint between the farthest value seen and the nearest not seen
+    beyond it, from (value, seen) pairs."""
+    yes = [v for v, s in rows if s]
+    if not yes:
+        raise FitError("camera", f"the card was never seen {what}", redo)
+    no = [v for v, s in rows if not s and v > max(yes)]
+    if not no:
+        raise FitError("camera", f"the card was seen at every {what} tried: no edge found", redo)
+    return 0.5 * (max(yes) + min(no)), min(no) - max(yes)
+
+
+def fit_camera(steps: list[Step]) -> Fit:
+    """The geometric camera's reach (camera.range: lens to the card's near
+    side) and field of view (camera.fov), from where the card stopped being
+    seen.  At the fov's edge the model shows a blob while at least one
+    pixel column of it is in view: the card's centre at bearing b* with
+    half-width w is seen up to b* = half (1 - 2 / width_px) + w."""
+    r_card = CARD_DIAMETER_MM / 2000.0
+    ahead = [(st.placement.distance_mm, seen(st)) for st in steps if not st.placement.bearing_deg]
+    side = [(st.placement.bearing_deg, seen(st), st.placement.distance_mm) for st in steps if st.placement.bearing_deg]
+    if not ahead or not side:
+        raise FitError("camera", "steps missing (ahead and to the side)", "the whole camera procedure")
+    reach_mm, reach_gap = _threshold(ahead, "ahead", "the camera procedure (the card straight ahead)")
+    b_star, b_gap = _threshold([(b, s) for b, s, _ in side], "to the side", "the camera procedure (the card to the side)")
+    dc = side[0][2] / 1000.0 + r_card
+    w = math.degrees(math.asin(r_card / dc))
+    half = (b_star - w) / (1.0 - 2.0 / geometry.camera_width_px())
+    col_at_reach = math.degrees(2 * math.asin(r_card / (reach_mm / 1000.0 + r_card))) / (2 * half / geometry.camera_width_px())
+    if col_at_reach < 1.5:
+        raise FitError("camera", f"at its reach ({reach_mm:g} mm) the card is {col_at_reach:.2g} pixel columns wide: "
+                       "the width, not the reach, ended the view", "the camera procedure with a wider card")
+    points = [{"x": v, "label": "ahead, mm", "measured": float(s), "simulated": float(v <= reach_mm)}
+              for v, s in ahead]
+    points += [{"x": b, "label": "to the side, deg", "measured": float(s), "simulated": float(b <= b_star)}
+               for b, s, _ in side]
+    return Fit("camera", {"range": round(reach_mm / 1000.0, 4), "fov": round(2 * half, 3),
+                          "range_step_mm": round(reach_gap, 2), "fov_step_deg": round(b_gap, 3)},
+               points, 0.0, "seen (0/1)")

@@ -1,7 +1,8 @@
 """The scenario fragment: the fitted parameters as the models' own sections
-(ir, ambient, wheels), one `robots:` entry per robot id and the lab's
-average in the sections' own keys, which robots without an entry take
-(sim_host/models/per_robot.h).  `apply` puts a fragment into a scenario,
+(ir, ambient, wheels: one `robots:` entry per robot id and the lab's
+average in the sections' own keys, which robots without an entry take,
+sim_host/models/per_robot.h; camera: the lab's average only, the camera
+model having no per-robot keys).  `apply` puts a fragment into a scenario,
 per robot id or as the lab's average only."""
 
 from __future__ import annotations
@@ -46,6 +47,10 @@ def build(fits_by_robot: dict) -> dict:
     if wh:
         out["wheels"] = {k: _mean([p[k] for _, p in wh]) for k in ("gain_left", "gain_right")}
         out["wheels"]["robots"] = [{"id": i, **p} for i, p in wh]
+    cam = [fits_by_robot[i]["camera"].params for i in ids if "camera" in fits_by_robot[i]]
+    if cam:
+        # The camera model has no per-robot keys: every robot the lab's average.
+        out["camera"] = {"range": _mean([p["range"] for p in cam]), "fov": _mean([p["fov"] for p in cam])}
     return out
 
 
@@ -55,6 +60,9 @@ def dump(sections: dict) -> str:
 
 def write(sections: dict, path: str | Path):
     atomic_write(Path(path), dump(sections))
+
+
+SECTIONS = ("ir", "ambient", "wheels", "camera")
 
 
 class FragmentError(ValueError):
@@ -77,9 +85,9 @@ def apply(scenario: str | Path, fragment: str | Path, average: bool = False) -> 
     sc = _load_mapping(scenario, "scenario")
     fr = _load_mapping(fragment, "fragment")
     for name, section in fr.items():
-        if name not in ("ir", "ambient", "wheels") or not isinstance(section, dict):
+        if name not in SECTIONS or not isinstance(section, dict):
             raise FragmentError(f"{fragment}: {name!r} is not a section a calibration fragment has "
-                                f"(ir, ambient, wheels)")
+                                f"({', '.join(SECTIONS)})")
         merged = dict(sc.get(name) or {})
         merged.update({k: v for k, v in section.items() if not (average and k == "robots")})
         if average:

@@ -19,6 +19,7 @@ UNITS_H = _lib.ROOT / "hal" / "units.h"
 def _units() -> dict:
     text = UNITS_H.read_text(encoding="utf-8")
     out = {name: int(v) for name, v in re.findall(r"#define (EPUCK_\w+_UM|EPUCK_STEPS_PER_REV) (\d+)L", text)}
+    out.update({name: int(v) for name, v in re.findall(r"#define (EPUCK_CAMERA_\w+_PX) (\d+)u", text)})
     m = re.search(r"#define EPUCK_IR_BEARINGS\(X\) ((?:X\(-?\d+\) ?)+)", text)
     out["bearings"] = tuple(int(d) for d in re.findall(r"X\((-?\d+)\)", m.group(1)))
     return out
@@ -44,6 +45,11 @@ def ir_mount_m() -> float:
 
 def ir_height_m() -> float:
     return _units()["EPUCK_IR_HEIGHT_UM"] / 1e6
+
+
+def camera_width_px() -> int:
+    """The e-puck image's frame width, the camera model's columns."""
+    return _units()["EPUCK_CAMERA_WIDTH_PX"]
 
 
 def ir_bearings_deg() -> tuple:

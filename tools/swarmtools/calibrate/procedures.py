@@ -26,7 +26,16 @@ AMBIENT_DISTANCES_MM = (150, 250, 400, 600, 900)
 #: three speeds and turns in place both ways.
 WHEEL_RUNS = ((300, 300, 30), (600, 600, 20), (900, 900, 15), (400, -400, 15), (-400, 400, 15))
 
-PROCEDURES = ("ir", "ambient", "wheels")
+#: The camera procedure's card: a red cylinder this wide (a tin), and the
+#: searches for where the camera stops seeing it (bisections).
+CARD_DIAMETER_MM = 60.0
+CARD_COLOUR = 1                       # hal_colour_t red
+REACH_SEARCH_MM = (50.0, 1800.0)      # ahead: its near side from the body's front
+FOV_SEARCH_DEG = (0.0, 60.0)          # to the left: its centre's bearing from the lens
+FOV_DISTANCE_MM = 200.0
+CAMERA_BISECTIONS = 7
+
+PROCEDURES = ("ir", "ambient", "wheels", "camera")
 
 
 @dataclass
@@ -45,6 +54,7 @@ class Placement:
     sensor: int | None = None        # ir / ambient: the sensor facing the wall or the lamp
     gap_mm: float | None = None      # ir: body to wall; None: nothing within reach
     distance_mm: float | None = None  # ambient: body to the lamp's foot
+    bearing_deg: float | None = None  # camera: the card's centre from the lens, CCW +
     left: int = 0                    # wheels
     right: int = 0
     periods: int = 0
@@ -56,6 +66,10 @@ class Placement:
         if self.procedure == "ir":
             return (f"IR{self.sensor} (at {b[self.sensor]:+d} deg) facing a flat white wall square on, "
                     f"the body {self.gap_mm:g} mm from it")
+        if self.procedure == "camera":
+            where = "straight ahead" if not self.bearing_deg else f"{self.bearing_deg:.1f} deg to the left"
+            return (f"the red card ({CARD_DIAMETER_MM:g} mm across) {where}, its near side {self.distance_mm:g} mm "
+                    f"from the robot's front")
         if self.procedure == "ambient":
             return (f"IR{self.sensor} (at {b[self.sensor]:+d} deg) facing the lamp, the body "
                     f"{self.distance_mm:g} mm from the lamp's foot")
@@ -88,6 +102,8 @@ SETUP_TEXT = {
           "as in your experiments; keep other robots and hands away from the sensors.",
     "ambient": "Ambient light: a dark room with one lamp (the lamp your scenarios model, intensity 1) at "
                "{h:g} mm above the table, a ruler or tape from the lamp's foot.",
+    "camera": "Camera: a red cylinder (a can) {d:g} mm across on a plain, uncoloured floor, nothing else "
+              "coloured in view, a ruler and a protractor sheet under the robot.",
     "wheels": "Wheels: a flat floor with 40 cm of room around a start mark, a ruler (or the tracker) to "
               "measure where the robot ends: forward and left of its start in mm, and how far it turned "
               "(degrees, counter-clockwise positive).",
@@ -103,14 +119,21 @@ def placements(procedure: str, sensors=range(8)) -> list[Placement]:
         return [Placement("ambient", sensor=s, distance_mm=r) for s in (0, 3) for r in AMBIENT_DISTANCES_MM]
     if procedure == "wheels":
         return [Placement("wheels", left=left, right=right, periods=n) for left, right, n in WHEEL_RUNS]
+    if procedure == "camera":
+        return []                    # adaptive: run_camera chooses each step from the last
+
     raise ValueError(f"no procedure {procedure!r} (procedures: {', '.join(PROCEDURES)})")
 
 
 def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> list[Step]:
     """Goes through a procedure's placements with the operator and the
     robot; the steps recorded."""
+    operator.setup(procedure, SETUP_TEXT[procedure].format(h=setup.lamp_height_mm, d=CARD_DIAMETER_MM))
+    if procedure == "camera":
+        out = run_camera(link, operator, setup)
+        link.send(protocol.stop())
+        return out
     steps = steps if steps is not None else placements(procedure)
-    operator.setup(procedure, SETUP_TEXT[procedure].format(h=setup.lamp_height_mm))
     out = []
     for k, p in enumerate(steps):
         what = f"{procedure} step {k + 1}/{len(steps)} ({p.describe()})"
@@ -127,6 +150,54 @@ def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> 
         operator.progress(f"{procedure}: {k + 1}/{len(steps)} done")
     link.send(protocol.stop())
     return out
+
+
+def seen(step: Step) -> bool:
+    """The card was in view in at least half the window's frames."""
+    return sum(w[0][2] for w in step.windows) / len(step.windows) >= 0.5
+
+
+def run_camera(link: RobotLink, operator, setup: Setup) -> list[Step]:
+    """Two bisections: how far ahead the card stays in view (the reach),
+    and how far to the left at FOV_DISTANCE_MM (the field of view)."""
+    out = []
+    total = 2 * CAMERA_BISECTIONS
+
+    def look(p):
+        k = len(out) + 1
+        operator.place(p, f"[{k}/{total}] Put {p.describe()}.")
+        ws = link.stream(protocol.camera(CARD_COLOUR), setup.windows,
+                         f"camera step {k}/{total} ({p.describe()})")
+        out.append(Step(p, [(w.mean, w.var) for w in ws]))
+        operator.progress(f"camera: {k}/{total} done")
+        return seen(out[-1])
+
+    lo, hi = REACH_SEARCH_MM
+    for _ in range(CAMERA_BISECTIONS):
+        mid = round(0.5 * (lo + hi))
+        if look(Placement("camera", distance_mm=mid, bearing_deg=0.0)):
+            lo = mid
+        else:
+            hi = mid
+    lo, hi = FOV_SEARCH_DEG
+    for _ in range(CAMERA_BISECTIONS):
+        mid = round(0.5 * (lo + hi), 2)
+        if look(Placement("camera", distance_mm=FOV_DISTANCE_MM, bearing_deg=mid)):
+            lo = mid
+        else:
+            hi = mid
+    return out
+
+
+def camera_pose_for(p: Placement) -> tuple:
+    """(x, y, heading) of the robot's centre with the card's centre at the
+    origin: the lens (the body's front) looks along +x at heading 0, the
+    card at the placement's distance and bearing from it."""
+    r_card = CARD_DIAMETER_MM / 2000.0
+    dc = p.distance_mm / 1000.0 + r_card           # lens to the card's centre (bearing 0: exactly)
+    b = math.radians(p.bearing_deg or 0.0)
+    lens = (-dc * math.cos(b), -dc * math.sin(b))
+    return (lens[0] - geometry.body_radius_m(), lens[1], 0.0)
 
 
 # ---------------------------------------------------------------- geometry of a placement

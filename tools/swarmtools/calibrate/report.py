@@ -21,8 +21,8 @@ NOT_MEASURED = {
     "ambient": "a dark reading per sensor (one per robot is fitted); light from more than one lamp",
     "wheels": "the speed noise (wheels.speed_noise_rel) and the bias of seed 003's eq 3; the axle "
               "(53 mm is kept); slip on other floors",
-    "camera": "not calibrated by this version of the kit: the camera model's colour thresholds and reach "
-              "keep their defaults",
+    "camera": "per robot (the camera model takes the lab's average reach and field of view); the colour "
+              "thresholds (the robot's own detector decides); the rendered camera's noise",
     "sound": "not calibrated by this version of the kit: microphone gains per band and the attenuation keep "
              "seed 002's values",
 }
@@ -51,6 +51,25 @@ def _plot_ir(fit, path):
     for ax in axes[:, 0]:
         ax.set_ylabel("proximity, counts")
     fig.subplots_adjust(left=0.07, right=0.98, bottom=0.1, top=0.93, wspace=0.1, hspace=0.3)
+    _save(fig, path)
+
+
+def _plot_camera(fit, path):
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.5))
+    for ax, label, key, unit in ((axes[0], "ahead, mm", "range", 1000.0), (axes[1], "to the side, deg", "fov", 0.0)):
+        pts = sorted((p for p in fit.points if p["label"] == label), key=lambda p: p["x"])
+        ax.plot([p["x"] for p in pts], [p["measured"] for p in pts], "o", label="seen (measured)")
+        edge = fit.params[key] * unit if unit else None
+        if edge is not None:
+            ax.axvline(edge, color="C1", label=f"fitted reach {edge:.0f} mm")
+        else:
+            edges = [p["x"] for p in pts if p["simulated"] > 0]
+            if edges:
+                ax.axvline(max(edges), color="C1", label=f"fitted fov {fit.params['fov']:.1f} deg")
+        ax.set_xlabel(f"the card {label}")
+        ax.set_yticks([0, 1], ["no", "yes"])
+        ax.legend(fontsize=8)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.16, top=0.95, wspace=0.2)
     _save(fig, path)
 
 
@@ -87,6 +106,8 @@ def write(fits_by_robot: dict, out: Path, fragment_name: str) -> Path:
             png = f"robot{rid}_{proc}.png"
             if proc == "ir":
                 _plot_ir(fit, out / png)
+            elif proc == "camera":
+                _plot_camera(fit, out / png)
             else:
                 _plot_generic(fit, out / png, "measurement" if proc == "ambient" else "run, quantity")
             params = {k: v for k, v in fit.params.items() if k != "sensors"}
@@ -99,7 +120,7 @@ def write(fits_by_robot: dict, out: Path, fragment_name: str) -> Path:
             lines += [f"![{proc}]({png})", ""]
     lines += ["## Not measured", ""]
     for proc, text in NOT_MEASURED.items():
-        if proc not in measured and proc in ("ir", "ambient", "wheels"):
+        if proc not in measured and proc in ("ir", "ambient", "wheels", "camera"):
             lines.append(f"- {proc}: not measured in these recordings: the defaults stay")
         lines.append(f"- {proc}: {text}")
     report = out / "report.md"

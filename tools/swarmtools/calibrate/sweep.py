@@ -19,7 +19,11 @@ from . import cli, fake_lab, procedures
 
 #: The tolerances the kit states (docs/how-to/calibrate.md): relative, or counts for the IR offsets.
 TOLERANCES = {"ir.gain": 0.03, "ir.offset": 6.0, "ir.noise_rel": 0.25, "ir.noise_abs": 0.25, "ambient.dark": 0.01,
-              "ambient.half": 0.05, "ambient.noise_rel": 0.25, "wheels.gain": 0.01}
+              "ambient.half": 0.05, "ambient.noise_rel": 0.25, "wheels.gain": 0.01, "camera.range_m": 0.015,
+              "camera.fov_deg": 1.0}
+
+
+ABSOLUTE = ("ir.offset", "camera.range_m", "camera.fov_deg")
 
 
 def errors(truth: dict, fits: dict) -> dict:
@@ -38,6 +42,8 @@ def errors(truth: dict, fits: dict) -> dict:
         "ambient.half": rel(amb["half"], t["ambient"]["half"]),
         "ambient.noise_rel": rel(amb["noise_rel"], t["ambient"]["noise_rel"]),
         "wheels.gain": max(rel(wh[k], t["wheels"][k]) for k in ("gain_left", "gain_right")),
+        "camera.range_m": abs(fits["camera"].params["range"] - t["camera"]["range"]),
+        "camera.fov_deg": abs(fits["camera"].params["fov"] - t["camera"]["fov"]),
     }
 
 

@@ -127,6 +127,15 @@ class Unfittable(unittest.TestCase):
         self.assertIn("ambient: every lit reading is near 0", str(cm.exception))
 
 
+    def test_camera_never_sees_the_card(self):
+        steps = [Step(Placement("camera", distance_mm=d, bearing_deg=b), [(tuple([0.0] * 8), tuple([0.0] * 8))])
+                 for d, b in ((900, 0.0), (450, 0.0), (200, 30.0))]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_camera(steps)
+        self.assertIn("camera: the card was never seen ahead", str(cm.exception))
+        self.assertIn("redo: the camera procedure", str(cm.exception))
+
+
 class BadFiles(Silent):
     def run_cli(self, args):
         err = io.StringIO()
