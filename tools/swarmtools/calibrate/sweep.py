@@ -17,13 +17,13 @@ from pathlib import Path
 from ..sweep.store import atomic_write
 from . import cli, fake_lab, procedures
 
-#: The tolerances the kit states (docs/how-to/calibrate.md): relative, or counts for the IR offsets.
+#: The tolerances the kit states (docs/how-to/calibrate.md): relative, or in the units UNITS names.
 TOLERANCES = {"ir.gain": 0.03, "ir.offset": 6.0, "ir.noise_rel": 0.25, "ir.noise_abs": 0.25, "ambient.dark": 0.01,
               "ambient.half": 0.05, "ambient.noise_rel": 0.25, "wheels.gain": 0.01, "camera.range_m": 0.015,
               "camera.fov_deg": 1.0}
 
 
-ABSOLUTE = ("ir.offset", "camera.range_m", "camera.fov_deg")
+UNITS = {"ir.offset": " counts", "camera.range_m": " m", "camera.fov_deg": " deg"}
 
 
 def errors(truth: dict, fits: dict) -> dict:
@@ -73,7 +73,7 @@ def main(argv=None) -> int:
     csv = "robot," + ",".join(TOLERANCES) + "\n" + "".join(
         f"{k}," + ",".join(f"{r[n]:.5g}" for n in TOLERANCES) + "\n" for k, r in enumerate(rows))
     md = ["| parameter | tolerance | worst error | within |", "|---|---|---|---|"]
-    md += [f"| {n} | {TOLERANCES[n]:g}{'' if n == 'ir.offset' else ' (relative)'} | {worst[n]:.3g} | "
+    md += [f"| {n} | {TOLERANCES[n]:g}{UNITS.get(n, ' (relative)')} | {worst[n]:.3g} | "
            f"{'yes' if worst[n] <= TOLERANCES[n] else 'NO'} |" for n in TOLERANCES]
     atomic_write(args.out / "errors.csv", csv)
     atomic_write(args.out / "summary.md", f"{args.robots} robots, seed {args.seed}, spread {args.spread:g}\n\n"
