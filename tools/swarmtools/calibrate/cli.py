@@ -43,6 +43,8 @@ def fit_recording(rec: Recording) -> dict:
             out[proc] = fitting.fit_wheels(steps, rec.setup)
         elif proc == "camera":
             out[proc] = fitting.fit_camera(steps)
+        elif proc == "sound":
+            out[proc] = fitting.fit_sound(steps, rec.setup)
     return out
 
 
@@ -94,10 +96,12 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--out", required=True, type=Path, help="folder for recording.json, fragment.yaml, report/")
     r.add_argument("--robot-id", type=int, help="expect this id (default: the id the robot reports)")
     r.add_argument("--procedures", type=_procedures, default=list(procedures.PROCEDURES),
-                   help="comma-separated, in order (default: ir,ambient,wheels,camera)")
+                   help="comma-separated, in order (default: ir,ambient,wheels,camera,sound)")
     r.add_argument("--lamp-height-mm", type=float, default=100.0)
     r.add_argument("--lamp-intensity", type=float, default=1.0,
                    help="the lamp's intensity in the scenarios' units (1: it defines the unit)")
+    r.add_argument("--sound-a0", type=float, default=299.18,
+                   help="the emitter's sound.a0 in your scenarios: the microphone gains are against it")
     r.add_argument("--windows", type=int, default=2, help="1 s windows recorded per placement")
     r.add_argument("--timeout", type=float, default=10.0, help="s to wait for the robot before giving up")
     f = sub.add_parser("fit", help="fit recordings again (one or many robots: the lab's fragment)")
@@ -115,7 +119,8 @@ def main(argv=None) -> int:
     args = parser().parse_args(argv)
     try:
         if args.cmd == "run":
-            setup = procedures.Setup(args.lamp_height_mm, args.lamp_intensity, windows=args.windows)
+            setup = procedures.Setup(args.lamp_height_mm, args.lamp_intensity, windows=args.windows,
+                                     sound_a0=args.sound_a0)
             rec, fits = calibrate(args.device, args.out, args.procedures, setup, TerminalOperator(),
                                   args.robot_id, args.timeout)
             print(f"{PROG}: robot {rec.robot_id}: {args.out / 'fragment.yaml'}, {args.out / 'report' / 'report.md'}")

@@ -21,6 +21,8 @@ ARENA_M = 2.4
 LAMP = {"x": 0.0, "y": 0.0, "height": 0.1, "intensity": 1.0}
 #: The camera procedure's card, far from the other procedures' places.
 CARD = (0.0, 0.9)
+#: The emitter of the sound procedure: the world's second robot, out of the others' way.
+EMITTER = (-1.0, -1.0)
 
 
 def perturbed(rng: random.Random, spread: float = 1.0) -> dict:
@@ -36,6 +38,10 @@ def perturbed(rng: random.Random, spread: float = 1.0) -> dict:
                    "gain_right": round(1 + rng.uniform(-0.05, 0.05) * spread, 4)},
         "camera": {"range": round(0.9 + rng.uniform(-0.3, 0.3) * spread, 3),
                    "fov": round(56 + rng.uniform(-8, 8) * spread, 2)},
+        "sound": {"alpha": round(0.726 * math.exp(rng.uniform(-0.3, 0.3) * spread), 4),
+                  "ae": round(48.18 * math.exp(rng.uniform(-0.3, 0.3) * spread), 3),
+                  "noise": round(rng.uniform(0.03, 0.09), 4),
+                  **{f"gain{b}": round(math.exp(rng.uniform(-0.3, 0.3) * spread), 4) for b in (1, 2, 3)}},
     }
 
 
@@ -47,11 +53,15 @@ def world(robot_id: int, truth: dict) -> dict:
         "arena": {"width": ARENA_M, "height": ARENA_M},
         "lights": [LAMP],
         "robots": [{"count": 1, "controller": "calib", "placement": {"shape": "poses",
-                                                                     "poses": [{"x": 0.0, "y": -0.5, "heading": 0}]}}],
+                                                                     "poses": [{"x": 0.0, "y": -0.5, "heading": 0}]}},
+                   {"name": "emitter", "count": 1, "controller": "calib", "moves": False, "placement": {
+                       "shape": "poses", "poses": [{"x": EMITTER[0], "y": EMITTER[1], "heading": 0}]}}],
         "ir": {"robots": [{"id": robot_id, **truth["ir"]}]},
         "ambient": {"robots": [{"id": robot_id, **truth["ambient"]}]},
         "wheels": {"robots": [{"id": robot_id, **truth["wheels"]}]},
         "camera": dict(truth["camera"]),    # no per-robot keys: the world's own
+        "sound": {"enabled": True, **{k: v for k, v in truth["sound"].items() if not k.startswith("gain")},
+                  "robots": [{"id": robot_id, **{k: v for k, v in truth["sound"].items() if k.startswith("gain")}}]},
         "objects": [{"shape": "cylinder", "x": CARD[0], "y": CARD[1], "radius": procedures.CARD_DIAMETER_MM / 2000,
                      "height": 0.08, "colour": "red"}],
     }
@@ -84,6 +94,8 @@ class SimOperator:
         elif placement.procedure == "ir":
             x, y, th = procedures.robot_pose_for(placement)   # the wall's face at x = 0
             pose = (hw + x, -0.4, th)
+        elif placement.procedure == "sound":
+            pose = (EMITTER[0] + placement.distance_mm / 1000.0, EMITTER[1], 0.0)
         elif placement.procedure == "camera":
             x, y, th = procedures.camera_pose_for(placement)  # the card's centre at the origin, looking along +y here
             pose = (CARD[0] - y, CARD[1] + x, th + math.pi / 2)
@@ -96,6 +108,12 @@ class SimOperator:
             sim, i = self._sim()
             sim.set_pose(i, *pose)
         self.start = pose
+
+    def tone(self, band, text):
+        """The emitter (the world's second robot, also the calibration image) plays `band`."""
+        with self.fakes.locked():
+            sim, _ = self._sim()
+            sim.host_send(1, procedures.protocol.tone(band))
 
     def measure_move(self, placement, text):
         with self.fakes.locked():

@@ -234,3 +234,54 @@ def fit_camera(steps: list[Step]) -> Fit:
     return Fit("camera", {"range": round(reach_mm / 1000.0, 4), "fov": round(2 * half, 3),
                           "range_step_mm": round(reach_gap, 2), "fov_step_deg": round(b_gap, 3)},
                points, 0.0, "seen (0/1)")
+
+
+def fit_sound(steps: list[Step], setup: Setup) -> Fit:
+    """Seed 002's eq 1 heard through this robot's microphones: level (counts)
+    = 1000 gain_b (a0 e^(-alpha d) + ae) while the emitter plays band b at
+    d (centre to centre), 1000 gain_b ae while it is silent; alpha shared by
+    the bands.  a0 and the gains are one product: the gains are against
+    the scenario's a0 (Setup.sound_a0).  The noise: eq 4's relative sd,
+    from the spread within the windows."""
+    by_band = {}
+    for st in steps:
+        mean, var = _pooled(st.windows)
+        level = float(np.mean(mean[:3]))
+        by_band.setdefault(st.placement.band, []).append((st.placement, level, float(np.mean(var[:3]))))
+    bands = sorted(by_band)
+    if not bands:
+        raise FitError("sound", "no steps recorded", "the whole sound procedure")
+    for b in bands:
+        rows = by_band[b]
+        if sum(1 for p, *_ in rows if p.tone) < 3 or not any(not p.tone for p, *_ in rows):
+            raise FitError("sound", f"band {b} has too few distances (3 with the tone and one silent)",
+                           f"the sound steps of band {b}")
+        if all(level <= 0 for _, level, _ in rows):
+            raise FitError("sound", f"band {b} was never heard", f"the sound steps of band {b} (is the emitter on?)")
+
+    def model(q):
+        alpha, rest = q[0], q[1:]
+        out = []
+        for k, b in enumerate(bands):
+            a, e = rest[2 * k], rest[2 * k + 1]
+            out += [1000.0 * (a * math.exp(-alpha * p.distance_mm / 1000.0) + e) if p.tone else 1000.0 * e
+                    for p, _, _ in by_band[b]]
+        return np.array(out)
+
+    y = np.array([level for b in bands for _, level, _ in by_band[b]])
+    x0 = [0.7] + [v for b in bands for v in (max(y) / 1000.0, min(y) / 1000.0)]
+    res = least_squares(lambda q: (model(q) - y) / np.maximum(y, 1.0), x0=x0,
+                        bounds=([0.0] + [0.0] * 2 * len(bands), [1000.0] + [1e7] * 2 * len(bands)))
+    alpha = float(res.x[0])
+    gains = {b: float(res.x[1 + 2 * k]) / setup.sound_a0 for k, b in enumerate(bands)}
+    ae = float(np.mean([res.x[2 + 2 * k] / gains[b] for k, b in enumerate(bands)]))
+    tone = [(level, var) for b in bands for p, level, var in by_band[b] if p.tone and level > 0]
+    noise = float(np.sqrt(np.mean([max(v - 1.0 / 12.0, 0.0) / m ** 2 for m, v in tone])))
+    sim = model(res.x)
+    points = [{"band": b, "x": p.distance_mm if p.tone else 0.0, "label": f"band {b}" + ("" if p.tone else " silent"),
+               "measured": level, "simulated": float(s)}
+              for (b, (p, level, _)), s in zip(((b, r) for b in bands for r in by_band[b]), sim, strict=True)]
+    r = (sim - y) / np.maximum(y, 1.0)
+    return Fit("sound", {"alpha": round(alpha, 5), "ae": round(ae, 4), "noise": round(noise, 5),
+                         **{f"gain{b}": round(g, 5) for b, g in gains.items()}}, points,
+               float(np.sqrt(np.mean(r ** 2))), "relative")

@@ -47,6 +47,10 @@ def build(fits_by_robot: dict) -> dict:
     if wh:
         out["wheels"] = {k: _mean([p[k] for _, p in wh]) for k in ("gain_left", "gain_right")}
         out["wheels"]["robots"] = [{"id": i, **p} for i, p in wh]
+    snd = [(i, fits_by_robot[i]["sound"].params) for i in ids if "sound" in fits_by_robot[i]]
+    if snd:
+        out["sound"] = {k: _mean([p[k] for _, p in snd]) for k in ("alpha", "ae", "noise")}
+        out["sound"]["robots"] = [{"id": i, **{k: v for k, v in p.items() if k.startswith("gain")}} for i, p in snd]
     cam = [fits_by_robot[i]["camera"].params for i in ids if "camera" in fits_by_robot[i]]
     if cam:
         # The camera model has no per-robot keys: every robot the lab's average.
@@ -62,7 +66,7 @@ def write(sections: dict, path: str | Path):
     atomic_write(Path(path), dump(sections))
 
 
-SECTIONS = ("ir", "ambient", "wheels", "camera")
+SECTIONS = ("ir", "ambient", "wheels", "camera", "sound")
 
 
 class FragmentError(ValueError):

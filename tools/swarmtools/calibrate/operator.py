@@ -36,6 +36,9 @@ class TerminalOperator:
     def place(self, placement, text):
         self._ask(f"{text} Enter when it is there:")
 
+    def tone(self, band, text):
+        self._ask(f"{text} Enter when it does:")
+
     def measure_move(self, placement, text):
         while True:
             answer = self._ask(f"{text} (three numbers, e.g. 120 -3 2):")

@@ -35,7 +35,18 @@ FOV_SEARCH_DEG = (0.0, 60.0)          # to the left: its centre's bearing from t
 FOV_DISTANCE_MM = 200.0
 CAMERA_BISECTIONS = 7
 
-PROCEDURES = ("ir", "ambient", "wheels", "camera")
+#: The microphones' procedure: the listener this far from the emitter
+#: (centre to centre, mm) while it plays each band, then once while it is
+#: silent (the ambient term).
+SOUND_DISTANCES_MM = (100, 200, 350, 550, 800, 1100, 1500)
+#: Windows per placement (eq 4's 6 % noise per reading needs more than the others).
+SOUND_WINDOWS = 3
+SOUND_SILENT_MM = 200
+SOUND_BANDS = (1, 2, 3)
+#: hal/sound_bands.h's tones, Hz (for the operator's prompts).
+BAND_HZ = {1: 1160, 2: 1960, 3: 2720}
+
+PROCEDURES = ("ir", "ambient", "wheels", "camera", "sound")
 
 
 @dataclass
@@ -45,6 +56,7 @@ class Setup:
     lamp_height_mm: float = 100.0
     lamp_intensity: float = 1.0      # the lab's lamp is the unit: the scenario's lamp has intensity 1
     period_ms: int = 100             # the image's control period
+    sound_a0: float = 299.18         # the emitter's level at 0 m (sound.a0 of your scenarios): gains are against it
     windows: int = 2                 # windows recorded per placement
 
 
@@ -55,6 +67,8 @@ class Placement:
     gap_mm: float | None = None      # ir: body to wall; None: nothing within reach
     distance_mm: float | None = None  # ambient: body to the lamp's foot
     bearing_deg: float | None = None  # camera: the card's centre from the lens, CCW +
+    band: int = 0                    # sound: the band listened to
+    tone: bool = False               # sound: the emitter plays it (else it is silent)
     left: int = 0                    # wheels
     right: int = 0
     periods: int = 0
@@ -66,6 +80,9 @@ class Placement:
         if self.procedure == "ir":
             return (f"IR{self.sensor} (at {b[self.sensor]:+d} deg) facing a flat white wall square on, "
                     f"the body {self.gap_mm:g} mm from it")
+        if self.procedure == "sound":
+            return (f"the robot {self.distance_mm:g} mm (centre to centre) from the emitter, which "
+                    + (f"plays band {self.band} ({BAND_HZ[self.band]} Hz)" if self.tone else "is silent"))
         if self.procedure == "camera":
             where = "straight ahead" if not self.bearing_deg else f"{self.bearing_deg:.1f} deg to the left"
             return (f"the red card ({CARD_DIAMETER_MM:g} mm across) {where}, its near side {self.distance_mm:g} mm "
@@ -104,6 +121,8 @@ SETUP_TEXT = {
                "{h:g} mm above the table, a ruler or tape from the lamp's foot.",
     "camera": "Camera: a red cylinder (a can) {d:g} mm across on a plain, uncoloured floor, nothing else "
               "coloured in view, a ruler and a protractor sheet under the robot.",
+    "sound": "Microphones: a quiet room; a second e-puck (or a PC speaker at the e-puck's loudness) as the "
+             "emitter, on the table; you will make it play each band in turn, or stay silent.",
     "wheels": "Wheels: a flat floor with 40 cm of room around a start mark, a ruler (or the tracker) to "
               "measure where the robot ends: forward and left of its start in mm, and how far it turned "
               "(degrees, counter-clockwise positive).",
@@ -121,6 +140,12 @@ def placements(procedure: str, sensors=range(8)) -> list[Placement]:
         return [Placement("wheels", left=left, right=right, periods=n) for left, right, n in WHEEL_RUNS]
     if procedure == "camera":
         return []                    # adaptive: run_camera chooses each step from the last
+    if procedure == "sound":
+        out = []
+        for b in SOUND_BANDS:
+            out += [Placement("sound", distance_mm=d, band=b, tone=True) for d in SOUND_DISTANCES_MM]
+            out.append(Placement("sound", distance_mm=SOUND_SILENT_MM, band=b, tone=False))
+        return out
 
     raise ValueError(f"no procedure {procedure!r} (procedures: {', '.join(PROCEDURES)})")
 
@@ -135,10 +160,18 @@ def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> 
         return out
     steps = steps if steps is not None else placements(procedure)
     out = []
+    playing = None
     for k, p in enumerate(steps):
         what = f"{procedure} step {k + 1}/{len(steps)} ({p.describe()})"
+        if procedure == "sound" and playing != (p.band if p.tone else 0):
+            playing = p.band if p.tone else 0
+            operator.tone(playing, f"Make the emitter play band {p.band} ({BAND_HZ[p.band]} Hz)." if playing
+                          else "Make the emitter silent.")
         operator.place(p, f"[{k + 1}/{len(steps)}] Put {p.describe()}.")
-        if procedure in ("ir", "ambient"):
+        if procedure == "sound":
+            ws = link.stream(protocol.mic(p.band), max(setup.windows, SOUND_WINDOWS), what)
+            out.append(Step(p, [(w.mean, w.var) for w in ws]))
+        elif procedure in ("ir", "ambient"):
             cmd = protocol.prox() if procedure == "ir" else protocol.ambient()
             ws = link.stream(cmd, setup.windows, what)
             out.append(Step(p, [(w.mean, w.var) for w in ws]))
@@ -148,6 +181,8 @@ def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> 
                                              f"forward mm, left mm, turned deg (CCW +)")
             out.append(Step(p, moved=tuple(float(x) for x in moved), steps=(w.mean[0], w.mean[1])))
         operator.progress(f"{procedure}: {k + 1}/{len(steps)} done")
+    if procedure == "sound" and playing:
+        operator.tone(0, "Make the emitter silent.")
     link.send(protocol.stop())
     return out
 

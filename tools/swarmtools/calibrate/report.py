@@ -23,8 +23,8 @@ NOT_MEASURED = {
               "(53 mm is kept); slip on other floors",
     "camera": "per robot (the camera model takes the lab's average reach and field of view); the colour "
               "thresholds (the robot's own detector decides); the rendered camera's noise",
-    "sound": "not calibrated by this version of the kit: microphone gains per band and the attenuation keep "
-             "seed 002's values",
+    "sound": "sound.a0 (one product with the gains: they are against the scenario's a0); each microphone "
+             "apart (the model's three hear the same); more than one emitter",
 }
 
 
@@ -109,7 +109,7 @@ def write(fits_by_robot: dict, out: Path, fragment_name: str) -> Path:
             elif proc == "camera":
                 _plot_camera(fit, out / png)
             else:
-                _plot_generic(fit, out / png, "measurement" if proc == "ambient" else "run, quantity")
+                _plot_generic(fit, out / png, {"ambient": "measurement", "sound": "placement"}.get(proc, "run, quantity"))
             params = {k: v for k, v in fit.params.items() if k != "sensors"}
             lines += [f"### {proc}", "", f"rms residual {fit.rms:.3g} {fit.unit}; parameters: "
                       + ", ".join(f"{k} = {v}" for k, v in params.items()), ""]
@@ -120,7 +120,7 @@ def write(fits_by_robot: dict, out: Path, fragment_name: str) -> Path:
             lines += [f"![{proc}]({png})", ""]
     lines += ["## Not measured", ""]
     for proc, text in NOT_MEASURED.items():
-        if proc not in measured and proc in ("ir", "ambient", "wheels", "camera"):
+        if proc not in measured and proc in ("ir", "ambient", "wheels", "camera", "sound"):
             lines.append(f"- {proc}: not measured in these recordings: the defaults stay")
         lines.append(f"- {proc}: {text}")
     report = out / "report.md"

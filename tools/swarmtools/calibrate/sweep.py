@@ -20,7 +20,7 @@ from . import cli, fake_lab, procedures
 #: The tolerances the kit states (docs/how-to/calibrate.md): relative, or in the units UNITS names.
 TOLERANCES = {"ir.gain": 0.03, "ir.offset": 6.0, "ir.noise_rel": 0.25, "ir.noise_abs": 0.25, "ambient.dark": 0.01,
               "ambient.half": 0.05, "ambient.noise_rel": 0.25, "wheels.gain": 0.01, "camera.range_m": 0.015,
-              "camera.fov_deg": 1.0}
+              "camera.fov_deg": 1.0, "sound.alpha": 0.05, "sound.ae": 0.05, "sound.noise": 0.25, "sound.gain": 0.03}
 
 
 UNITS = {"ir.offset": " counts", "camera.range_m": " m", "camera.fov_deg": " deg"}
@@ -44,6 +44,10 @@ def errors(truth: dict, fits: dict) -> dict:
         "wheels.gain": max(rel(wh[k], t["wheels"][k]) for k in ("gain_left", "gain_right")),
         "camera.range_m": abs(fits["camera"].params["range"] - t["camera"]["range"]),
         "camera.fov_deg": abs(fits["camera"].params["fov"] - t["camera"]["fov"]),
+        "sound.alpha": rel(fits["sound"].params["alpha"], t["sound"]["alpha"]),
+        "sound.ae": rel(fits["sound"].params["ae"], t["sound"]["ae"]),
+        "sound.noise": rel(fits["sound"].params["noise"], t["sound"]["noise"]),
+        "sound.gain": max(rel(fits["sound"].params[f"gain{b}"], t["sound"][f"gain{b}"]) for b in (1, 2, 3)),
     }
 
 

@@ -136,6 +136,14 @@ class Unfittable(unittest.TestCase):
         self.assertIn("redo: the camera procedure", str(cm.exception))
 
 
+    def test_a_band_never_heard(self):
+        steps = [Step(p, [(tuple([0.0] * 8), tuple([0.0] * 8))]) for p in procedures.placements("sound")]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_sound(steps, Setup())
+        self.assertIn("sound: band 1 was never heard", str(cm.exception))
+        self.assertIn("redo: the sound steps of band 1 (is the emitter on?)", str(cm.exception))
+
+
 class BadFiles(Silent):
     def run_cli(self, args):
         err = io.StringIO()

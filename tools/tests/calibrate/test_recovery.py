@@ -22,7 +22,8 @@ ROBOT_ID = 7
 #: The tolerances the kit states (docs/how-to/calibrate.md), as fractions
 #: of the true value, or counts for the IR offsets.
 TOL = {"ir_gain": 0.03, "ir_offset": 6.0, "ir_noise": 0.25, "ambient_dark": 0.01, "ambient_half": 0.05,
-       "ambient_noise": 0.25, "wheel_gain": 0.01, "camera_range_m": 0.015, "camera_fov_deg": 1.0}
+       "ambient_noise": 0.25, "wheel_gain": 0.01, "camera_range_m": 0.015, "camera_fov_deg": 1.0,
+       "sound_alpha": 0.05, "sound_ae": 0.05, "sound_noise": 0.25, "sound_gain": 0.03}
 
 
 def rel(a, b):
@@ -52,7 +53,8 @@ class Recovery(unittest.TestCase):
         self.assertEqual(self.rec.robot_id, ROBOT_ID)
         out = self.dir / "out"
         for name in ("recording.json", "fragment.yaml", "report/report.md", "report/robot7_ir.png",
-                     "report/robot7_ambient.png", "report/robot7_wheels.png", "report/robot7_camera.png"):
+                     "report/robot7_ambient.png", "report/robot7_wheels.png", "report/robot7_camera.png",
+                     "report/robot7_sound.png"):
             self.assertTrue((out / name).is_file(), name)
         text = (out / "report" / "report.md").read_text()
         self.assertIn("## Not measured", text)
@@ -82,6 +84,13 @@ class Recovery(unittest.TestCase):
         got, want = self.fits["camera"].params, self.truth["camera"]
         self.assertLess(abs(got["range"] - want["range"]), TOL["camera_range_m"], f"{got} vs {want}")
         self.assertLess(abs(got["fov"] - want["fov"]), TOL["camera_fov_deg"], f"{got} vs {want}")
+
+    def test_sound_recovered(self):
+        got, want = self.fits["sound"].params, self.truth["sound"]
+        for k in ("alpha", "ae", "noise"):
+            self.assertLess(rel(got[k], want[k]), TOL[f"sound_{k}"], f"{k}: {got} vs {want}")
+        for b in (1, 2, 3):
+            self.assertLess(rel(got[f"gain{b}"], want[f"gain{b}"]), TOL["sound_gain"], f"band {b}: {got} vs {want}")
 
     def _scenario(self, average: bool) -> Path:
         base = self.dir / "base.yaml"
