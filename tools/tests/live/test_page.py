@@ -186,14 +186,13 @@ class ReplayedRun(BrowserTest):
 
     def test_plays_pauses_and_ends_with_the_summary(self):
         self.serve("--log", self.log, "--speed", "4")
-        t0, w0 = self.state()["time"], time.monotonic()
-        # 16 s of the log, 4 s of wall time at 4x: long enough that the
-        # page's lag at either end (a loaded machine) hardly moves the rate.
+        t0 = self.state()["time"]
+        # The log plays (the rate itself, 4x of real time, is exact in
+        # test_server's Session test: measured here, it would be a timing
+        # assertion that a busy machine fails).
         st = wait_for(lambda: (s := self.state())["time"] >= t0 + 16 and s, "16 s of the log played")
-        rate = (st["time"] - t0) / (time.monotonic() - w0)
         self.assertTrue(st["playing"])
-        self.assertGreater(rate, 2.5)                         # 4x, give or take the page's lag
-        self.assertLess(rate, 6.0)
+        self.assertEqual(st["speed"], 4)
         self.assertGreater(st["step"], 0)
         self.click("play")                                    # it says pause while playing
         st = wait_for(lambda: (s := self.state()) and not s["playing"] and s, "the pause")

@@ -200,6 +200,11 @@ class Commands(unittest.TestCase):
         self.assertIn("pause: unknown field 'value' (it takes none)", s.command({"cmd": "pause", "value": 1}))
         self.assertEqual((s.player.speed, s.player.time), (2.0, 0.05))          # none of them acted
         self.assertIsNone(s.command({"cmd": "play"}))
+        s.frame(1.5)                                                    # 1.5 s of real time at 2x
+        self.assertAlmostEqual(s.player.time, 3.05, places=9)
+        self.assertIsNone(s.command({"cmd": "speed", "value": 4}))
+        s.frame(0.25)
+        self.assertAlmostEqual(s.player.time, 4.05, places=9)
         s.frame(100.0)                                                  # to the end, then stops
         self.assertEqual((s.player.time, s.player.playing, s.player.ended), (10.2, False, True))
 

@@ -27,6 +27,8 @@ from pathlib import Path
 from swarmtools.sweep import plan as planmod
 from swarmtools.sweep import spec
 
+from ..telemetry.helpers import default_sigint
+
 ROOT = Path(__file__).resolve().parents[3]
 SWARMSIM = Path(os.environ.get("SWARMSIM", ROOT / "build" / "swarmsim"))
 if not SWARMSIM.is_absolute():
@@ -357,7 +359,7 @@ class LocalBackend(TempDir):
         out = self.dir / "out"
         proc = subprocess.Popen([sys.executable, "-m", "swarmtools.sweep", "run", str(p), "--out", str(out),
                                  "--sim", str(sim), "--jobs", "2"], stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, text=True)
+                                stderr=subprocess.PIPE, text=True, preexec_fn=default_sigint)
         try:
             wait_for(lambda: len(list((out / "records").glob("*.json"))) == 4, "the 4 runs of seeds 1, 2 of the "
                      "first two combinations")

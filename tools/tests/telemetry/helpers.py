@@ -3,6 +3,7 @@
 tool as `python -m swarmtools.telemetry.<tool>`."""
 import ctypes
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -26,6 +27,15 @@ SCENARIOS = ROOT / "sim_host" / "scenarios"
 #: Seconds a test waits for something that takes well under one: only a
 #: hang reaches it (a loaded machine only makes the wait longer).
 LONG = 300
+
+
+def default_sigint():
+    """For a child that a test stops with SIGINT (preexec_fn): SIGINT at its
+    default.  A test runner started in the background (`make test &`, a CI
+    job) passes on an ignored SIGINT, which the tools rightly keep ignored
+    (a shell's background job is not for Ctrl-C): such a child would never
+    stop."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def wait_for(check, what, timeout=LONG, every=0.02):

@@ -15,7 +15,7 @@ from swarmtools.fake_epuck.robot import Port
 from swarmtools.telemetry import bridge, common
 from swarmtools.telemetry.frames import encode_frame
 
-from .helpers import PYTHON, TempDir, c_encoder, event, read_log, robot_state, schema
+from .helpers import PYTHON, TempDir, c_encoder, default_sigint, event, read_log, robot_state, schema
 
 #: A robot_state_t of telemetry v1 (its fingerprint, then whatever).
 V1_ROBOT_STATE = bytes.fromhex("3715081f471fd9b6") + bytes(40)
@@ -242,7 +242,7 @@ class PseudoTerminals(TempDir):
         log = self.tmp / "bridge.lcmlog"
         proc = subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", robot.link, "--lcm", f"file://{log}?mode=w",
                                  "--id", f"{robot.link}=3", "--status-every", "0.2", "--report-every", "0.1"],
-                                stderr=subprocess.PIPE, text=True)
+                                stderr=subprocess.PIPE, text=True, preexec_fn=default_sigint)
         out = StderrLines(proc)
         try:
             out.wait_for("robot 3: up, 0 frames")          # the port is open, the loop runs
@@ -295,7 +295,7 @@ class StartAndStop(TempDir):
     def bridge(self, *args):
         return subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", *map(str, args), "--lcm", "memq://",
                                  "--report-every", "0"], stderr=subprocess.PIPE, text=True,
-                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+                                preexec_fn=default_sigint)
 
     def test_a_missing_device_is_refused_at_once(self):
         missing = self.tmp / "rfcomm9"
@@ -315,7 +315,7 @@ class StartAndStop(TempDir):
         log = self.tmp / "bridge.lcmlog"
         p = subprocess.Popen([PYTHON, "-m", "swarmtools.telemetry.bridge", link, "--wait", "--reopen", "0.1",
                               "--lcm", f"file://{log}?mode=w", "--report-every", "0.1"], stderr=subprocess.PIPE,
-                             text=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+                             text=True, preexec_fn=default_sigint)
         out = StderrLines(p)
         robot = None
         try:

@@ -12,13 +12,7 @@ import subprocess
 import termios
 import time
 
-from .helpers import LONG, PYTHON, ROOT, TempDir, robot_state, schema, swarm_state, write_log
-
-
-def default_sigint():
-    """In the child: SIGINT at its default (a test runner started in the
-    background would pass on an ignored SIGINT, which the tools respect)."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
+from .helpers import LONG, PYTHON, ROOT, TempDir, default_sigint, robot_state, schema, swarm_state, write_log
 
 
 def long_log(path, seconds=600):
