@@ -50,6 +50,22 @@ class NoAnswer(Silent):
             os.close(master)
             os.close(slave)
 
+    def test_the_bridge_writes_only_to_a_writable_device(self):
+        from swarmtools.telemetry.bridge import Device
+        master, slave = os.openpty()
+        try:
+            ro, rw = Device(os.ttyname(slave)), Device(os.ttyname(slave), writable=True)
+            self.assertTrue(ro.open() and rw.open())
+            self.assertFalse(ro.write(b"\x00abc\x00"))
+            self.assertTrue(rw.write(b"\x00abc\x00"))
+            self.assertEqual(os.read(master, 16), b"\x00abc\x00")
+            ro.close()
+            rw.close()
+            self.assertFalse(rw.write(b"x"))     # closed: down
+        finally:
+            os.close(master)
+            os.close(slave)
+
     def test_a_missing_device(self):
         err = io.StringIO()
         with redirect_stderr(err):
