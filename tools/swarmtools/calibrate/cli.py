@@ -133,7 +133,7 @@ def main(argv=None) -> int:
                 try:
                     fits[rec.robot_id] = fit_recording(rec)
                 except fitting.FitError as e:
-                    raise fitting.FitError(e.procedure, f"{path}: robot {rec.robot_id}: {e}", "that robot's") from e
+                    raise RecordingError(f"{path}: robot {rec.robot_id}: {e}") from e
             print(f"{PROG}: {len(fits)} robots: {write_outputs(fits, args.out)}")
         else:
             atomic_write(args.output, fragment.apply(args.scenario, args.fragment, args.average))

@@ -8,14 +8,17 @@ and as the lab's average, and the simulator runs on it."""
 
 from __future__ import annotations
 
+import io
 import random
 import tempfile
 import unittest
+from contextlib import redirect_stderr
 from pathlib import Path
 
 import yaml
 
 from swarmtools.calibrate import cli, fake_lab, fragment, geometry, procedures
+from swarmtools.calibrate.record import Recording
 from swarmtools.sim import Sim
 
 ROBOT_ID = 7
@@ -132,6 +135,43 @@ class Recovery(unittest.TestCase):
         # Without the fragment: the default curve, far from this robot's.
         plain = self.dir / "base.yaml"
         self.assertNotAlmostEqual(self._reading_at_wall(plain, ROBOT_ID) / expect, 1.0, delta=0.02)
+
+
+    def test_the_lab_from_two_recordings(self):
+        """`fit` over two robots' recordings: one entry each, their average in the sections' keys,
+        a fragment the simulator takes."""
+        first = self.dir / "out" / "recording.json"
+        rec = Recording.load(first)
+        rec.robot_id = 9
+        for st in rec.steps["wheels"]:       # robot 9 went 2 % further
+            st.moved = (st.moved[0] * 1.02, st.moved[1] * 1.02, st.moved[2] * 1.02)
+        second = self.dir / "robot9.json"
+        rec.save(second)
+        self.assertEqual(cli.main(["fit", str(first), str(second), "--out", str(self.dir / "lab")]), 0)
+        lab = yaml.safe_load((self.dir / "lab" / "fragment.yaml").read_text())
+        self.assertEqual([r["id"] for r in lab["wheels"]["robots"]], [ROBOT_ID, 9])
+        g7, g9 = (r["gain_left"] for r in lab["wheels"]["robots"])
+        self.assertAlmostEqual(g9 / g7, 1.02, delta=0.002)
+        self.assertAlmostEqual(lab["wheels"]["gain_left"], (g7 + g9) / 2, delta=1e-4)
+        self.assertTrue((self.dir / "lab" / "report" / "robot9_ir.png").is_file())
+        out = self.dir / "lab_study.yaml"
+        self.assertEqual(cli.main(["apply", str(self.world), str(self.dir / "lab" / "fragment.yaml"),
+                                   "-o", str(out)]), 0)
+        with Sim(out) as sim:
+            sim.step(1)
+
+    def test_a_recording_that_cannot_be_fitted(self):
+        rec = Recording.load(self.dir / "out" / "recording.json")
+        rec.steps["ir"] = [st for st in rec.steps["ir"] if st.placement.sensor != 4]
+        bad = self.dir / "no_ir4.json"
+        rec.save(bad)
+        err = io.StringIO()
+        with redirect_stderr(err):
+            rc = cli.main(["fit", str(bad), "--out", str(self.dir / "lab_bad")])
+        self.assertEqual(rc, 1)
+        self.assertIn("no_ir4.json: robot 7: ir: IR4 has 0 usable distances", err.getvalue())
+        self.assertIn("nothing written", err.getvalue())
+        self.assertFalse((self.dir / "lab_bad").exists())
 
 
 class FragmentsMerge(unittest.TestCase):
