@@ -6,6 +6,7 @@
  * every function below, and is bound at link time.  The platforms are the
  * folders of platforms/ (platforms/platforms.list):
  *   - epuck1/   the e-puck1 (dsPIC30F6014A) over GCtronic's e-puck library;
+ *   - epuck2/   the e-puck2 (STM32F407) over GCtronic's e-puck2 library;
  *   - host/     the simulator (sim_host/), one hal_t per simulated robot.
  *
  * Units are integers at the boundary (the dsPIC has no FPU) and are named on

@@ -42,6 +42,7 @@ check_all() {
     need ffmpeg           command -v ffmpeg     # swarmsim --video (and ffprobe for its tests)
     need libsimavr-dev    simavr_links          # the emulated ATmega2560 of processor-in-the-loop (platforms/pil_avr/emu/)
     need qemu-system-arm  qemu_netduino         # the emulated Cortex-M4F of processor-in-the-loop (platforms/pil_m4/)
+    need gdb-multiarch    command -v gdb-multiarch   # the e-puck2's flasher (its programmer is a GDB server) and its test
     # The fuzz harnesses (tests/fuzz/, tools/make/fuzz.mk): clang, its
     # sanitizer and libFuzzer runtime (a separate package named after
     # clang's major version, so it is looked for once clang is there), and

@@ -40,6 +40,9 @@ their hash cache, count as ours in the static RAM.
   flash        .text + .rodata + .data initialisers of our objects, and of
                the whole image (with the stubs, libgcc's software float...).
                AVR code is 8-bit code: the dsPIC's will be smaller.
+               GATES: optional 'stack_gate' (the stack estimate) and
+               'flash_gate' (our flash), bytes on the RAM gate's target
+               (the e-puck2 states both: platforms/epuck2/platform.py).
 
 Prints a table, writes it to BUILD/footprint.md (and, for the platform whose
 table the documentation shows, the page's form to footprint_readme.md),
@@ -484,8 +487,9 @@ def main():
         total = a['static'] + a['frames'] + a['stack']
         row = (f"| {image} | {column} | {a['static']} | {a['data']} | {a['bss']} | "
                + (f"{a['frames']} | " if gates.get('frames') else '')
-               + f"{a['stack']} ({a['stack_main']} + tick {a['stack_tick']}) | {total} "
-               f"| {a['flash_ours']} | {a['flash_image']} |")
+               + (f"{a['stack']} ({a['stack_main']} + tick {a['stack_tick']}) | " if gates.get('interrupts')
+                  else f"{a['stack']} | ")
+               + f"{total} | {a['flash_ours']} | {a['flash_image']} |")
         for t in others:
             m = by.get((image, t))
             row += f" {m['static']} / {m['flash_ours']} |" if m else ' n/a |'
@@ -493,6 +497,10 @@ def main():
         checks += 1
         if a['static'] > ram_gate:
             failures.append(f"{image}: our static RAM {a['static']} B exceeds the {ram_gate} B budget")
+        if gates.get('stack_gate') is not None and a['stack'] > gates['stack_gate']:
+            failures.append(f"{image}: its stack estimate {a['stack']} B exceeds the {gates['stack_gate']} B budget")
+        if gates.get('flash_gate') is not None and a['flash_ours'] > gates['flash_gate']:
+            failures.append(f"{image}: our flash {a['flash_ours']} B exceeds the {gates['flash_gate']} B budget")
     notes = [''] + list(gates.get('notes', ()))
     for image, _ in images:
         a = by.get((image, gate_target))
