@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/control.h"
 #include "models/model.h"
 #include "registry.h"
 
@@ -39,6 +40,7 @@ static int set_lcm(cli_t *c, const char *opt, const char *value);
 static int set_rate(cli_t *c, const char *opt, const char *value);
 static int set_realtime(cli_t *c, const char *opt, const char *value);
 static int set_video(cli_t *c, const char *opt, const char *value);
+static int set_control_url(cli_t *c, const char *opt, const char *value);
 static int set_out(cli_t *c, const char *opt, const char *value);
 static int add_set(cli_t *c, const char *opt, const char *value);
 
@@ -81,6 +83,17 @@ static const cli_option_t options[] = {
       "(S, default 10); 0 sends none" },
     { "--realtime", NULL, "X", 0, 0, NO_FIELD, NO_FIELD, set_realtime, NULL,
       "with telemetry on: run no faster than X times real time (to watch a run live)" },
+    { "--control", NULL, NULL, 0, 0, F(control), NO_FIELD, NULL, NULL,
+      "with --realtime and one repetition: take commands over LCM (swarm-live's buttons, "
+      "python -m swarmtools.control): pause, resume, step N, realtime X, move a robot, select one to "
+      "inspect.  Each is an event in the telemetry and a line of summary.json's \"control\"; a moved "
+      "robot marks the run touched.  On a loopback-only bus (" CONTROL_DEFAULT_URL ") unless "
+      "--control-lcm names another" },
+    { "--paused", NULL, NULL, 0, 0, F(control_paused), NO_FIELD, NULL, NULL,
+      "with --control: wait for a command (resume, step) before the first step" },
+    { "--control-lcm", NULL, "URL", 0, 0, NO_FIELD, NO_FIELD, set_control_url, NULL,
+      "the bus --control listens on (another machine's commands need ttl=1: anyone on the network may "
+      "then steer the run)" },
     { "--quiet", "-q", NULL, 0, 0, F(quiet), NO_FIELD, NULL, NULL,
       "print nothing on success (errors still go to stderr)" },
     { "--replace", NULL, NULL, 0, 0, NO_FIELD, NO_FIELD, set_mode, NULL,
@@ -161,6 +174,13 @@ static int set_realtime(cli_t *c, const char *opt, const char *value)
         fprintf(stderr, "swarmsim: %s: '%s' is not a factor in (0, 1e6]\n", opt, value);
         return -1;
     }
+    return 0;
+}
+
+static int set_control_url(cli_t *c, const char *opt, const char *value)
+{
+    (void)opt;
+    c->control_url = value;
     return 0;
 }
 

@@ -32,6 +32,9 @@ typedef struct cli {
     int quiet, check_only, help;
     outdir_mode_t out_mode;
     telemetry_options_t telemetry;
+    int control;                  /**< --control: commands over LCM (core/control.h) */
+    int control_paused;           /**< --paused: waits for a command before the first step */
+    const char *control_url;      /**< --control-lcm, or NULL: CONTROL_DEFAULT_URL */
     video_options_t video;
 } cli_t;
 

@@ -18,6 +18,7 @@
 #include "models/camera/camera.h"
 #include "models/camera/camera_render.h"
 #include "core/sim_video.h"
+#include "core/control.h"
 #include "core/telemetry.h"
 
 #define COMMAND_MAX 4096
@@ -126,6 +127,31 @@ int swarmsim_command(int argc, char **argv, const char *code_version, volatile s
         free(sc);
         return 2;
     }
+    if ((cli.control_url || cli.control_paused) && !cli.control) {
+        fprintf(stderr, "swarmsim: %s is for a run under --control, which is not given\n",
+                cli.control_url ? "--control-lcm" : "--paused");
+        scenario_free(sc);
+        free(sc);
+        return 2;
+    }
+    const char *control_url = NULL;
+    if (cli.control) {
+        const char *why = telemetry.realtime <= 0.0 ? "--control needs --realtime X: a run as fast as it goes "
+                                                      "is over before a command could come"
+                          : reps > 1 ? "--control steers one run: drop --reps" : NULL;
+        control_url = cli.control_url ? cli.control_url : CONTROL_DEFAULT_URL;
+        if (why) {
+            fprintf(stderr, "swarmsim: %s\n", why);
+        } else if (telemetry_check_url(control_url, err) != 0) {
+            fprintf(stderr, "swarmsim: %s\n", err);
+            why = err;
+        }
+        if (why) {
+            scenario_free(sc);
+            free(sc);
+            return 2;
+        }
+    }
     if (cli.check_only) {   /* a sweep validates each combination of overrides this way */
         if (!quiet) {
             sim_memory_t m;
@@ -171,6 +197,8 @@ int swarmsim_command(int argc, char **argv, const char *code_version, volatile s
         .quiet = quiet,
         .progress = !quiet,
         .telemetry = telemetry,
+        .control_url = control_url,
+        .control_paused = cli.control_paused,
         .out_mode = out_mode,
         .scenario_text = text,
         .provenance = { .code_version = code_version, .command = command, .overrides = sets,

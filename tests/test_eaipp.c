@@ -105,6 +105,41 @@ static void test_food_source(void **state)
     assert_int_equal(e.source, EAIPP_SOURCE_FOOD);
 }
 
+/* same_source: an explorer at the end of the nest's network (its one nest
+ * node farther than B_UL) that also hears the food's network joins, and
+ * the node it becomes takes the nest's gradient (the two are linked);
+ * without it the two nodes make two and it does not join. */
+static void test_same_source_merge(void **state)
+{
+    eaipp_t e;
+    (void)state;
+    make(&e, EAIPP_ROLE_ROBOT);
+    assert_int_equal(e.p.same_source, 0u);
+    e.p.food_source = 1u;
+    e.state = EAIPP_EXPLORER;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 4u, 10u, 0u, 500u);   /* the nest's end, beyond B_UL */
+    node(&e, 20u, EAIPP_SOURCE_FOOD, 3u, 20u, 0u, 300u);   /* a food node */
+    assert_false(eaipp_extension_due(&e));                /* two nodes heard: the printed rule */
+    e.p.same_source = 1u;
+    assert_true(eaipp_extension_due(&e));                 /* one of its own network */
+    e.state = EAIPP_NODE;
+    assert_true(eaipp_gradient_update(&e));
+    assert_int_equal(e.source, EAIPP_SOURCE_NEST);        /* the nest's network wins */
+    assert_int_equal(e.gradient, 5u);
+    assert_int_equal(e.parent, 10u);
+    /* A second nest node nearer than B_UL: no longer the network's end. */
+    e.state = EAIPP_EXPLORER;
+    node(&e, 11u, EAIPP_SOURCE_NEST, 5u, 10u, 0u, 200u);
+    assert_false(eaipp_extension_due(&e));
+    /* Without food_source the option does nothing (the food is no source). */
+    make(&e, EAIPP_ROLE_ROBOT);
+    e.p.same_source = 1u;
+    e.state = EAIPP_EXPLORER;
+    node(&e, 10u, EAIPP_SOURCE_NEST, 4u, 10u, 0u, 500u);
+    node(&e, 20u, EAIPP_SOURCE_FOOD, 3u, 20u, 0u, 300u);
+    assert_false(eaipp_extension_due(&e));
+}
+
 /* A branch end: parent 10 (root 5) only, so no child. */
 static void branch_end(eaipp_t *e, uint8_t root_of_parent)
 {
@@ -615,6 +650,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gradient),
         cmocka_unit_test(test_food_source),
+        cmocka_unit_test(test_same_source_merge),
         cmocka_unit_test(test_extinction_timing),
         cmocka_unit_test(test_shunning),
         cmocka_unit_test(test_flag_forwarding),

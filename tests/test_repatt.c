@@ -51,6 +51,8 @@ static void start(uint8_t policy, uint8_t listening)
     repatt_default_params(&p);
     repatt_apply_policy(&p, policy);
     p.listening = listening;
+    p.reach_width_mrad = 1200u;   /* these tests: stop at once (the all-round scenarios' rule) */
+    p.approach_mm = 0u;
     start_with(&p, 42u);
 }
 
@@ -383,6 +385,54 @@ static void test_pickup_not_counted_otherwise(void **state)
     }
     step();
     assert_int_equal(R.state, REPATT_PICK);   /* seen again */
+}
+
+/* The defaults are the e-puck's front camera's: a blob 330 mrad wide near
+ * straight ahead starts the blind approach, 46 mm straight on by the step
+ * counters (within a period's travel), then the stop; off the axis the
+ * robot first steers to it; a stop with nothing in view (the target below
+ * the lens's view) waits the whole pick time and counts the target. */
+static void test_front_camera_approach(void **state)
+{
+    repatt_params_t p;
+    uint32_t i;
+    double x0, y0, ran;
+    (void)state;
+    repatt_default_params(&p);
+    assert_int_equal(p.reach_width_mrad, 330u);
+    assert_int_equal(p.approach_mm, 46u);
+    p.p_b = 0.0f;
+    p.listening = REPATT_DUPLEX;
+    start_with(&p, 5u);
+    show_red(1u, 400, 330u);             /* wide enough, but 400 mrad off the axis */
+    step();
+    assert_int_equal(R.state, REPATT_ACQUIRE);
+    assert_true(H.right > H.left);       /* steering left to it */
+    show_red(1u, 20, 330u);              /* centred */
+    x0 = D.x;
+    y0 = D.y;
+    step();
+    assert_int_equal(R.state, REPATT_APPROACH);
+    assert_string_equal(repatt_state_name(&R), "approach");
+    assert_int_equal(H.left, H.right);
+    fake_hal_clear_blobs(&H);            /* below the view from here on */
+    for (i = 0; i < 40u && R.state == REPATT_APPROACH; i++) {
+        assert_int_equal(H.left, H.right);
+        step();
+    }
+    assert_int_equal(R.state, REPATT_PICK);
+    ran = hypot(D.x - x0, D.y - y0);
+    assert_true(ran > 46.0 - 2.6 && ran < 46.0 + 2.6);   /* 2.5 mm a period at 0.1 m/s */
+    for (i = 0; i < 199u; i++) {         /* blind: the whole wait, though nothing is seen */
+        step();
+        assert_int_equal(R.state, REPATT_PICK);
+        assert_int_equal(H.left, 0);
+        assert_int_equal(H.right, 0);
+    }
+    step();
+    assert_int_equal(R.state, REPATT_SEARCH);
+    assert_int_equal(R.cap, 4u);
+    assert_int_equal(R.pickups, 1u);
 }
 
 /* Drive out, take the last target: home by odometry, silent and deaf, to
@@ -731,6 +781,7 @@ int main(void)
         cmocka_unit_test(test_pickup_counts_when_blob_goes_after_wait),
         cmocka_unit_test(test_pickup_counts_with_a_target_behind),
         cmocka_unit_test(test_pickup_not_counted_otherwise),
+        cmocka_unit_test(test_front_camera_approach),
         cmocka_unit_test(test_homing_by_odometry),
         cmocka_unit_test(test_obstacle_avoidance),
         cmocka_unit_test(test_random_walk_policy_keeps_pb),

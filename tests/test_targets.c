@@ -109,8 +109,8 @@ static void test_layouts(void **state)
                 float dx = x[k] - sx[q] * c->cluster_offset, dy = y[k] - sy[q] * c->cluster_offset;
                 assert_true(hypotf(dx, dy) <= c->cluster_radius + 1e-5f);
             }
-            if (d == TARGETS_HALF) {
-                assert_true(x[k] >= 0.0f);
+            if (d == TARGETS_HALF && k % 2u == 0u) {   /* half_shape cluster: the evens in One's disc */
+                assert_true(hypotf(x[k] - c->cluster_offset, y[k] - c->cluster_offset) <= c->cluster_radius + 1e-5f);
             }
             quadrant[(x[k] >= 0) + 2 * (y[k] >= 0)]++;
         }
@@ -130,10 +130,22 @@ static void test_layouts(void **state)
         if (d == TARGETS_UNIFORM) {
             for (int q = 0; q < 4; q++) assert_true(quadrant[q] > 30);
         }
-        if (d == TARGETS_HALF) {
-            assert_true(quadrant[1] > 60 && quadrant[3] > 60 && quadrant[0] == 0 && quadrant[2] == 0);
+        if (d == TARGETS_HALF) {   /* 100 in the disc (+, +), the other 100 over the square */
+            for (int q = 0; q < 3; q++) assert_true(quadrant[q] > 15);
+            assert_true(quadrant[3] > 100 + 15);
         }
     }
+    /* half_shape strip (the earlier reading): all uniform over x >= 0. */
+    c->distribution = TARGETS_HALF;
+    c->half_shape = TARGETS_HALF_STRIP;
+    assert_int_equal(targets_layout(c, x, y, err), 0);
+    float strip_q[4] = { 0 };
+    for (uint32_t k = 0; k < c->count; k++) {
+        assert_true(x[k] >= 0.0f);
+        strip_q[(x[k] >= 0) + 2 * (y[k] >= 0)]++;
+    }
+    assert_true(strip_q[1] > 60 && strip_q[3] > 60 && strip_q[0] == 0 && strip_q[2] == 0);
+    c->half_shape = TARGETS_HALF_CLUSTER;
     /* Another layout seed, another layout. */
     c->distribution = TARGETS_UNIFORM;
     float x2[200], y2[200];
@@ -392,6 +404,45 @@ static void test_done_at_ninety_percent(void **state)
     free(sc);
 }
 
+/* The e-puck's own front camera (a pinhole 56 deg wide, its lens on the
+ * rim, 4.3 frames a second) with the controller's defaults: the robots
+ * collect targets.  Before the approach rule they collected none (a target
+ * within reach is wider than the view: no blob ever reached the old
+ * 1200 mrad); that setting is checked to still pick nothing in 60 s. */
+static void test_repatt_front_camera_collects(void **state)
+{
+    (void)state;
+    char err[SIM_ERR_MAX];
+    scenario_t *sc = calloc(1, sizeof *sc);
+    assert_non_null(sc);
+    if (scenario_load(SCENARIOS "repatt_front_camera.yaml", NULL, 0, sc, err) != 0) fail_msg("%s", err);
+    const camera_config_t *cam = camera_config(sc);
+    assert_true(cam->fov < 60.0f && cam->fps > 4.0f);   /* the default camera, the image's */
+    sim_t *sim = fixture_sim(sc, 1);
+    uint32_t by[6] = { 0 }, robot = 0;
+    while (!sim_done(sim) && sim_time_s(sim) < 300.0) {
+        sim_step(sim);
+        if (picked_up_this_step(sim, &robot) > 0 && robot < 6) by[robot]++;
+    }
+    assert_int_equal(truth(sim).picked, 9);
+    assert_int_equal(fixture_metric(sim, "finished"), 1);
+    uint32_t robots = 0;
+    for (int i = 0; i < 6; i++) robots += by[i] > 0;
+    assert_true(robots >= 2);   /* not one lucky robot */
+    sim_destroy(sim);
+    scenario_free(sc);
+
+    scenario_override_t old[] = { { .text = "robots.0.params.reach_width_mrad=1200" },
+                                  { .text = "robots.0.params.approach_mm=0" } };
+    if (scenario_load(SCENARIOS "repatt_front_camera.yaml", old, 2, sc, err) != 0) fail_msg("%s", err);
+    sim = fixture_sim(sc, 1);
+    while (sim_time_s(sim) < 60.0) sim_step(sim);
+    assert_int_equal(truth(sim).picked, 0);
+    sim_destroy(sim);
+    scenario_free(sc);
+    free(sc);
+}
+
 /* ----------------------------------------------------- all-round camera */
 
 static scenario_t *camera_world(float fov)
@@ -571,6 +622,7 @@ int main(void)
         cmocka_unit_test(test_all_round_camera_blind_sector),
         cmocka_unit_test(test_all_round_camera_in_a_crowd),
         cmocka_unit_test(test_pinhole_unchanged),
+        cmocka_unit_test(test_repatt_front_camera_collects),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

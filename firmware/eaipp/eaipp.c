@@ -62,6 +62,10 @@ void eaipp_default_params(eaipp_params_t *p)
      * hears exactly one node, so the new node is out of range of the other
      * network's nodes. */
     p->food_source = 0u;
+    /* A merge rule the text does not print (it is needed for two sources):
+     * an explorer belongs to the network whose nodes it hears, the nest's
+     * when it hears both. Off: the printed rules. */
+    p->same_source = 0u;
     /* Section 5.1's exit from the waiting area: off (the square arena's
      * robots start anywhere).  sigma 150 mm: exiting e-pucks (74 mm) settle
      * 168 mm apart, two bodies; the exit is done 250 mm from the nest (the
@@ -142,6 +146,30 @@ static uint8_t holder(const eaipp_t *self, const neighbour_t *n, uint8_t *g, uin
         return 1u;
     }
     return 0u;
+}
+
+/* The Source_Type an explorer belongs to under same_source: the nest's when
+ * it hears a nest-sourced holder, else the food's. */
+static uint8_t own_source(const eaipp_t *self)
+{
+    uint8_t i, g, src;
+    for (i = 0; i < self->nb.count; i++) {
+        if (holder(self, &self->nb.n[i], &g, &src) && src == EAIPP_SOURCE_NEST) {
+            return EAIPP_SOURCE_NEST;
+        }
+    }
+    return EAIPP_SOURCE_FOOD;
+}
+
+/* Whether neighbour n counts for this explorer's Algorithm 4 and eq 1: a
+ * holder (holder()), and under same_source (with food_source) one of
+ * `mine`, the explorer's own Source_Type. */
+static uint8_t counts(const eaipp_t *self, const neighbour_t *n, uint8_t mine, uint8_t *g, uint8_t *src)
+{
+    if (!holder(self, n, g, src)) {
+        return 0u;
+    }
+    return (uint8_t)(self->p.same_source == 0u || self->p.food_source == 0u || *src == mine);
 }
 
 /* A node (or the nest) the robot is shunning: the branch it left (section
@@ -345,11 +373,23 @@ void eaipp_extinction_step(eaipp_t *self)
 
 uint8_t eaipp_extension_due(const eaipp_t *self)
 {
-    uint8_t i, count = 0u;
+    uint8_t i, count = 0u, g, src;
+    uint8_t same = (uint8_t)(self->p.same_source != 0u && self->p.food_source != 0u);
+    uint8_t mine = same != 0u ? own_source(self) : (uint8_t)EAIPP_SOURCE_NEST;
     const neighbour_t *only = 0;
     for (i = 0; i < self->nb.count; i++) {
         const neighbour_t *n = &self->nb.n[i];
-        if (neighbour_is(n, EAIPP_ST_NODE) || neighbour_is(n, EAIPP_ST_NEST)
+        if (same != 0u) {
+            /* Only the holders of its own network count; a node whose
+             * gradient is not heard yet cannot be placed: wait. */
+            if (neighbour_is(n, EAIPP_ST_NODE) && ((n->heard & NB_HEARD_GRADIENT) == 0u)) {
+                return 0u;
+            }
+            if (counts(self, n, mine, &g, &src)) {
+                count++;
+                only = n;
+            }
+        } else if (neighbour_is(n, EAIPP_ST_NODE) || neighbour_is(n, EAIPP_ST_NEST)
             || (neighbour_is(n, EAIPP_ST_FOOD) && self->p.food_source != 0u)) {
             count++;
             only = n;
@@ -400,9 +440,11 @@ void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], con
      * its heading (A = ahead), so that it leaves the lone node outward. */
     float ax = 0.0f, ay = 0.0f, bx = 0.0f, by = 0.0f, mean = 0.0f, pmax = 0.0f, len;
     uint8_t i, n = 0u;
+    uint8_t mine = (self->p.same_source != 0u && self->p.food_source != 0u) ? own_source(self)
+                                                                             : (uint8_t)EAIPP_SOURCE_NEST;
     for (i = 0; i < self->nb.count; i++) {
         uint8_t g, src;
-        if (holder(self, &self->nb.n[i], &g, &src)) {
+        if (counts(self, &self->nb.n[i], mine, &g, &src)) {
             mean += (float)g;
             n++;
         }
@@ -413,7 +455,7 @@ void eaipp_direction(const eaipp_t *self, const uint16_t prox[HAL_IR_COUNT], con
             const neighbour_t *nb = &self->nb.n[i];
             uint8_t g, src;
             float d, w;
-            if (!holder(self, nb, &g, &src)) {
+            if (!counts(self, nb, mine, &g, &src)) {
                 continue;
             }
             d = (float)(nb->range_mm < 10u ? 10u : nb->range_mm) / 1000.0f;

@@ -85,6 +85,10 @@ typedef struct eaipp_params {
                                         (sections 4.2.1, 4.3); 0 (default): Algorithm 4, eq 1 and
                                         section 5.2 as printed, the food is the target only (also
                                         section 5.1's maze rule) */
+    uint8_t same_source;           /**< with food_source: an explorer counts only the holders of its
+                                        own Source_Type (the nest's if it hears any) in Algorithm 4
+                                        and eq 1, so it may join one network's end while it hears
+                                        the other's nodes and link them (0, default: every holder) */
 } eaipp_params_t;
 
 typedef struct eaipp {

@@ -50,6 +50,9 @@ static const param_desc_t eaipp_param_descs[] = {
     { .key = "food_source", PARAM_BOOL_FIELD(EP, food_source),
       .doc = "the food is a second gradient source and root (default false: the printed Algorithm 4"
              " and eq 1, the food is the target only, as in the maze rule)" },
+    { .key = "same_source", PARAM_BOOL_FIELD(EP, same_source),
+      .doc = "with food_source: an explorer counts only holders of its own Source_Type (the nest's if"
+             " heard) in Algorithm 4 and eq 1, so two networks can merge (a reading; default false)" },
     PARAM_END
 };
 

@@ -72,7 +72,12 @@ void avoid_start_turn(avoid_t *a, rng_t *rng, uint8_t where, uint16_t side_turn_
 
 void avoid_start_run(avoid_t *a, rng_t *rng, uint16_t oa_run_max_mm)
 {
-    a->target2 = 2 * units_mm_to_steps(rng_range(rng, 0, (int32_t)oa_run_max_mm));
+    avoid_start_run_mm(a, rng_range(rng, 0, (int32_t)oa_run_max_mm));
+}
+
+void avoid_start_run_mm(avoid_t *a, int32_t mm)
+{
+    a->target2 = 2 * units_mm_to_steps(mm);
     a->done2 = 0;
 }
 

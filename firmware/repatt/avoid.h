@@ -63,6 +63,9 @@ void avoid_start_turn(avoid_t *a, rng_t *rng, uint8_t where, uint16_t side_turn_
 /** Starts the straight run after a turn: uniform in [0, oa_run_max_mm]. */
 void avoid_start_run(avoid_t *a, rng_t *rng, uint16_t oa_run_max_mm);
 
+/** Starts a straight run of `mm` (>= 0). */
+void avoid_start_run_mm(avoid_t *a, int32_t mm);
+
 /** Turning: sets the wheels and returns 1 while some of the turn is left;
  *  0 when it is done (wheels untouched). */
 uint8_t avoid_turn_step(avoid_t *a, hal_t *hal, int16_t turn_speed_steps_s);

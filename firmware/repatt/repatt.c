@@ -16,6 +16,10 @@
  * 250 mrad); a looser test took it for the one just picked, counted no
  * pick-up and made the robot ignore targets for give_up_ms. */
 #define PICK_SAME_MRAD 150
+/* With approach_mm: the blob must be this near straight ahead before the
+ * blind approach starts, mrad (6 mm off the axis at the 60 mm a 330 mrad
+ * wide 1 cm target is from the lens). */
+#define APPROACH_CENTRED_MRAD 100
 /* 12 uniform 12-bit numbers: mean 12 x 4095 / 2, sd 4096 / sqrt(12) x
  * sqrt(12) = 4096 (Irwin-Hall). */
 #define GAUSS_TERMS 12
@@ -60,7 +64,12 @@ void repatt_default_params(repatt_params_t *params)
     params->side_turn_mrad = 785u;
     params->oa_run_max_mm = 165u;       /* 1 m x 0.16529 */
     params->pick_time_ms = 5000u;
-    params->reach_width_mrad = 1200u;
+    /* The e-puck's front camera, lens 35 mm ahead of the centre, 30 mm up,
+     * 56 x 28 deg: a 1 cm target is 330 mrad wide 61 mm from the lens
+     * (centre 96 mm away), still wholly in view; 46 mm on leaves the
+     * centres about 50 mm apart, within the targets task's 55 mm. */
+    params->reach_width_mrad = 330u;
+    params->approach_mm = 46u;
     params->give_up_ms = 10000u;
     params->home_radius_mm = 100u;
 }
@@ -249,7 +258,9 @@ static void home_step(repatt_t *self, hal_t *hal)
 static uint8_t pick_step(repatt_t *self, hal_t *hal)
 {
     uint16_t wait = motion_periods(hal, self->params.pick_time_ms);
-    uint8_t there = target_still_there(self, hal);
+    /* Blind (nothing was seen where it stopped): the whole wait, then carried. */
+    uint8_t blind = (self->pick_width_mrad == 0u) ? 1u : 0u;
+    uint8_t there = (blind != 0u) ? (uint8_t)(self->timer < wait) : target_still_there(self, hal);
     if (there == 0u) {
         if (self->timer >= wait) {
             if (self->cap > 0u) {
@@ -271,11 +282,12 @@ static uint8_t pick_step(repatt_t *self, hal_t *hal)
     return 1u;
 }
 
+/* `blob` NULL: nothing to see where the robot stopped (a blind pick-up). */
 static void start_pick(repatt_t *self, hal_t *hal, const hal_blob_t *blob)
 {
     self->state = REPATT_PICK;
-    self->pick_bearing_mrad = blob->bearing_mrad;
-    self->pick_width_mrad = blob->width_mrad;
+    self->pick_bearing_mrad = (blob != NULL) ? blob->bearing_mrad : 0;
+    self->pick_width_mrad = (blob != NULL) ? blob->width_mrad : 0u;
     hal_set_wheel_speeds(hal, 0, 0);
     self->timer = 1u;   /* this period is the first stopped */
 }
@@ -298,9 +310,23 @@ static void forage_step(repatt_t *self, hal_t *hal, const hal_blob_t *widest)
             }
         }
     }
+    if (self->state == REPATT_APPROACH) {
+        if (avoid_run_step(&self->turn, hal, self->params.speed_steps_s) != 0u) {
+            return;
+        }
+        /* There: the target is the blob ahead, if the camera still sees it. */
+        start_pick(self, hal, (self->found > 0u && widest->bearing_mrad < APPROACH_CENTRED_MRAD
+                               && widest->bearing_mrad > -APPROACH_CENTRED_MRAD) ? widest : NULL);
+        return;
+    }
     if (self->found > 0u && self->ignore == 0u) {
-        if (widest->width_mrad >= self->params.reach_width_mrad) {
+        if (widest->width_mrad >= self->params.reach_width_mrad && self->params.approach_mm == 0u) {
             start_pick(self, hal, widest);
+        } else if (widest->width_mrad >= self->params.reach_width_mrad
+                   && widest->bearing_mrad < APPROACH_CENTRED_MRAD && widest->bearing_mrad > -APPROACH_CENTRED_MRAD) {
+            self->state = REPATT_APPROACH;
+            avoid_start_run_mm(&self->turn, (int32_t)self->params.approach_mm);
+            (void)avoid_run_step(&self->turn, hal, self->params.speed_steps_s);
         } else {
             self->state = REPATT_ACQUIRE;
             steer(self, hal, widest->bearing_mrad);
@@ -358,7 +384,8 @@ void repatt_step(repatt_t *self, hal_t *hal)
     odometry_update(&self->odo, l, r, &dl, &dr);
     /* What the last command did to the current turn or run. */
     avoid_count(&self->turn, (self->state == REPATT_TUMBLE || self->state == REPATT_AVOID) ? AVOID_TURNING
-                             : (self->state == REPATT_AVOID_RUN) ? AVOID_RUNNING : AVOID_IDLE, dl, dr);
+                             : (self->state == REPATT_AVOID_RUN || self->state == REPATT_APPROACH) ? AVOID_RUNNING
+                             : AVOID_IDLE, dl, dr);
     if (self->ignore > 0u) {
         self->ignore--;
     }
@@ -417,6 +444,7 @@ const char *repatt_state_name(const repatt_t *self)
     case REPATT_HOME: return "home";
     case REPATT_AVOID: return "avoid";
     case REPATT_AVOID_RUN: return "avoid_run";
+    case REPATT_APPROACH: return "approach";
     default: return "?";
     }
 }

@@ -23,11 +23,18 @@
  *         found > cap, silence otherwise.
  *   22-23 found > 0 (red blobs in view): ACQUIRE, steer to the widest red
  *         blob (the nearest target); once it is at least reach_width_mrad
- *         wide, PICK: wheels (0, 0) for pick_time_ms (seed 002's 5 s).  The
- *         task removes a target after that wait; if the blob is gone in
- *         the few periods after the wait, the target is carried (cap - 1);
- *         if it went during the wait, another robot took it; if it stays,
- *         the robot gives up on it and ignores targets for give_up_ms.
+ *         wide, PICK: wheels (0, 0) for pick_time_ms (seed 002's 5 s).  With
+ *         approach_mm > 0 (the e-puck's front camera, whose lens sits on the
+ *         rim: a target within reach is wider than its 56 deg view, and below
+ *         its lower edge) the robot first makes sure the blob is within
+ *         APPROACH_CENTRED_MRAD of straight ahead, then APPROACH: straight on
+ *         for approach_mm by its step counters, then PICK.  The task removes
+ *         a target after that wait; if the blob is gone in the few periods
+ *         after the wait, the target is carried (cap - 1); if it went during
+ *         the wait, another robot took it; if it stays, the robot gives up on
+ *         it and ignores targets for give_up_ms.  A PICK that began with no
+ *         red blob near straight ahead (the target out of sight, too close)
+ *         waits the whole pick_time_ms and counts the target carried.
  *   24-27 found == 0: SEARCH, straight; with probability P_t per period a
  *         TUMBLE, a turn in place by an angle drawn from
  *         N(tumble_mean_mrad, tumble_sd_mrad^2) (sum of 12 uniforms),
@@ -101,7 +108,8 @@ typedef struct repatt_params {
     uint16_t side_turn_mrad;      /**< turn away from a side obstacle, mrad (785 = 45 deg) */
     uint16_t oa_run_max_mm;       /**< longest straight run after a turn, mm (165 = 1 m x k) */
     uint16_t pick_time_ms;        /**< stationary time per target, ms (5000) */
-    uint16_t reach_width_mrad;    /**< a red blob this wide is within reach, mrad (1200) */
+    uint16_t reach_width_mrad;    /**< a red blob this wide is within reach, mrad (330) */
+    uint16_t approach_mm;         /**< then straight on this far before stopping, mm (46; 0: stop at once) */
     uint16_t give_up_ms;          /**< targets ignored after a failed pick-up, ms (10000) */
     uint16_t home_radius_mm;      /**< unload this close to the start point, mm (100) */
 } repatt_params_t;
@@ -113,7 +121,8 @@ typedef enum repatt_state {
     REPATT_PICK = 3,        /**< stationary at a target */
     REPATT_HOME = 4,        /**< cap == 0: to the start point */
     REPATT_AVOID = 5,       /**< obstacle: turning away */
-    REPATT_AVOID_RUN = 6    /**< obstacle: the straight run after the turn */
+    REPATT_AVOID_RUN = 6,   /**< obstacle: the straight run after the turn */
+    REPATT_APPROACH = 7     /**< the last approach_mm to a target, counted on the steps */
 } repatt_state_t;
 
 typedef struct repatt {
@@ -169,7 +178,7 @@ typedef struct repatt_host {
  *                   P_t = P_b, counts 0, the seeded stream anew;
  *   step            one control period (above);
  *   state_name      "search", "tumble", "acquire", "pick", "home",
- *                   "avoid", "avoid_run". */
+ *                   "avoid", "avoid_run", "approach". */
 CONTROLLER_API(repatt);
 
 /** Gives the controller its queue storage, REPATT_QUEUE_WORDS(queue_max)

@@ -50,7 +50,11 @@ static const param_desc_t repatt_params[] = {
     { .key = "pick_time_ms", PARAM_FIELD(RP, pick_time_ms, uint16_t), .min = 0, .max = 60000,
       .doc = "stationary time at each target, ms" },
     { .key = "reach_width_mrad", PARAM_FIELD(RP, reach_width_mrad, uint16_t), .min = 1, .max = 6283,
-      .doc = "a red blob this wide is within reach: stop and pick it up, mrad" },
+      .doc = "a red blob this wide is near: stop and pick it up (approach_mm 0), or go on "
+             "approach_mm first, mrad (330: the e-puck's front camera)" },
+    { .key = "approach_mm", PARAM_FIELD(RP, approach_mm, uint16_t), .min = 0, .max = 1000,
+      .doc = "after a blob reach_width_mrad wide within 100 mrad of ahead, straight on this far "
+             "(step counters) before stopping, mm (46: the front camera; 0: stop at once)" },
     { .key = "give_up_ms", PARAM_FIELD(RP, give_up_ms, uint16_t), .min = 0, .max = 60000,
       .doc = "after a pick-up that failed (the target stayed), targets are ignored this long, ms" },
     { .key = "home_radius_mm", PARAM_FIELD(RP, home_radius_mm, uint16_t), .min = 1, .max = 30000,

@@ -24,6 +24,7 @@
 #include "swarmsim/metrics.h"
 #include "pool.h"
 #include "swarmsim/sim.h"
+#include "control.h"
 #include "sim_render.h"
 #include "swarmsim/task.h"
 
@@ -202,6 +203,16 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         return;
     }
     telemetry_begin(tel, sim, opt->steps);
+    control_t *ctl = NULL;
+    if (opt->control_url && control_open(opt->control_url, opt->control_paused, sim, opt->steps, tel, &ctl, err) != 0) {
+        fail(job, "%s%s", "", err);
+        fclose(ts);
+        remove(tmp);
+        telemetry_close(tel, 0, err);
+        sim_destroy(sim);
+        outdir_remove_tree(dir);
+        return;
+    }
     metric_list_t row;
     metrics_sample(sim, &row);
     for (unsigned k = 0; k < row.count; k++) {
@@ -219,6 +230,9 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         ok = 0;
     }
     for (; s < opt->steps && ok && !sim_done(sim) && !stopping(job); s++) {
+        if (control_before_step(ctl, opt->stop) != 0) {
+            break;   /* stopped while paused */
+        }
         if (s % every == 0) {
             metrics_sample(sim, &row);
             write_row(ts, &row);
@@ -236,6 +250,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
             ok = 0;
         }
         telemetry_step(tel, sim);
+        control_after_step(ctl);
         atomic_fetch_add(&job->steps_done, 1);
     }
     /* A run a task stopped early counts its remaining steps as done. */
@@ -267,7 +282,11 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
         telemetry_end(tel, sim, &res->metrics, res->state_hash);
         snprintf(path, sizeof path, "%s/summary.json", dir);
         FILE *f = open_tmp(path, tmp, sizeof tmp);
-        if (f) summary_write_run(f, sc, &opt->provenance, sim, seed, res->steps, res->state_hash, &res->metrics);
+        provenance_t pv = opt->provenance;
+        char *control = control_json(ctl);
+        pv.control = control;
+        if (f) summary_write_run(f, sc, &pv, sim, seed, res->steps, res->state_hash, &res->metrics);
+        free(control);
         if (!f || commit(f, tmp, path) != 0) {
             fail(job, "%s: cannot write: %s", path, strerror(errno));
             ok = 0;
@@ -282,6 +301,7 @@ static void run_rep(job_t *job, uint32_t rep, render_ctx_t **render)
             ok = 0;
         }
     }
+    control_close(ctl);
     if (telemetry_close(tel, ok, err) != 0) {
         if (ok) fail(job, "%s%s", "", err);
         ok = 0;

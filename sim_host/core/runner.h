@@ -49,6 +49,8 @@ typedef struct run_options {
     int quiet;              /**< no summary on stdout */
     int progress;           /**< progress bar on stderr (when it takes > 1 s) */
     telemetry_options_t telemetry;  /**< all zero: no telemetry */
+    const char *control_url;        /**< non-NULL: the run takes commands on this LCM bus (control.h) */
+    int control_paused;             /**< and waits for one before its first step */
     const char *scenario_text;      /**< the effective scenario (scenario.yaml) */
     provenance_t provenance;        /**< scenario_hash is filled by runner_run */
     /** Set (to the signal number) by a signal handler to stop early; NULL: never. */

@@ -145,6 +145,17 @@ void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot
     }
 }
 
+void sim_robot_inspect(const struct sim *sim, uint32_t i, model_inspect_t *out)
+{
+    memset(out, 0, sizeof *out);
+    out->n_blobs = -1;
+    for (uint32_t id = 0; id < SIM_MODEL_COUNT; id++) {
+        if (sim->models[id].def->inspect) {
+            sim->models[id].def->inspect(sim, sim->models[id].self, i, out);
+        }
+    }
+}
+
 /* Robots take a few microseconds each: chunks of 64 keep the pool's
  * locking small beside the work. */
 #define CONTROL_CHUNK 64u

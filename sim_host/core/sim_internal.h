@@ -214,6 +214,9 @@ int sim_robot_halted(const struct sim *sim, uint32_t i);
  *  IR and ambient from the readings cached at step stamp `since` or later
  *  (1: any read so far; the current stamp: this step only), else -1. */
 void sim_robot_platform(const struct sim *sim, uint32_t i, uint64_t since, robot_telemetry_platform_t *p);
+/** Robot i's latest readings as every model holds them (model.h's
+ *  model_inspect_t; inspecting reads no sensor). */
+void sim_robot_inspect(const struct sim *sim, uint32_t i, struct model_inspect *out);
 
 /* world.c: Box2D bodies */
 int world_create(struct sim *sim, char err[SIM_ERR_MAX]);

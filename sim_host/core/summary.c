@@ -68,6 +68,9 @@ static void write_head(FILE *f, const scenario_t *sc, const provenance_t *pv)
     fputs(",\n  \"command\": ", f);
     json_string(f, pv->command ? pv->command : "");
     fputs(",\n", f);
+    if (pv->control) {       /* commands came while it ran (control.h) */
+        fprintf(f, "  \"control\": %s,\n", pv->control);
+    }
 }
 
 /* Each metric's unit and one-line meaning, as the task or model declared it

@@ -29,6 +29,7 @@ typedef struct provenance {
     const scenario_override_t *overrides;
     size_t override_count;
     uint64_t scenario_hash;          /**< FNV-1a of the effective scenario's text */
+    const char *control;             /**< a run under --control: control_json's object, or NULL */
 } provenance_t;
 
 /** One finished run (`sim`, when given, adds its injected faults). */

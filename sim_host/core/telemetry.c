@@ -592,6 +592,30 @@ static void send_event(telemetry_t *t, const struct sim *sim, uint32_t i, const 
     SEND(t, swarmlcm_event_t, TELEMETRY_CHANNEL_EVENT, &e, e.utime);
 }
 
+void telemetry_event(telemetry_t *t, const sim_t *simp, int32_t robot, const char *kind, const char *detail,
+                     int32_t value)
+{
+    const struct sim *sim = simp;
+    if (!t) {
+        return;
+    }
+    if (robot >= 0 && (uint32_t)robot < sim->n) {
+        send_event(t, sim, (uint32_t)robot, kind, detail, value);
+        return;
+    }
+    swarmlcm_event_t e;
+    e.version = SWARMLCM_EVENT_T_VERSION;
+    e.utime = utime_of(sim);
+    e.run = (int64_t)t->seed;
+    e.robot_id = -1;
+    e.kind = (char *)kind;
+    e.detail = (char *)detail;
+    e.value = value;
+    e.pose_known = 0;
+    e.x = e.y = 0.0f;
+    SEND(t, swarmlcm_event_t, TELEMETRY_CHANNEL_EVENT, &e, e.utime);
+}
+
 /* Robot i's state now, to tell the next step's events against. */
 static void remember(telemetry_t *t, const struct sim *sim, uint32_t i)
 {
@@ -667,6 +691,27 @@ static void pace(telemetry_t *t, const struct sim *sim)
     if (ahead > 0.001) {
         nap(ahead);
     }
+}
+
+void telemetry_set_realtime(telemetry_t *t, const sim_t *simp, double factor)
+{
+    const struct sim *sim = simp;
+    if (!t || !(factor > 0.0)) {
+        return;
+    }
+    double sim_s = (double)sim->step * sim->sc->control_period_ms / 1000.0;
+    double back = sim_s / factor;
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    double whole = floor(back);
+    long ns = (long)((back - whole) * 1e9);
+    t->wall0.tv_sec = now.tv_sec - (time_t)whole;
+    t->wall0.tv_nsec = now.tv_nsec - ns;
+    if (t->wall0.tv_nsec < 0) {
+        t->wall0.tv_nsec += 1000000000L;
+        t->wall0.tv_sec--;
+    }
+    t->realtime = factor;
 }
 
 void telemetry_step(telemetry_t *t, const sim_t *simp)
@@ -775,5 +820,7 @@ int telemetry_close(telemetry_t *t, int keep, char err[SIM_ERR_MAX])
 }
 
 uint64_t telemetry_message_count(const telemetry_t *t) { return t ? t->messages : 0; }
+
+double telemetry_realtime(const telemetry_t *t) { return t ? t->realtime : 0.0; }
 
 struct _lcm_t *telemetry_lcm(telemetry_t *t) { return t ? t->lcm : NULL; }

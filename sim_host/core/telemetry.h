@@ -94,6 +94,20 @@ void telemetry_end(telemetry_t *t, const sim_t *sim, const metric_list_t *final,
  *  could not be sent are counted and reported on stderr). */
 int telemetry_close(telemetry_t *t, int keep, char err[SIM_ERR_MAX]);
 
+/** One event of `kind` now (SWARM_EVENT), of robot `robot` (its pose) or,
+ *  with robot -1, of the run as a whole (pose_known 0): what a command of
+ *  control.h did.  NULL t: nothing. */
+void telemetry_event(telemetry_t *t, const sim_t *sim, int32_t robot, const char *kind, const char *detail,
+                     int32_t value);
+
+/** From now on, run no faster than `factor` (> 0) times real time, counted
+ *  from the simulated time now: a run that was paused does not rush to
+ *  catch up.  NULL t: nothing. */
+void telemetry_set_realtime(telemetry_t *t, const sim_t *sim, double factor);
+
+/** The real-time factor now (0: as fast as it goes). */
+double telemetry_realtime(const telemetry_t *t);
+
 /** Messages published so far. */
 uint64_t telemetry_message_count(const telemetry_t *t);
 

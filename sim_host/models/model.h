@@ -78,6 +78,28 @@
 #define MODEL_MAX_ARRAYS 8
 
 /** What a model asks the core to allocate for a run (`layout`). */
+/** Most waiting IR messages an inspection lists. */
+#define MODEL_INSPECT_HEARD 16u
+
+/** One robot's latest readings as the models hold them, for inspecting
+ *  the robot of a run under control (control.h): never taken by reading a
+ *  sensor, which would change the run's noise.  *_known 0 / counts 0: the
+ *  model has nothing (not read yet, not in the run). */
+typedef struct model_inspect {
+    uint8_t prox_known, ambient_known;
+    uint16_t prox[HAL_IR_COUNT];          /**< counts */
+    uint16_t ambient[HAL_IR_COUNT];       /**< counts, lower is brighter */
+    int16_t ir_bearing_mrad[HAL_IR_COUNT];
+    int8_t n_blobs;                       /**< -1: the camera was not read */
+    hal_blob_t blobs[HAL_MAX_BLOBS];
+    float camera_fov_rad, camera_range_m; /**< 0: no camera */
+    uint8_t n_bands;                      /**< bands 1 .. n_bands in mic[] */
+    float mic[HAL_SOUND_BANDS];           /**< counts per band, mic[0] unused */
+    uint8_t n_heard;
+    hal_ircom_msg_t heard[MODEL_INSPECT_HEARD];   /**< waiting in its inbox, oldest first */
+    float ircom_range_m;                  /**< 0: no IR communication */
+} model_inspect_t;
+
 typedef struct model_layout {
     uint32_t arrays;                     /**< per-robot arrays, <= MODEL_MAX_ARRAYS */
     size_t elem_size[MODEL_MAX_ARRAYS];  /**< bytes per robot of each */
@@ -161,6 +183,9 @@ typedef struct model_def {
      *  stamp `since` or later (sim_robot_platform). */
     void (*platform)(const sim_t *sim, const void *self, uint32_t robot, uint64_t since,
                      robot_telemetry_platform_t *p);
+    /** Its part of robot `robot`'s latest readings (model_inspect_t), from
+     *  what it already holds.  NULL: it has none to show. */
+    void (*inspect)(const sim_t *sim, const void *self, uint32_t robot, model_inspect_t *out);
     /** Appends its summary metrics (after the core's, before the tasks'). */
     void (*final)(const sim_t *sim, const void *self, metric_list_t *out);
     /** Writes its lines of summary.json (before "seed"), or nothing. */

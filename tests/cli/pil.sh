@@ -56,6 +56,16 @@ for f in tests/pil/*.yaml; do
         bad "$name: state hash $a with ${robots:-no} robots on the AVR, $b host-built"
     fi
 done
+# PFIAS and TSASR share a world (tests/pil/pfias.yaml, tsasr.yaml): TSASR,
+# PFIAS's chains with a timed elimination, must eliminate in it and end
+# elsewhere (the same hash would mean the images ran the same controller).
+elims=$(sed -n 's/.*"eliminations_total": \([0-9]*\).*/\1/p' "$tmp"/tsasr.pil/run_*/summary.json | head -1)
+if [ -n "$(hash_of "$tmp/tsasr.pil")" ] && [ "$(hash_of "$tmp/tsasr.pil")" != "$(hash_of "$tmp/pfias.pil")" ] \
+    && [ "${elims:-0}" -gt 0 ]; then
+    ok
+else
+    bad "tsasr against pfias on the AVR: hashes $(hash_of "$tmp/tsasr.pil") and $(hash_of "$tmp/pfias.pil"), ${elims:-no} eliminations"
+fi
 # The PIL robots' steps on the run's worker threads: the same hash on 3
 # (its phototaxis robots on the M4: both chips' links from worker threads).
 if "$sim" tests/pil/walk.yaml --quiet --threads 1 --run-threads 3 --out "$tmp/walk.t3" --set robots.1.platform=pil_m4 \
@@ -128,7 +138,7 @@ fails "an emulator that stops in the middle of the run" 1 "robot [0-9]* (image [
     "$walk" --set "pil.dir=$tmp/eof"
 fake hang "exec sleep 600"
 fails "an emulator that never answers" 2 "robot 0 (robots.0, image random_walk on pil_avr), boot: its emulator gave no answer within 500 ms" \
-    "$walk" --set "pil.dir=$tmp/hang" --set pil.timeout_s=0.5
+    "$walk" --set "pil.dir=$tmp/hang" --set pil.boot_timeout_s=0.5
 fake stale "exec \"$pil/pil_avr_emu\" \"\$@\""
 cp "$pil/avr/phototaxis.elf" "$tmp/stale/avr/random_walk.elf"
 fails "an image that is another" 2 "its ELF says it is image phototaxis" "$walk" --set "pil.dir=$tmp/stale"

@@ -289,6 +289,7 @@ static void run_repatt(uint32_t steps)
     p.listening = (uint8_t)REPATT_DUPLEX;
     p.queue_size = 40u;
     p.reach_width_mrad = 400u;   /* the scenarios' reach */
+    p.approach_mm = 0u;
     repatt_attach_queue(&r.ctrl, r.queue, (uint16_t)REPATT_QUEUE_MAX);
     repatt_init(&r.ctrl, &p, 4242u);
     for (t = 0; t < steps; t++) {

@@ -21,6 +21,7 @@ pil_avr_link_def_t pil_avr_link_default_def(void)
     d.budget = 1600000u;
     d.boot_budget = 16000000u;
     d.timeout_ms = 20000;
+    d.boot_timeout_ms = PIL_LINK_BOOT_TIMEOUT_MS;
     return d;
 }
 
@@ -32,6 +33,10 @@ int pil_avr_link_open(pil_avr_link_t *l, const pil_avr_link_def_t *def, char err
     l->pid = -1;
     l->to = l->from = -1;
     l->timeout_ms = def->timeout_ms > 0 ? def->timeout_ms : 20000;
+    l->boot_timeout_ms = def->boot_timeout_ms > 0 ? def->boot_timeout_ms : PIL_LINK_BOOT_TIMEOUT_MS;
+    if (def->boot_timeout_ms <= 0 && l->boot_timeout_ms < l->timeout_ms) {
+        l->boot_timeout_ms = l->timeout_ms;
+    }
     snprintf(l->image, sizeof l->image, "%s", def->image);
     snprintf(l->what, sizeof l->what, "%s", def->what ? def->what : "pil_avr_emu");
     snprintf(l->unit, sizeof l->unit, "%s", def->unit ? def->unit : "cycles");
@@ -144,12 +149,13 @@ static int64_t now_ms(void)
 /* n bytes from the emulator, within the link's wall-time bound: 0, or -1. */
 static int read_n(pil_avr_link_t *l, uint8_t *p, size_t n, int64_t deadline, char *err)
 {
+    int bound = l->answered ? l->timeout_ms : l->boot_timeout_ms;
     size_t got = 0;
     while (got < n) {
         int left = (int)(deadline - now_ms());
         struct pollfd pfd = { .fd = l->from, .events = POLLIN };
         if (left <= 0) {
-            snprintf(err, PIL_HOST_ERR, "its emulator gave no answer within %d ms of wall time", l->timeout_ms);
+            snprintf(err, PIL_HOST_ERR, "its emulator gave no answer within %d ms of wall time", bound);
             return -1;
         }
         int r = poll(&pfd, 1, left);
@@ -216,11 +222,12 @@ static int link_send(void *ctx, const uint8_t *frame, uint16_t len, char *err)
 static int link_recv(void *ctx, uint8_t *buf, uint16_t cap, uint16_t *len, pil_emu_t *emu, char *err)
 {
     pil_avr_link_t *l = ctx;
-    int64_t deadline = now_ms() + l->timeout_ms;
+    int64_t deadline = now_ms() + (l->answered ? l->timeout_ms : l->boot_timeout_ms);
     pil_frame_t f;
     if (read_frame(l, buf, cap, len, deadline, err) != 0) {
         return -1;
     }
+    l->answered = 1;
     if (pil_frame_check(buf, *len, &f) != PIL_FRAME_OK || f.type != PIL_EMU
         || pil_emu_decode(f.payload, f.len, emu) != 0) {
         snprintf(err, PIL_HOST_ERR, "its emulator sent something that is not its report (is %s this build's?)",

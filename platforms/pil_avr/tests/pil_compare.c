@@ -19,7 +19,8 @@
  * AVR gets it (KIND crc, version, type, seq, length): the robot must
  * answer FAULT and the run stop with an error naming robot and step.
  * --kill-at kills the emulator (SIGKILL) before that step, --stop-at stops
- * it (SIGSTOP: a hung emulator, caught by the wall-time bound --timeout).
+ * it (SIGSTOP: a hung emulator, caught by the wall-time bound --timeout,
+ * ms a read may wait once the first frame came; that one may take 60 s).
  * --expect TEXT: the run must fail, with TEXT in its error (exit 0 then).
  * --json: the measurement, one object; --cycles: each step's cycles, and
  * those of its controller's step (to the run loop's mark), as CSV.

@@ -76,7 +76,7 @@ read -r -a mis <<< "$(mcu misbehave)"
 # What the chips name differently: a halt (the M4 just sleeps: the
 # wall-time bound).
 if [ -n "$m4" ]; then
-    halt=(--timeout 500) halt_words="step 3: its emulator gave no answer within 500 ms"
+    halt=(--timeout 2000) halt_words="step 3: its emulator gave no answer within 2000 ms"
     expect "step 0: its MCU ran past its cycle budget" "${rw[@]}" --budget 2000
     # The counts count instructions: a step of 100,001 between the marks
     # (tests/calibrate_main.c) reads that, plus a mark's few, to the
@@ -106,7 +106,7 @@ for kind in crc version type seq length; do
     expect "step 5: could not read the simulator's last frame (FAULT" "${rw[@]}" --corrupt "5:$kind"
 done
 expect "step 4: its emulator was killed by signal 9" "${rw[@]}" --kill-at 4
-expect "step 4: its emulator gave no answer within 300 ms" "${rw[@]}" --stop-at 4 --timeout 300
+expect "step 4: its emulator gave no answer within 2000 ms" "${rw[@]}" --stop-at 4 --timeout 2000
 # No emulator outlives the simulator: kill the driver mid-run (SIGKILL, no
 # clean-up of its own) and wait for its emulator to go (PR_SET_PDEATHSIG).
 "$cmp" "${rw[@]}" --steps 100000000 > /dev/null 2>&1 &

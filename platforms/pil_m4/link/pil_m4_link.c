@@ -43,6 +43,7 @@ int pil_m4_link_open(pil_avr_link_t *l, const pil_m4_link_def_t *def, char err[P
     d.emulator = PIL_M4_QEMU;
     d.image = def->image;
     d.timeout_ms = def->timeout_ms;
+    d.boot_timeout_ms = def->boot_timeout_ms;
     d.argv = argv;
     d.unit = "instructions";
     d.what = PIL_M4_QEMU " (Debian's qemu-system-arm)";

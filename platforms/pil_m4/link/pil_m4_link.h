@@ -24,7 +24,8 @@ typedef struct pil_m4_link_def {
     const char *image;         /**< the image's ELF file */
     uint64_t budget;           /**< instructions a step's exchange may take */
     uint64_t boot_budget;      /**< instructions from reset to HELLO (0: the most) */
-    int timeout_ms;
+    int timeout_ms;            /**< wall time a read may wait, ms */
+    int boot_timeout_ms;       /**< wall time for the first frame, ms (0: as pil_avr_link's) */
 } pil_m4_link_def_t;
 
 /** Starts QEMU on the image: 0, or -1 with `err`. */

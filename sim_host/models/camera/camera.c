@@ -301,6 +301,20 @@ static void camera_platform(const sim_t *sim, const void *self, uint32_t robot, 
     p->blobs = r->stamp != 0 && r->stamp >= since ? (int8_t)r->blob_count : -1;
 }
 
+/* The blobs of its latest frame, and what the camera sees. */
+static void camera_inspect(const sim_t *sim, const void *self, uint32_t robot, model_inspect_t *out)
+{
+    const camera_t *cs = self;
+    const camera_robot_t *r = &cs->robot[robot];
+    (void)sim;
+    out->camera_fov_rad = cs->cfg->fov * (float)(UNITS_PI / 180.0);
+    out->camera_range_m = cs->cfg->range;
+    out->n_blobs = r->stamp != 0 ? (int8_t)r->blob_count : -1;
+    for (uint8_t k = 0; r->stamp != 0 && k < r->blob_count && k < HAL_MAX_BLOBS; k++) {
+        out->blobs[k] = r->blobs[k];
+    }
+}
+
 /* ---------------------------------------------------------------- HAL */
 
 uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
@@ -347,6 +361,7 @@ const model_def_t camera_model = {
     .serial = camera_serial,
     .moved = camera_moved,
     .platform = camera_platform,
+    .inspect = camera_inspect,
     .hal_calls = camera_hal_calls,
     .fields = camera_fields,
     .error = camera_error,

@@ -500,6 +500,21 @@ static void ir_platform(const sim_t *sim, const void *self, uint32_t robot, uint
     }
 }
 
+/* The latest readings of both kinds, and the sensors' bearings. */
+static void ir_inspect(const sim_t *sim, const void *self, uint32_t robot, model_inspect_t *out)
+{
+    const ir_t *m = self;
+    const ir_robot_t *r = &m->robot[robot];
+    (void)sim;
+    out->prox_known = r->prox_stamp != 0;
+    out->ambient_known = r->ambient_stamp != 0;
+    for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+        out->prox[k] = r->prox[k];
+        out->ambient[k] = r->ambient[k];
+        out->ir_bearing_mrad[k] = (int16_t)lround(1000.0 * atan2(m->dir[k].y, m->dir[k].x));
+    }
+}
+
 /* ---------------------------------------------------------------- HAL */
 
 uint16_t hal_ir_proximity(hal_t *hal, uint8_t index)
@@ -554,6 +569,7 @@ const model_def_t ir_model = {
     .destroy = ir_destroy,
     .moved = ir_moved,
     .platform = ir_platform,
+    .inspect = ir_inspect,
     .hal_calls = ir_hal_calls,
     .fields = ir_fields,
 };

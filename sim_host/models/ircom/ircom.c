@@ -482,6 +482,22 @@ hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
     return HAL_OK;
 }
 
+/* What waits in its inbox (delivered, not yet read), oldest first. */
+static void ircom_inspect(const sim_t *sim, const void *self, uint32_t robot, model_inspect_t *out)
+{
+    const ircom_t *m = self;
+    (void)sim;
+    if (m == NULL) {
+        return;
+    }
+    const ircom_inbox_t *in = &m->inbox[robot];
+    out->ircom_range_m = m->cfg->range;
+    for (uint8_t k = 0; k < in->count && out->n_heard < MODEL_INSPECT_HEARD; k++) {
+        uint32_t at = (in->head + k) % m->cfg->queue;
+        out->heard[out->n_heard++] = m->queue[(size_t)robot * m->cfg->queue + at];
+    }
+}
+
 static const char *const ircom_hal_calls[] = {
     "hal_ircom_payload_bits", "hal_ircom_send", "hal_ircom_receive", NULL
 };
@@ -505,6 +521,7 @@ const model_def_t ircom_model = {
     .create = ircom_create,
     .destroy = ircom_destroy,
     .after_control = ircom_deliver,
+    .inspect = ircom_inspect,
     .hal_calls = ircom_hal_calls,
     .fields = ircom_fields,
 };

@@ -39,6 +39,8 @@ static const param_desc_t pil_params[] = {
       .doc = "cycles an MCU may take from reset to its first frame" },
     { .key = "timeout_s", PARAM_FIELD(P, timeout_s, float), .min = 0.1, .max = 3600,
       .doc = "wall time an emulator may take to answer, s (a hung one is an error)" },
+    { .key = "boot_timeout_s", PARAM_FIELD(P, boot_timeout_s, float), .min = 0.1, .max = 3600,
+      .doc = "wall time an emulator may take to start and send its image's first frame, s (starting QEMU takes seconds on a loaded machine)" },
     { .key = "dir", PARAM_STRING_FIELD(P, dir),
       .doc = "folder of the AVR emulator and images (default: firmware/pil_avr beside swarmsim; pil_m4's images are in its sibling pil_m4)" },
     PARAM_END
@@ -68,6 +70,7 @@ static void pil_defaults(void *config)
     memset(c, 0, sizeof *c);
     c->boot_budget = 16000000u;
     c->timeout_s = 20.0f;
+    c->boot_timeout_s = 60.0f;
 }
 
 static void pil_group_defaults(void *config)
@@ -385,7 +388,8 @@ static int boot(sim_t *sim, pil_t *p, pil_mcu_t *m, const char *dir, uint32_t g,
          * period_ms * 10^6 instructions. */
         snprintf(elf, sizeof elf, "%.3000s/m4/%.32s.elf", dir, m->image->name);
         pil_m4_link_def_t def = { .image = elf, .boot_budget = c->boot_budget,
-                                  .timeout_ms = (int)(c->timeout_s * 1000.0f) };
+                                  .timeout_ms = (int)(c->timeout_s * 1000.0f),
+                                  .boot_timeout_ms = (int)(c->boot_timeout_s * 1000.0f) };
         def.budget = c->cycle_budget ? c->cycle_budget : (uint64_t)sc->control_period_ms * 1000000u;
         opened = pil_m4_link_open(&m->link, &def, e);
     } else {
@@ -397,6 +401,7 @@ static int boot(sim_t *sim, pil_t *p, pil_mcu_t *m, const char *dir, uint32_t g,
         def.budget = c->cycle_budget ? c->cycle_budget : (uint64_t)sc->control_period_ms * (PIL_AVR_HZ / 1000u);
         def.boot_budget = c->boot_budget;
         def.timeout_ms = (int)(c->timeout_s * 1000.0f);
+        def.boot_timeout_ms = (int)(c->boot_timeout_s * 1000.0f);
         opened = pil_avr_link_open(&m->link, &def, e);
     }
     if (opened != 0) {

@@ -60,7 +60,8 @@ typedef enum pil_platform {
 typedef struct pil_model_config {
     uint32_t cycle_budget;    /**< cycles a step may take on the MCU (0: its control period at 16 MHz) */
     uint32_t boot_budget;     /**< cycles from reset to HELLO */
-    float timeout_s;          /**< wall time an answer may take */
+    float timeout_s;          /**< wall time an answer may take, s */
+    float boot_timeout_s;     /**< wall time the first frame may take, s */
     char dir[192];            /**< the emulator and images ("": beside the program) */
 } pil_model_config_t;
 

@@ -492,6 +492,20 @@ static const model_field_t sound_fields[] = {
     { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
 };
 
+/* Its levels per band over the last period, once the field was summed. */
+static void sound_inspect(const sim_t *sim, const void *self, uint32_t robot, model_inspect_t *out)
+{
+    const sound_t *s = self;
+    (void)sim;
+    if (s == NULL || s->stamp == 0) {
+        return;
+    }
+    out->n_bands = HAL_SOUND_BANDS - 1u;
+    for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+        out->mic[k] = (float)s->level[robot][k];
+    }
+}
+
 const model_def_t sound_model = {
     .name = "sound",
     .doc = "speakers and microphones: seed 002's sound field (eqs 1-4)",
@@ -506,6 +520,7 @@ const model_def_t sound_model = {
     .before_control = sound_before_control,
     .end_step = sound_end_step,
     .moved = sound_moved,
+    .inspect = sound_inspect,
     .hal_calls = sound_hal_calls,
     .fields = sound_fields,
 };

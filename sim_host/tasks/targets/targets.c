@@ -50,6 +50,7 @@ typedef struct targets {
 
 #define TC targets_config_t
 static const char *const distribution_choices[] = { "one", "two", "four", "half", "uniform", NULL };
+static const char *const half_shape_choices[] = { "cluster", "strip", NULL };
 
 static const param_desc_t targets_params[] = {
     { .key = "distribution", PARAM_ENUM_FIELD(TC, distribution, distribution_choices),
@@ -63,6 +64,9 @@ static const param_desc_t targets_params[] = {
       .doc = "m: radius of each cluster's disc (one, two, four)" },
     { .key = "cluster_offset", PARAM_FIELD(TC, cluster_offset, float), .min = 0, .max = 500,
       .doc = "m: each cluster centre is this far from the nest along x and along y" },
+    { .key = "half_shape", PARAM_ENUM_FIELD(TC, half_shape, half_shape_choices),
+      .doc = "distribution half: cluster (half the targets in One's disc, half uniform over the "
+             "square) or strip (all uniform over the half x >= nest.x)" },
     { .key = "layout_seed", PARAM_FIELD(TC, layout_seed, uint64_t), .min = 0, .max = 9007199254740991.0,
       .doc = "seed of the layout alone: targets are fixed per world, not per run seed" },
     { .key = "target_radius", PARAM_FIELD(TC, target_radius, float), .min = 0.001, .max = 1,
@@ -103,6 +107,7 @@ static void targets_default_config(void *config)
     c->layout_side = 8.264f;       /* 50 m x k */
     c->cluster_radius = 0.826f;    /* 5 m x k (a reconstruction) */
     c->cluster_offset = 2.479f;    /* 15 m x k (a reconstruction) */
+    c->half_shape = TARGETS_HALF_CLUSTER;   /* a reconstruction (docs/notes/i14_targets.md) */
     c->layout_seed = 1;
     c->target_radius = 0.010f;
     c->target_height = 0.020f;
@@ -117,6 +122,13 @@ static void targets_default_config(void *config)
 static int clusters_of(int distribution)
 {
     return distribution == TARGETS_ONE ? 1 : distribution == TARGETS_TWO ? 2 : distribution == TARGETS_FOUR ? 4 : 0;
+}
+
+/* Whether the layout has a cluster disc (half's cluster shape has One's). */
+static int has_disc(const targets_config_t *c)
+{
+    return clusters_of(c->distribution) > 0
+           || (c->distribution == TARGETS_HALF && c->half_shape == TARGETS_HALF_CLUSTER);
 }
 
 static int targets_check(const void *config, const scenario_t *sc, char key[64], char msg[SIM_ERR_MAX])
@@ -139,7 +151,7 @@ static int targets_check(const void *config, const scenario_t *sc, char key[64],
                  c->nest.radius, half);
         return -1;
     }
-    if (clusters_of(c->distribution) > 0 && c->cluster_offset + c->cluster_radius > half) {
+    if (has_disc(c) && c->cluster_offset + c->cluster_radius > half) {
         snprintf(key, 64, "cluster_offset");
         snprintf(msg, SIM_ERR_MAX, "a cluster reaches out of the layout square: cluster_offset + cluster_radius "
                  "= %g m > layout_side / 2 = %g m", c->cluster_offset + c->cluster_radius, half);
@@ -169,13 +181,16 @@ static void draw_candidate(const targets_config_t *c, sim_rand_t *r, uint32_t k,
     static const float sx[4] = { 1, -1, -1, 1 }, sy[4] = { 1, -1, 1, -1 };
     float half = c->layout_side / 2.0f;
     int clusters = clusters_of(c->distribution);
+    if (c->distribution == TARGETS_HALF && c->half_shape == TARGETS_HALF_CLUSTER) {
+        clusters = (k % 2u == 0u) ? 1 : 0;   /* even: One's disc; odd: the square */
+    }
     if (clusters > 0) {
         /* One (+,+); two (+,+) and (-,-) on a diagonal; four: every corner. */
         int q = (int)(k % (uint32_t)clusters);
         double rho = c->cluster_radius * sqrt(sim_rand_uniform(r)), phi = 2.0 * UNITS_PI * sim_rand_uniform(r);
         *x = sx[q] * c->cluster_offset + (float)(rho * cos(phi));
         *y = sy[q] * c->cluster_offset + (float)(rho * sin(phi));
-    } else if (c->distribution == TARGETS_HALF) {
+    } else if (c->distribution == TARGETS_HALF && c->half_shape == TARGETS_HALF_STRIP) {
         *x = (float)(sim_rand_uniform(r) * half);
         *y = (float)((2.0 * sim_rand_uniform(r) - 1.0) * half);
     } else {

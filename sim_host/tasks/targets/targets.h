@@ -10,6 +10,8 @@
  *                             #   world's, kept when the world doubles)
  *     cluster_radius: 0.826   # m: one/two/four, targets uniform in discs
  *     cluster_offset: 2.479   # m: each cluster centre's |dx| and |dy| from the nest
+ *     half_shape: cluster     # half: cluster (half in One's disc, half uniform)
+ *                             #   or strip (all uniform over the half x >= 0)
  *     layout_seed: 1          # the layout's own seed (not the run's)
  *     target_radius: 0.010    # m
  *     target_height: 0.020    # m
@@ -25,7 +27,10 @@
  *   one      all targets uniform in one disc centred at (+o, +o);
  *   two      half in a disc at (+o, +o), half at (-o, -o);
  *   four     a quarter in each of the discs at (+-o, +-o);
- *   half     uniform over the layout square's half x >= nest.x;
+ *   half     half_shape cluster: the even-numbered targets in One's disc at
+ *            (+o, +o), the odd-numbered uniform over the layout square (the
+ *            text groups Half with One and Two as "cluster distributions");
+ *            half_shape strip: all uniform over the square's half x >= nest.x;
  *   uniform  uniform over the layout square;
  * (o = cluster_offset, target k goes to cluster k mod clusters).  The
  * positions are a pure function of the section (layout_seed included), never
@@ -54,6 +59,12 @@
 
 #include "swarmsim/task.h"
 
+/** What `half` means (the paper's Figure 1d is not in its text). */
+typedef enum targets_half_shape {
+    TARGETS_HALF_CLUSTER = 0,  /**< half the targets in One's disc, half uniform over the square */
+    TARGETS_HALF_STRIP = 1     /**< all uniform over the half x >= nest.x */
+} targets_half_shape_t;
+
 typedef enum targets_distribution {
     TARGETS_ONE = 0,
     TARGETS_TWO = 1,
@@ -69,6 +80,7 @@ typedef struct targets_config {
     float layout_side;         /**< m: side of the square the layout is drawn in */
     float cluster_radius;      /**< m: one/two/four */
     float cluster_offset;      /**< m: |dx| = |dy| of each cluster centre from the nest */
+    int half_shape;            /**< targets_half_shape_t (distribution half) */
     uint64_t layout_seed;      /**< the layout's seed (independent of the run seed) */
     float target_radius;       /**< m */
     float target_height;       /**< m (the camera's rows, pictures) */

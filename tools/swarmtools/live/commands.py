@@ -17,6 +17,8 @@ KINDS = {
     "number": (lambda v: not isinstance(v, bool) and (isinstance(v, float) and math.isfinite(v)
                                                       or isinstance(v, int) and abs(v) <= 1e308),
                "a finite number"),
+    "integer": (lambda v: not isinstance(v, bool) and isinstance(v, int) and -(1 << 31) <= v < (1 << 31),
+                "a whole number"),
 }
 
 #: Command name -> {field: kind}.  A new command is a line here and a
@@ -26,6 +28,10 @@ COMMANDS = {
     "pause": {},
     "speed": {"value": "number"},
     "seek": {"value": "number"},
+    # A run under control (swarmsim --control); step also steps a log.
+    "step": {"value": "integer"},
+    "move": {"robot": "integer", "x": "number", "y": "number", "theta": "number"},
+    "select": {"robot": "integer"},
 }
 
 

@@ -86,3 +86,29 @@ def schemas(book):
         out.setdefault(s.kind, {})[s.name] = {"names": [e.name for e in entries], "units": [e.unit for e in entries],
                                               "counters": [e.counter for e in entries]}
     return out
+
+
+def control(m):
+    """A run under control's status (control_status_t), without its key:
+    the page never needs it, the server sends the commands."""
+    return {"step": m.step, "steps": m.steps, "paused": bool(m.paused), "pending": m.steps_pending,
+            "realtime": num(m.realtime), "selected": m.selected, "commands": m.commands, "seq": m.seq,
+            "ok": bool(m.ok), "text": m.text, "clock": m.utime / 1e6}
+
+
+def detail(m):
+    """The selected robot's readings (robot_detail_t)."""
+    return {
+        "id": m.robot_id, "controller": m.controller, "state": m.state, "clock": m.utime / 1e6,
+        "x": num(m.x), "y": num(m.y), "theta": num(m.theta), "wheels": [m.wheel_left, m.wheel_right],
+        "leds": m.leds, "values": [num(v) for v in m.values],
+        "prox": list(m.prox) if m.prox_known else None, "ambient": list(m.ambient) if m.ambient_known else None,
+        "ir_bearing_mrad": list(m.ir_bearing_mrad),
+        "blobs": [{"colour": c, "bearing_mrad": b, "width_mrad": w}
+                  for c, b, w in zip(m.blob_colour, m.blob_bearing_mrad, m.blob_width_mrad, strict=True)],
+        "camera_fov_rad": num(m.camera_fov_rad), "camera_range_m": num(m.camera_range_m),
+        "mic": [num(v) for v in m.mic],
+        "heard": [{"value": v, "bearing_mrad": b, "range_mm": r}
+                  for v, b, r in zip(m.heard_value, m.heard_bearing_mrad, m.heard_range_mm, strict=True)],
+        "ircom_range_m": num(m.ircom_range_m),
+    }

@@ -31,7 +31,8 @@ _STRUCTS = {}     # LCM class -> its (slot, type name, length field) fields, wor
 def _fields(cls):
     f = _STRUCTS.get(cls)
     if f is None:
-        f = _STRUCTS[cls] = [(s, t, d[0] if d else None)
+        # A fixed length (robot_detail_t's prox[8]: an int) needs no bound.
+        f = _STRUCTS[cls] = [(s, t, d[0] if d and isinstance(d[0], str) else None)
                              for s, t, d in zip(cls.__slots__, cls.__typenames__, cls.__dimensions__, strict=True)]
     return f
 

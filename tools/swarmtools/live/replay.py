@@ -38,6 +38,9 @@ class Log:
         self.events.sort(key=lambda e: e[0])
         self.times = [t for t, _, _ in self.events]
         self.end = self.times[-1]
+        # A control period, s: what the page's step button moves by (None: no RUN_INFO).
+        self.period_s = next((m.control_period_ms / 1000 for _, _, m in self.events
+                              if type(m).__name__ == "run_info_t" and m.control_period_ms > 0), None)
 
 
 class Player:
@@ -81,6 +84,17 @@ class Player:
             self.view.reset()
             self.next = 0
         self._apply_until(t)
+
+    def step(self, n):
+        """Pauses `n` control periods later (the page's step button on a
+        log): None, or an error text."""
+        if self.log.period_s is None:
+            return "step: this log has no RUN_INFO to tell its control period (seek instead)"
+        if not 1 <= n <= 1_000_000_000:
+            return f"step: {n} is not a number of control steps in [1, 1000000000]"
+        self.playing = False
+        self.seek(self.time + n * self.log.period_s)
+        return None
 
     def play(self):
         if self.ended:

@@ -53,6 +53,17 @@ FRAME_S = 0.05
 #: Replay speeds the command line and the page accept.
 SPEED_MIN, SPEED_MAX = 0.01, 10000.0
 
+#: A replay's default speed plays the log in about this many seconds (a
+#: 20-minute run at 20x), at one of these speeds (the page's), at least 1.
+WATCH_S = 60.0
+DEFAULT_SPEEDS = (1, 2, 5, 10, 20, 50, 100, 1000)
+
+
+def default_speed(end_s):
+    """The speed that replays a log of end_s seconds in about WATCH_S."""
+    return max([s for s in DEFAULT_SPEEDS if s <= end_s / WATCH_S] or [1])
+
+
 #: Seconds a closing WebSocket waits for the page's answer when the server stops.
 CLOSE_S = 2.0
 
@@ -107,7 +118,11 @@ class Session:
 
     def status(self):
         s = self.player.status() if self.player else self.feed.status()
-        if not self.player:
+        ctl = None if self.player else self.view.control
+        s["controlled"] = ctl is not None
+        if ctl is not None:      # a run under control: its own pause and speed
+            s["playing"], s["speed"] = not ctl.paused, ctl.realtime
+        elif not self.player:
             s["playing"] = not self.frozen
         return s
 
@@ -132,6 +147,12 @@ class Session:
     def apply(self, what, fields):
         """A checked command (commands.COMMANDS): an error text or None."""
         value = fields.get("value")
+        if not self.player and (self.view.control is not None or what in ("step", "move", "select")):
+            return self.control(what, fields)
+        if what == "step":
+            return self.player.step(int(value))
+        if what in ("move", "select"):
+            return f"{what}: a replayed log cannot be changed (only a run under swarmsim --control can)"
         if what in ("play", "pause"):
             if self.player and what == "play":
                 self.player.play()
@@ -149,6 +170,25 @@ class Session:
             else:
                 self.player.speed = float(value)
         return None
+
+    def control(self, what, fields):
+        """A page's command for the run under control: sent on the control
+        bus (its answer comes back in the run's status), or an error text."""
+        value = fields.get("value")
+        if what == "play":
+            return self.feed.send_control("resume")
+        if what == "pause":
+            return self.feed.send_control("pause")
+        if what == "step":
+            return self.feed.send_control("step", steps=value)
+        if what == "speed":
+            return self.feed.send_control("realtime", value=value)
+        if what == "select":
+            return self.feed.send_control("select", robot_id=fields["robot"])
+        if what == "move":
+            return self.feed.send_control("move", robot_id=fields["robot"], x=fields["x"], y=fields["y"],
+                                          theta=fields["theta"])
+        return f"{what}: a live run is not sought (only a replayed log is)"
 
     def frame_text(self, wall_s):
         """The next frame as the JSON text to send, or None."""
@@ -331,8 +371,12 @@ def main(argv=None):
     src = ap.add_mutually_exclusive_group()
     src.add_argument("--lcm", default=common.DEFAULT_URL, help="LCM URL to follow (default %(default)s)")
     src.add_argument("--log", help="replay an LCM log file instead (pause, seek and speed in the page)")
-    ap.add_argument("--speed", type=speed, default=1.0,
-                    help="with --log: replay speed, a factor of the recorded time (default 1)")
+    ap.add_argument("--control-lcm", default=common.DEFAULT_URL, metavar="URL",
+                    help="the bus of a run under swarmsim --control, which the page's buttons steer (default "
+                         "%(default)s, loopback-only, as swarmsim's)")
+    ap.add_argument("--speed", type=speed, default=None,
+                    help=f"with --log: replay speed, a factor of the recorded time (default: the log in about "
+                         f"{WATCH_S:g} s of watching, at least 1: a 20-minute run at 20x)")
     ap.add_argument("--paused", action="store_true", help="with --log: start paused at the beginning")
     ap.add_argument("--host", default="127.0.0.1", help="address to serve on (default %(default)s: this machine only)")
     ap.add_argument("--port", type=port, default=8080, help="port (default %(default)s; 0: any free one, printed)")
@@ -345,10 +389,12 @@ def main(argv=None):
     if not (STATIC / "index.html").is_file():
         raise SystemExit(f"{PROG}: the page is missing from the package ({STATIC}): reinstall it (make deps)")
     try:
-        feed = Log(options.log, PROG) if options.log else Bus(options.lcm, PROG, options.prefix)
+        feed = Log(options.log, PROG) if options.log else Bus(options.lcm, PROG, options.prefix, options.control_lcm)
     except KeyboardInterrupt:     # Ctrl-C while a long log is read
         print(f"{PROG}: stopped", file=sys.stderr, flush=True)
         return 130
+    if options.speed is None:
+        options.speed = default_speed(feed.end) if options.log else 1.0
     sock = listen(options.host, options.port)
     try:
         hosts = AllowedHosts(options.host, sock.getsockname()[1], options.allow_host)

@@ -97,6 +97,7 @@ class View:
         self.event_counts = collections.Counter()
         self.has_swarm = False
         self.clock = None        # simulated time of the run's latest message, s (None: real robots)
+        self.control = None      # the latest control_status_t (its key: what commands carry)
         if self.cuts:
             self._set("limits", self._limits_text)
 
@@ -143,6 +144,15 @@ class View:
         kind = type(msg).__name__
         if kind == "bridge_status_t":
             self._set("bridge", convert.bridge, msg)
+            return
+        if kind == "control_t":          # a command on the bus: the run's answer tells
+            return
+        if kind == "control_status_t":   # a run under control (sim_host/core/control.h)
+            self.control = msg
+            self._set("control", convert.control, msg)
+            return
+        if kind == "robot_detail_t":
+            self._set("detail", convert.detail, msg)
             return
         if kind == "schema_t":
             if self.schemas.count() >= limits.MAX_SCHEMAS and self.schemas.get(msg.kind, msg.name, msg.run) is None:

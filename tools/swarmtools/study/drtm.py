@@ -426,6 +426,12 @@ def read_summary(path: Path, expect_seed: int | None = None) -> dict[str, Any]:
         raise StudyError(f"{path}: garbled JSON: {e}") from None
     if not isinstance(doc, dict) or not isinstance(doc.get("metrics"), dict):
         raise StudyError(f"{path}: garbled summary: no \"metrics\" object")
+    control = doc.get("control")
+    if isinstance(control, dict) and control.get("touched") is not False:
+        # A run steered by hand (swarmsim --control moved a robot) is not
+        # the scenario's: never pooled with the others.
+        raise StudyError(f"{path}: this run was touched by hand (swarmsim --control: "
+                         f"{control.get('commands', '?')} commands, a robot moved): not part of a study")
     metrics_in = doc["metrics"]
     missing = [k for k in REQUIRED_METRICS if k not in metrics_in]
     if missing:

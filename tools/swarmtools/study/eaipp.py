@@ -128,6 +128,12 @@ CYLINDERS = "random_cylinders.count"
 BEARING = "ircom.bearing_noise_vec"
 LOSS = "ircom.loss"
 BIAS = "wheels.bias_sd"
+# Figure 17's levels are a marXbot's (axle about 140 mm, ref [36]); the e-puck's is 53 mm.
+MARXBOT_AXLE_M = 0.140
+EPUCK_AXLE_M = 0.053
+AXLE_RATIO = EPUCK_AXLE_M / MARXBOT_AXLE_M
+PAPER_SPEED_M_S = 0.05   # Table 2
+EPUCK_MAX_M_S = 0.1288   # 1000 steps/s of 0.1288 mm
 
 
 def distance(row: dict[str, str]) -> float:
@@ -179,12 +185,59 @@ FIGURES: dict[str, Figure] = {f.name: f for f in (
            paper={0.0: 0.92, 0.05: 0.87, 0.10: 0.78, 0.15: 0.63, 0.20: 0.45},
            note="Paper (section 5.3): 92, 87, 78, 63, 45 % for 0 .. 20 cm/s. The e-puck's wheels top out at "
                 "12.9 cm/s: our high levels saturate them (an upper bound, docs/notes/i15_paths.md)."),
+    Figure("bias_scaled", "eaipp_bias_scaled.yaml", "17", "wheel bias noise scaled by the axle ratio",
+           "marXbot bias sd (cm/s)", (BIAS,), lambda r: round(float(r[BIAS]) / AXLE_RATIO, 2),
+           lambda v: f"{100 * v:.0f}",
+           paper={0.0: 0.92, 0.05: 0.87, 0.10: 0.78, 0.15: 0.63, 0.20: 0.45},
+           note="The paper's levels are a marXbot's (axle about 140 mm): the e-puck (53 mm) runs each times "
+                "53/140, the same heading drift and turning radius at 5 cm/s; drawn once a run per wheel."),
     Figure("bias_step", "eaipp_bias_step.yaml", "17", "wheel bias noise, drawn anew every step",
            "bias sd (cm/s)", (BIAS,), lambda r: float(r[BIAS]), lambda v: f"{100 * v:.0f}",
            paper={0.0: 0.92, 0.05: 0.87, 0.10: 0.78, 0.15: 0.63, 0.20: 0.45},
            note="Eq 3's other reading (wheels.bias_per_step): b redrawn every control step, not once a run "
                 "as ARGoS draws it; with a once-a-run bias an open-loop Robot_Lost drives in circles."),
 )}
+
+
+# ------------------------------------------------------------------ turning radii
+def turning_radii(sd: float, axle: float, v: float = PAPER_SPEED_M_S, vmax: float | None = None,
+                  n: int = 100_000, seed: int = 17) -> np.ndarray:
+    """|R| (m) of n robots whose wheels carry a once-a-run bias N(0, sd^2) each
+    (ARGoS's, m/s) at commanded speed v: R = (L/2)(v_l + v_r)/(v_r - v_l);
+    with vmax the wheels saturate at +-vmax (the e-puck's).  Infinite when
+    the bias is 0."""
+    rng = np.random.default_rng(seed)
+    b = rng.normal(0.0, sd, size=(n, 2)) if sd > 0 else np.zeros((n, 2))
+    vl, vr = v + b[:, 0], v + b[:, 1]
+    if vmax is not None:
+        vl, vr = np.clip(vl, -vmax, vmax), np.clip(vr, -vmax, vmax)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.abs(axle / 2.0 * (vl + vr) / (vr - vl))
+    return np.where(np.isnan(r), np.inf, r)
+
+
+def render_radii(paper: dict[float, float]) -> list[str]:
+    """Figure 17's levels as turning radii: a marXbot at the paper's levels,
+    an e-puck at the same levels and at the levels x 53/140 (median and
+    quartiles of |R|, the share circling within 0.3 m, half the range R)."""
+    lines = ["### Figure 17's bias as turning radii", "",
+             f"|R| = (L/2)|v_l + v_r|/|v_r - v_l| at {100 * PAPER_SPEED_M_S:.0f} cm/s with a once-a-run bias "
+             "N(0, sd^2) per wheel (100,000 draws; the e-puck's wheels saturate at 12.9 cm/s): median "
+             "[quartiles] in m, and the share with |R| < 0.3 m (half the range R = 0.6 m).", "",
+             "| paper's sd (cm/s) | paper's success | marXbot (L 140 mm) | e-puck, same sd | "
+             "e-puck, sd x 53/140 |", "|---:|---:|---|---|---|"]
+
+    def cell(r: np.ndarray) -> str:
+        if np.all(np.isinf(r)):
+            return "straight"
+        q1, q2, q3 = np.quantile(r, [0.25, 0.5, 0.75])
+        return f"{q2:.2f} [{q1:.2f}, {q3:.2f}], {100 * np.mean(r < 0.3):.0f} % < 0.3 m"
+
+    for sd, ok in paper.items():
+        lines.append(f"| {100 * sd:.0f} | {100 * ok:.0f} % | {cell(turning_radii(sd, MARXBOT_AXLE_M))} | "
+                     f"{cell(turning_radii(sd, EPUCK_AXLE_M, vmax=EPUCK_MAX_M_S))} | "
+                     f"{cell(turning_radii(sd * AXLE_RATIO, EPUCK_AXLE_M, vmax=EPUCK_MAX_M_S))} |")
+    return lines + [""]
 
 
 # ------------------------------------------------------------------ statistics
@@ -546,6 +599,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             png = f"fig{fig.figs.replace('-', '_')}_{name}.png"
             plot(fig, rows, cs, out / png, sw.scenario)
             sections += render(fig, cs) + [f"![Figure {fig.figs}]({png})", ""]
+            if name == "bias_scaled":
+                sections += render_radii(fig.paper)
         wall_all = time.monotonic() - t0
         results["wall_time_s"] = wall_all
         md += ["", *sections, f"Wall time of this invocation: {wall_all:.0f} s (runs already done in a resumed "

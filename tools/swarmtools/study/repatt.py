@@ -15,6 +15,10 @@ run through the sweep engine, at e-puck scale (docs/studies/repatt.md).
   10 worlds, normalised by the worlds sweep's RW: a column beside Figure 3.
 - scale (studies/repatt_scale.yaml): Figure 4, relative efficiency E_r
   (eqs 7-8, tp = 180) for 1..100 robots in One100m and Uniform100m.
+- half (studies/repatt_half.yaml, not in the default set): Half50m and
+  Half100m under both readings of Figure 1d (targets.half_shape cluster
+  and strip) with RW, N0-Q1 and N100-Q40, each normalised by its own RW;
+  half_slotted (studies/repatt_half_slotted.yaml) adds the slotted arm.
 
 Each figure's sweep lives in OUT/<figure>/ (resumable: rerun the same
 command); results.md, results.json and PNG figures are written to OUT.
@@ -60,7 +64,8 @@ from swarmtools.sweep.spec import SweepError
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 STUDIES = REPO_ROOT / "studies"
-FIGURES = {"worlds": "repatt_worlds.yaml", "slotted": "repatt_slotted.yaml", "scale": "repatt_scale.yaml"}
+FIGURES = {"worlds": "repatt_worlds.yaml", "slotted": "repatt_slotted.yaml", "scale": "repatt_scale.yaml",
+           "half": "repatt_half.yaml", "half_slotted": "repatt_half_slotted.yaml"}
 TIME = "time_capped_s"  # the time to 90 %, or the run's length when it did not finish
 FINISHED = "finished"
 # The override keys the sweep files vary (one place: the files and this script agree).
@@ -69,6 +74,7 @@ QUEUE = "robots.0.params.queue_size"
 NOISE = "sound.noise"
 COUNT = "robots.0.count"
 LISTEN = "robots.0.params.listening"
+HALF_SHAPE = "targets.half_shape"
 SLOTTED = "N100-Q40 slotted"  # the arm a real e-puck can run: own tone masks its microphones
 DISTS = ("one", "two", "four", "half", "uniform")
 WORLD_NAMES = {d: d.capitalize() for d in DISTS}
@@ -208,6 +214,43 @@ def efficiency(rows: Sequence[dict[str, str]]) -> dict[str, Any]:
     return out
 
 
+def half_table(rows: Sequence[dict[str, str]]) -> dict[str, Any]:
+    """The Half sweep: per world size and half_shape, each arm's mean time and
+    its time over the same shape's RW (95 % bootstrap interval)."""
+    out: dict[str, Any] = {}
+    by = group(rows, lambda r: (world(r)[1], r.get(HALF_SHAPE, ""), arm(r)))
+    for (size, shape) in sorted({(k[0], k[1]) for k in by}):
+        rw, _ = times(by.get((size, shape, "RW"), []))
+        for a in ("RW", "N0-Q1", "N100-Q40", SLOTTED):
+            t, unfinished = times(by.get((size, shape, a), []))
+            if not t.size:
+                continue
+            m, lo, hi = boot_ratio(t, rw) if rw.size else (math.nan,) * 3
+            out[f"Half{size}m/{shape}/{a}"] = {"world": f"Half{size}m", "half_shape": shape, "arm": a,
+                                               "ok": int(t.size), "unfinished": unfinished,
+                                               "mean_s": float(t.mean()), "normalised": m, "ci_low": lo, "ci_high": hi}
+    return out
+
+
+def render_half(res: dict[str, Any]) -> list[str]:
+    lines = ["## Half, two readings of Figure 1d", "",
+             "`half_shape` cluster: 100 targets in One's disc, 100 uniform over the square; strip: all 200 "
+             "uniform over the half x >= 0. Time to 90 %, mean; normalised by the same shape's RW "
+             "[95 % bootstrap CI]. Paper (N0-Q1, Half100m): 0.29.", "",
+             "| world | half_shape | runs | RW (s) | N0-Q1 / RW | N100-Q40 / RW | N100-Q40 slotted / RW | unfinished |",
+             "|---|---|---:|---:|---:|---:|---:|---:|"]
+    for (w, shape) in sorted({(x["world"], x["half_shape"]) for x in res.values()}, key=lambda k: (len(k[0]), k)):
+        def cell(a: str) -> str:
+            x = res.get(f"{w}/{shape}/{a}")
+            return "-" if x is None else f"{fmt(x['normalised'])} [{fmt(x['ci_low'])}, {fmt(x['ci_high'])}]"
+        rw = res.get(f"{w}/{shape}/RW", {})
+        runs = sum(x["ok"] for x in res.values() if x["world"] == w and x["half_shape"] == shape)
+        unf = sum(x["unfinished"] for x in res.values() if x["world"] == w and x["half_shape"] == shape)
+        lines.append(f"| {w} | {shape} | {runs} | {fmt(rw.get('mean_s', math.nan), 0)} | {cell('N0-Q1')} | "
+                     f"{cell('N100-Q40')} | {cell(SLOTTED)} | {unf} |")
+    return lines + [""]
+
+
 def render_scale(res: dict[str, Any]) -> list[str]:
     lines = ["## Figure 4: relative efficiency E_r against swarm size", "",
              f"E_r = E_n / E_1 with E_n = tp / (n t_tp), tp = {TP} (eqs 7-8). Paper: {PAPER_SCALE}.", "",
@@ -298,7 +341,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="swarmtools.study.repatt", description=__doc__.split("\n\n")[0])
     ap.add_argument("--figures", default="worlds,slotted,scale",
                     help="which sweeps to run: worlds (Figures 3 and 2c), slotted (the e-puck's listening "
-                         "schedule, beside Figure 3), scale (Figure 4), alns (Figure 3's ALNS bars: plans, then "
+                         "schedule, beside Figure 3), scale (Figure 4), half (Half's two layouts), half_slotted (their slotted arm; needs half), alns (Figure 3's ALNS bars: plans, then "
                          "the routes followed; needs worlds); comma-separated")
     ap.add_argument("--quick", action="store_true",
                     help=f"a smoke run under a minute: {QUICK['repatt'].seeds} seed a cell, runs cut at "
@@ -320,6 +363,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         if "alns" in figs and "worlds" not in figs:
             raise SweepError("--figures alns needs worlds too (ALNS is normalised by its random walk): "
                              "--figures worlds,alns (a finished worlds sweep resumes at once)")
+        if "half_slotted" in figs and "half" not in figs:
+            raise SweepError("--figures half_slotted needs half too (normalised by its random walk): "
+                             "--figures half,half_slotted")
         if a.reps is not None and a.reps < 1:
             raise SweepError("--reps must be at least 1")
         sim, out = Path(a.sim), quick_out(a.out, REPO_ROOT / "out" / "study_repatt", a.quick)
@@ -391,6 +437,11 @@ def main(argv: Sequence[str] | None = None) -> int:
                       "queue size under N100, normalised by random walk")
             md.append("![Figure 2c](fig2c_queue.png)\n")
             results["fig3"], results["fig2c"] = res, qres
+        if "half" in tables:
+            # the slotted arm (its own sweep) is normalised by the half sweep's RW
+            res = half_table(tables["half"] + tables.get("half_slotted", []))
+            md += render_half(res)
+            results["half"] = res
         if "scale" in tables:
             res = efficiency(tables["scale"])
             md += render_scale(res)

@@ -45,12 +45,18 @@ CHANNEL_TYPES = {
     "SCENE": "scene_t",
     "TASK_DRAWING": "task_drawing_t",
     "BRIDGE_STATUS": "bridge_status_t",
+    # A run under control (swarmsim --control, sim_host/core/control.h),
+    # on its control bus: commands, its answers, the selected robot.
+    "SWARM_CONTROL": "control_t",
+    "SWARM_CONTROL_STATUS": "control_status_t",
+    "ROBOT_DETAIL": "robot_detail_t",
 }
 
 #: Every type of lcm_types/, nested ones (scene_*_t, bridge_device_t) included.
 TYPE_NAMES = ("robot_state_t", "swarm_state_t", "event_t", "run_info_t", "run_summary_t",
               "schema_t", "scene_t", "scene_obstacle_t", "scene_light_t", "task_drawing_t",
-              "scene_shape_t", "scene_item_t", "bridge_status_t", "bridge_device_t")
+              "scene_shape_t", "scene_item_t", "bridge_status_t", "bridge_device_t",
+              "control_t", "control_status_t", "robot_detail_t")
 
 #: Packed fingerprints of the types of earlier telemetry versions -> (version, type).
 OLD_FINGERPRINTS = {

@@ -11,6 +11,7 @@ positions'.  A simulation published live over UDP multicast reaches the
 page.  If the browser cannot start, the tests fail with the reason.
 """
 import json
+import math
 import subprocess
 import tempfile
 import time
@@ -279,6 +280,132 @@ class LiveBus(BrowserTest):
         self.click("play")                                    # live: freezes the view
         wait_for(lambda: not self.state()["playing"], "the view frozen")
         self.assertEqual(self.driver.find_element("id", "play").text, "follow")
+
+
+# Mouse events on the arena canvas at canvas pixels: what a hand does (the
+# page's own handlers; the canvas is not scaled by CSS, but at() allows it).
+MOUSE_JS = """
+const [kind, u, v, extra] = arguments;
+const cv = document.getElementById('arena'), b = cv.getBoundingClientRect();
+const x = b.left + u * b.width / cv.width, y = b.top + v * b.height / cv.height;
+const target = kind === 'mouseup' ? window : cv;
+const ev = kind === 'wheel' ? new WheelEvent('wheel', { clientX: x, clientY: y, deltaY: extra, bubbles: true, cancelable: true })
+                            : new MouseEvent(kind, { clientX: x, clientY: y, bubbles: true });
+target.dispatchEvent(ev);
+"""
+
+
+class ControlledRun(BrowserTest):
+    """A simulation under swarmsim --control, steered from the page."""
+
+    def test_pause_step_inspect_move_zoom(self):
+        url = f"udpm://239.255.76.67:{free_udp_port()}?ttl=0"
+        self.serve("--lcm", url, "--control-lcm", url)
+        args = [SWARMSIM, GATHER, "--steps", 3000, "--lcm", url, "--realtime", 5, "--control", "--paused",
+                "--control-lcm", url, "--out", self.tmp / "controlled", "--quiet"]
+        sim = subprocess.Popen(list(map(str, args)), cwd=ROOT, stderr=subprocess.PIPE, text=True)
+        try:
+            self._steer(sim)
+        finally:
+            if sim.poll() is None:
+                sim.kill()
+            sim.communicate()
+
+    def _mouse(self, kind, u, v, extra=0):
+        self.js(MOUSE_JS, kind, u, v, extra)
+
+    def _control(self, check, what):
+        return wait_for(lambda: (s := self.state())["control"] and check(s["control"]) and s, what)
+
+    def _step(self, n):
+        self.js("document.getElementById('step-n').value = arguments[0];", str(n))
+        self.click("step")
+
+    def _steer(self, sim):
+        st = self._control(lambda c: c["paused"] and c["step"] == 0, "the run waiting at step 0 (--paused)")
+        self.assertEqual(self.driver.find_element("id", "play").text, "resume")
+        self.assertTrue(self.driver.find_element("id", "step").is_displayed())
+        self._step(10)
+        st = self._control(lambda c: c["paused"] and c["step"] == 10, "the run paused again at step 10")
+        self.assertIn("step 10 of 3000", self.driver.find_element("id", "clock").text)
+        self.assertIn("PAUSED", self.driver.find_element("id", "clock").text)
+        self.click("play")                                    # resume ...
+        self._control(lambda c: not c["paused"] and c["step"] > 10, "the run going on")
+        self.click("play")                                    # ... and pause: the counter stops
+        st = self._control(lambda c: c["paused"], "the run paused")
+        stopped = st["control"]["step"]
+        self._step(10)                                        # so the next 10 steps are exactly 10
+        st = self._control(lambda c: c["paused"] and c["step"] == stopped + 10 and c["pending"] == 0,
+                           f"the run at step {stopped + 10}")
+        # Click robot 3: its panel, from the run's details of it.
+        st = wait_for(lambda: (s := self.state())["placed"] and len(s["placed"]) == 12 and s, "the robots drawn")
+        p3 = next(p for p in st["placed"] if p["id"] == 3)
+        self._mouse("mousedown", p3["x"], p3["y"])
+        self._mouse("mouseup", p3["x"], p3["y"])
+        st = wait_for(lambda: (s := self.state())["detail"] and s["detail"]["id"] == 3 and s["control"]["selected"] == 3
+                      and s, "robot 3's details")
+        d = st["detail"]
+        self.assertEqual(d["clock"], (stopped + 10) / 10)    # the paused step's readings
+        self.assertEqual(len(d["prox"]), 8)
+        self.assertIn("robot 3", st["panel"])
+        self.assertIn("IR prox " + " ".join(map(str, d["prox"])), st["panel"])
+        # Drag it 40 px to the right: the simulator's pose moves there.
+        x0, y0 = p3["x"], p3["y"]
+        want = self.js("return window.liveView.toWorld(arguments[0], arguments[1]);", x0 + 40, y0)
+        self._mouse("mousedown", x0, y0)
+        self._mouse("mousemove", x0 + 20, y0)
+        self._mouse("mousemove", x0 + 40, y0)
+        self._mouse("mouseup", x0 + 40, y0)
+        # A mouse event's coordinates are whole CSS pixels: about 5 mm of this 3 m arena each.
+        tol = 0.01
+        before = st["detail"]
+        st = wait_for(lambda: (s := self.state())["control"]["commands"] == 5 and s, "the move done")
+        self.assertAlmostEqual(st["detail"]["x"], want[0], delta=tol)
+        self.assertAlmostEqual(st["detail"]["y"], want[1], delta=tol)
+        self.assertGreater(math.hypot(st["detail"]["x"] - before["x"], st["detail"]["y"] - before["y"]), 0.1)
+        commands = st["control"]["commands"]
+        # Zoom out (the wheel, about the centre), and drag it off the arena: refused, said, nothing changes.
+        self._mouse("wheel", 320, 320, 700)
+        st = wait_for(lambda: (s := self.state())["zoom"]["k"] < 0.5 and s, "the arena zoomed out")
+        p3 = next(p for p in st["placed"] if p["id"] == 3)
+        self._mouse("mousedown", p3["x"], p3["y"])
+        self._mouse("mousemove", 5, 5)
+        self._mouse("mouseup", 5, 5)
+        wait_for(lambda: "outside the arena" in (self.driver.find_element("id", "error").text or ""),
+                 "the refusal on the page")
+        st = self.state()
+        self.assertEqual(st["control"]["commands"], commands)
+        self.assertAlmostEqual(st["detail"]["x"], want[0], delta=tol)
+        # Zoom in about robot 3: it stays under the cursor, its neighbours move away.
+        self.js("document.getElementById('arena').dispatchEvent(new MouseEvent('dblclick', {bubbles: true}));")
+        st = wait_for(lambda: (s := self.state())["zoom"]["k"] == 1 and s, "the whole arena again")
+        before = {p["id"]: p for p in st["placed"]}
+        self._mouse("wheel", before[3]["x"], before[3]["y"], -350)
+        st = wait_for(lambda: (s := self.state())["zoom"]["k"] > 1.5 and s, "the arena zoomed in")
+        after = {p["id"]: p for p in st["placed"]}
+        self.assertAlmostEqual(after[3]["x"], before[3]["x"], delta=2)     # the cursor's whole pixel
+        self.assertAlmostEqual(after[3]["y"], before[3]["y"], delta=2)
+        far = max((p for p in before.values() if p["id"] != 3),
+                  key=lambda p: math.hypot(p["x"] - before[3]["x"], p["y"] - before[3]["y"]))
+        grown = (math.hypot(after[far["id"]]["x"] - after[3]["x"], after[far["id"]]["y"] - after[3]["y"])
+                 / math.hypot(far["x"] - before[3]["x"], far["y"] - before[3]["y"]))
+        self.assertAlmostEqual(grown, st["zoom"]["k"], delta=0.02 * st["zoom"]["k"])
+        self.assertLess(st["scaleM"], 1.0)
+        # Follow robot 3: it comes to the middle of the canvas, and stays there.
+        self.click("follow")
+        st = wait_for(lambda: (s := self.state()) and (p := {q["id"]: q for q in s["placed"]}[3])
+                      and abs(p["x"] - 320) < 1 and abs(p["y"] - 320) < 1 and s, "robot 3 in the middle")
+        self.click("follow")
+        # Fast to the end: the summary says what was done.
+        self.js("const s = document.getElementById('speed'); s.append(new Option('1000x', '1000')); s.value = '1000';"
+                "s.dispatchEvent(new Event('change'));")
+        self._control(lambda c: c["realtime"] == 1000, "the real-time factor 1000")
+        self.click("play")
+        self.assertEqual(sim.wait(timeout=LONG), 0)
+        summary = json.loads((self.tmp / "controlled" / "run_1" / "summary.json").read_text())
+        self.assertTrue(summary["control"]["touched"])
+        self.assertEqual([c["command"].split()[0] for c in summary["control"]["listed"]],
+                         ["step", "resume", "pause", "step", "move", "realtime", "resume"])
 
 
 if __name__ == "__main__":

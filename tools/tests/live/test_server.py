@@ -208,6 +208,62 @@ class Commands(unittest.TestCase):
         s.frame(100.0)                                                  # to the end, then stops
         self.assertEqual((s.player.time, s.player.playing, s.player.ended), (10.2, False, True))
 
+    def test_control_commands_on_a_log(self):
+        """A log has no run to steer: step moves the replay N control
+        periods (its RUN_INFO's), move and select are refused."""
+        opts = server.argparse.Namespace(speed=2.0, paused=True, prefix="")
+        s = server.Session(Log(self.log, "test"), opts)
+        self.assertIn("no RUN_INFO", s.command({"cmd": "step", "value": 1}))      # two_runs has none
+        self.assertIn("cannot be changed", s.command({"cmd": "move", "robot": 1, "x": 0, "y": 0, "theta": 0}))
+        self.assertIn("cannot be changed", s.command({"cmd": "select", "robot": 1}))
+        self.assertIn("robot needs a whole number, got 1.5", s.command({"cmd": "select", "robot": 1.5}))
+        self.assertIn("needs theta", s.command({"cmd": "move", "robot": 1, "x": 0, "y": 0}))
+        info = swarmlcm.run_info_t()
+        info.version, info.run, info.control_period_ms = info.VERSION, 1, 100
+        events = [(0, "RUN_INFO", info)] + [(round(t * 1e6), ch, m) for t, ch, m in two_runs()]
+        log = write_log(Path(self._tmp.name) / "with_info.lcmlog", events)
+        s = server.Session(Log(log, "test"), opts)
+        self.assertIsNone(s.command({"cmd": "step", "value": 2}))
+        self.assertEqual((round(s.player.time, 9), s.player.playing), (0.2, False))
+        self.assertIn("not a number of control steps", s.command({"cmd": "step", "value": 0}))
+
+    def test_a_run_under_control(self):
+        """On a live bus, the page's commands go to a run that announced its
+        status, with its key; the page's frames carry the status without it."""
+        opts = server.argparse.Namespace(speed=1.0, paused=False, prefix="")
+        bus = Bus("memq://", "swarm-live")
+        s = server.Session(bus, opts)
+        self.assertIn("takes no commands", s.command({"cmd": "step", "value": 3}))
+        sent = []
+        bus.lcm.subscribe("SWARM_CONTROL", lambda ch, data: sent.append(swarmlcm.control_t.decode(data)))
+        st = swarmlcm.control_status_t()
+        st.version, st.run, st.key, st.step, st.paused, st.realtime, st.seq, st.ok = \
+            st.VERSION, 1, "k" * 32, 40, True, 5.0, -1, True
+        st.text = ""
+        bus.lcm.publish("SWARM_CONTROL_STATUS", st.encode())
+        while bus.lcm.handle_timeout(50) > 0:
+            pass
+        self.assertEqual((s.status()["playing"], s.status()["speed"], s.status()["controlled"]), (False, 5.0, True))
+        for cmd in ({"cmd": "play"}, {"cmd": "step", "value": 3}, {"cmd": "speed", "value": 20},
+                    {"cmd": "move", "robot": 2, "x": 0.1, "y": -0.2, "theta": 1.0}, {"cmd": "select", "robot": 2}):
+            self.assertIsNone(s.command(cmd))
+        self.assertIn("not sought", s.command({"cmd": "seek", "value": 1}))
+        while bus.lcm.handle_timeout(50) > 0:
+            pass
+        self.assertEqual([(m.command, m.key, m.steps, m.value, m.robot_id) for m in sent],
+                         [("resume", "k" * 32, 0, 0.0, -1), ("step", "k" * 32, 3, 0.0, -1),
+                          ("realtime", "k" * 32, 0, 20.0, -1), ("move", "k" * 32, 0, 0.0, 2),
+                          ("select", "k" * 32, 0, 0.0, 2)])
+        self.assertAlmostEqual(sent[3].y, -0.2, places=6)
+        self.assertEqual(len({m.seq for m in sent}), 5)
+        f = bus.view.frame({})
+        self.assertEqual((f["control"]["step"], f["control"]["paused"]), (40, True))
+        self.assertNotIn("k" * 32, json.dumps(f))                     # the page never gets the key
+
+    def test_default_replay_speed(self):
+        """A 20-minute log plays in about a minute; a short one at 1x."""
+        self.assertEqual([server.default_speed(t) for t in (30, 1200, 3600, 6000, 1e6)], [1, 20, 50, 100, 1000])
+
     def test_websocket_answers_bad_commands(self):
         srv = Server("--log", self.log, "--paused")
         try:

@@ -244,6 +244,14 @@ class TestReaders(unittest.TestCase):
         doc["metrics"]["oae_total"] = None                 # null -> NaN
         path.write_text(json.dumps(doc))
         self.assertTrue(math.isnan(sd.read_summary(path)["metrics"]["oae_total"]))
+        doc["control"] = {"touched": False, "commands": 2, "listed": []}      # paused and resumed: the same run
+        path.write_text(json.dumps(doc))
+        self.assertEqual(sd.read_summary(path)["seed"], 1)
+        doc["control"]["touched"] = True                   # a robot moved by hand: never pooled
+        path.write_text(json.dumps(doc))
+        with self.assertRaisesRegex(sd.StudyError, "touched by hand"):
+            sd.read_summary(path)
+        del doc["control"]
         path.write_text("[]")
         with self.assertRaisesRegex(sd.StudyError, "no \"metrics\""):
             sd.read_summary(path)

@@ -122,6 +122,24 @@ class Arithmetic(unittest.TestCase):
             self.assertFalse(E.FIGURES[name].paper)
             self.assertIn("no numbers in the text", E.FIGURES[name].note)
 
+    def test_scaled_bias_and_turning_radii(self) -> None:
+        fig = E.FIGURES["bias_scaled"]
+        # the sweep's e-puck levels read back as the paper's marXbot levels
+        for level in (0.018929, 0.037857, 0.056786, 0.075714):
+            self.assertIn(fig.value({E.BIAS: str(level)}), fig.paper)
+        # no bias: straight; small bias: R ~ L v / |b_r - b_l|, so the
+        # e-puck at sd x 53/140 turns as a marXbot at sd, and at the same sd
+        # 140/53 times tighter
+        self.assertTrue(math.isinf(float(E.turning_radii(0.0, E.EPUCK_AXLE_M)[0])))
+        m = float(E.np.median(E.turning_radii(0.005, E.MARXBOT_AXLE_M)))
+        e = float(E.np.median(E.turning_radii(0.005 * E.AXLE_RATIO, E.EPUCK_AXLE_M)))
+        same = float(E.np.median(E.turning_radii(0.005, E.EPUCK_AXLE_M)))
+        self.assertAlmostEqual(e / m, 1.0, delta=0.02)
+        self.assertAlmostEqual(m / same, 1 / E.AXLE_RATIO, delta=0.1)
+        self.assertAlmostEqual(m, E.MARXBOT_AXLE_M * 0.05 / (0.005 * math.sqrt(2) * 0.6745), delta=0.1 * m)
+        table = "\n".join(E.render_radii(fig.paper))
+        self.assertIn("| 5 | 87 % |", table)
+
     def test_another_varied_key_keeps_cells_apart(self) -> None:
         fig = E.FIGURES["bias"]
         rows = [row(E.BIAS, 0.05, 1, 50.0) | {"robots.2.count": "10"},

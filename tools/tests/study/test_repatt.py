@@ -49,6 +49,19 @@ class Arithmetic(unittest.TestCase):
         self.assertIn("0.23", md)       # the paper's One50m beside ours
         self.assertIn("| 0, 0, 1 |", md)
 
+    def test_half_table_normalises_each_shape_by_its_own_rw(self) -> None:
+        rows = []
+        for shape, rw, rep in (("cluster", 200.0, 50.0), ("strip", 100.0, 50.0)):
+            rows += [row("half100", "random_walk", 1, 0, rw) | {R.HALF_SHAPE: shape} for _ in range(3)]
+            rows += [row("half100", "repatt", 1, 0, rep) | {R.HALF_SHAPE: shape} for _ in range(3)]
+        res = R.half_table(rows)
+        self.assertAlmostEqual(res["Half100m/cluster/N0-Q1"]["normalised"], 0.25)
+        self.assertAlmostEqual(res["Half100m/strip/N0-Q1"]["normalised"], 0.5)
+        self.assertNotIn("Half100m/strip/N100-Q40", res)
+        md = "\n".join(R.render_half(res))
+        self.assertIn("| Half100m | cluster | 6 | 200 | 0.25 [0.25, 0.25] | - | - | 0 |", md)
+        self.assertIn("| Half100m | strip | 6 | 100 | 0.50 [0.50, 0.50] | - | - | 0 |", md)
+
     def test_run_entry(self) -> None:
         r = row("two100", "repatt", 40, 0.06, 812.5, finished=1) | {"seed": "7", "run_id": "ab", "picked": "180"}
         e = R.run_entry(r)

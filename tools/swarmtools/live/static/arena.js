@@ -12,6 +12,8 @@ const Arena = (() => {
   };
   const MARGIN = 12;          // px around the walls
   const MIN_ROBOT_PX = 4;     // a robot's radius is never drawn smaller
+  const DETAIL_PX = 6;        // below this radius a robot is its body and heading only (no LEDs, no id):
+                              // 2,000 robots' ids cost more than the rest of the frame (tools/bench/live_page.py)
   const LED_BODY = 8, LED_FRONT = 9;   // robot_state_t.leds bits
 
   const hex = (rgb) => "#" + ((rgb >>> 0) & 0xffffff).toString(16).padStart(6, "0");
@@ -19,8 +21,9 @@ const Arena = (() => {
 
   // World (m, +y up, origin at the arena's centre) to canvas pixels, for the
   // arena of the scene (else RUN_INFO's), or around the robots' poses when
-  // neither came (real robots with a tracker).  null: nothing to place.
-  function layout(canvas, model, posed) {
+  // neither came (real robots with a tracker), zoomed by zoom.k about the
+  // centre and panned by (zoom.px, zoom.py) pixels.  null: nothing to place.
+  function layout(canvas, model, posed, zoom) {
     let w, h, wall = 0, cx0 = 0, cy0 = 0;
     const arena = model.scene ? model.scene.arena : model.info ? model.info.arena : null;
     if (arena && finite(arena[0], arena[1]) && arena[0] > 0 && arena[1] > 0) {
@@ -36,11 +39,13 @@ const Arena = (() => {
     } else {
       return null;
     }
-    const s = Math.min((canvas.width - 2 * MARGIN) / (w + 2 * wall), (canvas.height - 2 * MARGIN) / (h + 2 * wall));
-    const cx = canvas.width / 2, cy = canvas.height / 2;
+    const z = zoom || { k: 1, px: 0, py: 0 };
+    const s = z.k * Math.min((canvas.width - 2 * MARGIN) / (w + 2 * wall), (canvas.height - 2 * MARGIN) / (h + 2 * wall));
+    const cx = canvas.width / 2 + z.px, cy = canvas.height / 2 + z.py;
     return {
       s, w, h, wall, walls: !!arena,
       toCanvas: (x, y) => [cx + (x - cx0) * s, cy - (y - cy0) * s],
+      toWorld: (u, v) => [cx0 + (u - cx) / s, cy0 - (v - cy) / s],
     };
   }
 
@@ -137,6 +142,15 @@ const Arena = (() => {
     }
     disc(ctx, x, y, r, C.outline);
     disc(ctx, x, y, r - rim, fill);
+    if (r < DETAIL_PX) {
+      ctx.strokeStyle = C.heading;
+      ctx.lineWidth = 1;
+      ctx.beginPath();
+      ctx.moveTo(x, y);
+      ctx.lineTo(x + r * c, y + r * s);
+      ctx.stroke();
+      return { id: rb.id, x, y };
+    }
     if (rb.leds & (1 << LED_BODY)) disc(ctx, x, y, Math.max(0.3 * r, 1), C.ledGreen);
     ctx.strokeStyle = C.heading;
     ctx.lineWidth = Math.max(1.2, 0.18 * r);
@@ -158,14 +172,82 @@ const Arena = (() => {
     return { id: rb.id, x, y };
   }
 
+  // What the selected robot perceives (its robot_detail_t, when the run
+  // sends it): its IR range, its camera's field of view and blobs, lines to
+  // where the IR messages waiting in its inbox came from.
+  function perception(ctx, L, rb, d, r) {
+    const [x, y] = L.toCanvas(rb.x, rb.y);
+    const th = finite(rb.theta) ? rb.theta : 0;
+    ctx.strokeStyle = "#d62728";
+    ctx.lineWidth = 2;
+    ctx.beginPath();
+    ctx.arc(x, y, r + 4, 0, 2 * Math.PI);
+    ctx.stroke();
+    if (!d || d.id !== rb.id) return;
+    if (finite(d.ircom_range_m) && d.ircom_range_m > 0) {
+      ctx.setLineDash([4, 4]);
+      ctx.strokeStyle = "#9467bd";
+      ctx.lineWidth = 1;
+      ctx.beginPath();
+      ctx.arc(x, y, d.ircom_range_m * L.s, 0, 2 * Math.PI);
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
+    if (finite(d.camera_fov_rad, d.camera_range_m) && d.camera_fov_rad > 0 && d.camera_range_m > 0) {
+      const R = d.camera_range_m * L.s, half = Math.min(d.camera_fov_rad, 2 * Math.PI) / 2;
+      ctx.fillStyle = "rgba(31, 119, 180, 0.12)";
+      ctx.beginPath();
+      ctx.moveTo(x, y);
+      ctx.arc(x, y, R, -th - half, -th + half);
+      ctx.closePath();
+      ctx.fill();
+      ctx.strokeStyle = "#1f77b4";
+      for (const b of d.blobs) {
+        const a = th + b.bearing_mrad / 1000;
+        ctx.beginPath();
+        ctx.moveTo(x, y);
+        ctx.lineTo(x + R * Math.cos(a), y - R * Math.sin(a));
+        ctx.stroke();
+      }
+    }
+    ctx.strokeStyle = "#9467bd";
+    for (const h of d.heard) {
+      const a = th + h.bearing_mrad / 1000, R = (h.range_mm / 1000) * L.s;
+      ctx.beginPath();
+      ctx.moveTo(x, y);
+      ctx.lineTo(x + R * Math.cos(a), y - R * Math.sin(a));
+      ctx.stroke();
+    }
+  }
+
+  // A scale bar in the lower left corner: a round length near 100 px.
+  function scaleBar(ctx, canvas, L) {
+    const want = 100 / L.s, p = 10 ** Math.floor(Math.log10(want));
+    const m = [1, 2, 5, 10].map((k) => k * p).filter((v) => v <= want).pop() || p;
+    const px = m * L.s, x0 = 12, y0 = canvas.height - 12;
+    ctx.fillStyle = "rgba(255, 255, 255, 0.8)";        // readable over the wall or the floor
+    ctx.fillRect(x0 - 4, y0 - 18, px + 8, 22);
+    ctx.strokeStyle = ctx.fillStyle = "#222";
+    ctx.lineWidth = 2;
+    ctx.beginPath();
+    ctx.moveTo(x0, y0);
+    ctx.lineTo(x0 + px, y0);
+    ctx.stroke();
+    ctx.font = "11px sans-serif";
+    ctx.textBaseline = "bottom";
+    ctx.fillText(m >= 1 ? `${m} m` : `${Math.round(m * 1000)} mm`, x0, y0 - 3);
+    return m;
+  }
+
   // Draws everything; returns the layout (null: nothing to place) and
-  // where each robot went.
-  function draw(canvas, model, robots, colourOf) {
+  // where each robot went.  `zoom` as layout's; `selected`: a robot id
+  // whose perception (`detail`) is drawn, or null.
+  function draw(canvas, model, robots, colourOf, zoom, selected, detail) {
     const ctx = canvas.getContext("2d");
     ctx.fillStyle = C.background;
     ctx.fillRect(0, 0, canvas.width, canvas.height);
     const posed = robots.filter((r) => r.pose && finite(r.x, r.y));
-    const L = layout(canvas, model, posed);
+    const L = layout(canvas, model, posed, zoom);
     if (!L) return { layout: null, drawn: [], radius: 0 };
     if (L.walls) {
       const wall = Math.max(L.wall * L.s, 2);
@@ -195,8 +277,11 @@ const Arena = (() => {
     const fills = model.drawing ? model.drawing.fills : {};
     const drawn = posed.map((rb) => robot(ctx, L, rb, r, colourOf(rb.state), fills[rb.id]));
     shapes.filter((d) => d.layer !== 0).forEach((d) => shape(ctx, L, d));
-    return { layout: L, drawn, radius: r };
+    const sel = selected === null ? null : posed.find((rb) => rb.id === selected);
+    if (sel) perception(ctx, L, sel, detail, r);
+    const scale = scaleBar(ctx, canvas, L);
+    return { layout: L, drawn, radius: r, scale };
   }
 
-  return { draw, hex };
+  return { draw, hex, layout };
 })();

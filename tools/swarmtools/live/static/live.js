@@ -1,6 +1,10 @@
 // live.js - the page's state and its WebSocket to swarm-live: frames from
 // the server (view.py's View.frame: the parts that changed) update `model`,
-// which is drawn at once; the controls send play, pause, speed and seek.
+// which is drawn at once; the controls send play, pause, step, speed and
+// seek (to a run under swarmsim --control: pause, resume, step, its
+// real-time factor).  Click a robot to inspect it (select), drag it to move
+// it (a run under control); the wheel zooms, dragging the floor pans, a
+// double click shows the whole arena again.
 // What the page shows is published as window.liveState (for tests and
 // scripts), and window.liveView.toCanvas(x, y) maps metres to canvas pixels.
 "use strict";
@@ -16,7 +20,8 @@
     return colours.get(state);
   };
   const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 5, 10, 20, 50, 100, 1000];
-  const PARTS = ["info", "schemas", "scene", "drawing", "swarm", "summary", "bridge", "events", "error", "limits"];
+  const PARTS = ["info", "schemas", "scene", "drawing", "swarm", "summary", "bridge", "events", "error", "limits",
+                 "control", "detail"];
   const CHART_EVERY_MS = 250;   // charts are redrawn at most this often (the arena every frame)
 
   const $ = (id) => document.getElementById(id);
@@ -27,6 +32,8 @@
   };
   let ws = null, connected = false, frames = 0, seeking = false, chartsAt = 0, chartTimer = null, chartKeys = [];
   let drawn = { layout: null, drawn: [], radius: 0 };
+  const zoom = { k: 1, px: 0, py: 0 };
+  let selected = null, press = null, answered = null;
 
   function clear() {
     for (const p of PARTS) model[p] = null;
@@ -62,11 +69,19 @@
   }
 
   function controls() {
-    const live = model.mode === "live";
+    const live = model.mode === "live", steered = live && !!model.control;
     playButton.disabled = !connected;
-    playButton.textContent = live ? (model.playing ? "freeze" : "follow")
+    playButton.textContent = steered ? (model.control.paused ? "resume" : "pause")
+      : live ? (model.playing ? "freeze" : "follow")
       : model.playing ? "pause" : model.ended ? "replay" : "play";
-    $("speed-label").hidden = live;
+    $("step").disabled = !connected || (live && !steered);
+    $("step").hidden = $("step-n").hidden = live && !steered;
+    $("speed-label").hidden = live && !steered;
+    if (steered) {
+      const rt = model.control.realtime;
+      if (![...speedSelect.options].some((o) => Number(o.value) === rt)) speedSelect.append(new Option(`${rt}x`, String(rt)));
+      if (document.activeElement !== speedSelect) speedSelect.value = String(rt);
+    }
     seek.hidden = live;
     if (!live && model.end !== null) {
       seek.max = String(model.end);
@@ -79,8 +94,31 @@
   }
 
   function render(chartsNow) {
-    const robots = [...model.robots.values()].sort((a, b) => a.id - b.id);
-    drawn = Arena.draw(canvas, model, robots, colourOf);
+    // The selected robot as of its latest details (every step), when newer
+    // than its state (the robot rate): where a drag put it, at once.
+    const d = model.detail;
+    const robots = [...model.robots.values()].sort((a, b) => a.id - b.id).map((r) => (
+      d && r.id === d.id && r.id === selected && d.clock >= r.clock
+        ? Object.assign({}, r, { x: d.x, y: d.y, theta: d.theta, state: d.state, leds: d.leds, pose: true }) : r));
+    const followed = $("follow").checked && selected !== null ? robots.find((r) => r.id === selected) : null;
+    if (followed && followed.pose && Number.isFinite(followed.x) && Number.isFinite(followed.y)) {
+      const L0 = Arena.layout(canvas, model, robots.filter((r) => r.pose), { k: zoom.k, px: 0, py: 0 });
+      if (L0) {
+        const [u, v] = L0.toCanvas(followed.x, followed.y);
+        zoom.px = canvas.width / 2 - u;
+        zoom.py = canvas.height / 2 - v;
+      }
+    }
+    drawn = Arena.draw(canvas, model, robots, colourOf, zoom, selected, model.detail);
+    if (press && press.robot !== null && press.moved && drawn.layout) {   // where a dragged robot would go
+      const ctx = canvas.getContext("2d");
+      ctx.strokeStyle = "#d62728";
+      ctx.setLineDash([3, 3]);
+      ctx.beginPath();
+      ctx.arc(press.u, press.v, drawn.radius, 0, 2 * Math.PI);
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
     const placed = new Set(drawn.drawn.map((d) => d.id));
     const unplaced = robots.filter((r) => !placed.has(r.id));
     const nopos = $("nopos");
@@ -93,6 +131,12 @@
     Panels.run(model, robots);
     Panels.legend(model, robots, colourOf);
     Panels.tiles(model, unplaced, colourOf);
+    Panels.robotPanel(model, selected === null ? null : model.robots.get(selected), model.detail, colourOf);
+    const c = model.control;
+    if (c && c.seq !== answered) {     // the run's answer to the latest command
+      answered = c.seq;
+      if (!c.ok && c.text) showError(`the simulation refused it: ${c.text}`, false);
+    }
     Panels.summary(model);
     Panels.bridge(model);
     Panels.events(model);
@@ -134,6 +178,12 @@
       stateColours: Object.fromEntries(colours),
       summary: model.summary ? model.summary.state_hash : null,
       bridgeDevices: model.bridge ? model.bridge.devices.length : 0,
+      selected, zoom: Object.assign({}, zoom), scaleM: drawn.scale || null,
+      control: model.control ? Object.assign({}, model.control) : null,
+      detail: model.detail ? { id: model.detail.id, clock: model.detail.clock, prox: model.detail.prox,
+                               ambient: model.detail.ambient, blobs: model.detail.blobs.length,
+                               heard: model.detail.heard.length, x: model.detail.x, y: model.detail.y } : null,
+      panel: $("robot").textContent,
       error: model.error, limits: model.limits,
     };
   }
@@ -187,7 +237,75 @@
     seeking = false;
     send({ cmd: "seek", value: Number(seek.value) });
   });
-  window.liveView = { toCanvas: (x, y) => (drawn.layout ? drawn.layout.toCanvas(x, y) : null) };
+  $("step").addEventListener("click", () => {
+    const n = Math.round(Number($("step-n").value));
+    if (!(n >= 1)) { showError("step: the number of control steps is 1 or more", false); return; }
+    send({ cmd: "step", value: n });
+  });
+
+  // The canvas: pixel coordinates of a mouse event (the canvas may be scaled by CSS).
+  const at = (ev) => {
+    const b = canvas.getBoundingClientRect();
+    return [((ev.clientX - b.left) * canvas.width) / b.width, ((ev.clientY - b.top) * canvas.height) / b.height];
+  };
+  const robotAt = (u, v) => {
+    let best = null, bestD = Math.max(drawn.radius, 6) + 3;
+    for (const d of drawn.drawn) {
+      const dist = Math.hypot(d.x - u, d.y - v);
+      if (dist <= bestD) { best = d.id; bestD = dist; }
+    }
+    return best;
+  };
+  const redraw = () => render(false);
+  canvas.addEventListener("mousedown", (ev) => {
+    const [u, v] = at(ev);
+    press = { u0: u, v0: v, u, v, robot: robotAt(u, v), moved: false, px: zoom.px, py: zoom.py };
+  });
+  canvas.addEventListener("mousemove", (ev) => {
+    if (!press) return;
+    const [u, v] = at(ev);
+    press.u = u;
+    press.v = v;
+    press.moved = press.moved || Math.hypot(u - press.u0, v - press.v0) > 3;
+    if (press.robot === null && press.moved) {    // pan
+      zoom.px = press.px + (u - press.u0);
+      zoom.py = press.py + (v - press.v0);
+    }
+    if (press.moved) redraw();
+  });
+  window.addEventListener("mouseup", () => {
+    const p = press;
+    press = null;
+    if (!p) return;
+    if (!p.moved) {                              // a click: inspect that robot (or none)
+      selected = p.robot;
+      if (model.mode === "live" && model.control) send({ cmd: "select", robot: selected === null ? -1 : selected });
+    } else if (p.robot !== null && drawn.layout) {   // a drag: move it there
+      if (model.mode === "live" && model.control) {
+        const [x, y] = drawn.layout.toWorld(p.u, p.v), rb = model.robots.get(p.robot);
+        send({ cmd: "move", robot: p.robot, x, y, theta: rb && Number.isFinite(rb.theta) ? rb.theta : 0 });
+      } else {
+        showError("moving a robot needs a run under swarmsim --control (a log or a plain live run cannot be changed)", false);
+      }
+    }
+    redraw();
+  });
+  canvas.addEventListener("wheel", (ev) => {
+    ev.preventDefault();
+    const [u, v] = at(ev), k = Math.min(Math.max(zoom.k * Math.exp(-ev.deltaY / 500), 0.25), 200);
+    const cx = canvas.width / 2, cy = canvas.height / 2;    // keep the point under the cursor where it is
+    zoom.px = u - cx - ((u - cx - zoom.px) * k) / zoom.k;
+    zoom.py = v - cy - ((v - cy - zoom.py) * k) / zoom.k;
+    zoom.k = k;
+    redraw();
+  }, { passive: false });
+  $("follow").addEventListener("change", redraw);
+  canvas.addEventListener("dblclick", () => { Object.assign(zoom, { k: 1, px: 0, py: 0 }); redraw(); });
+
+  window.liveView = {
+    toCanvas: (x, y) => (drawn.layout ? drawn.layout.toCanvas(x, y) : null),
+    toWorld: (u, v) => (drawn.layout ? drawn.layout.toWorld(u, v) : null),
+  };
   publish([], []);
   connect();
 })();

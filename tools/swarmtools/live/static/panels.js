@@ -29,7 +29,13 @@ const Panels = (() => {
     if (model.clock !== null && model.clock !== undefined) {
       parts.push(`t = ${model.clock.toFixed(1)} s`);
       const sw = model.swarm, steps = model.info ? model.info.steps : 0;
-      if (sw) parts.push(`step ${sw.step}${steps ? ` of ${steps} (${Math.round((100 * sw.step) / steps)} %)` : ""}`);
+      const step = model.control ? model.control.step : sw ? sw.step : null;
+      if (step !== null) parts.push(`step ${step}${steps ? ` of ${steps} (${Math.round((100 * step) / steps)} %)` : ""}`);
+      if (model.control) {
+        const c = model.control;
+        parts.push(c.paused ? "PAUSED" : `${Charts.fmt(c.realtime)}x real time`);
+        if (c.pending) parts.push(`${c.pending} steps to go`);
+      }
     } else {
       const since = model.mode === "log" ? "since the log's first message" : "since swarm-live started";
       parts.push(`t = ${model.time.toFixed(1)} s ${since}`);
@@ -91,6 +97,71 @@ const Panels = (() => {
     box.dataset.count = String(unplaced.length);
   }
 
+  // IR proximity (outwards: nearer) and ambient (inwards: brighter) per
+  // sensor, on a small polar plot with the robot's heading up.
+  function polar(detail) {
+    const cv = el("canvas", { width: 150, height: 150, className: "polar" });
+    const ctx = cv.getContext("2d"), c = 75, R = 62;
+    ctx.strokeStyle = "#bbb";
+    ctx.beginPath();
+    ctx.arc(c, c, R, 0, 2 * Math.PI);
+    ctx.stroke();
+    ctx.beginPath();
+    ctx.moveTo(c, c);
+    ctx.lineTo(c, c - R - 8);
+    ctx.stroke();
+    const ray = (k, frac, colour, w) => {
+      const a = detail.ir_bearing_mrad[k] / 1000 + Math.PI / 2;   // ahead is up
+      ctx.strokeStyle = colour;
+      ctx.lineWidth = w;
+      ctx.beginPath();
+      ctx.moveTo(c, c);
+      ctx.lineTo(c + R * frac * Math.cos(a), c - R * frac * Math.sin(a));
+      ctx.stroke();
+    };
+    for (let k = 0; k < 8; k++) {
+      if (detail.ambient) ray(k, 1 - Math.min(detail.ambient[k], 4095) / 4095, "#edc948", 6);
+      if (detail.prox) ray(k, Math.min(detail.prox[k], 4095) / 4095, "#e15759", 3);
+    }
+    return cv;
+  }
+
+  // The selected robot: its state and values (robot_state_t), and, from a
+  // run under control, its latest readings (robot_detail_t).
+  function robotPanel(model, rb, detail, colourOf) {
+    if (!rb) { fill("robot"); return; }
+    const d = detail && detail.id === rb.id ? detail : null;
+    const src = d || rb;
+    const state = el("span", { className: "state", textContent: src.state });
+    state.style.background = colourOf(src.state);
+    const leds = [];
+    for (let i = 0; i < 10; i++) if (src.leds & (1 << i)) leds.push(i < 8 ? `${i}` : i === 8 ? "body" : "front");
+    const deg = (rad) => `${Math.round((rad * 180) / Math.PI)}°`;
+    const out = [
+      el("h2", {}, `robot ${rb.id} `, el("span", { textContent: `${src.controller} ` }), state),
+      el("div", { className: "values" }, ...valueLines(model, { controller: src.controller, values: src.values })),
+      el("div", { className: "values", textContent:
+        `pose ${rb.pose || d ? `(${Charts.fmt(src.x)}, ${Charts.fmt(src.y)}) m, ${deg(src.theta)}` : "unknown"}` }),
+      el("div", { className: "values", textContent: `wheels ${src.wheels[0]} / ${src.wheels[1]} steps/s   LEDs ${leds.join(",") || "-"}` }),
+    ];
+    if (d) {
+      out.push(el("div", { className: "values", textContent:
+        `IR prox ${d.prox ? d.prox.join(" ") : "not read"}   ambient ${d.ambient ? d.ambient.join(" ") : "not read"}` }));
+      if (d.prox || d.ambient) out.push(polar(d));
+      out.push(el("div", { className: "values", textContent: d.blobs.length
+        ? `blobs: ${d.blobs.map((b) => `colour ${b.colour} at ${deg(b.bearing_mrad / 1000)} (${deg(b.width_mrad / 1000)} wide)`).join("; ")}`
+        : "blobs: none" }));
+      if (d.mic.length) out.push(el("div", { className: "values", textContent: `microphone per band: ${d.mic.map(Charts.fmt).join(" / ")} counts` }));
+      out.push(el("div", { className: "values", textContent: d.heard.length
+        ? `IR messages waiting: ${d.heard.map((h) => `${h.value} from ${deg(h.bearing_mrad / 1000)} at ${h.range_mm} mm`).join("; ")}`
+        : "IR messages waiting: none" }));
+    } else {
+      out.push(el("div", { className: "values", textContent:
+        `IR max ${rb.ir_max}   ambient min ${rb.ambient_min}   blobs ${rb.blobs}   (a run under --control sends every reading)` }));
+    }
+    fill("robot", ...out);
+  }
+
   function summary(model) {
     const m = model.summary;
     if (!m) { fill("summary"); return; }
@@ -118,5 +189,5 @@ const Panels = (() => {
     fill("events", el("h2", { textContent: "events" }), el("div", { textContent: counts }), el("ol", {}, ...latest));
   }
 
-  return { el, clock, run, legend, tiles, summary, bridge, events };
+  return { el, clock, run, legend, tiles, robotPanel, summary, bridge, events };
 })();
