@@ -240,7 +240,7 @@ def render_half(res: dict[str, Any]) -> list[str]:
              "| world | half_shape | runs | RW (s) | N0-Q1 / RW | N100-Q40 / RW | N100-Q40 slotted / RW | unfinished |",
              "|---|---|---:|---:|---:|---:|---:|---:|"]
     for (w, shape) in sorted({(x["world"], x["half_shape"]) for x in res.values()}, key=lambda k: (len(k[0]), k)):
-        def cell(a: str) -> str:
+        def cell(a: str, w: str = w, shape: str = shape) -> str:
             x = res.get(f"{w}/{shape}/{a}")
             return "-" if x is None else f"{fmt(x['normalised'])} [{fmt(x['ci_low'])}, {fmt(x['ci_high'])}]"
         rw = res.get(f"{w}/{shape}/RW", {})
