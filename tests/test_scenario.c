@@ -828,7 +828,7 @@ static void test_override_errors(void **state)
     expect_set_error(fx, "", "name=[", "value: YAML syntax error");
     expect_set_error(fx, "", "name=", "name: expected a string, got nothing");
     expect_set_error(fx, RW, "robots.0.controller=foo",
-                     "robots[0].controller: unknown controller 'foo' (valid: random_walk");
+                     "robots[0].controller: unknown controller 'foo' (valid: calib, random_walk");
     /* A file error keeps its file line even with valid overrides. */
     sets[0] = "seed=2";
     assert_int_equal(load_sets(fx, "s.yaml", "seed: 1\n" RW "    count: x\n", sets), -1);
@@ -850,11 +850,11 @@ static void test_group_params(void **state)
     assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);
     assert_int_equal(rw_params(fx->sc)->turn_chance, 1311);
     expect_load_error(fx, "robots:\n  - controller: nosuch\n", 2,
-                      "robots[0].controller: unknown controller 'nosuch' (valid: random_walk");
+                      "robots[0].controller: unknown controller 'nosuch' (valid: calib, random_walk");
     expect_load_error(fx, "robots:\n  - controller: forgaer\n", 2,
                       "robots[0].controller: unknown controller 'forgaer' (did you mean 'forager'?)");
     expect_load_error(fx, "robots:\n  - count: 3\n", 2,
-                      "robots[0].controller: every group needs a controller (one of random_walk");
+                      "robots[0].controller: every group needs a controller (one of calib, random_walk");
     expect_load_error(fx, RW "    params:\n      turn_speed_steps_s: 0\n", 4,
                       "robots[0].params.turn_speed_steps_s: 0 is out of range [1, 1000]");
     expect_load_error(fx, RW "    contoller: idle\n", 3,
