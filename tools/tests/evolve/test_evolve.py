@@ -143,9 +143,10 @@ class Searches(unittest.TestCase):
                     self.assertTrue(all(b >= a for a, b in zip(best, best[1:], strict=False)))
 
 
-@unittest.skipUnless(SWARMSIM.is_file(), "the simulator is not built")
 class TinyEvolution(unittest.TestCase):
     def setUp(self) -> None:
+        # Never skipped: make python-tests builds the simulator first.
+        self.assertTrue(SWARMSIM.is_file(), f"{SWARMSIM}: the simulator is not built (make build/swarmsim)")
         self._tmp = tempfile.TemporaryDirectory(prefix="evolve_test.")
         self.dir = Path(self._tmp.name)
 
