@@ -81,6 +81,7 @@ help:
 	@echo "make study-faults seed 000 under faults; make study-repatt seed 002's study (STUDY_ARGS=--quick)"
 	@echo "make study-gains seed 002's gains study, reduced (Figs 2a/2b; STUDY_ARGS=--quick, --estimate 120: the full sweep's cost)"
 	@echo "make study-eaipp seed 003 (EAIPP, Figs 10-17; STUDY_ARGS=--quick, --figures maze,loss, --picture)"
+	@echo "make evolve     evolve a controller's params (EVOLVE=studies/nnea_evolve.yaml, EVOLVE_ARGS=--out, --jobs, --backend slurm)"
 	@echo "make firmware-check / firmware / flash   the e-puck gates, .hex files, flashing"
 	@echo "make pil-avr-compare  every image on the emulated ATmega2560 beside its host build, 3,000 steps, with cycles and stack (make readme-pil-cpu: into docs/hardware/footprint.md; make pil-avr-bench: PIL robots per core)"
 	@echo "make monitor / spy   watch telemetry (LCM_URL=)"

@@ -21,6 +21,7 @@
 #include "common/random_walk.h"
 #include "swarmsim/scenario.h"
 #include "foraging/forager.h"
+#include "nnea/nnea.h"
 #include "registry.h"
 #include "tasks/foraging/foraging.h"
 /* The models' configs, set and read in code (their headers are internal). */
@@ -827,7 +828,7 @@ static void test_override_errors(void **state)
     expect_set_error(fx, "", "name=[", "value: YAML syntax error");
     expect_set_error(fx, "", "name=", "name: expected a string, got nothing");
     expect_set_error(fx, RW, "robots.0.controller=foo",
-                     "robots[0].controller: unknown controller 'foo' (valid: random_walk");
+                     "robots[0].controller: unknown controller 'foo' (valid: calib, random_walk");
     /* A file error keeps its file line even with valid overrides. */
     sets[0] = "seed=2";
     assert_int_equal(load_sets(fx, "s.yaml", "seed: 1\n" RW "    count: x\n", sets), -1);
@@ -849,11 +850,11 @@ static void test_group_params(void **state)
     assert_int_equal(rw_params(fx->sc)->turn_speed_steps_s, 300);
     assert_int_equal(rw_params(fx->sc)->turn_chance, 1311);
     expect_load_error(fx, "robots:\n  - controller: nosuch\n", 2,
-                      "robots[0].controller: unknown controller 'nosuch' (valid: random_walk");
+                      "robots[0].controller: unknown controller 'nosuch' (valid: calib, random_walk");
     expect_load_error(fx, "robots:\n  - controller: forgaer\n", 2,
                       "robots[0].controller: unknown controller 'forgaer' (did you mean 'forager'?)");
     expect_load_error(fx, "robots:\n  - count: 3\n", 2,
-                      "robots[0].controller: every group needs a controller (one of random_walk");
+                      "robots[0].controller: every group needs a controller (one of calib, random_walk");
     expect_load_error(fx, RW "    params:\n      turn_speed_steps_s: 0\n", 4,
                       "robots[0].params.turn_speed_steps_s: 0 is out of range [1, 1000]");
     expect_load_error(fx, RW "    contoller: idle\n", 3,
@@ -979,6 +980,55 @@ static void test_task_sections(void **state)
 
 /* ---------------------------------------------------------------- --help */
 
+/* Array keys (param.h's PARAM_ARRAY_FIELD): a sequence of exactly the
+ * field's count, each element typed and ranged with its index in errors;
+ * --set replaces the whole array, or one element where the file gives it;
+ * --help shows type[count]. */
+#define NN "robots:\n  - controller: nnea\n    params:\n"
+static void test_array_params(void **state)
+{
+    fixture_t *fx = *state;
+    static const char *const whole[] = { "robots.0.params.b_out=[7, -8, 9]", NULL };
+    static const char *const one[] = { "robots.0.params.b_out.1=-300", NULL };
+    static const char *const bad_one[] = { "robots.0.params.b_out.2=3000", NULL };
+    static const char *const absent_one[] = { "robots.0.params.tau.1=5", NULL };
+    const nnea_params_t *p;
+    assert_int_equal(load(fx, NN "      b_out: [1, 2, 3]\n      tau: [0, 10, 200, 255]\n"), 0);
+    p = (const nnea_params_t *)fx->sc->groups[0].params.bytes;
+    assert_int_equal(p->b_out[0], 1);
+    assert_int_equal(p->b_out[2], 3);
+    assert_int_equal(p->tau[3], 255);
+    assert_int_equal(p->speed_steps_s, 388);          /* other keys keep their defaults */
+    assert_int_equal(load(fx, NN "      b_out:\n        - -2047\n        - 0\n        - 2047\n"), 0);
+    p = (const nnea_params_t *)fx->sc->groups[0].params.bytes;
+    assert_int_equal(p->b_out[0], -2047);
+    expect_load_error(fx, NN "      b_out: [1, 2]\n", 4, "robots[0].params.b_out: expected exactly 3 numbers, got 2");
+    expect_load_error(fx, NN "      b_out: [1, 2, 3, 4]\n", 4,
+                      "robots[0].params.b_out: expected exactly 3 numbers, got 4");
+    expect_load_error(fx, NN "      b_out: 5\n", 4,
+                      "robots[0].params.b_out: expected a sequence of 3 numbers (e.g. [0, 1, ...]), got '5'");
+    expect_load_error(fx, NN "      b_out:\n        - 1\n        - 3000\n        - 3\n", 6,
+                      "robots[0].params.b_out[1]: 3000 is out of range [-2047, 2047]");
+    expect_load_error(fx, NN "      tau: [1, 2.5, 3, 4]\n", 4, "robots[0].params.tau[1]: expected an integer, got '2.5'");
+    expect_load_error(fx, NN "      tau: [1, -1, 3, 4]\n", 4, "robots[0].params.tau[1]: -1 is out of range [0, 255]");
+    expect_load_error(fx, NN "      tau: [1, [2], 3, 4]\n", 4, "robots[0].params.tau[1]: expected a number, got a sequence");
+    /* --set: the whole array, one element of the file's, errors with the index. */
+    assert_int_equal(load_sets(fx, "s.yaml", NN "      b_out: [1, 2, 3]\n", whole), 0);
+    p = (const nnea_params_t *)fx->sc->groups[0].params.bytes;
+    assert_int_equal(p->b_out[0], 7);
+    assert_int_equal(p->b_out[1], -8);
+    assert_int_equal(p->b_out[2], 9);
+    assert_int_equal(load_sets(fx, "s.yaml", NN "      b_out: [1, 2, 3]\n", one), 0);
+    p = (const nnea_params_t *)fx->sc->groups[0].params.bytes;
+    assert_int_equal(p->b_out[0], 1);
+    assert_int_equal(p->b_out[1], -300);
+    assert_int_equal(load_sets(fx, "s.yaml", NN "      b_out: [1, 2, 3]\n", bad_one), -1);
+    assert_string_equal(fx->err, "--set robots.0.params.b_out.2=3000: robots[0].params.b_out[2]: "
+                                 "3000 is out of range [-2047, 2047]");
+    assert_int_equal(load_sets(fx, "s.yaml", NN "      b_out: [1, 2, 3]\n", absent_one), -1);
+    assert_non_null(strstr(fx->err, "index out of range (the sequence has 0 entries)"));
+}
+
 static void test_print_schema(void **state)
 {
     static const char *const wanted[] = {
@@ -987,6 +1037,7 @@ static void test_print_schema(void **state)
         "robots[].params.speed_steps_s", "when controller is forager", "ircom.quantise_bearing",
         "output.timeseries_every", "arena.width", "0.05", "foraging.nest.diameter",
         "foraging.information", "beacon|global", "tracker.dropout",
+        "robots[].params.w_in", "int[56]", "[-2047, 2047]",
     };
     char *text = NULL;
     size_t len = 0, i;
@@ -1068,6 +1119,7 @@ int main(void)
         T(test_placements),
         T(test_controller_needs),
         T(test_task_sections),
+        T(test_array_params),
         T(test_print_schema),
         T(test_host_messages),
     };

@@ -14,6 +14,13 @@
  *     { .key = "alpha", PARAM_FIELD(forager_params_t, alpha, float),
  *       .min = 0, .max = 1000, .doc = "eq 6 weight of k, per robot/m^2" },
  *
+ * An array of numbers (a controller's weights, a genome) is one key whose
+ * value is a YAML sequence of exactly as many numbers as the field has
+ * elements, each checked against the key's one range:
+ *
+ *     { .key = "weights", PARAM_ARRAY_FIELD(net_params_t, weights, int16_t),
+ *       .min = -2048, .max = 2047, .doc = "synaptic weights, Q8 (1/256)" },
+ *
  * The tables are const data: on the robot they cost flash only if an image
  * refers to them (the simulator's loader does; images do not).
  */
@@ -37,19 +44,22 @@ typedef enum param_type {
     PARAM_ANGLE    /**< float, degrees, or the word "random" (stored as NaN) */
 } param_type_t;
 
-/** One scalar key of a parameter struct. */
+/** One key of a parameter struct: a scalar, or an array of numbers. */
 typedef struct param_desc {
     const char *key;        /**< YAML key */
-    param_type_t type;
+    param_type_t type;      /**< of the value (an array: of each element) */
     size_t offset;          /**< offsetof in the struct */
-    size_t size;            /**< sizeof the member (strings: buffer size) */
-    double min, max;        /**< inclusive range for numbers */
+    size_t size;            /**< sizeof the member (strings: buffer size; arrays:
+                                 one element) */
+    double min, max;        /**< inclusive range for numbers (each element) */
     const char *const *choices; /**< PARAM_ENUM only */
     const char *doc;        /**< one line, with the unit */
+    uint16_t count;         /**< 0: a scalar; n > 0: an array of n numbers of
+                                 `type` (PARAM_ARRAY_FIELD) */
 } param_desc_t;
 
 /** Ends a table. */
-#define PARAM_END { NULL, PARAM_BOOL, 0, 0, 0.0, 0.0, NULL, NULL }
+#define PARAM_END { NULL, PARAM_BOOL, 0, 0, 0.0, 0.0, NULL, NULL, 0 }
 
 /** 1 if field `f` of struct `T` has C type `ctype`, else 0. */
 #define FIELD_HAS_TYPE(T, f, ctype) \
@@ -77,6 +87,13 @@ typedef struct param_desc {
  *  uint64_t, float, double, and must be the field's type. */
 #define PARAM_FIELD(T, f, ctype) \
     .type = PARAM_TYPE_##ctype, .offset = FIELD_OFFSET_AS(T, f, ctype), .size = FIELD_SIZE(T, f)
+/** An array field `ctype f[n]` of struct `T`, `ctype` one of PARAM_FIELD's
+ *  number types: the YAML value is a sequence of exactly n numbers.  A
+ *  scalar field, or an array of another type, is a build error. */
+#define PARAM_ARRAY_FIELD(T, f, ctype) \
+    .type = PARAM_TYPE_##ctype, \
+    .offset = FIELD_OFFSET_AS(T, f, ctype[FIELD_SIZE(T, f) / sizeof(ctype)]), \
+    .size = sizeof(ctype), .count = (uint16_t)(FIELD_SIZE(T, f) / sizeof(ctype))
 /** true/false in a uint8_t field. */
 #define PARAM_BOOL_FIELD(T, f) \
     .type = PARAM_BOOL, .offset = FIELD_OFFSET_AS(T, f, uint8_t), .size = FIELD_SIZE(T, f)

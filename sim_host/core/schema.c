@@ -363,10 +363,9 @@ static int fill_angle(const loader_t *ld, const param_desc_t *d, const ynode_t *
     return fill_real(ld, d, v, path, dst);
 }
 
-int schema_fill_scalar(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
-                       const char *path, void *base)
+static int fill_one(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
+                    const char *path, void *dst)
 {
-    void *dst = (char *)base + d->offset;
     switch (d->type) {
     case PARAM_BOOL:
         return fill_bool(ld, d, v, path, dst);
@@ -382,6 +381,49 @@ int schema_fill_scalar(const loader_t *ld, const param_desc_t *d, const ynode_t 
     default:
         return fill_integer(ld, d, v, path, dst);
     }
+}
+
+/* An array key: a sequence of exactly d->count numbers, each checked as a
+ * scalar of the key's type and range.  Elements are written only once all
+ * are good, so a bad element leaves the array as it was. */
+static int fill_array(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
+                      const char *path, void *dst)
+{
+    uint8_t tmp[PARAM_ARRAY_MAX_BYTES];
+    char got[64], at[SCHEMA_PATH_MAX];
+    size_t i;
+    if (v == NULL || v->kind != YNODE_SEQUENCE) {
+        ytree_describe(v, got, sizeof got);
+        return schema_fail(ld, v, path, "expected a sequence of %u numbers (e.g. [0, 1, ...]), got %s",
+                           (unsigned)d->count, got);
+    }
+    if (v->count != d->count) {
+        return schema_fail(ld, v, path, "expected exactly %u numbers, got %zu", (unsigned)d->count,
+                           v->count);
+    }
+    if ((size_t)d->count * d->size > sizeof tmp) {
+        return schema_fail(ld, v, path, "array of %zu bytes: larger than the loader's %u",
+                           (size_t)d->count * d->size, (unsigned)PARAM_ARRAY_MAX_BYTES);
+    }
+    for (i = 0; i < v->count; i++) {
+        const ynode_t *item = v->items[i];
+        schema_index_path(at, path, i);
+        if (item == NULL || item->kind != YNODE_SCALAR) {
+            return schema_wrong_type(ld, item != NULL ? item : v, at, "a number");
+        }
+        if (fill_one(ld, d, item, at, tmp + i * d->size) != 0) {
+            return -1;
+        }
+    }
+    memcpy(dst, tmp, (size_t)d->count * d->size);
+    return 0;
+}
+
+int schema_fill_scalar(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
+                       const char *path, void *base)
+{
+    void *dst = (char *)base + d->offset;
+    return d->count > 0 ? fill_array(ld, d, v, path, dst) : fill_one(ld, d, v, path, dst);
 }
 
 /* ---------------------------------------------------------------- mappings */
@@ -625,9 +667,35 @@ static const char *type_name(param_type_t t)
     }
 }
 
+static void format_value(const param_desc_t *d, const void *base, char *buf, size_t len);
+
+/* An array's default as "[a, b, c, ...]": its first elements, as many as fit. */
+static void format_array(const param_desc_t *d, const void *base, char *buf, size_t len)
+{
+    param_desc_t one = *d;
+    size_t used = 1, i;
+    one.count = 0;
+    snprintf(buf, len, "[");
+    for (i = 0; i < d->count; i++) {
+        char v[32];
+        one.offset = d->offset + i * d->size;
+        format_value(&one, base, v, sizeof v);
+        if (used + strlen(v) + 6 >= len) {
+            snprintf(buf + used, len - used, "...]");
+            return;
+        }
+        used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? "," : "", v);
+    }
+    snprintf(buf + used, len - used, "]");
+}
+
 static void format_value(const param_desc_t *d, const void *base, char *buf, size_t len)
 {
     const char *p = (const char *)base + d->offset;
+    if (d->count > 0) {
+        format_array(d, base, buf, len);
+        return;
+    }
     union { uint8_t u8; uint16_t u16; int16_t i16; uint32_t u32; uint64_t u64; float f;
             double d; int i; } v;
     memcpy(&v, p, d->type == PARAM_STRING ? 0 : d->size);
@@ -654,9 +722,15 @@ void schema_print_params(FILE *f, const char *prefix, const param_desc_t *d, con
     for (; d != NULL && d->key != NULL; d++) {
         char path[SCHEMA_PATH_MAX], def[48], range[128];
         schema_join(path, prefix, d->key);
+        char type[24];
         format_value(d, base, def, sizeof def);
         format_range(d, range, sizeof range);
-        fprintf(f, "  %-34s %-6s %-12s %-22s %s\n", path, type_name(d->type), def, range, d->doc);
+        if (d->count > 0) {
+            snprintf(type, sizeof type, "%s[%u]", type_name(d->type), (unsigned)d->count);
+        } else {
+            snprintf(type, sizeof type, "%s", type_name(d->type));
+        }
+        fprintf(f, "  %-34s %-6s %-12s %-22s %s\n", path, type, def, range, d->doc);
     }
 }
 

@@ -15,6 +15,11 @@
  *  - Strings may be plain or quoted but not empty or null.
  *  - A given sequence replaces the default one; each entry starts from the
  *    entry defaults.
+ *  - An array key (PARAM_ARRAY_FIELD) takes a sequence of exactly its
+ *    element count, each element checked like a scalar of its type and
+ *    range (errors name "key[i]"); a bad element changes nothing.  One
+ *    element can be overridden with --set key.I=V where the file gives the
+ *    array, the whole array anywhere with --set key=[v0, v1, ...].
  */
 #ifndef SIM_SCHEMA_H
 #define SIM_SCHEMA_H
@@ -27,6 +32,9 @@
 #include "yaml_tree.h"
 
 #define SCHEMA_PATH_MAX 256
+/** Largest array key (param.h's PARAM_ARRAY_FIELD) the loader fills, bytes:
+ *  a controller's whole params block (SCENARIO_CONTROLLER_PARAMS_MAX). */
+#define PARAM_ARRAY_MAX_BYTES 512u
 
 typedef struct loader {
     const char *file;
@@ -131,7 +139,7 @@ int schema_fill_mapping(const loader_t *ld, const ynode_t *node, const char *pat
                         const schema_t *schema, void *base);
 int schema_fill_sequence(const loader_t *ld, const ynode_t *node, const char *path,
                          const seq_desc_t *seq, void *base);
-/** One scalar key. */
+/** One key of a table: a scalar, or an array (param_desc_t.count). */
 int schema_fill_scalar(const loader_t *ld, const param_desc_t *d, const ynode_t *v,
                        const char *path, void *base);
 

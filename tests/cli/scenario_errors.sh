@@ -82,7 +82,7 @@ expect_error "object outside the arena" \
     "swarmsim: $d/object_outside.yaml:4: objects[0]: the cylinder reaches outside the arena" \
     "$d/object_outside.yaml"
 expect_error "unknown controller" \
-    "swarmsim: $d/bad_controller.yaml:4: robots[0].controller: unknown controller 'levy_walk' (valid: random_walk" \
+    "swarmsim: $d/bad_controller.yaml:4: robots[0].controller: unknown controller 'levy_walk' (valid: calib, random_walk" \
     "$d/bad_controller.yaml"
 expect_error "controller parameter out of range" \
     "swarmsim: $d/bad_controller_param.yaml:5: robots[0].params.speed_steps_s: 5000 is out of range [0, 1000]" \

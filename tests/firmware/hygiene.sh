@@ -209,6 +209,17 @@ if param_probe int16_t; then ok; else bad "a right PARAM_FIELD does not compile"
 for wrong in uint16_t uint32_t float; do
     if param_probe "$wrong"; then bad "PARAM_FIELD(.., int16_t field, $wrong) compiled"; else ok; fi
 done
+# PARAM_ARRAY_FIELD likewise: the element type must be the array's, and a
+# scalar field is not an array.
+array_probe() {
+    printf '#include "common/param.h"\ntypedef struct { int16_t a[6]; int16_t s; } p_t;\nconst param_desc_t probe_d[] = { { .key = "a", PARAM_ARRAY_FIELD(p_t, %s, %s) }, PARAM_END };\n' "$1" "$2" > "$ptest"
+    cc -std=c99 $(layer_inc firmware) -Wall -Wextra -Werror -c "$ptest" -o "$out/param_probe.o" 2>/dev/null
+}
+if array_probe a int16_t; then ok; else bad "a right PARAM_ARRAY_FIELD does not compile"; fi
+for wrong in "a uint16_t" "a uint8_t" "a float" "s int16_t"; do
+    # shellcheck disable=SC2086
+    if array_probe $wrong; then bad "PARAM_ARRAY_FIELD($wrong) compiled"; else ok; fi
+done
 
 # The checker must catch what it looks for.
 probe="$out/probe.c"

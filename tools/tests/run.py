@@ -1,7 +1,8 @@
 """Runs the host tools' tests (tools/tests/telemetry, study, sil, sweep,
-fuzz, the parsers' property tests, plan, the ALNS planner, sim, the
-simulator from Python, and fake_epuck, the real-robot tools against
-swarm-fake-epuck; the flasher's run in `make firmware-check`) with
+evolve, fuzz, the parsers' property tests, plan, the ALNS planner, sim, the
+simulator from Python, fake_epuck, the real-robot tools against
+swarm-fake-epuck, and calibrate, the calibration kit against a fake e-puck
+with known model parameters; the flasher's run in `make firmware-check`) with
 unittest discovery and ends with one line
 'python tools: N passed, N failed, N skipped'."""
 import sys
@@ -10,7 +11,7 @@ from pathlib import Path
 
 here = Path(__file__).resolve().parent
 suite = unittest.TestSuite()
-for group in ("telemetry", "study", "sil", "sweep", "fuzz", "plan", "sim", "fake_epuck"):
+for group in ("telemetry", "study", "sil", "sweep", "evolve", "fuzz", "plan", "sim", "fake_epuck", "calibrate"):
     suite.addTests(unittest.defaultTestLoader.discover(str(here / group), top_level_dir=str(here.parent)))
 result = unittest.TextTestRunner(verbosity=2).run(suite)
 failed = len(result.failures) + len(result.errors) + len(result.unexpectedSuccesses)

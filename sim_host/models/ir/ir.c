@@ -9,13 +9,108 @@
 
 #include "core/sim_internal.h"
 #include "models/faults/faults.h"
+#include "models/per_robot.h"
 #include "units.h"
 
 /* Where the sensors are: hal/units.h. */
 #define IR_MOUNT_RADIUS EPUCK_IR_MOUNT_RADIUS_M
 #define SENSOR_HEIGHT EPUCK_IR_HEIGHT_M
 
+/* ---- per sensor and per robot (the calibration kit's fragment) */
+#define S ir_sensor_cal_t
+static const param_desc_t sensor_params[] = {
+    { .key = "gain", PARAM_FIELD(S, gain, float), .min = 0, .max = 100,
+      .doc = "times the table's proximity value" },
+    { .key = "offset", PARAM_FIELD(S, offset, float), .min = -4095, .max = 4095,
+      .doc = "added to it, counts (the reading with nothing in range)" },
+    PARAM_END
+};
+#undef S
+static const schema_t sensor_schema = { sensor_params, NULL, NULL, NULL };
+static const ir_sensor_cal_t sensor_default = { 1.0f, 0.0f };
+
+#define RC ir_robot_cal_t
+static const param_desc_t robot_params[] = {
+    { .key = "id", PARAM_FIELD(RC, id, uint16_t), .min = 0, .max = 65535,
+      .doc = "the robot's hal_robot_id" },
+    { .key = "noise_rel", PARAM_FIELD(RC, noise_rel, float), .min = 0, .max = 1,
+      .doc = "its relative Gaussian sd (absent: the section's)" },
+    { .key = "noise_abs", PARAM_FIELD(RC, noise_abs, float), .min = 0, .max = 4095,
+      .doc = "its additive Gaussian sd, raw counts (absent: the section's)" },
+    PARAM_END
+};
+static const seq_desc_t robot_sensors_seq = {
+    "sensors", HAL_IR_COUNT, sizeof(ir_sensor_cal_t), &sensor_default, &sensor_schema,
+    offsetof(RC, sensor), offsetof(RC, sensor_count), NULL, 0, NULL
+};
+#undef RC
+static const child_t robot_children[] = {
+    { "sensors", CHILD_SEQUENCE, NULL, &robot_sensors_seq, "its 8 sensors' gain and offset, IR0 first "
+      "(absent: the section's)" },
+    CHILD_END
+};
+static const schema_t robot_schema = { robot_params, robot_children, NULL, NULL };
+
+/* An entry's sensors: none (the section's) or all eight. */
+static int check_sensor_count(const loader_t *ld, const ynode_t *item, const char *path, uint32_t n)
+{
+    char p[SCHEMA_PATH_MAX];
+    if (n == 0 || n == HAL_IR_COUNT) {
+        return 0;
+    }
+    schema_join(p, path, "sensors");
+    return schema_fail(ld, schema_node_of(item, "sensors"), p, "lists %u sensors: give all %u (IR0 first) or none",
+                       (unsigned)n, (unsigned)HAL_IR_COUNT);
+}
+
+static int check_robot(const loader_t *ld, const ynode_t *item, const char *path, void *elem)
+{
+    return check_sensor_count(ld, item, path, ((const ir_robot_cal_t *)elem)->sensor_count);
+}
+
+static void robot_init(void *elem)
+{
+    ir_robot_cal_t *e = elem;
+    e->noise_rel = e->noise_abs = NAN;
+}
+
+static const ir_robot_cal_t robot_default = { 0, 0.0f, 0.0f, 0, { { 1.0f, 0.0f } } };
+
 #define C ir_config_t
+static const seq_desc_t sensors_seq = {
+    "sensors", HAL_IR_COUNT, sizeof(ir_sensor_cal_t), &sensor_default, &sensor_schema,
+    offsetof(C, sensor), offsetof(C, sensor_count), NULL, 0, NULL
+};
+static const seq_desc_t robots_seq = {
+    "robots", PER_ROBOT_MAX, sizeof(ir_robot_cal_t), &robot_default, &robot_schema,
+    offsetof(C, robots), offsetof(C, robot_count), check_robot, 1, robot_init
+};
+
+#define A ambient_robot_cal_t
+static const param_desc_t ambient_robot_params[] = {
+    { .key = "id", PARAM_FIELD(A, id, uint16_t), .min = 0, .max = 65535,
+      .doc = "the robot's hal_robot_id" },
+    { .key = "dark", PARAM_FIELD(A, dark, float), .min = 0, .max = 4095,
+      .doc = "its reading in the dark, counts (absent: the section's)" },
+    { .key = "half", PARAM_FIELD(A, half, float), .min = 1e-6, .max = 1e6,
+      .doc = "the irradiance at which its reading halves (absent: the section's)" },
+    { .key = "noise_rel", PARAM_FIELD(A, noise_rel, float), .min = 0, .max = 1,
+      .doc = "its relative Gaussian sd (absent: the section's)" },
+    PARAM_END
+};
+#undef A
+static const schema_t ambient_robot_schema = { ambient_robot_params, NULL, NULL, NULL };
+static void ambient_robot_init(void *elem)
+{
+    ambient_robot_cal_t *e = elem;
+    e->dark = e->half = e->noise_rel = NAN;
+}
+static const ambient_robot_cal_t ambient_robot_default = { 0, 0.0f, 0.0f, 0.0f };
+static const seq_desc_t ambient_robots_seq = {
+    "robots", PER_ROBOT_MAX, sizeof(ambient_robot_cal_t), &ambient_robot_default, &ambient_robot_schema,
+    offsetof(C, ambient.robots), offsetof(C, ambient.robot_count), NULL, 1, ambient_robot_init
+};
+
 static const param_desc_t ir_params[] = {
     { .key = "aperture", PARAM_FIELD(C, aperture, float), .min = 0.1, .max = 90,
       .doc = "half-angle of the sensing cone, deg" },
@@ -39,8 +134,18 @@ static const param_desc_t ambient_params[] = {
 };
 #undef C
 
-static const schema_t ir_section = { ir_params, NULL, NULL, NULL };
-static const schema_t ambient_section = { ambient_params, NULL, NULL, NULL };
+static const child_t ir_children[] = {
+    { "sensors", CHILD_SEQUENCE, NULL, &sensors_seq, "the 8 sensors' gain and offset, IR0 first (a lab's "
+      "average; absent: gain 1, offset 0)" },
+    { "robots", CHILD_SEQUENCE, NULL, &robots_seq, "parameters fitted to one robot id (the calibration kit)" },
+    CHILD_END
+};
+static const child_t ambient_children[] = {
+    { "robots", CHILD_SEQUENCE, NULL, &ambient_robots_seq, "parameters fitted to one robot id" },
+    CHILD_END
+};
+static const schema_t ir_section = { ir_params, ir_children, NULL, NULL };
+static const schema_t ambient_section = { ambient_params, ambient_children, NULL, NULL };
 static const child_t sections[] = {
     { "ir", CHILD_MAPPING, &ir_section, NULL, "IR proximity sensors" },
     { "ambient", CHILD_MAPPING, &ambient_section, NULL, "ambient light sensors" },
@@ -61,6 +166,41 @@ static void ir_defaults(void *config)
     c->ambient.noise_rel = 0.01f;
 }
 
+static int ir_check(const void *config, const scenario_t *sc, char path[SCHEMA_PATH_MAX], char msg[SIM_ERR_MAX])
+{
+    const ir_config_t *c = config;
+    (void)sc;
+    if (c->sensor_count != 0 && c->sensor_count != HAL_IR_COUNT) {
+        snprintf(path, SCHEMA_PATH_MAX, "ir.sensors");
+        snprintf(msg, SIM_ERR_MAX, "lists %u sensors: give all %u (IR0 first) or none", (unsigned)c->sensor_count,
+                 (unsigned)HAL_IR_COUNT);
+        return -1;
+    }
+    int32_t k = per_robot_duplicate(c->robots, c->robot_count, sizeof *c->robots, offsetof(ir_robot_cal_t, id));
+    const char *sec = "ir";
+    if (k < 0) {
+        k = per_robot_duplicate(c->ambient.robots, c->ambient.robot_count, sizeof *c->ambient.robots,
+                                offsetof(ambient_robot_cal_t, id));
+        sec = "ambient";
+    }
+    if (k >= 0) {
+        snprintf(path, SCHEMA_PATH_MAX, "%s.robots.%d.id", sec, (int)k);
+        snprintf(msg, SIM_ERR_MAX, "robot id listed twice: one entry per robot");
+        return -1;
+    }
+    return 0;
+}
+
+static void ir_free_config(void *config)
+{
+    ir_config_t *c = config;
+    free(c->robots);
+    free(c->ambient.robots);
+    c->robots = NULL;
+    c->ambient.robots = NULL;
+    c->robot_count = c->ambient.robot_count = 0;
+}
+
 /* One robot's readings, valid when their stamp is the step's (sim_hal_stamp). */
 typedef struct ir_robot {
     uint64_t prox_stamp, ambient_stamp;
@@ -69,9 +209,16 @@ typedef struct ir_robot {
     sim_rand_t noise;              /* both readings' (RAND_SENSORS) */
 } ir_robot_t;
 
+/* Which `robots` entries a robot takes (an array only when the scenario
+ * lists some: other runs pay nothing). */
+typedef struct ir_cal_cache {
+    per_robot_cache_t prox, ambient;
+} ir_cal_cache_t;
+
 typedef struct ir {
     const ir_config_t *cfg;
     ir_robot_t *robot;
+    ir_cal_cache_t *cal;           /* NULL: no `robots` entries */
     vec2_t dir[HAL_IR_COUNT];      /* the sensors' bearings as unit vectors, robot frame */
     float half, cos_half, sin_half;   /* the cone's half-angle, rad, its cosine and sine */
 } ir_t;
@@ -80,8 +227,9 @@ static void ir_layout(const void *config, const scenario_t *sc, model_layout_t *
 {
     const ir_config_t *c = config;
     (void)sc;
-    out->arrays = 1;
+    out->arrays = (c->robot_count > 0 || c->ambient.robot_count > 0) ? 2 : 1;
     out->elem_size[0] = sizeof(ir_robot_t);
+    out->elem_size[1] = sizeof(ir_cal_cache_t);
     out->run_bytes = sizeof(ir_t);
     /* A proximity query looks this far around a robot's body. */
     out->neighbour_reach_m = c->range;
@@ -107,6 +255,12 @@ static int ir_create(sim_t *sim, const void *config, void **self, char err[SIM_E
     m->sin_half = sinf(m->half);
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_rand_seed(&m->robot[i].noise, sim->seed, i, RAND_SENSORS);
+    }
+    if (m->cfg->robot_count > 0 || m->cfg->ambient.robot_count > 0) {
+        m->cal = sim_model_array(sim, SIM_MODEL_ir, 1);
+        for (uint32_t i = 0; i < sim->n; i++) {
+            m->cal[i].prox.id = m->cal[i].ambient.id = -1;
+        }
     }
     return 0;
 }
@@ -225,6 +379,15 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
     if (r->y + reach > hh) wall[nw++] = (wall_t){ v2(-hw, hh), v2(hw, hh), 1, 1.0f, hh };
     if (r->y - reach < -hh) wall[nw++] = (wall_t){ v2(-hw, -hh), v2(hw, -hh), 1, -1.0f, -hh };
 
+    const ir_robot_cal_t *e = NULL;
+    if (m->cal != NULL) {
+        e = per_robot_entry(&m->cal[i].prox, cfg->robots, cfg->robot_count, sizeof *cfg->robots,
+                            offsetof(ir_robot_cal_t, id), r->id);
+    }
+    const ir_sensor_cal_t *gains = (e != NULL && e->sensor_count) ? e->sensor
+                                   : (cfg->sensor_count ? cfg->sensor : NULL);
+    float noise_rel = (e != NULL && !isnan(e->noise_rel)) ? e->noise_rel : cfg->noise_rel;
+    float noise_abs = (e != NULL && !isnan(e->noise_abs)) ? e->noise_abs : cfg->noise_abs;
     float ch = cosf(r->theta), sh = sinf(r->theta);
     float half = m->half, cos_half = m->cos_half, sin_half = m->sin_half;
     /* Each sensor's two draws (relative, then absolute), in sensor order. */
@@ -251,8 +414,11 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
             }
         }
         double v = (d < range) ? ir_curve(d, range) : 0.0f;
-        v += v * cfg->noise_rel * n[2 * s];
-        v += cfg->noise_abs * n[2 * s + 1];
+        if (gains != NULL) {
+            v = gains[s].gain * v + gains[s].offset;
+        }
+        v += v * noise_rel * n[2 * s];
+        v += noise_abs * n[2 * s + 1];
         out[s] = to_raw(v);
     }
 }
@@ -263,6 +429,14 @@ static void sense_ambient(struct sim *sim, const ir_t *m, uint32_t i, uint16_t o
     const scenario_t *sc = sim->sc;
     const ir_config_t *cfg = m->cfg;
     sim_rand_t *noise = &m->robot[i].noise;
+    const ambient_robot_cal_t *e = NULL;
+    if (m->cal != NULL) {
+        e = per_robot_entry(&m->cal[i].ambient, cfg->ambient.robots, cfg->ambient.robot_count,
+                            sizeof *cfg->ambient.robots, offsetof(ambient_robot_cal_t, id), r->id);
+    }
+    float dark = (e != NULL && !isnan(e->dark)) ? e->dark : cfg->ambient.dark;
+    float halfe = (e != NULL && !isnan(e->half)) ? e->half : cfg->ambient.half;
+    float noise_rel = (e != NULL && !isnan(e->noise_rel)) ? e->noise_rel : cfg->ambient.noise_rel;
     float ch = cosf(r->theta), sh = sinf(r->theta);
     double n[HAL_IR_COUNT];
     sim_rand_normals(noise, n, HAL_IR_COUNT);
@@ -272,20 +446,20 @@ static void sense_ambient(struct sim *sim, const ir_t *m, uint32_t i, uint16_t o
         /* Irradiance on the sensor: intensity * cos(incidence) / d^2 from
          * each lamp, in 3D (lamps hang above the floor).  Shadows cast by
          * robots and obstacles are not modelled. */
-        double e = 0.0;
+        double irr = 0.0;
         for (uint32_t l = 0; l < sc->light_count; l++) {
             const light_def_t *L = &sc->lights[l];
             double hx = L->x - p.x, hy = L->y - p.y, dz = L->height - SENSOR_HEIGHT;
             double d2 = hx * hx + hy * hy + dz * dz;
             double along = (hx * a.x + hy * a.y) / sqrt(d2);
             if (along > 0.0 && d2 > 1e-12) {
-                e += L->intensity * along / d2;
+                irr += L->intensity * along / d2;
             }
         }
-        /* The raw value falls as light rises: dark at e = 0, dark/2 at
-         * e = half, towards 0 for bright light. */
-        double v = cfg->ambient.dark * cfg->ambient.half / (cfg->ambient.half + e);
-        v += v * cfg->ambient.noise_rel * n[s];
+        /* The raw value falls as light rises: dark at irr = 0, dark/2 at
+         * irr = half, towards 0 for bright light. */
+        double v = dark * halfe / (halfe + irr);
+        v += v * noise_rel * n[s];
         out[s] = to_raw(v);
     }
 }
@@ -388,6 +562,8 @@ const model_def_t ir_model = {
     .config_size = sizeof(ir_config_t),
     .default_config = ir_defaults,
     .schema = &ir_schema,
+    .check = ir_check,
+    .free_config = ir_free_config,
     .layout = ir_layout,
     .create = ir_create,
     .destroy = ir_destroy,

@@ -16,6 +16,7 @@
 
 #include "core/pool.h"
 #include "core/sim_internal.h"
+#include "models/per_robot.h"
 
 /* The names of sound_silent_t, in its order. */
 static const char *const silent_names[] = { "ambient", "none", NULL };
@@ -42,8 +43,53 @@ static const param_desc_t sound_params[] = {
 };
 #undef S
 
-MODEL_ONE_SECTION(sound_schema, "sound", sound_params, NULL,
+#define RC sound_robot_cal_t
+static const param_desc_t robot_params[] = {
+    { .key = "id", PARAM_FIELD(RC, id, uint16_t), .min = 0, .max = 65535, .doc = "the robot's hal_robot_id" },
+    { .key = "gain1", PARAM_FIELD(RC, gain[1], float), .min = 0, .max = 1000,
+      .doc = "its microphones' gain in band 1 (absent: 1)" },
+    { .key = "gain2", PARAM_FIELD(RC, gain[2], float), .min = 0, .max = 1000,
+      .doc = "its microphones' gain in band 2 (absent: 1)" },
+    { .key = "gain3", PARAM_FIELD(RC, gain[3], float), .min = 0, .max = 1000,
+      .doc = "its microphones' gain in band 3 (absent: 1)" },
+    PARAM_END
+};
+#undef RC
+static const schema_t robot_schema = { robot_params, NULL, NULL, NULL };
+static const sound_robot_cal_t robot_default = { 0, { 1.0f, 1.0f, 1.0f, 1.0f } };
+static const seq_desc_t robots_seq = {
+    "robots", PER_ROBOT_MAX, sizeof(sound_robot_cal_t), &robot_default, &robot_schema,
+    offsetof(sound_config_t, robots), offsetof(sound_config_t, robot_count), NULL, 1, NULL
+};
+static const child_t sound_children[] = {
+    { "robots", CHILD_SEQUENCE, NULL, &robots_seq, "microphone gains fitted to one robot id (the calibration kit)" },
+    CHILD_END
+};
+
+MODEL_ONE_SECTION(sound_schema, "sound", sound_params, sound_children,
                   "speakers and microphones (seed 002's model)");
+
+static int sound_check(const void *config, const scenario_t *sc, char path[SCHEMA_PATH_MAX],
+                       char msg[SIM_ERR_MAX])
+{
+    const sound_config_t *c = config;
+    (void)sc;
+    int32_t k = per_robot_duplicate(c->robots, c->robot_count, sizeof *c->robots, offsetof(sound_robot_cal_t, id));
+    if (k >= 0) {
+        snprintf(path, SCHEMA_PATH_MAX, "sound.robots.%d.id", (int)k);
+        snprintf(msg, SIM_ERR_MAX, "robot id listed twice: one entry per robot");
+        return -1;
+    }
+    return 0;
+}
+
+static void sound_free_config(void *config)
+{
+    sound_config_t *c = config;
+    free(c->robots);
+    c->robots = NULL;
+    c->robot_count = 0;
+}
 
 /* Seed 002's values (DESIGN.md): A0, alpha, Ae, N100's noise. */
 static void sound_defaults(void *config)
@@ -57,6 +103,8 @@ static void sound_defaults(void *config)
     c->silent_robots = SOUND_SILENT_AMBIENT;
     c->self_masking = 1;
     c->cutoff = 0.0;
+    c->robot_count = 0;
+    c->robots = NULL;
 }
 
 double sound_term(const sound_config_t *cfg, double d_m, int emits)
@@ -84,7 +132,7 @@ uint32_t sound_counts(double units)
 
 /* ---------------------------------------------------------------- state */
 
-enum { SET, PLAYED, LEVEL, ACC, RAND, ARRAYS };
+enum { SET, PLAYED, LEVEL, ACC, RAND, CAL, ARRAYS };
 
 typedef uint32_t levels_t[HAL_SOUND_BANDS];   /* counts per band ([0] unused) */
 typedef double sums_t[HAL_SOUND_BANDS];       /* sound_update's sums, units */
@@ -98,6 +146,7 @@ typedef struct sound {
     levels_t *level;
     sums_t *acc;
     sim_rand_t *rand;        /* RAND_SOUND: eq 4's noise of every pair the robot hears */
+    per_robot_cache_t *cal;  /* which `robots` entry each robot takes (NULL: none listed) */
 } sound_t;
 
 /* Only when enabled: a run without sound holds nothing of it. */
@@ -106,12 +155,13 @@ static void sound_layout(const void *config, const scenario_t *sc, model_layout_
     const sound_config_t *c = config;
     (void)sc;
     if (c->enabled) {
-        out->arrays = ARRAYS;
+        out->arrays = c->robot_count > 0 ? ARRAYS : CAL;   /* the entries' cache only when some are listed */
         out->elem_size[SET] = sizeof(uint8_t);
         out->elem_size[PLAYED] = sizeof(uint8_t);
         out->elem_size[LEVEL] = sizeof(levels_t);
         out->elem_size[ACC] = sizeof(sums_t);
         out->elem_size[RAND] = sizeof(sim_rand_t);
+        out->elem_size[CAL] = sizeof(per_robot_cache_t);
         out->run_bytes = sizeof(sound_t);
     }
 }
@@ -135,6 +185,12 @@ static int sound_create(sim_t *sim, const void *config, void **self, char err[SI
     s->rand = sim_model_array(sim, SIM_MODEL_sound, RAND);
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_rand_seed(&s->rand[i], sim->seed, i, RAND_SOUND);
+    }
+    if (c->robot_count > 0) {
+        s->cal = sim_model_array(sim, SIM_MODEL_sound, CAL);
+        for (uint32_t i = 0; i < sim->n; i++) {
+            s->cal[i].id = -1;
+        }
     }
     *self = s;
     return 0;
@@ -402,6 +458,14 @@ hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *leve
     }
     /* The three microphones hear the same (sound.h). */
     *level = s->level[hal->index][band];
+    if (s->cal != NULL) {
+        const sound_robot_cal_t *e = per_robot_entry(&s->cal[hal->index], s->cfg->robots, s->cfg->robot_count,
+                                                     sizeof *s->cfg->robots, offsetof(sound_robot_cal_t, id),
+                                                     hal_robot_id(hal));
+        if (e != NULL && !isnan(e->gain[band])) {
+            *level = sound_counts(*level * (double)e->gain[band] / 1000.0);
+        }
+    }
     return HAL_OK;
 }
 
@@ -448,6 +512,8 @@ const model_def_t sound_model = {
     .config_size = sizeof(sound_config_t),
     .default_config = sound_defaults,
     .schema = &sound_schema,
+    .check = sound_check,
+    .free_config = sound_free_config,
     .layout = sound_layout,
     .create = sound_create,
     .destroy = sound_destroy,

@@ -32,6 +32,9 @@
  *    term in the sum, sources in id order then bands 1..3: the field is a
  *    function of (seed, poses, speakers), whatever the thread count or the
  *    order in which robots step.
+ * A robot id may have its microphones' gain per band (`robots`: what the
+ * calibration kit fits): its levels are the field's times the gain,
+ * rounded; the field itself and its draws are unchanged.
  * When: sim_step computes the field once per step, after the tasks'
  * before_control and before the controllers step (with a cutoff, listener
  * by listener on the run's threads; all pairs in one loop), from the poses at
@@ -44,6 +47,7 @@
 
 #include <stdint.h>
 
+#include "hal.h"
 #include "models/model.h"
 
 /** What a robot silent in a band adds to that band's sum (silent_robots). */
@@ -51,6 +55,13 @@ typedef enum sound_silent {
     SOUND_SILENT_AMBIENT = 0,    /**< its ambient term ae (eq 2 over every other robot) */
     SOUND_SILENT_NONE = 1        /**< nothing: only emitters are in the sum */
 } sound_silent_t;
+
+/** One robot's microphones as fitted (`sound.robots`, models/per_robot.h):
+ *  each band's level times its gain (NaN: 1), the calibration kit's. */
+typedef struct sound_robot_cal {
+    uint16_t id;                        /**< hal_robot_id */
+    float gain[HAL_SOUND_BANDS];        /**< [0] unused; bands 1..3 */
+} sound_robot_cal_t;
 
 /** Section `sound` (seed 002's eqs 1-4).  Disabled: hal_mic_level and
  *  hal_speaker_set answer HAL_ERR_UNAVAILABLE and nothing is drawn. */
@@ -63,6 +74,8 @@ typedef struct sound_config {
     int silent_robots;         /**< sound_silent_t */
     uint8_t self_masking;      /**< a robot whose speaker played hears nothing (HAL_ERR_BUSY) */
     double cutoff;             /**< m; > 0: sources farther away give only ae (0: exact) */
+    uint32_t robot_count;      /**< `robots` */
+    sound_robot_cal_t *robots; /**< on the heap (free_config) */
 } sound_config_t;
 
 MODEL_CONFIG_ACCESSORS(sound, sound_config_t)

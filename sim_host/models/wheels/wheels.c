@@ -5,10 +5,12 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 
 #include "core/pool.h"
 #include "core/sim_internal.h"
 #include "models/faults/faults.h"
+#include "models/per_robot.h"
 #include "units.h"
 
 #define W wheels_config_t
@@ -20,12 +22,78 @@ static const param_desc_t wheels_params[] = {
              "the e-puck saturates at 0.129 m/s)" },
     { .key = "bias_per_step", PARAM_BOOL_FIELD(W, bias_per_step),
       .doc = "draw the bias anew every control step instead of once a run (another reading of eq 3)" },
+    { .key = "gain_left", PARAM_FIELD(W, gain_left, float), .min = 0, .max = 10,
+      .doc = "actual over commanded speed of the left wheel (its true diameter over 41 mm)" },
+    { .key = "gain_right", PARAM_FIELD(W, gain_right, float), .min = 0, .max = 10,
+      .doc = "the same for the right wheel" },
     PARAM_END
 };
 #undef W
 
-MODEL_ONE_SECTION(wheels_schema, "wheels", wheels_params, NULL,
+#define RC wheels_robot_cal_t
+static const param_desc_t robot_params[] = {
+    { .key = "id", PARAM_FIELD(RC, id, uint16_t), .min = 0, .max = 65535, .doc = "the robot's hal_robot_id" },
+    { .key = "gain_left", PARAM_FIELD(RC, gain_left, float), .min = 0, .max = 10,
+      .doc = "its left wheel's gain (absent: the section's)" },
+    { .key = "gain_right", PARAM_FIELD(RC, gain_right, float), .min = 0, .max = 10,
+      .doc = "its right wheel's gain (absent: the section's)" },
+    { .key = "speed_noise_rel", PARAM_FIELD(RC, speed_noise_rel, float), .min = 0, .max = 1,
+      .doc = "its relative speed noise (absent: the section's)" },
+    PARAM_END
+};
+#undef RC
+static const schema_t robot_schema = { robot_params, NULL, NULL, NULL };
+static void robot_init(void *elem)
+{
+    wheels_robot_cal_t *e = elem;
+    e->gain_left = e->gain_right = e->speed_noise_rel = NAN;
+}
+static const wheels_robot_cal_t robot_default = { 0, 0.0f, 0.0f, 0.0f };
+static const seq_desc_t robots_seq = {
+    "robots", PER_ROBOT_MAX, sizeof(wheels_robot_cal_t), &robot_default, &robot_schema,
+    offsetof(wheels_config_t, robots), offsetof(wheels_config_t, robot_count), NULL, 1, robot_init
+};
+static const child_t wheels_children[] = {
+    { "robots", CHILD_SEQUENCE, NULL, &robots_seq, "parameters fitted to one robot id (the calibration kit)" },
+    CHILD_END
+};
+
+MODEL_ONE_SECTION(wheels_schema, "wheels", wheels_params, wheels_children,
                   "wheel motors");
+
+/* No noise, no bias, true wheels. */
+static void wheels_defaults(void *config)
+{
+    wheels_config_t *c = config;
+    c->speed_noise_rel = 0.0f;
+    c->bias_sd = 0.0f;
+    c->bias_per_step = 0;
+    c->gain_left = c->gain_right = 1.0f;
+    c->robot_count = 0;
+    c->robots = NULL;
+}
+
+static int wheels_check(const void *config, const scenario_t *sc, char path[SCHEMA_PATH_MAX],
+                        char msg[SIM_ERR_MAX])
+{
+    const wheels_config_t *c = config;
+    (void)sc;
+    int32_t k = per_robot_duplicate(c->robots, c->robot_count, sizeof *c->robots, offsetof(wheels_robot_cal_t, id));
+    if (k >= 0) {
+        snprintf(path, SCHEMA_PATH_MAX, "wheels.robots.%d.id", (int)k);
+        snprintf(msg, SIM_ERR_MAX, "robot id listed twice: one entry per robot");
+        return -1;
+    }
+    return 0;
+}
+
+static void wheels_free_config(void *config)
+{
+    wheels_config_t *c = config;
+    free(c->robots);
+    c->robots = NULL;
+    c->robot_count = 0;
+}
 
 /* One robot's motors. */
 typedef struct wheels_robot {
@@ -36,12 +104,15 @@ typedef struct wheels_robot {
     sim_rand_t bias_rand;             /* b's draws (RAND_WHEEL_BIAS) */
 } wheels_robot_t;
 
+/* Array 1, only when the scenario lists `robots` entries (other runs pay
+ * nothing): which entry each robot takes. */
 static void wheels_layout(const void *config, const scenario_t *sc, model_layout_t *out)
 {
-    (void)config;
+    const wheels_config_t *c = config;
     (void)sc;
-    out->arrays = 1;
+    out->arrays = c->robot_count > 0 ? 2 : 1;
     out->elem_size[0] = sizeof(wheels_robot_t);
+    out->elem_size[1] = sizeof(per_robot_cache_t);
 }
 
 static wheels_robot_t *robots(const sim_t *sim)
@@ -57,6 +128,9 @@ static int wheels_create(sim_t *sim, const void *config, void **self, char err[S
     for (uint32_t i = 0; i < sim->n; i++) {
         wheels_robot_t *w = &robots(sim)[i];
         sim_rand_seed(&w->rand, sim->seed, i, RAND_WHEELS);
+        if (c->robot_count > 0) {
+            ((per_robot_cache_t *)sim_model_array(sim, SIM_MODEL_wheels, 1))[i].id = -1;
+        }
         if (c->bias_sd > 0.0f) {
             /* Eq 3's bias b, drawn once a run as ARGoS does (its own stream:
              * other streams and golden hashes are unchanged). */
@@ -76,12 +150,20 @@ static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
 {
     struct sim *sim = ctx;
     const wheels_config_t *c = sim_model_config(sim, SIM_MODEL_wheels);
-    const double noise = c->speed_noise_rel;
     const int bias = c->bias_sd > 0.0f;
+    per_robot_cache_t *cal = c->robot_count > 0 ? sim_model_array(sim, SIM_MODEL_wheels, 1) : NULL;
     (void)worker;
     for (uint32_t i = begin; i < end; i++) {
         const sim_robot_t *r = &sim->robots[i];
         wheels_robot_t *wr = &robots(sim)[i];
+        const wheels_robot_cal_t *e = NULL;
+        if (cal != NULL) {
+            e = per_robot_entry(&cal[i], c->robots, c->robot_count, sizeof *c->robots,
+                                offsetof(wheels_robot_cal_t, id), r->id);
+        }
+        const double noise = (e != NULL && !isnan(e->speed_noise_rel)) ? e->speed_noise_rel : c->speed_noise_rel;
+        const double gain_l = (e != NULL && !isnan(e->gain_left)) ? e->gain_left : c->gain_left;
+        const double gain_r = (e != NULL && !isnan(e->gain_right)) ? e->gain_right : c->gain_right;
         double l = wr->cmd_left, rr = wr->cmd_right;
         if (sim_robot_halted(sim, i)) {
             l = rr = 0.0;       /* a stopped robot's motors are off */
@@ -124,6 +206,10 @@ static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
             l *= 1.0 + noise * sim_rand_normal(&wr->rand);
             rr *= 1.0 + noise * sim_rand_normal(&wr->rand);
         }
+        /* The steps were counted as commanded; the wheels' true size sets how
+         * far they go (x 1 exactly without calibration). */
+        l *= gain_l;
+        rr *= gain_r;
         faults_wheels(sim, i, &l, &rr);
         double v = 0.5 * (l + rr) * EPUCK_STEP_M;
         double w = (rr - l) * EPUCK_STEP_M / EPUCK_AXLE_M;
@@ -207,7 +293,10 @@ const model_def_t wheels_model = {
     .name = "wheels",
     .doc = "the two stepper motors, with seed 003's actuation noise (eq 3)",
     .config_size = sizeof(wheels_config_t),
+    .default_config = wheels_defaults,
     .schema = &wheels_schema,
+    .check = wheels_check,
+    .free_config = wheels_free_config,
     .layout = wheels_layout,
     .create = wheels_create,
     .drive = wheels_drive,

@@ -20,7 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from .spec import SCENARIO_KEY, Scalar, Sweep, SweepError, resolve_scenario, set_text
+from .spec import SCENARIO_KEY, Sweep, SweepError, Value, resolve_scenario, set_text
 
 
 @dataclass(frozen=True)
@@ -28,7 +28,7 @@ class Run:
     index: int                      # position in the expansion (table order)
     run_id: str
     scenario: str                   # path of the scenario file
-    params: dict[str, Scalar]       # the varied keys' values (table columns)
+    params: dict[str, Value]        # the varied keys' values (table columns; arrays as lists)
     overrides: list[tuple[str, str]]  # every --set, in order
     seed: int
     steps: int | None
@@ -78,7 +78,7 @@ def expand(sw: Sweep) -> list[Run]:
     seen: dict[str, int] = {}
     fixed = [(k, set_text(v)) for k, v in sw.fixed]
     for parts in itertools.product(*(a.combos for a in sw.axes)) if sw.axes else [()]:
-        params: dict[str, Scalar] = {}
+        params: dict[str, Value] = {}
         for p in parts:
             params.update(p)
         scenario = str(resolve_scenario(sw.path, str(params[SCENARIO_KEY]))

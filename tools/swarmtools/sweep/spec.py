@@ -30,8 +30,10 @@ Keys under ``set`` and in the axes are the simulator's ``--set`` keys; the key
 axes runs with the same seeds (common random numbers), as a study compares
 conditions on the same seeds.
 
-Values are plain YAML scalars: explicit tags (``!!int``, ``!foo``) are
-refused, as are sweeps of more than MAX_RUNS runs (counted before anything
+Values are plain YAML scalars, or for an array key (a controller's weights)
+a flat list of numbers, written to the simulator as ``--set key=[v0, v1, ...]``
+(a grid of arrays: ``robots.2.params.b_out: [[0, 0, 0], [100, -100, 0]]``).
+Explicit tags (``!!int``, ``!foo``) are refused, as are sweeps of more than MAX_RUNS runs (counted before anything
 is expanded; ``swarm-sweep --max-runs`` raises the cap).
 """
 
@@ -49,6 +51,8 @@ TOP_KEYS = ("name", "scenario", "set", "steps", "axes", "seeds", "repetitions",
 AXIS_KINDS = ("grid", "zip", "list")
 SCENARIO_KEY = "scenario"
 Scalar = str | int | float | bool
+#: A value of ``set`` or of an axis: a scalar, or an array key's numbers.
+Value = Scalar | tuple[int | float, ...]
 #: Runs a sweep may have unless the caller raises the cap (swarm-sweep
 #: --max-runs): the largest shipped sweep, studies/repatt_gains.yaml, has
 #: 540,000; a plan holds about 1 kB a run in memory and in sweep.json.
@@ -67,7 +71,7 @@ class Axis:
 
     kind: str
     keys: list[str]
-    combos: list[dict[str, Scalar]]
+    combos: list[dict[str, Value]]
     line: int
 
 
@@ -76,7 +80,7 @@ class Sweep:
     path: Path
     name: str
     scenario: Path
-    fixed: list[tuple[str, Scalar]] = field(default_factory=list)
+    fixed: list[tuple[str, Value]] = field(default_factory=list)
     steps: int | None = None
     axes: list[Axis] = field(default_factory=list)
     seeds: list[int] = field(default_factory=list)
@@ -91,8 +95,10 @@ class Sweep:
         return [k for a in self.axes for k in a.keys]
 
 
-def set_text(value: Scalar) -> str:
-    """A value as the simulator's --set reads it."""
+def set_text(value: Value | list) -> str:
+    """A value as the simulator's --set reads it (an array as a YAML flow list)."""
+    if isinstance(value, (tuple, list)):
+        return "[" + ", ".join(set_text(v) for v in value) + "]"
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):
@@ -165,6 +171,18 @@ class _Reader:
             raise self.fail(node, where, f"expected a number, a word or true/false, got '{node.value}'")
         return value
 
+    def value(self, node: yaml.Node, where: str) -> Value:
+        """A scalar, or a flat non-empty list of numbers (an array key's value)."""
+        if not isinstance(node, yaml.SequenceNode):
+            return self.scalar(node, where)
+        out = []
+        for i, item in enumerate(self.sequence(node, where)):
+            v = self.scalar(item, f"{where}[{i}]")
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise self.fail(item, f"{where}[{i}]", f"an array holds numbers, got '{item.value}'")
+            out.append(v)
+        return tuple(out)
+
     def integer(self, node: yaml.Node, where: str, lo: int, hi: int) -> int:
         v = self.scalar(node, where)
         if isinstance(v, bool) or not isinstance(v, int):
@@ -235,7 +253,7 @@ def load(path: str | Path, seed_max: int, max_runs: int = MAX_RUNS) -> Sweep:
         for key, knode, vnode in r.mapping(have["set"][1], "set"):
             if key == SCENARIO_KEY:
                 raise r.fail(knode, "set", "the scenario is the top-level `scenario:` (or an axis)")
-            sw.fixed.append((r.set_key(knode, "set"), r.scalar(vnode, f"set.{key}")))
+            sw.fixed.append((r.set_key(knode, "set"), r.value(vnode, f"set.{key}")))
             sw.key_lines[key] = knode.start_mark.line + 1
     if "steps" in have:
         sw.steps = r.integer(have["steps"][1], "steps", 1, 10_000_000_000)
@@ -300,7 +318,7 @@ def _axis(r: _Reader, node: yaml.Node, where: str, sw: Sweep) -> Axis:
     where = f"{where}.{kind}"
     line = node.start_mark.line + 1
     if kind in ("grid", "zip"):
-        columns: list[tuple[str, list[Scalar]]] = []
+        columns: list[tuple[str, list[Value]]] = []
         for key, knode, vnode in r.mapping(body, where):
             values = [_axis_value(r, v, f"{where}.{key}", key) for v in r.sequence(vnode, f"{where}.{key}")]
             if key != SCENARIO_KEY:
@@ -331,7 +349,7 @@ def _axis(r: _Reader, node: yaml.Node, where: str, sw: Sweep) -> Axis:
     combos = []
     keys: list[str] = []
     for j, cnode in enumerate(r.sequence(body, where)):
-        combo: dict[str, Scalar] = {}
+        combo: dict[str, Value] = {}
         for key, knode, vnode in r.mapping(cnode, f"{where}[{j}]"):
             if key != SCENARIO_KEY:
                 r.set_key(knode, f"{where}[{j}]")
@@ -347,11 +365,11 @@ def _axis(r: _Reader, node: yaml.Node, where: str, sw: Sweep) -> Axis:
     return Axis(kind, keys, combos, line)
 
 
-def _axis_value(r: _Reader, node: yaml.Node, where: str, key: str) -> Scalar:
+def _axis_value(r: _Reader, node: yaml.Node, where: str, key: str) -> Value:
     if key == SCENARIO_KEY:
         _scenario_path(r, node, where)
         return node.value       # as written: the table shows it so
-    return r.scalar(node, where)
+    return r.value(node, where)
 
 
 def _seeds(r: _Reader, have: dict[str, Any], seed_max: int, root: yaml.Node, combos: int) -> list[int]:

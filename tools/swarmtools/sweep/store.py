@@ -206,9 +206,9 @@ class Store:
         import pandas as pd
 
         text_cols = [c for c in header if c in TEXT_COLUMNS]
-        for k in varied:     # a varied key whose values are all words stays text
+        for k in varied:     # a varied key whose values are all words (or arrays) stays text
             vals = [r.params.get(k) for r in runs]
-            if all(isinstance(v, str) for v in vals):
+            if all(isinstance(v, (str, list, tuple)) for v in vals):
                 text_cols.append(k)
         df = pd.read_csv(self.root / "results.csv", dtype={c: "string" for c in text_cols},
                          keep_default_na=False, na_values={c: [""] for c in header if c not in text_cols})
@@ -239,7 +239,10 @@ def _holder(text: str) -> str:
 
 
 def _cell(v: Any) -> str:
-    """One CSV field: integers as integers, floats by repr (exact), NaN/None empty."""
+    """One CSV field: integers as integers, floats by repr (exact), NaN/None
+    empty, an array as "[v0, v1, ...]" (what --set was given)."""
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_cell(x) for x in v) + "]"
     if v is None:
         return ""
     if isinstance(v, bool):

@@ -50,8 +50,9 @@ class Device:
     """One serial device: its file descriptor (or None while lost), its
     decoder and counters."""
 
-    def __init__(self, path, baud=115200, robot_id=None):
+    def __init__(self, path, baud=115200, robot_id=None, writable=False):
         self.path = path
+        self.writable = writable     # opened for writing too (the host's frames: docs/host_link.md)
         self.baud = baud
         self.id_override = robot_id
         self.robot_id = -1 if robot_id is None else robot_id
@@ -78,7 +79,8 @@ class Device:
     def open(self):
         """Tries to open the device; returns True if it is open."""
         try:
-            fd = os.open(self.path, os.O_RDONLY | os.O_NOCTTY | os.O_NONBLOCK)
+            mode = os.O_RDWR if self.writable else os.O_RDONLY
+            fd = os.open(self.path, mode | os.O_NOCTTY | os.O_NONBLOCK)
         except OSError as e:
             self.last_error = e.strerror or str(e)
             return False
@@ -96,6 +98,24 @@ class Device:
         self.fd = fd
         self.opened += 1
         self.decoder.reset()
+        return True
+
+    def write(self, data):
+        """Writes host frames to a writable device, all of them; False when
+        the device is down (or not writable)."""
+        if self.fd is None or not self.writable:
+            return False
+        view = memoryview(data)
+        while view:
+            try:
+                n = os.write(self.fd, view)
+            except BlockingIOError:
+                select.select([], [self.fd], [], 0.1)
+                continue
+            except OSError as e:
+                self.last_error = e.strerror or str(e)
+                return False
+            view = view[n:]
         return True
 
     def close(self):

@@ -127,8 +127,11 @@ class SpecErrors(TempDir):
          ":5: axes[0]: 'robots.0.count' is already varied or set in set"),
         (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - list:\n      - {{a: 1}}\n      - {{b: 2}}\n",
          ":6: axes[0].list[1]: keys differ from the first entry's (a)"),
-        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - grid: {{a: [1, [2]]}}\n",
-         ":4: axes[0].grid.a: expected a single value"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - grid: {{a: [1, [[2]]]}}\n",
+         ":4: axes[0].grid.a[0]: expected a single value"),
+        (f"scenario: {SMALL}\nrepetitions: 1\naxes:\n  - grid: {{a: [1, [2, x]]}}\n",
+         ":4: axes[0].grid.a[1]: an array holds numbers, got 'x'"),
+        (f"scenario: {SMALL}\nrepetitions: 1\nset: {{a: []}}\n", ":3: set.a: expected a non-empty list"),
         (f"scenario: {SMALL}\nrepetitions: 1\nmetrics: [M_T, M_T]\n", ":3: metrics[1]: 'M_T' listed twice"),
         ("scenario: [\n", ":2: YAML syntax error"),
         # explicit tags: refused with their line, never a traceback
@@ -199,6 +202,36 @@ class SpecErrors(TempDir):
         self.assertIn(f"{p}:6: the simulator rejects the run with robots.0.count=2.5", r.stderr)
         self.assertIn("expected an integer, got '2.5'", r.stderr)
         self.assertFalse(out.exists(), "a rejected sweep must write nothing")
+
+    def test_array_values_reach_the_simulator_and_the_table(self) -> None:
+        nnea = ROOT / "sim_host" / "scenarios" / "nnea_square.yaml"
+        text = (f"name: arr\nscenario: {nnea}\nsteps: 20\nset:\n  robots.2.count: 3\n"
+                "  robots.2.params.tau: [1, 2, 3, 4]\n  robots.2.params.w_out: [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n"
+                "axes:\n  - grid:\n"
+                "      robots.2.params.b_out: [[0, 0, 0], [2047, 2000, 5]]\nrepetitions: 1\n")
+        sw = spec.load(self.write(text), 2**53 - 1)
+        runs = planmod.expand(sw)
+        self.assertEqual(runs[1].params, {"robots.2.params.b_out": (2047, 2000, 5)})
+        self.assertEqual(runs[1].overrides, [("robots.2.count", "3"), ("robots.2.params.tau", "[1, 2, 3, 4]"),
+                                             ("robots.2.params.w_out", "[" + ", ".join(["0"] * 12) + "]"),
+                                             ("robots.2.params.b_out", "[2047, 2000, 5]")])
+        out = self.dir / "out"
+        r = swarm_sweep("run", str(self.write(text)), "--out", str(out), "--sim", str(SWARMSIM))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = read_table(out)
+        self.assertEqual([row["robots.2.params.b_out"] for row in rows], ["[0, 0, 0]", "[2047, 2000, 5]"])
+        self.assertEqual(float(rows[0]["distance_per_robot_m"]), 0.0)    # no weights out, sigma(0): stopped
+        self.assertGreater(float(rows[1]["distance_per_robot_m"]), 0.0)
+        import pandas as pd
+        self.assertEqual(list(pd.read_parquet(out / "results.parquet")["robots.2.params.b_out"]),
+                         ["[0, 0, 0]", "[2047, 2000, 5]"])
+        # an element out of range: the simulator's check names the sweep's line and the element
+        bad = self.write(text.replace("2047, 2000, 5", "2047, -2048, 5"), "bad.yaml")
+        r = swarm_sweep("run", str(bad), "--out", str(self.dir / "bad"), "--sim", str(SWARMSIM))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn(f"{bad}:10: the simulator rejects the run with robots.2.params.b_out=[2047, -2048, 5]",
+                      r.stderr)
+        self.assertIn("robots[2].params.b_out[1]: -2048 is out of range [-2047, 2047]", r.stderr)
 
     def test_seed_range_is_the_simulators(self) -> None:
         self.assertEqual(planmod.seed_max(SWARMSIM), 2**53 - 1)

@@ -1,0 +1,1 @@
+"""swarm-evolve: evolving a controller's parameters on the sweep engine."""

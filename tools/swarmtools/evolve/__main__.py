@@ -1,0 +1,5 @@
+import sys
+
+from swarmtools.evolve.cli import main
+
+sys.exit(main())

@@ -1,0 +1,212 @@
+"""Bad input to the calibration kit: a robot that does not answer, an
+operator who stops, readings that cannot be fitted, malformed recordings
+and fragments, per-robot keys the simulator refuses.  Each gives a message
+naming the procedure (or file) and what to redo, and writes nothing."""
+
+from __future__ import annotations
+
+import io
+import os
+import random
+import tempfile
+import unittest
+from contextlib import redirect_stderr
+from pathlib import Path
+
+import yaml
+
+from swarmtools.calibrate import cli, fake_lab, fit, geometry, procedures
+from swarmtools.calibrate.link import LinkError
+from swarmtools.calibrate.operator import Aborted, TerminalOperator
+from swarmtools.calibrate.procedures import Placement, Setup, Step
+from swarmtools.sim import ScenarioError, Sim
+
+
+class Silent(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def assertNothingWritten(self, out: Path):
+        left = list(out.iterdir()) if out.exists() else []
+        self.assertEqual(left, [], f"{out} has {left}")
+
+
+class NoAnswer(Silent):
+    def test_a_port_nobody_answers_on(self):
+        master, slave = os.openpty()
+        try:
+            out = self.dir / "out"
+            with self.assertRaises(LinkError) as cm:
+                cli.calibrate(os.ttyname(slave), out, ["ir"], Setup(), TerminalOperator(), timeout_s=0.5,
+                              log=lambda s: None)
+            self.assertIn("did not answer within 0.5 s", str(cm.exception))
+            self.assertIn("calibration image", str(cm.exception))
+            self.assertNothingWritten(out)
+        finally:
+            os.close(master)
+            os.close(slave)
+
+    def test_the_bridge_writes_only_to_a_writable_device(self):
+        from swarmtools.telemetry.bridge import Device
+        master, slave = os.openpty()
+        try:
+            ro, rw = Device(os.ttyname(slave)), Device(os.ttyname(slave), writable=True)
+            self.assertTrue(ro.open() and rw.open())
+            self.assertFalse(ro.write(b"\x00abc\x00"))
+            self.assertTrue(rw.write(b"\x00abc\x00"))
+            self.assertEqual(os.read(master, 16), b"\x00abc\x00")
+            ro.close()
+            rw.close()
+            self.assertFalse(rw.write(b"x"))     # closed: down
+        finally:
+            os.close(master)
+            os.close(slave)
+
+    def test_a_missing_device(self):
+        err = io.StringIO()
+        with redirect_stderr(err):
+            rc = cli.main(["run", str(self.dir / "rfcomm9"), "--out", str(self.dir / "out"), "--timeout", "0.5"])
+        self.assertEqual(rc, 1)
+        self.assertIn("rfcomm9: cannot open it", err.getvalue())
+        self.assertIn("nothing written", err.getvalue())
+        self.assertNothingWritten(self.dir / "out")
+
+
+class OperatorStops(Silent):
+    def test_stopping_midway_writes_nothing(self):
+        answers = iter(["", "", "q"])       # ready; first placement; stops at the second
+        fakes, link, _ = fake_lab.start(5, fake_lab.perturbed(random.Random(1)), self.dir / "lab", speed=500)
+        out = self.dir / "out"
+        try:
+            with self.assertRaises(Aborted):
+                cli.calibrate(link, out, ["ir"], Setup(windows=1), TerminalOperator(read=lambda p: next(answers),
+                                                                                    out=io.StringIO()),
+                              timeout_s=60, log=lambda s: None)
+        finally:
+            fakes.stop()
+        self.assertNothingWritten(out)
+
+
+def ir_steps(value_at):
+    """A recording of the IR procedure whose sensor s reads value_at(s, d)."""
+    out = []
+    for p in procedures.placements("ir"):
+        d = procedures.ir_distance_m(p) if p.gap_mm is not None else None
+        mean = [value_at(s, d if s == p.sensor else None) for s in range(8)]
+        out.append(Step(p, [(tuple(mean), tuple([25.0] * 8))]))
+    return out
+
+
+class Unfittable(unittest.TestCase):
+    def test_saturated_sensor(self):
+        steps = ir_steps(lambda s, d: 4095.0 if s == 2 and d is not None else (500.0 if d is not None else 40.0))
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_ir(steps)
+        msg = str(cm.exception)
+        self.assertTrue(msg.startswith("ir: IR2 has 0 usable distances"), msg)
+        self.assertIn("saturated at 3 mm, 8 mm", msg)
+        self.assertIn("redo: the ir steps of IR2", msg)
+
+    def test_missing_steps(self):
+        def curve(s, d):
+            return 30.0 if d is None else 1.2 * geometry.ir_curve(d) + 30.0
+        steps = [s for s in ir_steps(curve) if s.placement.sensor != 5 or s.placement.gap_mm < 10]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_ir(steps)
+        self.assertIn("IR5 has 2 usable distances", str(cm.exception))
+
+    def test_no_straight_wheel_run(self):
+        turns = [Step(Placement("wheels", left=400, right=-400, periods=15), moved=(0.0, 0.0, -160.0),
+                      steps=(600.0, -600.0))] * 2
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_wheels(turns, Setup())
+        self.assertIn("wheels: 2 runs measured, none straight", str(cm.exception))
+
+    def test_clipped_wheel_steps(self):
+        runs = [Step(Placement("wheels", left=300, right=300, periods=30), moved=(116.0, 0.0, 0.0),
+                     steps=(850.0, 900.0)),
+                Step(Placement("wheels", left=400, right=-400, periods=15), moved=(0.0, 0.0, -167.0),
+                     steps=(600.0, -600.0))]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_wheels(runs, Setup())
+        self.assertIn("run 300,300 x30 counted 850, 900 steps where 900, 900 were commanded", str(cm.exception))
+
+    def test_ambient_all_dark(self):
+        steps = [Step(p, [(tuple([3000.0] * 8), tuple([9.0] * 8))]) for p in procedures.placements("ambient")]
+        steps = [Step(s.placement, [(tuple([5.0] * 8), s.windows[0][1])]) for s in steps]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_ambient(steps, Setup())
+        self.assertIn("ambient: every lit reading is near 0", str(cm.exception))
+
+
+    def test_camera_never_sees_the_card(self):
+        steps = [Step(Placement("camera", distance_mm=d, bearing_deg=b), [(tuple([0.0] * 8), tuple([0.0] * 8))])
+                 for d, b in ((900, 0.0), (450, 0.0), (200, 30.0))]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_camera(steps)
+        self.assertIn("camera: the card was never seen ahead", str(cm.exception))
+        self.assertIn("redo: the camera procedure", str(cm.exception))
+
+
+    def test_a_band_never_heard(self):
+        steps = [Step(p, [(tuple([0.0] * 8), tuple([0.0] * 8))]) for p in procedures.placements("sound")]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_sound(steps, Setup())
+        self.assertIn("sound: band 1 was never heard", str(cm.exception))
+        self.assertIn("redo: the sound steps of band 1 (is the emitter on?)", str(cm.exception))
+
+
+class BadFiles(Silent):
+    def run_cli(self, args):
+        err = io.StringIO()
+        with redirect_stderr(err):
+            rc = cli.main(args)
+        return rc, err.getvalue()
+
+    def test_not_a_recording(self):
+        bad = self.dir / "r.json"
+        bad.write_text('{"format": "something else"}')
+        rc, err = self.run_cli(["fit", str(bad), "--out", str(self.dir / "out")])
+        self.assertEqual(rc, 1)
+        self.assertIn("r.json: not a recording of swarm-calibrate", err)
+        self.assertNothingWritten(self.dir / "out")
+
+    def test_fragment_with_a_foreign_section(self):
+        sc = self.dir / "s.yaml"
+        sc.write_text("robots: [{count: 1, controller: calib}]\n")
+        fr = self.dir / "f.yaml"
+        fr.write_text("arena: {width: 3}\n")
+        rc, err = self.run_cli(["apply", str(sc), str(fr), "-o", str(self.dir / "o.yaml")])
+        self.assertEqual(rc, 1)
+        self.assertIn("f.yaml: 'arena' is not a section a calibration fragment has", err)
+        self.assertFalse((self.dir / "o.yaml").exists())
+
+
+class SimulatorRefuses(Silent):
+    def load(self, sections) -> str:
+        path = self.dir / "s.yaml"
+        path.write_text(yaml.safe_dump({"robots": [{"count": 1, "controller": "calib"}], **sections}))
+        with self.assertRaises(ScenarioError) as cm:
+            Sim(path)
+        return str(cm.exception)
+
+    def test_seven_sensors(self):
+        msg = self.load({"ir": {"robots": [{"id": 1, "sensors": [{"gain": 1.0} for _ in range(7)]}]}})
+        self.assertIn("ir.robots[0].sensors: lists 7 sensors: give all 8 (IR0 first) or none", msg)
+
+    def test_an_id_twice(self):
+        msg = self.load({"wheels": {"robots": [{"id": 4, "gain_left": 1.0}, {"id": 4, "gain_right": 1.1}]}})
+        self.assertIn("wheels.robots[1].id", msg)
+        self.assertIn("robot id listed twice", msg)
+
+    def test_a_negative_gain(self):
+        msg = self.load({"wheels": {"robots": [{"id": 4, "gain_left": -1.0}]}})
+        self.assertIn("gain_left", msg)
+
+
+if __name__ == "__main__":
+    unittest.main()
