@@ -43,9 +43,9 @@ file name's prefix before the first `_`, upper-cased (tsasr_square.yaml ->
 TSASR), so a scenario added to the sweep files is picked up as it is.
 CONTROLLERS below orders and colours the known ones as the paper's figures
 do (EAIPP red, TSASR green, PFIAS blue, NNEA purple).  NNEA (the evolved
-controller, a later issue): give it a scenario nnea_square.yaml and add it
-to the `scenario:` lists of studies/eaipp_distance.yaml and
-eaipp_obstacles.yaml; nothing here changes.
+controller, firmware/nnea, docs/studies/nnea.md) is its scenario
+nnea_square.yaml in the `scenario:` lists of studies/eaipp_distance.yaml
+and eaipp_obstacles.yaml; nothing here names it but its colour.
 
 Cost (2 cores, this machine, EAIPP failing so every run goes the full
 1000 s): a square-arena run about 0.5 s, a maze run (40-70 robots) about 9 s;
@@ -114,9 +114,8 @@ METRICS = ("success", "merge_time_s", "merge_time_capped_s", "food_perceived", "
 # The controllers the paper compares, in its figures' order and colours
 # (Figure 11: "the red box [EAIPP] is generally at the lowest position ...
 # green [TSASR] ... blue [PFIAS]"; NNEA's boxes are purple).  A controller
-# is the upper-cased prefix of its scenario file's name.  NNEA is a later
-# issue: its scenario (nnea_square.yaml) goes into the sweep files'
-# `scenario:` lists; it is labelled and coloured here already.  Any other
+# is the upper-cased prefix of its scenario file's name.  NNEA's scenario
+# (nnea_square.yaml) is in the sweep files' `scenario:` lists.  Any other
 # prefix is drawn after these in matplotlib's colours.
 CONTROLLERS = {"EAIPP": "tab:red", "TSASR": "tab:green", "PFIAS": "tab:blue", "NNEA": "tab:purple"}
 
