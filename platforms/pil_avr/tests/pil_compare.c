@@ -31,6 +31,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 #include "pil/pil_host.h"
 #include "pil_avr_link.h"
@@ -244,6 +245,12 @@ int main(int argc, char **argv)
     for (; !failed && done < steps; done++) {
         if (done == kill_at || done == stop_at) {
             kill(a->link.pid, done == kill_at ? SIGKILL : SIGSTOP);
+            /* kill returns before every thread of the emulator (QEMU's
+             * are several) has stopped: one still running could answer
+             * this step.  The stop is whole when waitpid reports it. */
+            int st;
+            while (done == stop_at && waitpid(a->link.pid, &st, WUNTRACED) < 0 && errno == EINTR) {
+            }
         }
         if (step(a, err) != 0 || (h && step(h, err) != 0)) {
             failed = 1;
