@@ -146,10 +146,16 @@ static int64_t now_ms(void)
     return (int64_t)t.tv_sec * 1000 + t.tv_nsec / 1000000;
 }
 
+/* The wall time the next read may wait, ms: the first frame's, then a step's. */
+static int read_bound(const pil_avr_link_t *l)
+{
+    return l->answered ? l->timeout_ms : l->boot_timeout_ms;
+}
+
 /* n bytes from the emulator, within the link's wall-time bound: 0, or -1. */
 static int read_n(pil_avr_link_t *l, uint8_t *p, size_t n, int64_t deadline, char *err)
 {
-    int bound = l->answered ? l->timeout_ms : l->boot_timeout_ms;
+    int bound = read_bound(l);
     size_t got = 0;
     while (got < n) {
         int left = (int)(deadline - now_ms());
@@ -222,7 +228,7 @@ static int link_send(void *ctx, const uint8_t *frame, uint16_t len, char *err)
 static int link_recv(void *ctx, uint8_t *buf, uint16_t cap, uint16_t *len, pil_emu_t *emu, char *err)
 {
     pil_avr_link_t *l = ctx;
-    int64_t deadline = now_ms() + (l->answered ? l->timeout_ms : l->boot_timeout_ms);
+    int64_t deadline = now_ms() + read_bound(l);
     pil_frame_t f;
     if (read_frame(l, buf, cap, len, deadline, err) != 0) {
         return -1;

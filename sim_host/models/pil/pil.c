@@ -70,7 +70,7 @@ static void pil_defaults(void *config)
     memset(c, 0, sizeof *c);
     c->boot_budget = 16000000u;
     c->timeout_s = 20.0f;
-    c->boot_timeout_s = 60.0f;
+    c->boot_timeout_s = PIL_LINK_BOOT_TIMEOUT_MS / 1000.0f;
 }
 
 static void pil_group_defaults(void *config)
