@@ -200,7 +200,7 @@ static void test_defaults(void **state)
     assert_float_equal(ir_config(sc)->ambient.noise_rel, 0.01, 1e-6);
     assert_float_equal(camera_config(sc)->fov, 56.0, 1e-6);
     assert_float_equal(camera_config(sc)->range, 0.9, 1e-6);   /* the detector's reach (test_camera_render) */
-    assert_float_equal(camera_config(sc)->fps, 4.3, 1e-6);     /* the e-puck image's frame rate */
+    assert_true(isnan(camera_config(sc)->fps));   /* unset: each robot model's (test_robot_model) */
     assert_int_equal(camera_config(sc)->width_px, 40);
     assert_int_equal(camera_config(sc)->height_px, 20);   /* the e-puck image's frame */
     assert_float_equal(ircom_config(sc)->range, 0.25, 1e-6);
@@ -490,7 +490,7 @@ static void test_unknown_keys(void **state)
         { "duraton: 5\n", 1, "duraton: unknown key 'duraton' (did you mean 'duration'?)" },
         { RW "    zzzzzz: 1\n", 3,
           "robots[0].zzzzzz: unknown key 'zzzzzz' (valid keys: name, count, controller, policy, "
-          "heading, min_spacing, moves, placement, faults, ground_sensors, platform, image, platform_robots, "
+          "heading, min_spacing, moves, placement, robot, faults, ground_sensors, platform, image, platform_robots, "
           "selector, params)" },
         { RW "    placement: {shape: circle, radius: 1, centre: 0}\n", 3,
           "robots[0].placement.centre: unknown key 'centre' (valid keys: shape, x, y," },

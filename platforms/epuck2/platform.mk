@@ -68,7 +68,7 @@ $(FW_HOST)/test_hal_epuck2_libircom: $(EPUCK2)/tests/test_hal_epuck2.c $(EPUCK2_
 .PHONY: epuck2-tone-coeffs
 epuck2-tone-coeffs:
 	@python3 tools/sound/gen_tone_tables.py --coeffs $$(sed -n 's/^#define EPUCK2_MIC_RATE_HZ \([0-9]*\)u$$/\1/p' \
-	  $(EPUCK2)/hal/epuck2_lib.h) tone_band_coeffs_16k | cmp -s - $(EPUCK2)/hal/tone_coeffs_16k.c \
+	  hal/platform_facts.h) tone_band_coeffs_16k | cmp -s - $(EPUCK2)/hal/tone_coeffs_16k.c \
 	  || { echo "$(EPUCK2)/hal/tone_coeffs_16k.c is not what tools/sound/gen_tone_tables.py --coeffs 16000 tone_band_coeffs_16k writes: regenerate it" >&2; exit 1; }
 	@echo "epuck2: tone_coeffs_16k.c is generated from hal/sound_bands.h"
 

@@ -706,7 +706,10 @@ static void format_value(const param_desc_t *d, const void *base, char *buf, siz
     case PARAM_I16: snprintf(buf, len, "%d", (int)v.i16); break;
     case PARAM_U32: snprintf(buf, len, "%" PRIu32, v.u32); break;
     case PARAM_U64: snprintf(buf, len, "%" PRIu64, v.u64); break;
-    case PARAM_FLOAT: format_number(v.f, buf, len); break;
+    case PARAM_FLOAT:   /* NaN: unset, the key's doc says what then */
+        if (isnan(v.f)) snprintf(buf, len, "-");
+        else format_number(v.f, buf, len);
+        break;
     case PARAM_ANGLE:
         if (isnan(v.f)) snprintf(buf, len, "random");
         else format_number(v.f, buf, len);

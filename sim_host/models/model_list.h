@@ -8,6 +8,7 @@
  * faulty robots' messages on the air before ircom delivers the step's
  * messages (after_control).
  */
+SIM_MODEL(robot)
 SIM_MODEL(faults)
 SIM_MODEL(ir)
 SIM_MODEL(camera)

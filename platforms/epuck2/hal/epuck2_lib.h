@@ -27,6 +27,12 @@
 
 #include <stdint.h>
 
+/* The robot's facts the simulator shares (the motors' limit, the camera's
+ * sensor, the microphones' count and rate) are in hal/platform_facts.h,
+ * written once: EPUCK2_MOTOR_SPEED_LIMIT, EPUCK2_MIC_COUNT,
+ * EPUCK2_MIC_RATE_HZ, EPUCK2_CAMERA_SENSOR_WIDTH_PX and _HEIGHT_PX. */
+#include "platform_facts.h"
+
 /* motors.h: stepper motors, speed in steps/s (MOTOR_SPEED_LIMIT 1100),
  * position counters in steps (32-bit). */
 void motors_init(void);
@@ -34,8 +40,7 @@ void left_motor_set_speed(int speed);
 void right_motor_set_speed(int speed);
 int32_t left_motor_get_pos(void);
 int32_t right_motor_get_pos(void);
-/** motors.h MOTOR_SPEED_LIMIT, steps/s. */
-#define EPUCK2_MOTOR_SPEED_LIMIT 1100
+/* motors.h MOTOR_SPEED_LIMIT, steps/s: EPUCK2_MOTOR_SPEED_LIMIT (platform_facts.h). */
 
 /* leds.h: the 4 red LEDs (led_name_t: LED1 front, LED3 right, LED5 back,
  * LED7 left = 0..3), value 0 off, 1 on; the 4 RGB LEDs between them
@@ -95,8 +100,8 @@ void dcmi_release_last_image_ptr(void);
 #define EPUCK2_CAM_FORMAT_COLOR 1
 #define EPUCK2_CAM_SUBSAMPLING_X4 0x80
 #define EPUCK2_DCMI_CAPTURE_ONE_SHOT 0
-#define EPUCK2_PO8030_WIDTH 640u
-#define EPUCK2_PO8030_HEIGHT 480u
+#define EPUCK2_PO8030_WIDTH EPUCK2_CAMERA_SENSOR_WIDTH_PX
+#define EPUCK2_PO8030_HEIGHT EPUCK2_CAMERA_SENSOR_HEIGHT_PX
 #define EPUCK2_DCMI_BUFFER_BYTES 38400u
 
 /* audio/microphone.h, audio/mp45dt02_processing.h: the 4 MEMS microphones
@@ -109,8 +114,7 @@ void mic_start(void (*full_buffer_cb)(int16_t *data, uint16_t length));
 int16_t *mic_get_buffer_ptr(void);
 uint8_t mic_buffer_is_ready(void);
 void mic_buffer_ready_reset(void);
-#define EPUCK2_MIC_COUNT 4u
-#define EPUCK2_MIC_RATE_HZ 16000u
+/* EPUCK2_MIC_COUNT and EPUCK2_MIC_RATE_HZ: platform_facts.h. */
 #define EPUCK2_MIC_BUFFER_LEN 640u
 #define EPUCK2_MIC_RIGHT 0u
 #define EPUCK2_MIC_LEFT 1u

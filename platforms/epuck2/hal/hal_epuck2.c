@@ -510,6 +510,10 @@ hal_status_t hal_ircom_receive(hal_t *hal, hal_ircom_msg_t *out)
     return HAL_OK;
 }
 
+/* hal.h's limit, which the motors reach (EPUCK2_MOTOR_SPEED_LIMIT,
+ * platform_facts.h): the build fails if a change of either breaks that. */
+typedef char hal_epuck2_speed_within_motors[(HAL_WHEEL_SPEED_MAX <= EPUCK2_MOTOR_SPEED_LIMIT) ? 1 : -1];
+
 static int16_t clamp_speed(int16_t v)
 {
     if (v > HAL_WHEEL_SPEED_MAX) {

@@ -33,6 +33,7 @@
 #include "camera_internal.h"
 #include "camera_picture.h"
 #include "models/faults/faults.h"
+#include "models/robot/robot.h"
 #include "units.h"
 
 /* ---------------------------------------------------------------- keys */
@@ -56,7 +57,7 @@ static const param_desc_t camera_params[] = {
       .doc = "geometric (fast: blobs from angles) or rendered (OSMesa frame through hal/blob_detect.c)" },
     { .key = "fps", PARAM_FIELD(C, fps, float), .min = 0, .max = 1000,
       .doc = "frames per second, both models; blobs are a frame old and held until the next "
-             "(the e-puck image's 4.3 by default; 0: fresh every control step)" },
+             "(unset: each robot model's, e-puck1 4.3, e-puck2 15 [?]; 0: fresh every control step)" },
     { .key = "noise", PARAM_FIELD(C, noise, float), .min = 0, .max = 255,
       .doc = "rendered: Gaussian sd added to each pixel's 8-bit channels, counts" },
     PARAM_END
@@ -66,17 +67,17 @@ static const param_desc_t camera_params[] = {
 MODEL_ONE_SECTION(camera_schema, "camera", camera_params, NULL,
                   "front camera blobs");
 
-/* The e-puck image's camera: 56 deg, 40 x 20 pixels, 4.3 fps, the
- * detector's reach. */
+/* The e-puck image's camera: 56 deg, 40 x 20 pixels, the detector's
+ * reach; the frame rate of each robot's model (platform.h). */
 static void camera_defaults(void *config)
 {
     camera_config_t *c = config;
-    c->fov = 56.0f;
+    c->fov = (float)EPUCK1_CAMERA_FOV_DEG;
     c->range = CAMERA_EPUCK_REACH_M;
     c->width_px = EPUCK_CAMERA_WIDTH_PX;
     c->height_px = EPUCK_CAMERA_HEIGHT_PX;
     c->model = CAMERA_GEOMETRIC;
-    c->fps = CAMERA_EPUCK_FPS;
+    c->fps = NAN;
     c->noise = 0.0f;
 }
 
@@ -128,6 +129,9 @@ static int camera_create(sim_t *sim, const void *config, void **self, char err[S
     }
     cs->cfg = config;
     cs->robot = sim_model_array(sim, SIM_MODEL_camera, 0);
+    for (uint32_t i = 0; i < sim->n; i++) {
+        cs->robot[i].fps = isnan(cs->cfg->fps) ? robot_camera_fps(robot_facts(sim, i)) : cs->cfg->fps;
+    }
     cs->record_robot = -1;
     *self = cs;
     return 0;
@@ -255,7 +259,7 @@ static uint8_t capture(struct sim *sim, camera_t *cs, uint32_t i, hal_blob_t out
 static void camera_update(struct sim *sim, camera_t *cs, uint32_t i)
 {
     camera_robot_t *r = &cs->robot[i];
-    float fps = cs->cfg->fps;
+    float fps = r->fps;
     if (fps <= 0.0f) {
         /* Every step, fresh: the behaviour the golden hashes pin. */
         r->blob_count = faults_camera_blind(sim, i) ? 0 : capture(sim, cs, i, r->blobs);
@@ -345,6 +349,8 @@ static const char *const camera_hal_calls[] = { "hal_camera_blobs", "hal_camera_
 static const model_field_t camera_fields[] = {
     { "camera.blob_count", "blobs", "blobs of the robot's latest frame", SIM_FIELD_U8, 0,
       offsetof(camera_robot_t, blob_count), 1 },
+    { "camera.fps", "fps", "the robot's frame rate: camera.fps, or its robot model's", SIM_FIELD_F32, 0,
+      offsetof(camera_robot_t, fps), 1 },
     { NULL, NULL, NULL, SIM_FIELD_U8, 0, 0, 0 }
 };
 

@@ -13,6 +13,7 @@
 
 #include "hal.h"
 #include "models/model.h"
+#include "platform_facts.h"
 
 /** The widest pinhole camera, deg: a wider `camera.fov` (up to 360) is the
  *  all-round stand-in, a panoramic (cylindrical) image centred ahead with
@@ -21,11 +22,13 @@
 /** The rendered camera's largest frame side, pixels (hal/blob_detect.h's
  *  BLOB_MAX_WIDTH and BLOB_MAX_HEIGHT). */
 #define CAMERA_RENDERED_MAX_PX 160u
-/** Frames per second of the e-puck image's camera (40 x 20 RGB565: the
+/** Frames per second of the e-puck1 image's camera (40 x 20 RGB565: the
  *  sensor's 640 x 320 window subsampled 16 x 16): 4.3 fps, the rate GCtronic's
  *  e-puck library gives for 16 x 16 subsampling in RGB565 (camera/fast_2_timer/
- *  e_po3030k.h, "Performances"; the PO6030K driver quotes the same). */
-#define CAMERA_EPUCK_FPS 4.3f
+ *  e_po3030k.h, "Performances"; the PO6030K driver quotes the same), from
+ *  the table of robot facts (hal/platform_facts.h).  An e-puck2's is its
+ *  own (camera.fps unset: each robot's model's). */
+#define CAMERA_EPUCK_FPS ((float)EPUCK1_CAMERA_FPS_X10 / 10.0f)
 /** How far the e-puck image's detector sees a red cylinder 3.5 cm wide and
  *  4.2 cm high (seed 000's food), m: the rendered model sees it straight
  *  ahead to 0.88 m, lit or shaded (test_camera_render), where it covers
@@ -49,7 +52,8 @@ typedef struct camera_config {
     float range;               /**< objects farther away are not seen, m */
     uint16_t width_px, height_px; /**< the robot's frame, pixels (blob sizes refer to it) */
     int model;                 /**< camera_kind_t */
-    float fps;                 /**< frames per second (CAMERA_EPUCK_FPS), 0: fresh
+    float fps;                 /**< frames per second; NaN (unset): each robot model's
+                                    (platform.h: CAMERA_EPUCK_FPS on an e-puck1); 0: fresh
                                     every control step */
     float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
 } camera_config_t;

@@ -25,6 +25,7 @@ typedef struct camera_robot {
     double phase_s;                /* when its frame 0 began, s */
     hal_blob_t next[HAL_MAX_BLOBS];
     sim_rand_t rand;               /* phase and pixel noise (RAND_CAMERA) */
+    float fps;                     /* camera.fps, or its robot model's (platform.h) */
 } camera_robot_t;
 
 /* The run's renderer (made at the first rendered frame) and recorder. */

@@ -11,6 +11,7 @@
 #include "core/sim_internal.h"
 #include "models/faults/faults.h"
 #include "models/per_robot.h"
+#include "models/robot/robot.h"
 #include "units.h"
 
 #define W wheels_config_t
@@ -98,6 +99,7 @@ static void wheels_free_config(void *config)
 /* One robot's motors. */
 typedef struct wheels_robot {
     int16_t cmd_left, cmd_right;      /* commanded speeds, steps/s */
+    int16_t speed_max;                /* its robot model's top speed under hal.h's, steps/s */
     double steps_left, steps_right;   /* commanded steps so far */
     double bias_left, bias_right;     /* b of eq 3 (this run's, or this step's), steps/s */
     sim_rand_t rand;                  /* f of eq 3 (RAND_WHEELS) */
@@ -127,6 +129,7 @@ static int wheels_create(sim_t *sim, const void *config, void **self, char err[S
     (void)err;
     for (uint32_t i = 0; i < sim->n; i++) {
         wheels_robot_t *w = &robots(sim)[i];
+        w->speed_max = robot_wheel_speed_max(robot_facts(sim, i));
         sim_rand_seed(&w->rand, sim->seed, i, RAND_WHEELS);
         if (c->robot_count > 0) {
             ((per_robot_cache_t *)sim_model_array(sim, SIM_MODEL_wheels, 1))[i].id = -1;
@@ -183,8 +186,9 @@ static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
              * (wheels_create), f every step, and only while the robot is
              * commanded to move: a stopped Robot_Node does not creep.  The
              * motors cannot exceed HAL_WHEEL_SPEED_MAX (1000 steps/s =
-             * 12.9 cm/s): a bias above that saturates the wheels where the
-             * paper's robots (its Figure 17 goes to a 20 cm/s sd) did not. */
+             * 12.9 cm/s; speed_max, the robot model's where lower): a bias
+             * above that saturates the wheels where the paper's robots (its
+             * Figure 17 goes to a 20 cm/s sd) did not. */
             if (c->bias_per_step) {
                 /* The other reading of "a random bias drawn from a Gaussian":
                  * a new b every step, which averages out along a path. */
@@ -198,8 +202,8 @@ static void drive_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx
                 l *= 1.0 + noise * sim_rand_normal(&wr->rand);
                 rr *= 1.0 + noise * sim_rand_normal(&wr->rand);
             }
-            l = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, l));
-            rr = fmax(-HAL_WHEEL_SPEED_MAX, fmin(HAL_WHEEL_SPEED_MAX, rr));
+            l = fmax(-wr->speed_max, fmin(wr->speed_max, l));
+            rr = fmax(-wr->speed_max, fmin(wr->speed_max, rr));
         } else if (noise > 0.0) {
             /* Without a bias: the factor f alone, at every step (as before
              * the bias existed: golden hashes unchanged). */
@@ -255,16 +259,16 @@ void sim_robot_wheels(const sim_t *sim, uint32_t i, int16_t *left, int16_t *righ
 
 /* ---------------------------------------------------------------- HAL */
 
-static int16_t clamp_speed(int16_t v)
+static int16_t clamp_speed(int16_t v, int16_t max)
 {
-    return v > HAL_WHEEL_SPEED_MAX ? HAL_WHEEL_SPEED_MAX : (v < -HAL_WHEEL_SPEED_MAX ? -HAL_WHEEL_SPEED_MAX : v);
+    return v > max ? max : (v < -max ? (int16_t)-max : v);
 }
 
 void hal_set_wheel_speeds(hal_t *hal, int16_t left_steps_s, int16_t right_steps_s)
 {
     wheels_robot_t *w = &robots(hal->sim)[hal->index];
-    w->cmd_left = clamp_speed(left_steps_s);
-    w->cmd_right = clamp_speed(right_steps_s);
+    w->cmd_left = clamp_speed(left_steps_s, w->speed_max);
+    w->cmd_right = clamp_speed(right_steps_s, w->speed_max);
 }
 
 void hal_wheel_steps(hal_t *hal, int16_t *left, int16_t *right)
@@ -281,6 +285,8 @@ static const char *const wheels_hal_calls[] = { "hal_set_wheel_speeds", "hal_whe
 static const model_field_t wheels_fields[] = {
     F("cmd_left", "steps/s", "commanded speed of the left wheel", SIM_FIELD_I16, cmd_left),
     F("cmd_right", "steps/s", "commanded speed of the right wheel", SIM_FIELD_I16, cmd_right),
+    F("speed_max", "steps/s", "the fastest a wheel turns: hal.h's limit, or the robot model's motors' when lower",
+      SIM_FIELD_I16, speed_max),
     F("steps_left", "steps", "commanded steps of the left wheel so far", SIM_FIELD_F64, steps_left),
     F("steps_right", "steps", "commanded steps of the right wheel so far", SIM_FIELD_F64, steps_right),
     F("bias_left", "steps/s", "eq 3's bias b of the left wheel", SIM_FIELD_F64, bias_left),
