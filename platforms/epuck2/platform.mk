@@ -52,16 +52,29 @@ EPUCK2_HAL_COMMON := $(EPUCK2)/hal/hal_epuck2.c $(EPUCK2)/hal/host_link.c $(EPUC
   hal/blob_detect.c hal/hal_common.c hal/units.c hal/tone_detect.c hal/tone_tables.c \
   $(EPUCK2_STUBS)/epuck2_lib_stubs.c $(EPUCK2_STUBS)/epuck2_os_stubs.c wire/telemetry/telemetry_rx.c wire/telemetry/telemetry_host.c \
   wire/telemetry/telemetry_frame.c
-EPUCK2_HAL_DEPS := $(EPUCK2_HAL_COMMON) $(wildcard $(EPUCK2)/hal/*.h $(EPUCK2_STUBS)/*.h hal/*.h wire/*/*.h)
+EPUCK2_HAL_DEPS := $(wildcard $(EPUCK2)/hal/*.h $(EPUCK2_STUBS)/*.h hal/*.h wire/*/*.h)
+# Compiled once for both binaries (they differ in the IR backend and the
+# test's -DTEST_LIBIRCOM only).
+EPUCK2_HOST_OBJ := $(FW_HOST)/epuck2_obj
+epuck2_host_obj = $(patsubst %.c,$(EPUCK2_HOST_OBJ)/%.o,$(1))
+EPUCK2_HAL_COMMON_OBJ := $(call epuck2_host_obj,$(EPUCK2_HAL_COMMON))
 
-$(FW_HOST)/test_hal_epuck2_randb: $(EPUCK2)/tests/test_hal_epuck2.c $(EPUCK2_HAL_DEPS) $(EPUCK2)/hal/ircom_randb.c | $(BUILD)/config.mk
+$(EPUCK2_HOST_OBJ)/%.o: %.c $(EPUCK2_HAL_DEPS) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(call show,CC,$@)$(CC) $(EPUCK2_HOST_CFLAGS) -o $@ $< $(EPUCK2_HAL_COMMON) $(EPUCK2)/hal/ircom_randb.c -lm
-$(FW_HOST)/test_hal_epuck2_libircom: $(EPUCK2)/tests/test_hal_epuck2.c $(EPUCK2_HAL_DEPS) $(EPUCK2)/hal/ircom_libircom.c \
-    $(EPUCK2_STUBS)/ircom_stubs.c | $(BUILD)/config.mk
+	$(call show,CC,$@)$(CC) $(EPUCK2_HOST_CFLAGS) -c -o $@ $<
+$(EPUCK2_HOST_OBJ)/test_randb.o: $(EPUCK2)/tests/test_hal_epuck2.c $(EPUCK2_HAL_DEPS) | $(BUILD)/config.mk
 	@mkdir -p $(@D)
-	$(call show,CC,$@)$(CC) $(EPUCK2_HOST_CFLAGS) -DTEST_LIBIRCOM -o $@ $< $(EPUCK2_HAL_COMMON) \
-	  $(EPUCK2)/hal/ircom_libircom.c $(EPUCK2_STUBS)/ircom_stubs.c -lm
+	$(call show,CC,$@)$(CC) $(EPUCK2_HOST_CFLAGS) -c -o $@ $<
+$(EPUCK2_HOST_OBJ)/test_libircom.o: $(EPUCK2)/tests/test_hal_epuck2.c $(EPUCK2_HAL_DEPS) | $(BUILD)/config.mk
+	@mkdir -p $(@D)
+	$(call show,CC,$@)$(CC) $(EPUCK2_HOST_CFLAGS) -DTEST_LIBIRCOM -c -o $@ $<
+
+$(FW_HOST)/test_hal_epuck2_randb: $(EPUCK2_HOST_OBJ)/test_randb.o $(EPUCK2_HAL_COMMON_OBJ) \
+    $(call epuck2_host_obj,$(EPUCK2)/hal/ircom_randb.c)
+	$(call show,LD,$@)$(CC) $(EPUCK2_HOST_CFLAGS) -o $@ $^ -lm
+$(FW_HOST)/test_hal_epuck2_libircom: $(EPUCK2_HOST_OBJ)/test_libircom.o $(EPUCK2_HAL_COMMON_OBJ) \
+    $(call epuck2_host_obj,$(EPUCK2)/hal/ircom_libircom.c $(EPUCK2_STUBS)/ircom_stubs.c)
+	$(call show,LD,$@)$(CC) $(EPUCK2_HOST_CFLAGS) -o $@ $^ -lm
 
 # The 16 kHz coefficients are generated from hal/sound_bands.h: a change
 # there without regenerating them fails here.
@@ -180,11 +193,16 @@ endef
 $(foreach r,$(EPUCK2_IMAGES),$(eval $(call EPUCK2_PIL_RULES,$(call fw_field,$(r),1))))
 endif
 
-.PHONY: epuck2-pil
-epuck2-pil: epuck2-gates deps
+# The emulated runs and the flasher's tests are independent: side by side
+# under make -j (make test).
+.PHONY: epuck2-pil epuck2-pil-elfs epuck2-pil-qemu epuck2-pil-flasher
+epuck2-pil: epuck2-pil-qemu epuck2-pil-flasher
+epuck2-pil-elfs: epuck2-gates deps
 	@$(MAKE) --no-print-directory $(foreach i,$(EPUCK2_PIL_IMAGES),$(EPUCK2_PIL)/$(i).elf)
+epuck2-pil-qemu: epuck2-pil-elfs
 	@$(PYTHON) $(EPUCK2)/tests/pil_qemu.py --elf-dir $(EPUCK2_PIL) $(EPUCK2_PIL_IMAGES)
-	@$(PYTHON) tools/tests/flash/test_epuck2.py $(EPUCK2_PIL)/phototaxis.elf
+epuck2-pil-flasher: epuck2-pil-elfs
+	@$(PYTHON) -m tools.tests.flash.test_epuck2 $(EPUCK2_PIL)/phototaxis.elf
 
 # ------------------------------------------------ flashing
 ELF ?=

@@ -8,7 +8,10 @@ return address), its sources and the stubs of its library, what an image's
 keys add, the RAM gate.  For every image and every target this compiles
 every source warning-free (-std=c99 -pedantic -Wall -Wextra -Werror ...)
 with -fstack-usage, links the image against the stubs (a tests/ folder's
-sources: they stand for the library) and measures:
+sources: they stand for the library) and measures what follows.  A source
+is compiled again only when it, a header it includes or its command
+changed since its object was made (the object's .d and .cmd files): an
+object exists only if its compile passed -Werror.
 
 The images that publish telemetry also link the robot's telemetry
 (firmware/telemetry/robot_telemetry.c) and lcm-gen's C code of robot_state_t
@@ -120,12 +123,40 @@ def obj_path(build, target, src):
     return os.path.join(build, target, 'obj', src[:-2] + '.o')
 
 
+def up_to_date(obj, cmd):
+    """True when `obj` was made by `cmd` (its .cmd file) and is newer than
+    its source and every header it read (its .d file, -MMD): the compile
+    would give the same object and the same warnings (none: -Werror made
+    it), so it is not run again."""
+    base = os.path.join(ROOT, obj[:-2])
+    try:
+        with open(base + '.cmd') as f:
+            if f.read() != cmd:
+                return False
+        with open(base + '.d') as f:
+            deps = f.read().replace('\\\n', ' ').split(':', 1)[1].split()
+        made = os.path.getmtime(base + '.o')
+        return all(os.path.getmtime(os.path.join(ROOT, d)) <= made for d in deps)
+    except (OSError, IndexError):
+        return False
+
+
 def compile_one(build, target, src, inc):
     t = TARGETS[target]
     obj = obj_path(build, target, src)
     os.makedirs(os.path.join(ROOT, os.path.dirname(obj)), exist_ok=True)
-    cmd = f"{t['cc']} {t['cflags']} {WARN} {inc} {COMMON} -c {shlex.quote(src)} -o {shlex.quote(obj)}"
+    dep = obj[:-2] + '.d'
+    cmd = (f"{t['cc']} {t['cflags']} {WARN} {inc} {COMMON} -MMD -MF {shlex.quote(dep)} -c {shlex.quote(src)} "
+           f"-o {shlex.quote(obj)}")
+    if up_to_date(obj, cmd):
+        return src, 0, ''
+    cmd_file = os.path.join(ROOT, obj[:-2] + '.cmd')
+    if os.path.exists(cmd_file):
+        os.remove(cmd_file)
     r = sh(cmd)
+    if r.returncode == 0:
+        with open(cmd_file, 'w') as f:
+            f.write(cmd)
     return src, r.returncode, (r.stdout + r.stderr).strip()
 
 

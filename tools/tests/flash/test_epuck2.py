@@ -11,8 +11,14 @@ decode to telemetry frames of robot 5 (the image stops QEMU itself after
 gdb-multiarch prints for them; the wrong image, missing port and missing
 GDB cases by the flasher's checks before anything is sent.
 
-Run: .venv/bin/python tools/tests/flash/test_epuck2.py ELF  (unittest; prints "N passed, M failed")
+The cases before GDB and against the fake run the flasher's main() in this
+process (a Python start-up each would cost more than the cases); the end
+to end case runs it as `python -m swarmtools.flash.epuck2`, as a user does.
+
+Run: .venv/bin/python -m tools.tests.flash.test_epuck2 ELF  (unittest; prints "N passed, M failed")
 """
+import contextlib
+import io
 import os
 import socket
 import stat
@@ -20,17 +26,30 @@ import struct
 import subprocess
 import sys
 import tempfile
-import time
 import unittest
 
 import swarmtools.flash.epuck2 as ef
 from swarmtools.telemetry import frames
+
+from ..telemetry.helpers import wait_for
 
 ELF = None           # the PIL image (argv[1])
 TIMEOUT_S = 120      # a bound only a hang reaches
 
 
 def run_flasher(*args):
+    """The flasher's main() in this process: (exit code, stdout, stderr)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            rc = ef.main(list(args))
+        except SystemExit as e:      # argparse's errors
+            rc = e.code
+    return rc, out.getvalue(), err.getvalue()
+
+
+def run_flasher_command(*args):
+    """The flasher as a user runs it (python -m swarmtools.flash.epuck2)."""
     r = subprocess.run([sys.executable, '-m', 'swarmtools.flash.epuck2', *args],
                        capture_output=True, text=True, timeout=TIMEOUT_S)
     return r.returncode, r.stdout, r.stderr
@@ -171,16 +190,16 @@ class QemuGdbServer(unittest.TestCase):
                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
             try:
                 # The gdbstub listens once QEMU is up: wait for it.
-                t0 = time.monotonic()
-                while True:
+                def listening():
+                    if qemu.poll() is not None:
+                        self.fail('QEMU did not start its gdbstub: ' + qemu.stderr.read().decode())
                     try:
                         socket.create_connection(('127.0.0.1', port), timeout=1).close()
-                        break
+                        return True
                     except OSError:
-                        if qemu.poll() is not None or time.monotonic() - t0 > TIMEOUT_S:
-                            self.fail('QEMU did not start its gdbstub: ' + qemu.stderr.read().decode())
-                        time.sleep(0.05)
-                rc, out, err = run_flasher(ELF, f'127.0.0.1:{port}', '--no-scan', '--start', 'jump')
+                        return False
+                wait_for(listening, "QEMU's gdbstub", timeout=TIMEOUT_S, every=0.05)
+                rc, out, err = run_flasher_command(ELF, f'127.0.0.1:{port}', '--no-scan', '--start', 'jump')
                 self.assertEqual(rc, 0, err)
                 self.assertIn('loaded and verified', out)
                 # It runs: it stops QEMU itself after 3 s of emulated time.
@@ -202,7 +221,7 @@ class Summary(unittest.TextTestResult):
 
 if __name__ == '__main__':
     if len(sys.argv) != 2:
-        sys.exit('usage: test_epuck2.py PIL_ELF (build/firmware/epuck2/pil/phototaxis.elf)')
+        sys.exit('usage: python -m tools.tests.flash.test_epuck2 PIL_ELF (build/firmware/epuck2/pil/phototaxis.elf)')
     ELF = sys.argv.pop(1)
     runner = unittest.TextTestRunner(verbosity=1, resultclass=Summary)
     result = runner.run(unittest.defaultTestLoader.loadTestsFromModule(sys.modules[__name__]))
