@@ -140,13 +140,16 @@ class SimOperator:
         pass
 
 
-def start(robot_id: int, truth: dict, directory: str | Path, speed: float = 200.0) -> tuple:
-    """Starts the fake robot in its world; (fakes, link path, world file)."""
+def start(robot_id: int, truth: dict, directory: str | Path, speed: float = 200.0, platform: str = "host") -> tuple:
+    """Starts the fake robot in its world; (fakes, link path, world file).
+    `platform`: the calibration image as the host build, or its ELF on an
+    emulated MCU (pil_avr, pil_m4: the processor-in-the-loop robot)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     world_file = directory / "world.yaml"
     world_file.write_text(yaml.safe_dump(world(robot_id, truth), sort_keys=False), encoding="utf-8")
-    fakes = FakeEpucks(1, directory, images=["calib"], ids=[robot_id], world=str(world_file), speed=speed)
+    fakes = FakeEpucks(1, directory, images=["calib"], ids=[robot_id], world=str(world_file), speed=speed,
+                       platform=platform)
     fakes.start()
     return fakes, fakes.links[0], world_file
 
