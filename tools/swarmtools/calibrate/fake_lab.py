@@ -59,7 +59,7 @@ def world(robot_id: int, truth: dict) -> dict:
         "ir": {"robots": [{"id": robot_id, **truth["ir"]}]},
         "ambient": {"robots": [{"id": robot_id, **truth["ambient"]}]},
         "wheels": {"robots": [{"id": robot_id, **truth["wheels"]}]},
-        "camera": dict(truth["camera"]),    # no per-robot keys: the world's own
+        "camera": {"robots": [{"id": robot_id, **truth["camera"]}]},
         "sound": {"enabled": True, **{k: v for k, v in truth["sound"].items() if not k.startswith("gain")},
                   "robots": [{"id": robot_id, **{k: v for k, v in truth["sound"].items() if k.startswith("gain")}}]},
         "objects": [{"shape": "cylinder", "x": CARD[0], "y": CARD[1], "radius": procedures.CARD_DIAMETER_MM / 2000,

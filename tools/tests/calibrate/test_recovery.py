@@ -174,6 +174,35 @@ class Recovery(unittest.TestCase):
         self.assertFalse((self.dir / "lab_bad").exists())
 
 
+class CameraPerRobot(unittest.TestCase):
+    """camera.robots: a robot whose id has an entry sees with its own reach, the others with the section's,
+    and an id set after the run is made is followed."""
+
+    def blobs(self, ids) -> list:
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / "cam.yaml"
+            path.write_text(yaml.safe_dump({
+                "arena": {"width": 2.0, "height": 2.0}, "camera": {"range": 1.0, "robots": [{"id": 7, "range": 0.3}]},
+                "robots": [{"count": 2, "controller": "calib", "placement": {"shape": "poses", "poses": [
+                    {"x": -0.5, "y": 0.5, "heading": 0}, {"x": -0.5, "y": -0.5, "heading": 0}]}}],
+                "objects": [{"shape": "cylinder", "x": 0.0, "y": 0.5, "radius": 0.03, "colour": "red"},
+                            {"shape": "cylinder", "x": 0.0, "y": -0.5, "radius": 0.03, "colour": "red"}]}))
+            out = []
+            with Sim(path, overrides={"host.live": True}) as sim:
+                for k in (0, 1):
+                    sim.host_send(k, b"C\x01")
+                for step_ids in ids:
+                    for k, rid in enumerate(step_ids):
+                        sim.set_robot_id(k, rid)
+                    sim.step(10)
+                    out.append([int(v) for v in sim.robots["camera.blob_count"]])
+            return out
+
+    def test_its_own_reach(self):
+        # The cards 0.43 m from the lenses: within the section's 1 m, beyond robot 7's 0.3 m.
+        self.assertEqual(self.blobs([(7, 1), (1, 7)]), [[0, 1], [1, 0]])
+
+
 class FragmentsMerge(unittest.TestCase):
     def test_lab_average_of_two_robots(self):
         a = {"ir": fake_fit({"sensors": [{"gain": 1.0, "offset": 10.0}] * 8, "noise_rel": 0.01, "noise_abs": 4.0})}
