@@ -84,7 +84,8 @@ def main(argv=None) -> int:
                                             platform=args.platform)
             try:
                 _, fits = cli.calibrate(link, Path(tmp) / "out", list(procedures.PROCEDURES), procedures.Setup(),
-                                        fake_lab.SimOperator(fakes, seed=k), timeout_s=60, log=lambda s: None)
+                                        fake_lab.SimOperator(fakes, seed=k), timeout_s=60, log=lambda s: None,
+                                        emitter=fakes.links[1])
             finally:
                 fakes.stop()
         e = errors(truth, fits)

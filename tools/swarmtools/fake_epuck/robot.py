@@ -134,6 +134,7 @@ class FakeRobot:
     reset_on_handshake: bool = True
     log: object = None               # callable(str), or None for quiet
     platform: str = "host"           # what runs the image: its host build, or pil_avr / pil_m4 (runtime.py)
+    shares: object = None            # a FakeRobot whose world this one is a robot of (None: its own world)
 
     def __post_init__(self):
         self.port = Port(self.link)
@@ -218,7 +219,7 @@ class FakeRobot:
         if self.program.note:
             self.say(self.program.note)
         try:
-            self.runtime = runtime_for(self.program, self.world, platform=self.platform)
+            self.runtime = runtime_for(self.program, self.world, platform=self.platform, owner=self.shares)
         except Exception as e:        # a world or controller the simulator refuses
             self.state = "idle"
             self.say(f"image {self.program.image.name} cannot run: {e}")

@@ -135,6 +135,7 @@ class SimRobot:
         self.path, self.index, self.group = world_for(decl, world)
         self.seed = seed if seed is not None else robot_id + 1
         self.restarts = 0
+        self.views: dict[int, list] = {}      # world index -> [robot id, UART bytes not yet taken]
         self.sim = self._world()
 
     def _world(self):
@@ -153,7 +154,24 @@ class SimRobot:
             finally:
                 os.unlink(path)
         sim.set_robot_id(self.index, self.robot_id)
+        for index, (rid, _) in self.views.items():
+            sim.set_robot_id(index, rid)
         return sim
+
+    def attach(self, decl: ImageDecl, robot_id: int) -> int:
+        """Another fake robot's port onto a robot of this world: the first
+        robot after this one that runs `decl`'s controller and no port yet
+        (its index).  ValueError when there is none."""
+        first = 0
+        for controller, count in (_groups(self.path) if self.path else []):
+            for index in range(first, first + count):
+                if controller == decl.controller and index != self.index and index not in self.views:
+                    self.views[index] = [robot_id, bytearray()]
+                    self.sim.set_robot_id(index, robot_id)
+                    return index
+            first += count
+        raise ValueError(f"{self.world_name}: no other robot runs controller {decl.controller} "
+                         f"(image {decl.name}) for a second port")
 
     @property
     def world_name(self) -> str:
@@ -166,6 +184,8 @@ class SimRobot:
             self.restarts += 1
             self.sim = self._world()
             self.sim.step(1)
+        for index, (_, pending) in self.views.items():
+            pending += self.sim.uart(index)
         return self.sim.uart(self.index)
 
     def host_pose(self, x_mm: int, y_mm: int, heading_mrad: int) -> None:
@@ -179,10 +199,67 @@ class SimRobot:
         self.sim.close()
 
 
+class WorldView:
+    """A fake robot that is a robot of another fake's world (FakeEpucks
+    shared_world): the owner steps the world; this one takes its robot's
+    UART bytes and gives it the host link's poses and messages (a second
+    e-puck beside the first, each on its own port)."""
+
+    def __init__(self, decl: ImageDecl, robot_id: int, owner):
+        self.decl = decl
+        self.robot_id = robot_id
+        self.owner = owner              # the FakeRobot whose runtime (a SimRobot) holds the world
+        self.period_s = decl.period_ms / 1000.0
+        self.world = None
+        self.index = None
+        self._attach()
+
+    def _attach(self) -> SimRobot | None:
+        rt = self.owner.runtime
+        if rt is None:
+            return None
+        if rt is not self.world:
+            self.index = rt.attach(self.decl, self.robot_id)
+            self.world = rt
+        return rt
+
+    @property
+    def world_name(self) -> str:
+        return f"robot {self.index} of {self.owner.name}'s world"
+
+    def step(self) -> bytes:
+        rt = self._attach()
+        if rt is None:
+            return b""
+        pending = rt.views[self.index][1]
+        out = bytes(pending)
+        pending.clear()
+        return out
+
+    def host_pose(self, x_mm: int, y_mm: int, heading_mrad: int) -> None:
+        rt = self._attach()
+        if rt is not None and self.decl.host_link:
+            rt.sim.host_pose(self.index, x_mm, y_mm, heading_mrad)
+
+    def host_message(self, payload: bytes) -> bool:
+        rt = self._attach()
+        return rt is not None and self.decl.host_link and rt.sim.host_send(self.index, payload)
+
+    def close(self) -> None:
+        if self.world is not None:
+            self.world.views.pop(self.index, None)
+        self.world = None
+
+
 def runtime_for(program: Program, world: str | None = None, seed: int | None = None,
-                platform: str = "host") -> Runtime:
-    """How `program` (what the bootloader left) runs: its image in its world, on `platform`."""
+                platform: str = "host", owner=None) -> Runtime:
+    """How `program` (what the bootloader left) runs: its image in its world, on `platform`;
+    with `owner` (a FakeRobot running), a robot of the owner's world."""
+    if owner is not None:
+        if owner.runtime is None:
+            raise ValueError(f"{owner.name}, whose world it shares, runs nothing")
+        return WorldView(program.image, program.robot_id, owner)
     return SimRobot(program.image, program.robot_id, world, seed, platform)
 
 
-__all__ = ["ALONE", "PLATFORMS", "Runtime", "SimRobot", "runtime_for", "world_for"]
+__all__ = ["ALONE", "PLATFORMS", "Runtime", "SimRobot", "WorldView", "runtime_for", "world_for"]

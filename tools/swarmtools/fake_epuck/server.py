@@ -29,11 +29,14 @@ class FakeEpucks:
     speed   simulated time per wall second (1: real time)
     platform  what runs each image: "host" (its host build), "pil_avr" or
             "pil_m4" (its ELF on an emulated MCU: runtime.py)
+    shared_world  robots 1.. are robots of robot 0's world (the next ones
+            running their images' controllers), each on its own port: two
+            e-pucks that see and hear each other (robot 0 starts first)
     """
 
     def __init__(self, count: int = 1, directory: str | os.PathLike = "out/fake-epuck", images=None, ids=None,
                  faults=None, world: str | None = None, speed: float = 1.0, reset_on_handshake: bool = True,
-                 log=None, platform: str = "host"):
+                 log=None, platform: str = "host", shared_world: bool = False):
         if count < 1:
             raise ValueError("at least one robot")
         self.dir = Path(directory)
@@ -47,6 +50,9 @@ class FakeEpucks:
                                  speed=speed, reset_on_handshake=reset_on_handshake, log=log,
                                  platform=platform)
                        for k in range(count)]
+        if shared_world:
+            for r in self.robots[1:]:
+                r.shares = self.robots[0]
         for k, name in enumerate(images):
             if name:
                 self.robots[k].load_image(name, ids[k])

@@ -42,9 +42,12 @@ class Recovery(unittest.TestCase):
         fakes, link, cls.world = fake_lab.start(ROBOT_ID, cls.truth, cls.dir / "lab", speed=500)
         try:
             # One window per placement (the kit's default is two): half the time, still within tolerance.
+            # The emitter: a second fake e-puck in the same world, on its own port, told by the kit.
+            cls.operator = fake_lab.SimOperator(fakes)
             cls.rec, cls.fits = cli.calibrate(link, cls.dir / "out", list(procedures.PROCEDURES),
-                                              procedures.Setup(windows=1),
-                                              fake_lab.SimOperator(fakes), timeout_s=60, log=lambda s: None)
+                                              procedures.Setup(windows=1), cls.operator, timeout_s=60,
+                                              log=lambda s: None, emitter=fakes.links[1])
+            cls.emitter = (fakes.robots[1].robot_id, fakes.robots[1].host.msgs, fakes.robots[1].host.not_ours)
         finally:
             fakes.stop()
 
@@ -87,6 +90,15 @@ class Recovery(unittest.TestCase):
         got, want = self.fits["camera"].params, self.truth["camera"]
         self.assertLess(abs(got["range"] - want["range"]), TOL["camera_range_m"], f"{got} vs {want}")
         self.assertLess(abs(got["fov"] - want["fov"]), TOL["camera_fov_deg"], f"{got} vs {want}")
+
+    def test_the_emitter_played_as_the_kit_told_it(self):
+        """The tones came from the second robot's calibration image, through its own port: 4 commands at
+        least (bands 1, 2, 3 and silence), none for another robot, none by the operator's hand."""
+        rid, msgs, not_ours = self.emitter
+        self.assertEqual(rid, fake_lab.emitter_id(ROBOT_ID))
+        self.assertGreaterEqual(msgs, 4)
+        self.assertEqual(not_ours, 0)
+        self.assertNotIn("tone", [what for what, _ in self.operator.log])
 
     def test_sound_recovered(self):
         got, want = self.fits["sound"].params, self.truth["sound"]
