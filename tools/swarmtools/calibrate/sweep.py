@@ -86,8 +86,13 @@ def main(argv=None) -> int:
                 _, fits = cli.calibrate(link, Path(tmp) / "out", list(procedures.PROCEDURES), procedures.Setup(),
                                         fake_lab.SimOperator(fakes, seed=k), timeout_s=60, log=lambda s: None,
                                         emitter=fakes.links[1])
+                with fakes.locked():
+                    pil = fakes.robots[0].runtime.sim.summary().get("pil") or {}
             finally:
                 fakes.stop()
+        if args.platform != "host" and pil.get("robots") != 1:
+            print(f"calibrate-sweep: robot {k + 1} was not on {args.platform} (summary: {pil})", file=sys.stderr)
+            return 1
         e = errors(truth, fits)
         rows.append(e)
         print(f"robot {k + 1}/{args.robots}: " + ", ".join(f"{n} {v:.3g}" for n, v in e.items()), file=sys.stderr)

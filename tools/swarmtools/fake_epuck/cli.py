@@ -59,7 +59,8 @@ def _run(args) -> int:
         return 2
     log = None if args.quiet else log_to_stderr(PROG)
     fakes = FakeEpucks(args.robots, args.dir, images=images, ids=ids, faults=[faults] * args.robots,
-                       world=args.world, speed=args.speed, log=log, platform=args.platform)
+                       world=args.world, speed=args.speed, log=log, platform=args.platform,
+                       shared_world=args.shared_world)
     fakes.power_on()
     for r, name, rid in zip(fakes.robots, images + [None] * args.robots, ids, strict=False):
         what = f"image {name}, robot {rid}" if name else "nothing flashed yet"
@@ -181,6 +182,9 @@ def main(argv=None) -> int:
     run.add_argument("--platform", choices=PLATFORMS, default="host",
                      help="what runs the image: its host build (default), or its ELF on an emulated "
                           "ATmega2560 (pil_avr) or Cortex-M4F (pil_m4): make pil-avr / pil-m4 builds them")
+    run.add_argument("--shared-world", action="store_true",
+                     help="robots 1.. are robots of robot 0's world (they see and hear each other), each on "
+                          "its own port (default: each robot in a world of its own)")
     run.add_argument("--speed", type=float, default=1.0, help="simulated seconds per second (default 1: real time)")
     run.add_argument("--duration", type=float, default=0.0, help="stop after this many seconds (0: when stopped)")
     run.add_argument("--background", action="store_true",
