@@ -17,6 +17,7 @@
 #include <cmocka.h>
 
 #include "hal.h"
+#include "models/camera/camera.h"
 #include "models/ir/ir.h"
 #include "sim_fixture.h"
 
@@ -39,7 +40,10 @@ static const char *const SCENARIO =
     "sound:\n"
     "  enabled: true\n"
     "  noise: 0\n"
-    "  robots: [{id: 0, gain2: 3.0}]\n";
+    "  robots: [{id: 0, gain2: 3.0}]\n"
+    "camera:\n"
+    "  range: 0.8\n"
+    "  robots: [{id: 1, range: 0.3}, {id: 0, fov: 40}]\n";
 
 static scenario_t *load(const char *yaml)
 {
@@ -119,6 +123,42 @@ static void test_mic_gain_per_band(void **state)
     scenario_destroy(sc);
 }
 
+/* camera.robots: an entry's keys for its id, the section's for the keys it
+ * leaves out and for every other id. */
+static void test_camera_lens(void **state)
+{
+    (void)state;
+    scenario_t *sc = load(SCENARIO);
+    const camera_config_t *c = camera_config(sc);
+    float fov, range;
+    camera_lens(c, 1, &fov, &range);
+    assert_float_equal(fov, 56.0, 1e-6);
+    assert_float_equal(range, 0.3, 1e-6);
+    camera_lens(c, 0, &fov, &range);
+    assert_float_equal(fov, 40.0, 1e-6);
+    assert_float_equal(range, 0.8, 1e-6);
+    camera_lens(c, 5, &fov, &range);
+    assert_float_equal(fov, 56.0, 1e-6);
+    assert_float_equal(range, 0.8, 1e-6);
+    scenario_destroy(sc);
+}
+
+/* A group's first_id: its robots' ids from there; another group's stay its indices. */
+static void test_first_id(void **state)
+{
+    (void)state;
+    scenario_t *sc = load("arena: {width: 1.0, height: 1.0}\n"
+                          "robots:\n"
+                          "  - {count: 2, controller: idle, first_id: 7}\n"
+                          "  - {count: 1, controller: idle}\n");
+    sim_t *sim = fixture_sim(sc, 1);
+    assert_int_equal(sim_robot_id(sim, 0), 7);
+    assert_int_equal(sim_robot_id(sim, 1), 8);
+    assert_int_equal(sim_robot_id(sim, 2), 2);
+    sim_destroy(sim);
+    scenario_destroy(sc);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -143,6 +183,8 @@ int main(void)
         cmocka_unit_test(test_ir_gain_and_offset_follow_the_id),
         cmocka_unit_test(test_wheel_gains),
         cmocka_unit_test(test_mic_gain_per_band),
+        cmocka_unit_test(test_camera_lens),
+        cmocka_unit_test(test_first_id),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -81,9 +81,13 @@ static void take_command(calib_t *self, hal_t *hal, const calib_cmd_t *cmd)
         hal_wheel_steps(hal, &self->last_left, &self->last_right);
         break;
     case CALIB_MSG_TONE:
-        /* The speaker plays for another robot's calibration; this one streams nothing. */
-        (void)hal_speaker_set(hal, cmd->arg);
-        self->mode = CALIB_IDLE;
+        /* The speaker plays for another robot's calibration; this one streams
+         * nothing but the band, the host's sign that it plays. */
+        self->mode = CALIB_TONE;
+        if (hal_speaker_set(hal, cmd->arg) != HAL_OK) {
+            self->unavailable = 1u;
+        }
+        self->mean[0] = (float)cmd->arg;
         break;
     default:
         self->mode = CALIB_IDLE;
@@ -207,7 +211,7 @@ void calib_step(calib_t *self, hal_t *hal)
     poll_host(self, hal);
     if (self->mode == CALIB_DRIVE) {
         drive(self, hal);
-    } else if (self->mode != CALIB_IDLE) {
+    } else if (self->mode != CALIB_IDLE && self->mode != CALIB_TONE) {
         hal_set_wheel_speeds(hal, 0, 0);
         sample(self, hal);
     } else {
@@ -222,6 +226,9 @@ const char *calib_state_name(const calib_t *self)
     }
     if (self->mode == CALIB_IDLE) {
         return "idle";
+    }
+    if (self->mode == CALIB_TONE) {
+        return self->unavailable ? "no_sound" : "tone";
     }
     if (self->unavailable) {
         return "no_sound";

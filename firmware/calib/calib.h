@@ -26,6 +26,8 @@
  *              the counts read after the last period driven: final); no
  *              settling
  *   idle       nothing (after power-on and 'S')
+ *   tone       mean0: the band its speaker plays ('T', 0: silent): the
+ *              emitter of another robot's microphone procedure
  *   no_sound   a mic command on an image or platform without sound
  *
  * Variances are of the readings within a window, from sums of differences
@@ -55,7 +57,8 @@ typedef enum calib_mode {
     CALIB_AMBIENT = 2,
     CALIB_MIC = 3,
     CALIB_CAMERA = 4,
-    CALIB_DRIVE = 5
+    CALIB_DRIVE = 5,
+    CALIB_TONE = 6
 } calib_mode_t;
 
 typedef struct calib {

@@ -90,6 +90,8 @@ static const param_desc_t group_params[] = {
       .doc = "centre-to-centre distance to robots placed before, m (the body is 0.07 m)" },
     { .key = "moves", PARAM_BOOL_FIELD(GRP, moves),
       .doc = "false: a static body nothing can push (a fixed station, a landmark)" },
+    { .key = "first_id", PARAM_FIELD(GRP, first_id, uint32_t), .min = 0, .max = 65535,
+      .doc = "hal_robot_id of the group's first robot, the others' following it (default: each robot's index)" },
     PARAM_END
 };
 
@@ -185,7 +187,7 @@ static const pose_def_t pose_default = { 0.0f, 0.0f, NAN };
 /* A group entry before its keys: one robot anywhere in the arena, random
  * heading; it must name its controller. */
 static const robot_group_t group_default = {
-    .count = 1, .heading = NAN, .min_spacing = 0.08f, .moves = 1,
+    .count = 1, .heading = NAN, .min_spacing = 0.08f, .moves = 1, .first_id = SCENARIO_IDS_BY_INDEX,
     .placement = { .shape = PLACE_RECTANGLE },
 };
 
@@ -458,6 +460,11 @@ static int check_group(const loader_t *ld, const ynode_t *item, const char *path
     schema_join(p, path, "params");
     if (schema_fill_mapping(ld, ytree_get(item, "params"), p, &params_schema, g->params.bytes) != 0) {
         return -1;
+    }
+    if (g->first_id != SCENARIO_IDS_BY_INDEX && g->count > 0 && g->first_id + (g->count - 1u) > 0xFFFFu) {
+        schema_join(p, path, "first_id");
+        return schema_fail(ld, schema_node_of(item, "first_id"), p,
+                           "ids %u to %u: a robot's id is at most 65535", g->first_id, g->first_id + (g->count - 1u));
     }
     return check_placement(ld, item, path, g);
 }

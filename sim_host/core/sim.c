@@ -78,7 +78,7 @@ static int build_robots(struct sim *sim, char err[SIM_ERR_MAX])
             sim_robot_t *r = &sim->robots[i];
             r->hal.sim = sim;
             r->hal.index = i;
-            r->id = (uint16_t)i;
+            r->id = (uint16_t)(grp->first_id == SCENARIO_IDS_BY_INDEX ? i : grp->first_id + k);
             r->group = g;
             r->def = def;
             r->step = def->step;

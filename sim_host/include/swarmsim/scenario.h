@@ -95,6 +95,9 @@ typedef union scenario_params {
     uint64_t align_u64;
 } scenario_params_t;
 
+/** robot_group_t.first_id's default: a robot's id is its index. */
+#define SCENARIO_IDS_BY_INDEX 0xFFFFFFFFu
+
 /** Robots that run one controller with one set of parameters. */
 typedef struct robot_group {
     char name[32];              /**< label in outputs (default: the controller's name) */
@@ -108,6 +111,9 @@ typedef struct robot_group {
     float heading;              /**< start heading, deg; NaN: random */
     float min_spacing;          /**< centre-to-centre distance to every robot placed before, m */
     uint8_t moves;              /**< 0: a static body that nothing pushes (a fixed station, a landmark) */
+    /** hal_robot_id of its first robot, the others' following it;
+     *  SCENARIO_IDS_BY_INDEX (the default): each robot's index. */
+    uint32_t first_id;
     /** The models' keys of this group (model.h: group_schema). */
     SCENARIO_BLOCK(SCENARIO_GROUP_MODEL_CONFIG_BYTES) model_config;
 } robot_group_t;

@@ -33,6 +33,7 @@
 #include "camera_internal.h"
 #include "camera_picture.h"
 #include "models/faults/faults.h"
+#include "models/per_robot.h"
 #include "models/robot/robot.h"
 #include "units.h"
 
@@ -64,8 +65,54 @@ static const param_desc_t camera_params[] = {
 };
 #undef C
 
-MODEL_ONE_SECTION(camera_schema, "camera", camera_params, NULL,
+#define RC camera_robot_cal_t
+static const param_desc_t robot_params[] = {
+    { .key = "id", PARAM_FIELD(RC, id, uint16_t), .min = 0, .max = 65535, .doc = "the robot's hal_robot_id" },
+    { .key = "fov", PARAM_FIELD(RC, fov, float), .min = 1, .max = 179,
+      .doc = "its horizontal field of view, deg (absent: the section's)" },
+    { .key = "range", PARAM_FIELD(RC, range, float), .min = 0.01, .max = 100,
+      .doc = "its reach, m (absent: the section's)" },
+    PARAM_END
+};
+#undef RC
+static const schema_t robot_schema = { robot_params, NULL, NULL, NULL };
+static const camera_robot_cal_t robot_default = { 0, NAN, NAN };
+static const seq_desc_t robots_seq = {
+    "robots", PER_ROBOT_MAX, sizeof(camera_robot_cal_t), &robot_default, &robot_schema,
+    offsetof(camera_config_t, robots), offsetof(camera_config_t, robot_count), NULL, 1, NULL
+};
+static const child_t camera_children[] = {
+    { "robots", CHILD_SEQUENCE, NULL, &robots_seq, "reach and field of view fitted to one robot id (the "
+      "calibration kit; the geometric model)" },
+    CHILD_END
+};
+
+MODEL_ONE_SECTION(camera_schema, "camera", camera_params, camera_children,
                   "front camera blobs");
+
+void camera_lens(const camera_config_t *cfg, uint16_t id, float *fov_deg, float *range_m)
+{
+    *fov_deg = cfg->fov;
+    *range_m = cfg->range;
+    if (cfg->robot_count == 0) {
+        return;
+    }
+    int32_t k = per_robot_find(cfg->robots, cfg->robot_count, sizeof *cfg->robots,
+                               offsetof(camera_robot_cal_t, id), id);
+    if (k >= 0) {
+        const camera_robot_cal_t *e = &cfg->robots[k];
+        *fov_deg = isnan(e->fov) ? *fov_deg : e->fov;
+        *range_m = isnan(e->range) ? *range_m : e->range;
+    }
+}
+
+static void camera_free_config(void *config)
+{
+    camera_config_t *c = config;
+    free(c->robots);
+    c->robots = NULL;
+    c->robot_count = 0;
+}
 
 /* The e-puck image's camera: 56 deg, 40 x 20 pixels, the detector's
  * reach; the frame rate of each robot's model (platform.h). */
@@ -79,6 +126,8 @@ static void camera_defaults(void *config)
     c->model = CAMERA_GEOMETRIC;
     c->fps = NAN;
     c->noise = 0.0f;
+    c->robot_count = 0;
+    c->robots = NULL;
 }
 
 /* The rendered camera is a pinhole camera over a frame the detector takes. */
@@ -87,8 +136,21 @@ static int camera_check(const void *config, const scenario_t *sc, char path[SCHE
     const camera_config_t *c = config;
     const char *key = NULL;
     (void)sc;
+    int32_t dup = per_robot_duplicate(c->robots, c->robot_count, sizeof *c->robots,
+                                      offsetof(camera_robot_cal_t, id));
+    if (dup >= 0) {
+        snprintf(path, SCHEMA_PATH_MAX, "camera.robots.%d.id", (int)dup);
+        snprintf(msg, SIM_ERR_MAX, "robot id listed twice: one entry per robot");
+        return -1;
+    }
     if (c->model != CAMERA_RENDERED) {
         return 0;
+    }
+    if (c->robot_count > 0) {
+        snprintf(path, SCHEMA_PATH_MAX, "camera.robots");
+        snprintf(msg, SIM_ERR_MAX, "per-robot cameras are the geometric model's: camera.model rendered "
+                 "takes the section's fov and range");
+        return -1;
     }
     if (c->fov > CAMERA_PINHOLE_MAX_DEG) {
         key = "camera.fov";
@@ -310,9 +372,10 @@ static void camera_inspect(const sim_t *sim, const void *self, uint32_t robot, m
 {
     const camera_t *cs = self;
     const camera_robot_t *r = &cs->robot[robot];
-    (void)sim;
-    out->camera_fov_rad = cs->cfg->fov * (float)(UNITS_PI / 180.0);
-    out->camera_range_m = cs->cfg->range;
+    float fov, range;
+    camera_lens(cs->cfg, sim->robots[robot].id, &fov, &range);
+    out->camera_fov_rad = fov * (float)(UNITS_PI / 180.0);
+    out->camera_range_m = range;
     out->n_blobs = r->stamp != 0 ? (int8_t)r->blob_count : -1;
     for (uint8_t k = 0; r->stamp != 0 && k < r->blob_count && k < HAL_MAX_BLOBS; k++) {
         out->blobs[k] = r->blobs[k];
@@ -361,6 +424,7 @@ const model_def_t camera_model = {
     .default_config = camera_defaults,
     .schema = &camera_schema,
     .check = camera_check,
+    .free_config = camera_free_config,
     .layout = camera_layout,
     .create = camera_create,
     .destroy = camera_destroy,

@@ -45,6 +45,14 @@ typedef enum camera_kind {
 /** The names of camera_kind_t (NULL-terminated). */
 extern const char *const camera_kind_names[];
 
+/** One robot's camera as fitted (`camera.robots`, models/per_robot.h:
+ *  the calibration kit's); NaN: the section's. */
+typedef struct camera_robot_cal {
+    uint16_t id;               /**< hal_robot_id */
+    float fov;                 /**< deg */
+    float range;               /**< m */
+} camera_robot_cal_t;
+
 typedef struct camera_config {
     float fov;                 /**< horizontal field of view, deg; above
                                     CAMERA_PINHOLE_MAX_DEG an all-round
@@ -56,12 +64,18 @@ typedef struct camera_config {
                                     (platform.h: CAMERA_EPUCK_FPS on an e-puck1); 0: fresh
                                     every control step */
     float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
+    uint32_t robot_count;      /**< `robots` (the geometric model's only) */
+    camera_robot_cal_t *robots; /**< on the heap (free_config) */
 } camera_config_t;
 
 MODEL_CONFIG_ACCESSORS(camera, camera_config_t)
 
 /** The geometric model's blobs of robot i now, whatever camera.model says
  *  (tools/bench/camera_bench.c compares the two). */
+/** Robot `id`'s field of view (deg) and range (m): its `robots` entry's,
+ *  else the section's. */
+void camera_lens(const camera_config_t *cfg, uint16_t id, float *fov_deg, float *range_m);
+
 uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
 
 #endif

@@ -278,8 +278,10 @@ uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BL
 {
     const camera_config_t *cfg = sim_model_config(sim, SIM_MODEL_camera);
     const sim_robot_t *r = &sim->robots[i];
-    float heading = r->theta, range = cfg->range;
-    float half = cfg->fov * (float)UNITS_PI / 360.0f;
+    float fov, range;
+    camera_lens(cfg, r->id, &fov, &range);
+    float heading = r->theta;
+    float half = fov * (float)UNITS_PI / 360.0f;
     float col = 2.0f * half / cfg->width_px;        /* rad per column */
     float vfov = 2.0f * half * cfg->height_px / cfg->width_px;
     vec2_t dir = v2(cosf(heading), sinf(heading));
@@ -288,7 +290,7 @@ uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BL
      * image of `fov` degrees centred ahead, its lens on the robot's axis
      * (as the e-puck's omnidirectional turret sits on top of the body),
      * pixels square in angle: col rad per column and per row. */
-    int all_round = cfg->fov > CAMERA_PINHOLE_MAX_DEG;
+    int all_round = fov > CAMERA_PINHOLE_MAX_DEG;
     if (all_round) {
         cam = v2(r->x, r->y);
         vfov = col * cfg->height_px;

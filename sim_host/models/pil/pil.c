@@ -436,7 +436,7 @@ static int boot(sim_t *sim, pil_t *p, pil_mcu_t *m, const char *dir, uint32_t g,
         return -1;
     }
     const camera_config_t *cam = camera_config(sc);
-    m->host.config.robot_id = (uint16_t)m->robot;
+    m->host.config.robot_id = sim->robots[m->robot].id;  /* its group's first_id, or its index */
     m->host.config.seed = sim_rand_seed32(sim->seed, m->robot, RAND_CONTROLLER);
     m->host.config.period_ms = sc->control_period_ms;
     m->host.config.ircom_bits = ic->payload_bits;

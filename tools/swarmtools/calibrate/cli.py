@@ -57,21 +57,34 @@ def write_outputs(fits_by_robot: dict, out: Path) -> Path:
 
 
 def record(device: str, procs: list[str], setup: procedures.Setup, operator, robot_id=None, timeout_s=10.0,
-           log=print) -> Recording:
+           log=print, emitter: str | None = None) -> Recording:
     with RobotLink(device, robot_id=robot_id, timeout_s=timeout_s) as link:
         rid = link.hello()
         log(f"{PROG}: robot {rid} on {device} answers")
-        rec = Recording(rid, setup, {}, device)
-        for proc in procs:
-            rec.steps[proc] = procedures.run(proc, link, operator, setup)
-        return rec
+        em = None
+        try:
+            if emitter is not None and "sound" in procs:
+                em = RobotLink(emitter, timeout_s=timeout_s)
+                eid = em.hello()
+                if eid == rid:
+                    raise LinkError(f"{emitter}: the emitter reports robot {rid}, the robot calibrated: "
+                                    f"give the emitter's own port")
+                log(f"{PROG}: the emitter, robot {eid} on {emitter}, answers")
+            rec = Recording(rid, setup, {}, device)
+            for proc in procs:
+                rec.steps[proc] = procedures.run(proc, link, operator, setup, emitter=em)
+            return rec
+        finally:
+            if em is not None:
+                em.close()
 
 
 def calibrate(device: str, out: Path, procs: list[str], setup: procedures.Setup, operator, robot_id=None,
-              timeout_s=10.0, log=print) -> tuple:
+              timeout_s=10.0, log=print, emitter: str | None = None) -> tuple:
     """Records, fits and writes; (recording, fits).  Raises LinkError,
-    Aborted, FitError with nothing written."""
-    rec = record(device, procs, setup, operator, robot_id, timeout_s, log)
+    Aborted, FitError with nothing written.  `emitter`: the port of a
+    second robot on the calibration image that plays the tones."""
+    rec = record(device, procs, setup, operator, robot_id, timeout_s, log, emitter)
     fits = fit_recording(rec)
     rec.save(out / "recording.json")
     write_outputs({rec.robot_id: fits}, out)
@@ -95,6 +108,9 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("device", help="the robot's serial port (/dev/rfcomm0)")
     r.add_argument("--out", required=True, type=Path, help="folder for recording.json, fragment.yaml, report/")
     r.add_argument("--robot-id", type=int, help="expect this id (default: the id the robot reports)")
+    r.add_argument("--emitter", metavar="DEVICE",
+                   help="a second e-puck on the calibration image (its own port) that plays the microphone "
+                        "procedure's tones as the kit tells it (default: you make the emitter play)")
     r.add_argument("--procedures", type=_procedures, default=list(procedures.PROCEDURES),
                    help="comma-separated, in order (default: ir,ambient,wheels,camera,sound)")
     r.add_argument("--lamp-height-mm", type=float, default=100.0)
@@ -122,7 +138,7 @@ def main(argv=None) -> int:
             setup = procedures.Setup(args.lamp_height_mm, args.lamp_intensity, windows=args.windows,
                                      sound_a0=args.sound_a0)
             rec, fits = calibrate(args.device, args.out, args.procedures, setup, TerminalOperator(),
-                                  args.robot_id, args.timeout)
+                                  args.robot_id, args.timeout, emitter=args.emitter)
             print(f"{PROG}: robot {rec.robot_id}: {args.out / 'fragment.yaml'}, {args.out / 'report' / 'report.md'}")
         elif args.cmd == "fit":
             fits = {}

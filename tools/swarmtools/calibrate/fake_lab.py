@@ -59,7 +59,7 @@ def world(robot_id: int, truth: dict) -> dict:
         "ir": {"robots": [{"id": robot_id, **truth["ir"]}]},
         "ambient": {"robots": [{"id": robot_id, **truth["ambient"]}]},
         "wheels": {"robots": [{"id": robot_id, **truth["wheels"]}]},
-        "camera": dict(truth["camera"]),    # no per-robot keys: the world's own
+        "camera": {"robots": [{"id": robot_id, **truth["camera"]}]},
         "sound": {"enabled": True, **{k: v for k, v in truth["sound"].items() if not k.startswith("gain")},
                   "robots": [{"id": robot_id, **{k: v for k, v in truth["sound"].items() if k.startswith("gain")}}]},
         "objects": [{"shape": "cylinder", "x": CARD[0], "y": CARD[1], "radius": procedures.CARD_DIAMETER_MM / 2000,
@@ -110,7 +110,9 @@ class SimOperator:
         self.start = pose
 
     def tone(self, band, text):
-        """The emitter (the world's second robot, also the calibration image) plays `band`."""
+        """Without the kit's --emitter: the operator makes the emitter (the
+        world's second robot, also the calibration image) play `band`."""
+        self.log.append(("tone", band))
         with self.fakes.locked():
             sim, _ = self._sim()
             sim.host_send(1, procedures.protocol.tone(band))
@@ -140,15 +142,26 @@ class SimOperator:
         pass
 
 
-def start(robot_id: int, truth: dict, directory: str | Path, speed: float = 200.0) -> tuple:
-    """Starts the fake robot in its world; (fakes, link path, world file)."""
+def emitter_id(robot_id: int) -> int:
+    """The emitter's id beside robot `robot_id`."""
+    return robot_id + 1 if robot_id < 0xFFFE else robot_id - 1
+
+
+def start(robot_id: int, truth: dict, directory: str | Path, speed: float = 200.0, platform: str = "host") -> tuple:
+    """Starts the fake robot in its world, and the emitter (the world's
+    second robot, on the calibration image too, id emitter_id(robot_id))
+    on a port of its own: (fakes, link path, world file); the emitter's
+    port is fakes.links[1].  `platform`: the robot's calibration image as
+    the host build, or its ELF on an emulated MCU (pil_avr, pil_m4: the
+    processor-in-the-loop robot; the emitter is host-built)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     world_file = directory / "world.yaml"
     world_file.write_text(yaml.safe_dump(world(robot_id, truth), sort_keys=False), encoding="utf-8")
-    fakes = FakeEpucks(1, directory, images=["calib"], ids=[robot_id], world=str(world_file), speed=speed)
+    fakes = FakeEpucks(2, directory, images=["calib", "calib"], ids=[robot_id, emitter_id(robot_id)],
+                       world=str(world_file), speed=speed, platform=platform, shared_world=True)
     fakes.start()
     return fakes, fakes.links[0], world_file
 
 
-__all__ = ["SimOperator", "perturbed", "start", "world", "tempfile"]
+__all__ = ["SimOperator", "emitter_id", "perturbed", "start", "world", "tempfile"]

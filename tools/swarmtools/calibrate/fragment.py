@@ -1,8 +1,7 @@
 """The scenario fragment: the fitted parameters as the models' own sections
-(ir, ambient, wheels: one `robots:` entry per robot id and the lab's
-average in the sections' own keys, which robots without an entry take,
-sim_host/models/per_robot.h; camera: the lab's average only, the camera
-model having no per-robot keys).  `apply` puts a fragment into a scenario,
+(ir, ambient, wheels, sound, camera: one `robots:` entry per robot id and
+the lab's average in the sections' own keys, which robots without an entry
+take, sim_host/models/per_robot.h).  `apply` puts a fragment into a scenario,
 per robot id or as the lab's average only."""
 
 from __future__ import annotations
@@ -51,10 +50,10 @@ def build(fits_by_robot: dict) -> dict:
     if snd:
         out["sound"] = {k: _mean([p[k] for _, p in snd]) for k in ("alpha", "ae", "noise")}
         out["sound"]["robots"] = [{"id": i, **{k: v for k, v in p.items() if k.startswith("gain")}} for i, p in snd]
-    cam = [fits_by_robot[i]["camera"].params for i in ids if "camera" in fits_by_robot[i]]
+    cam = [(i, fits_by_robot[i]["camera"].params) for i in ids if "camera" in fits_by_robot[i]]
     if cam:
-        # The camera model has no per-robot keys: every robot the lab's average.
-        out["camera"] = {"range": _mean([p["range"] for p in cam]), "fov": _mean([p["fov"] for p in cam])}
+        out["camera"] = {"range": _mean([p["range"] for _, p in cam]), "fov": _mean([p["fov"] for _, p in cam]),
+                         "robots": [{"id": i, "range": p["range"], "fov": p["fov"]} for i, p in cam]}
     return out
 
 

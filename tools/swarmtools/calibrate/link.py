@@ -136,6 +136,15 @@ class RobotLink:
             out.append(w)
         return out
 
+    def tone(self, band: int, what: str) -> protocol.Window:
+        """Has this robot (the emitter of another's microphone procedure)
+        play `band` (0: silence) until a window says it does."""
+        w = self.command(protocol.tone(band), lambda w: w.state == protocol.NO_SOUND
+                         or (w.state == protocol.TONE and int(w.mean[0]) == band), what)
+        if w.state == protocol.NO_SOUND:
+            raise LinkError(f"{self.device.path}: {what}: the emitter has no speaker (an image built without sound?)")
+        return w
+
     def drive(self, left: int, right: int, periods: int, what: str) -> protocol.Window:
         """Drives for `periods` control periods; the final window (steps
         counted, periods driven).  A drive of at least MIN_DRIVE_PERIODS

@@ -150,9 +150,21 @@ def placements(procedure: str, sensors=range(8)) -> list[Placement]:
     raise ValueError(f"no procedure {procedure!r} (procedures: {', '.join(PROCEDURES)})")
 
 
-def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> list[Step]:
+def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None, emitter: RobotLink | None = None
+        ) -> list[Step]:
     """Goes through a procedure's placements with the operator and the
-    robot; the steps recorded."""
+    robot; the steps recorded.  `emitter`: a second robot on the
+    calibration image that plays the microphone procedure's tones as the
+    kit tells it (else the operator makes the emitter play)."""
+
+    def play(band, what):
+        text = f"Make the emitter play band {band} ({BAND_HZ[band]} Hz)." if band else "Make the emitter silent."
+        if emitter is None:
+            operator.tone(band, text)
+        else:
+            emitter.tone(band, f"the emitter (robot {emitter.robot_id}) for {what}")
+            operator.progress(f"the emitter (robot {emitter.robot_id}) plays band {band}" if band
+                              else f"the emitter (robot {emitter.robot_id}) is silent")
     operator.setup(procedure, SETUP_TEXT[procedure].format(h=setup.lamp_height_mm, d=CARD_DIAMETER_MM))
     if procedure == "camera":
         out = run_camera(link, operator, setup)
@@ -165,8 +177,7 @@ def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> 
         what = f"{procedure} step {k + 1}/{len(steps)} ({p.describe()})"
         if procedure == "sound" and playing != (p.band if p.tone else 0):
             playing = p.band if p.tone else 0
-            operator.tone(playing, f"Make the emitter play band {p.band} ({BAND_HZ[p.band]} Hz)." if playing
-                          else "Make the emitter silent.")
+            play(playing, what)
         operator.place(p, f"[{k + 1}/{len(steps)}] Put {p.describe()}.")
         if procedure == "sound":
             ws = link.stream(protocol.mic(p.band), max(setup.windows, SOUND_WINDOWS), what)
@@ -182,7 +193,7 @@ def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None) -> 
             out.append(Step(p, moved=tuple(float(x) for x in moved), steps=(w.mean[0], w.mean[1])))
         operator.progress(f"{procedure}: {k + 1}/{len(steps)} done")
     if procedure == "sound" and playing:
-        operator.tone(0, "Make the emitter silent.")
+        play(0, f"{procedure}: the end")
     link.send(protocol.stop())
     return out
 

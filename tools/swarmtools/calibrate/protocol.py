@@ -15,7 +15,7 @@ N_VALUES = 2 * CHANNELS
 #: The state a stream reports once its windows are valid, per command letter.
 STREAM_STATES = {b"P": "prox", b"A": "ambient", b"M": "mic", b"C": "camera"}
 SETTLE = "settle"
-DRIVE, DRIVEN, IDLE, NO_SOUND = "drive", "driven", "idle", "no_sound"
+DRIVE, DRIVEN, IDLE, NO_SOUND, TONE = "drive", "driven", "idle", "no_sound", "tone"
 
 
 def prox() -> bytes:

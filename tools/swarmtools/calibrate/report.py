@@ -21,8 +21,7 @@ NOT_MEASURED = {
     "ambient": "a dark reading per sensor (one per robot is fitted); light from more than one lamp",
     "wheels": "the speed noise (wheels.speed_noise_rel) and the bias of seed 003's eq 3; the axle "
               "(53 mm is kept); slip on other floors",
-    "camera": "per robot (the camera model takes the lab's average reach and field of view); the colour "
-              "thresholds (the robot's own detector decides); the rendered camera's noise",
+    "camera": "the colour thresholds (the robot's own detector decides); the rendered camera's noise",
     "sound": "sound.a0 (one product with the gains: they are against the scenario's a0); each microphone "
              "apart (the model's three hear the same); more than one emitter",
 }

@@ -3,7 +3,7 @@ perturbed robots, each calibrated end to end on a fake e-puck (fake_lab.py)
 with the kit's default procedures, and the worst error per parameter
 against the stated tolerances, as a table (CSV and Markdown).
 
-    python -m swarmtools.calibrate.sweep --robots 10 --out out/calibrate-sweep [--spread 1.0]
+    python -m swarmtools.calibrate.sweep --robots 10 --out out/calibrate-sweep [--spread 1.0] [--platform pil_avr]
 """
 
 from __future__ import annotations
@@ -27,28 +27,41 @@ UNITS = {"ir.offset": " counts", "camera.range_m": " m", "camera.fov_deg": " deg
 
 
 def errors(truth: dict, fits: dict) -> dict:
-    """The error of each parameter (worst over sensors and wheels)."""
-    ir, amb, wh = fits["ir"].params, fits["ambient"].params, fits["wheels"].params
-
+    """The error of each parameter (worst over sensors and wheels) of the
+    procedures fitted."""
     def rel(a, b):
         return abs(a - b) / abs(b)
     t = truth
-    return {
-        "ir.gain": max(rel(ir["sensors"][s]["gain"], t["ir"]["sensors"][s]["gain"]) for s in range(8)),
-        "ir.offset": max(abs(ir["sensors"][s]["offset"] - t["ir"]["sensors"][s]["offset"]) for s in range(8)),
-        "ir.noise_rel": rel(ir["noise_rel"], t["ir"]["noise_rel"]),
-        "ir.noise_abs": rel(ir["noise_abs"], t["ir"]["noise_abs"]),
-        "ambient.dark": rel(amb["dark"], t["ambient"]["dark"]),
-        "ambient.half": rel(amb["half"], t["ambient"]["half"]),
-        "ambient.noise_rel": rel(amb["noise_rel"], t["ambient"]["noise_rel"]),
-        "wheels.gain": max(rel(wh[k], t["wheels"][k]) for k in ("gain_left", "gain_right")),
-        "camera.range_m": abs(fits["camera"].params["range"] - t["camera"]["range"]),
-        "camera.fov_deg": abs(fits["camera"].params["fov"] - t["camera"]["fov"]),
-        "sound.alpha": rel(fits["sound"].params["alpha"], t["sound"]["alpha"]),
-        "sound.ae": rel(fits["sound"].params["ae"], t["sound"]["ae"]),
-        "sound.noise": rel(fits["sound"].params["noise"], t["sound"]["noise"]),
-        "sound.gain": max(rel(fits["sound"].params[f"gain{b}"], t["sound"][f"gain{b}"]) for b in (1, 2, 3)),
-    }
+    out = {}
+    if "ir" in fits:
+        ir = fits["ir"].params
+        out.update({
+            "ir.gain": max(rel(ir["sensors"][s]["gain"], t["ir"]["sensors"][s]["gain"]) for s in range(8)),
+            "ir.offset": max(abs(ir["sensors"][s]["offset"] - t["ir"]["sensors"][s]["offset"]) for s in range(8)),
+            "ir.noise_rel": rel(ir["noise_rel"], t["ir"]["noise_rel"]),
+            "ir.noise_abs": rel(ir["noise_abs"], t["ir"]["noise_abs"])})
+    if "ambient" in fits:
+        amb = fits["ambient"].params
+        out.update({"ambient.dark": rel(amb["dark"], t["ambient"]["dark"]),
+                    "ambient.half": rel(amb["half"], t["ambient"]["half"]),
+                    "ambient.noise_rel": rel(amb["noise_rel"], t["ambient"]["noise_rel"])})
+    if "wheels" in fits:
+        wh = fits["wheels"].params
+        out["wheels.gain"] = max(rel(wh[k], t["wheels"][k]) for k in ("gain_left", "gain_right"))
+    if "camera" in fits:
+        out.update({"camera.range_m": abs(fits["camera"].params["range"] - t["camera"]["range"]),
+                    "camera.fov_deg": abs(fits["camera"].params["fov"] - t["camera"]["fov"])})
+    if "sound" in fits:
+        so = fits["sound"].params
+        out.update({"sound.alpha": rel(so["alpha"], t["sound"]["alpha"]), "sound.ae": rel(so["ae"], t["sound"]["ae"]),
+                    "sound.noise": rel(so["noise"], t["sound"]["noise"]),
+                    "sound.gain": max(rel(so[f"gain{b}"], t["sound"][f"gain{b}"]) for b in (1, 2, 3))})
+    return out
+
+
+def outside(errs: dict) -> list[str]:
+    """The parameters whose error is beyond the tolerance."""
+    return [n for n, v in errs.items() if v > TOLERANCES[n]]
 
 
 def main(argv=None) -> int:
@@ -58,18 +71,28 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--spread", type=float, default=1.0, help="scales the perturbations' ranges")
     ap.add_argument("--speed", type=float, default=500.0, help="the fake robot's simulated time per wall second")
+    ap.add_argument("--platform", choices=("host", "pil_avr", "pil_m4"), default="host",
+                    help="what runs the calibration image: its host build, or its ELF on an emulated MCU "
+                         "(the processor-in-the-loop robot: make pil-avr / pil-m4)")
     ap.add_argument("--out", type=Path, required=True)
     args = ap.parse_args(argv)
     rows = []
     for k in range(args.robots):
         truth = fake_lab.perturbed(random.Random(args.seed + k), args.spread)
         with tempfile.TemporaryDirectory() as tmp:
-            fakes, link, _ = fake_lab.start(100 + k, truth, Path(tmp) / "lab", speed=args.speed)
+            fakes, link, _ = fake_lab.start(100 + k, truth, Path(tmp) / "lab", speed=args.speed,
+                                            platform=args.platform)
             try:
                 _, fits = cli.calibrate(link, Path(tmp) / "out", list(procedures.PROCEDURES), procedures.Setup(),
-                                        fake_lab.SimOperator(fakes, seed=k), timeout_s=60, log=lambda s: None)
+                                        fake_lab.SimOperator(fakes, seed=k), timeout_s=60, log=lambda s: None,
+                                        emitter=fakes.links[1])
+                with fakes.locked():
+                    pil = fakes.robots[0].runtime.sim.summary().get("pil") or {}
             finally:
                 fakes.stop()
+        if args.platform != "host" and pil.get("robots") != 1:
+            print(f"calibrate-sweep: robot {k + 1} was not on {args.platform} (summary: {pil})", file=sys.stderr)
+            return 1
         e = errors(truth, fits)
         rows.append(e)
         print(f"robot {k + 1}/{args.robots}: " + ", ".join(f"{n} {v:.3g}" for n, v in e.items()), file=sys.stderr)
@@ -80,10 +103,11 @@ def main(argv=None) -> int:
     md += [f"| {n} | {TOLERANCES[n]:g}{UNITS.get(n, ' (relative)')} | {worst[n]:.3g} | "
            f"{'yes' if worst[n] <= TOLERANCES[n] else 'NO'} |" for n in TOLERANCES]
     atomic_write(args.out / "errors.csv", csv)
-    atomic_write(args.out / "summary.md", f"{args.robots} robots, seed {args.seed}, spread {args.spread:g}\n\n"
+    atomic_write(args.out / "summary.md", f"{args.robots} robots on {args.platform}, seed {args.seed}, "
+                 f"spread {args.spread:g}\n\n"
                  + "\n".join(md) + "\n")
     print("\n".join(md))
-    bad = [n for n in TOLERANCES if worst[n] > TOLERANCES[n]]
+    bad = outside(worst)
     if bad:
         print(f"calibrate-sweep: outside the tolerance: {', '.join(bad)}", file=sys.stderr)
         return 1

@@ -11,9 +11,9 @@ monitor, the live view and the host link.
 Each robot's port is a link DIR/rfcomm<k> (as udev names rfcomm ports).
 Behind it the robot resets into its bootloader (the flasher's protocol,
 answers and errors as the real Tiny Bootloader's), then runs the image its
-program memory holds: today the image's declaration
-(platforms/epuck1/images.list) as the host build, in a simulated world of
-its own, sending the image's own telemetry frames and taking the host
+program memory holds: the image's declaration
+(platforms/epuck1/images.list) as the host build (or, --platform, its ELF
+on an emulated MCU), in a simulated world of its own, sending the image's own telemetry frames and taking the host
 link's poses and messages.  The flasher's handshake presses the robot's
 reset button.  --image preloads a robot as if it had been flashed before.
 """
@@ -59,7 +59,8 @@ def _run(args) -> int:
         return 2
     log = None if args.quiet else log_to_stderr(PROG)
     fakes = FakeEpucks(args.robots, args.dir, images=images, ids=ids, faults=[faults] * args.robots,
-                       world=args.world, speed=args.speed, log=log)
+                       world=args.world, speed=args.speed, log=log, platform=args.platform,
+                       shared_world=args.shared_world)
     fakes.power_on()
     for r, name, rid in zip(fakes.robots, images + [None] * args.robots, ids, strict=False):
         what = f"image {name}, robot {rid}" if name else "nothing flashed yet"
@@ -163,6 +164,7 @@ def _stop(args) -> int:
 
 
 def main(argv=None) -> int:
+    from .runtime import PLATFORMS
     ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog=__doc__.split("\n\n", 1)[1])
@@ -177,6 +179,12 @@ def main(argv=None) -> int:
     run.add_argument("--world", metavar="SCENARIO",
                      help="a scenario whose arena, objects and lights the robots run in (default: a 2 m square "
                           "with a lamp at its centre)")
+    run.add_argument("--platform", choices=PLATFORMS, default="host",
+                     help="what runs the image: its host build (default), or its ELF on an emulated "
+                          "ATmega2560 (pil_avr) or Cortex-M4F (pil_m4): make pil-avr / pil-m4 builds them")
+    run.add_argument("--shared-world", action="store_true",
+                     help="robots 1.. are robots of robot 0's world (they see and hear each other), each on "
+                          "its own port (default: each robot in a world of its own)")
     run.add_argument("--speed", type=float, default=1.0, help="simulated seconds per second (default 1: real time)")
     run.add_argument("--duration", type=float, default=0.0, help="stop after this many seconds (0: when stopped)")
     run.add_argument("--background", action="store_true",

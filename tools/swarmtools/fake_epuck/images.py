@@ -52,6 +52,7 @@ class ImageDecl:
     host_link: bool
     camera: bool
     sound: bool
+    ir: str                     # the IR backend: randb (the turret's 16-bit messages) or libircom
     where: str                  # file:line of its declaration
     digest: str                 # hash of the declaration's text (16 hex digits)
     params: tuple               # ((field, C value), ...) as declared
@@ -88,7 +89,8 @@ def declarations(images_list: str = IMAGES_LIST, platform_dir: str = PLATFORM_DI
         out[im.name] = ImageDecl(
             name=im.name, controller=im.get("controller"), period_ms=int(im.get("period_ms") or 100),
             telemetry=im.get("telemetry") == "yes", host_link=im.get("host_link") == "yes",
-            camera=im.get("camera") == "yes", sound=im.get("sound") == "yes", where=im.where(),
+            camera=im.get("camera") == "yes", sound=im.get("sound") == "yes",
+            ir=im.get("ir"), where=im.where(),
             digest=hashlib.sha256(text.encode()).hexdigest()[:16],
             params=tuple((f, v) for f, v, _ in im.params))
     return out

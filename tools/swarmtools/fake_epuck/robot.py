@@ -133,6 +133,8 @@ class FakeRobot:
     speed: float = 1.0
     reset_on_handshake: bool = True
     log: object = None               # callable(str), or None for quiet
+    platform: str = "host"           # what runs the image: its host build, or pil_avr / pil_m4 (runtime.py)
+    shares: object = None            # a FakeRobot whose world this one is a robot of (None: its own world)
 
     def __post_init__(self):
         self.port = Port(self.link)
@@ -217,7 +219,7 @@ class FakeRobot:
         if self.program.note:
             self.say(self.program.note)
         try:
-            self.runtime = runtime_for(self.program, self.world)
+            self.runtime = runtime_for(self.program, self.world, platform=self.platform, owner=self.shares)
         except Exception as e:        # a world or controller the simulator refuses
             self.state = "idle"
             self.say(f"image {self.program.image.name} cannot run: {e}")
@@ -255,14 +257,19 @@ class FakeRobot:
                 self.port.write(out)
             if self.boot.state == "timeout" or self.boot.state == "ended":
                 self._start_program(now)
+        started = monotonic()
         while self.state == "running" and now >= self.next_step:
             out = self.runtime.step()
             self.steps += 1
             if out:
                 self.port.write(out)
             self.next_step += self.runtime.period_s / self.speed
-            if now - self.next_step > 1.0:      # far behind (a busy machine): do not catch up in a burst
-                self.next_step = now
+            late = monotonic() - started > TICK_BUDGET_S
+            if late or now - self.next_step > 1.0:
+                # Behind (a busy machine, or steps slower than `speed` asks: an emulated MCU's):
+                # no burst of catching up; the port is read before the next step.
+                self.next_step = max(self.next_step, now)
+                break
 
     def readable(self, now: float):
         data = self.port.read()
@@ -321,6 +328,10 @@ class FakeRobot:
             "deviations": [d for b in self.sessions for d in b.deviations],
             "host_link": dict(vars(self.host)),
         }
+
+
+#: Wall time one tick may spend stepping before it lets the port be read.
+TICK_BUDGET_S = 0.02
 
 
 def monotonic() -> float:

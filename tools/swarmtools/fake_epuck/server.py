@@ -27,11 +27,16 @@ class FakeEpucks:
     faults  Faults (or a list of one per robot) for their bootloaders
     world   a scenario file whose arena, objects and lights the robots run in
     speed   simulated time per wall second (1: real time)
+    platform  what runs each image: "host" (its host build), "pil_avr" or
+            "pil_m4" (its ELF on an emulated MCU: runtime.py)
+    shared_world  robots 1.. are robots of robot 0's world (the next ones
+            running their images' controllers), each on its own port: two
+            e-pucks that see and hear each other (robot 0 starts first)
     """
 
     def __init__(self, count: int = 1, directory: str | os.PathLike = "out/fake-epuck", images=None, ids=None,
                  faults=None, world: str | None = None, speed: float = 1.0, reset_on_handshake: bool = True,
-                 log=None):
+                 log=None, platform: str = "host", shared_world: bool = False):
         if count < 1:
             raise ValueError("at least one robot")
         self.dir = Path(directory)
@@ -42,8 +47,12 @@ class FakeEpucks:
             raise ValueError(f"{count} robots: at most {count} images and exactly {count} ids")
         faults = faults if isinstance(faults, list) else [faults or Faults() for _ in range(count)]
         self.robots = [FakeRobot(f"rfcomm{k}", str(self.dir / f"rfcomm{k}"), faults=faults[k], world=world,
-                                 speed=speed, reset_on_handshake=reset_on_handshake, log=log)
+                                 speed=speed, reset_on_handshake=reset_on_handshake, log=log,
+                                 platform=platform)
                        for k in range(count)]
+        if shared_world:
+            for r in self.robots[1:]:
+                r.shares = self.robots[0]
         for k, name in enumerate(images):
             if name:
                 self.robots[k].load_image(name, ids[k])

@@ -207,6 +207,21 @@ class SimulatorRefuses(Silent):
         msg = self.load({"wheels": {"robots": [{"id": 4, "gain_left": -1.0}]}})
         self.assertIn("gain_left", msg)
 
+    def test_a_camera_id_twice(self):
+        msg = self.load({"camera": {"robots": [{"id": 4, "fov": 50.0}, {"id": 4, "range": 0.5}]}})
+        self.assertIn("s.yaml:", msg)
+        self.assertIn("camera.robots[1].id", msg)
+        self.assertIn("robot id listed twice", msg)
+
+    def test_per_robot_cameras_are_the_geometric_models(self):
+        msg = self.load({"camera": {"model": "rendered", "robots": [{"id": 4, "fov": 50.0}]}})
+        self.assertIn("camera.robots", msg)
+        self.assertIn("per-robot cameras are the geometric model's", msg)
+
+    def test_a_camera_fov_out_of_range(self):
+        msg = self.load({"camera": {"robots": [{"id": 4, "fov": 200.0}]}})
+        self.assertIn("camera.robots[0].fov", msg)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -42,9 +42,12 @@ class Recovery(unittest.TestCase):
         fakes, link, cls.world = fake_lab.start(ROBOT_ID, cls.truth, cls.dir / "lab", speed=500)
         try:
             # One window per placement (the kit's default is two): half the time, still within tolerance.
+            # The emitter: a second fake e-puck in the same world, on its own port, told by the kit.
+            cls.operator = fake_lab.SimOperator(fakes)
             cls.rec, cls.fits = cli.calibrate(link, cls.dir / "out", list(procedures.PROCEDURES),
-                                              procedures.Setup(windows=1),
-                                              fake_lab.SimOperator(fakes), timeout_s=60, log=lambda s: None)
+                                              procedures.Setup(windows=1), cls.operator, timeout_s=60,
+                                              log=lambda s: None, emitter=fakes.links[1])
+            cls.emitter = (fakes.robots[1].robot_id, fakes.robots[1].host.msgs, fakes.robots[1].host.not_ours)
         finally:
             fakes.stop()
 
@@ -87,6 +90,15 @@ class Recovery(unittest.TestCase):
         got, want = self.fits["camera"].params, self.truth["camera"]
         self.assertLess(abs(got["range"] - want["range"]), TOL["camera_range_m"], f"{got} vs {want}")
         self.assertLess(abs(got["fov"] - want["fov"]), TOL["camera_fov_deg"], f"{got} vs {want}")
+
+    def test_the_emitter_played_as_the_kit_told_it(self):
+        """The tones came from the second robot's calibration image, through its own port: 4 commands at
+        least (bands 1, 2, 3 and silence), none for another robot, none by the operator's hand."""
+        rid, msgs, not_ours = self.emitter
+        self.assertEqual(rid, fake_lab.emitter_id(ROBOT_ID))
+        self.assertGreaterEqual(msgs, 4)
+        self.assertEqual(not_ours, 0)
+        self.assertNotIn("tone", [what for what, _ in self.operator.log])
 
     def test_sound_recovered(self):
         got, want = self.fits["sound"].params, self.truth["sound"]
@@ -172,6 +184,35 @@ class Recovery(unittest.TestCase):
         self.assertIn("no_ir4.json: robot 7: ir: IR4 has 0 usable distances", err.getvalue())
         self.assertIn("nothing written", err.getvalue())
         self.assertFalse((self.dir / "lab_bad").exists())
+
+
+class CameraPerRobot(unittest.TestCase):
+    """camera.robots: a robot whose id has an entry sees with its own reach, the others with the section's,
+    and an id set after the run is made is followed."""
+
+    def blobs(self, ids) -> list:
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / "cam.yaml"
+            path.write_text(yaml.safe_dump({
+                "arena": {"width": 2.0, "height": 2.0}, "camera": {"range": 1.0, "robots": [{"id": 7, "range": 0.3}]},
+                "robots": [{"count": 2, "controller": "calib", "placement": {"shape": "poses", "poses": [
+                    {"x": -0.5, "y": 0.5, "heading": 0}, {"x": -0.5, "y": -0.5, "heading": 0}]}}],
+                "objects": [{"shape": "cylinder", "x": 0.0, "y": 0.5, "radius": 0.03, "colour": "red"},
+                            {"shape": "cylinder", "x": 0.0, "y": -0.5, "radius": 0.03, "colour": "red"}]}))
+            out = []
+            with Sim(path, overrides={"host.live": True}) as sim:
+                for k in (0, 1):
+                    sim.host_send(k, b"C\x01")
+                for step_ids in ids:
+                    for k, rid in enumerate(step_ids):
+                        sim.set_robot_id(k, rid)
+                    sim.step(10)
+                    out.append([int(v) for v in sim.robots["camera.blob_count"]])
+            return out
+
+    def test_its_own_reach(self):
+        # The cards 0.43 m from the lenses: within the section's 1 m, beyond robot 7's 0.3 m.
+        self.assertEqual(self.blobs([(7, 1), (1, 7)]), [[0, 1], [1, 0]])
 
 
 class FragmentsMerge(unittest.TestCase):
