@@ -123,7 +123,7 @@ class View:
         """The name of robot `robot`'s group (ids are consecutive, group
         after group: run_info_t), or None."""
         first = 0
-        for name, count in zip(self.run_info.group_names, self.run_info.group_counts) if self.run_info else ():
+        for name, count in zip(self.run_info.group_names, self.run_info.group_counts, strict=True) if self.run_info else ():
             if first <= robot < first + count:
                 return name
             first += count

@@ -13,8 +13,8 @@ page.  If the browser cannot start, the tests fail with the reason.
 import json
 import math
 import subprocess
-import threading
 import tempfile
+import threading
 import time
 import unittest
 from pathlib import Path
