@@ -53,7 +53,7 @@ CONTROLLER_ADAPTERS(calib)
 const controller_def_t calib_def = {
     .name = CALIB_NAME,
     .doc = "calibration image: streams raw readings as the host asks (docs: Calibrate the models)",
-    CONTROLLER_FUNCS(calib),
+    CONTROLLER_FUNCS(calib), CONTROLLER_LIVE_PARAMS(calib, params),
     .params = calib_params,
     .observables = calib_observables,
 };

@@ -77,6 +77,11 @@ typedef struct controller_def {
     const observable_t *observables;  /**< what it shows, OBS_END-terminated, or NULL */
     uint8_t ircom_bits;               /**< IR message bits it needs (hal_ircom_payload_bits);
                                            0 if it uses no IR messages */
+    /** Where its state keeps the copy of its params that its steps read
+     *  (CONTROLLER_LIVE_PARAMS): a key marked `live` (param.h) is set there
+     *  while the run goes.  0 in params_in_state: nothing is settable. */
+    uint8_t params_in_state;
+    size_t params_offset;
     void (*default_params)(void *params);
     /** Applies policy `index` (into `policies`) to params; NULL without policies. */
     void (*set_policy)(void *params, uint8_t index);
@@ -88,6 +93,12 @@ typedef struct controller_def {
     void (*step)(void *self, hal_t *hal);
     const char *(*state_name)(const void *self);
 } controller_def_t;
+
+/** Declares that NAME_t's member `field` is the NAME_params_t copy its
+ *  steps read (a build error if it is not of that type), so that its keys
+ *  marked `.live = 1` can be set while the run goes. */
+#define CONTROLLER_LIVE_PARAMS(NAME, field) \
+    .params_in_state = 1, .params_offset = FIELD_OFFSET_AS(NAME##_t, field, NAME##_params_t)
 
 /** Static functions NAME_def_* that adapt the contract to controller_def_t. */
 #define CONTROLLER_ADAPTERS(NAME)                                                            \

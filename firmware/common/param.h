@@ -56,10 +56,16 @@ typedef struct param_desc {
     const char *doc;        /**< one line, with the unit */
     uint16_t count;         /**< 0: a scalar; n > 0: an array of n numbers of
                                  `type` (PARAM_ARRAY_FIELD) */
+    uint8_t live;           /**< 1: a controller's key that may be set while the run
+                                 goes (control_t `set`): its init copies it into the
+                                 state's params (CONTROLLER_LIVE_PARAMS) and derives
+                                 nothing else from it, so each step reads the new
+                                 value (tests/sim/test_live_params.c proves it for
+                                 every key so marked).  Scalars only. */
 } param_desc_t;
 
 /** Ends a table. */
-#define PARAM_END { NULL, PARAM_BOOL, 0, 0, 0.0, 0.0, NULL, NULL, 0 }
+#define PARAM_END { NULL, PARAM_BOOL, 0, 0, 0.0, 0.0, NULL, NULL, 0, 0 }
 
 /** 1 if field `f` of struct `T` has C type `ctype`, else 0. */
 #define FIELD_HAS_TYPE(T, f, ctype) \

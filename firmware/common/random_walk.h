@@ -71,15 +71,17 @@ extern const controller_def_t random_walk_def;
 /** The walk's tuning keys in params struct T, whose members are reached by
  *  prefix P (empty for random_walk_params_t itself, `walk.` for a
  *  controller embedding one as `walk`).  Its speed is listed by each
- *  controller: the forager's comes from its task. */
-#define RANDOM_WALK_TUNING_PARAMS(T, P)                                              \
-    { .key = "turn_speed_steps_s", PARAM_FIELD(T, P turn_speed_steps_s, int16_t),   \
+ *  controller: the forager's comes from its task.  LIVE (param.h): 1 for
+ *  random_walk's own keys; 0 where an embedding controller's state holds
+ *  the walk's copy apart from its own (its init copies them there). */
+#define RANDOM_WALK_TUNING_PARAMS(T, P, LIVE)                                            \
+    { .key = "turn_speed_steps_s", .live = LIVE, PARAM_FIELD(T, P turn_speed_steps_s, int16_t),   \
       .min = 1, .max = 1000, .doc = "wheel speed when turning in place, steps/s" }, \
-    { .key = "turn_chance", PARAM_FIELD(T, P turn_chance, uint16_t), .min = 0,       \
+    { .key = "turn_chance", .live = LIVE, PARAM_FIELD(T, P turn_chance, uint16_t), .min = 0,       \
       .max = 65535, .doc = "random walk: chance of a tumble per step, in 1/65536" }, \
-    { .key = "avoid_enter", PARAM_FIELD(T, P avoid_enter, uint16_t), .min = 0,       \
+    { .key = "avoid_enter", .live = LIVE, PARAM_FIELD(T, P avoid_enter, uint16_t), .min = 0,       \
       .max = 4095, .doc = "front IR proximity that starts an avoidance (an OAE), counts" }, \
-    { .key = "avoid_exit", PARAM_FIELD(T, P avoid_exit, uint16_t), .min = 0,         \
+    { .key = "avoid_exit", .live = LIVE, PARAM_FIELD(T, P avoid_exit, uint16_t), .min = 0,         \
       .max = 4095, .doc = "front IR proximity below which avoidance ends, counts" }
 
 #endif

@@ -79,7 +79,7 @@ CONTROLLER_ADAPTERS(eaipp)
 const controller_def_t eaipp_def = {
     .name = EAIPP_NAME,
     .doc = "seed 003 EAIPP path formation (role: robot, nest or food)",
-    CONTROLLER_FUNCS(eaipp),
+    CONTROLLER_FUNCS(eaipp), CONTROLLER_LIVE_PARAMS(eaipp, p),
     .params = eaipp_param_descs,
     .observables = eaipp_observables,
     .ircom_bits = 16,

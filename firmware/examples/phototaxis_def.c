@@ -5,13 +5,13 @@
 
 #define P phototaxis_params_t
 static const param_desc_t phototaxis_params[] = {
-    { .key = "speed_steps_s", PARAM_FIELD(P, speed_steps_s, int16_t), .min = 0, .max = 1000,
+    { .key = "speed_steps_s", .live = 1, PARAM_FIELD(P, speed_steps_s, int16_t), .min = 0, .max = 1000,
       .doc = "forward wheel speed, steps/s" },
-    { .key = "steer_gain", PARAM_FIELD(P, steer_gain, int16_t), .min = 0, .max = 2000,
+    { .key = "steer_gain", .live = 1, PARAM_FIELD(P, steer_gain, int16_t), .min = 0, .max = 2000,
       .doc = "wheel speed difference per rad of the light's bearing, steps/s" },
-    { .key = "arrive_level", PARAM_FIELD(P, arrive_level, uint16_t), .min = 0, .max = 4095,
+    { .key = "arrive_level", .live = 1, PARAM_FIELD(P, arrive_level, uint16_t), .min = 0, .max = 4095,
       .doc = "ambient reading below which the robot has arrived, counts" },
-    { .key = "leave_level", PARAM_FIELD(P, leave_level, uint16_t), .min = 0, .max = 4095,
+    { .key = "leave_level", .live = 1, PARAM_FIELD(P, leave_level, uint16_t), .min = 0, .max = 4095,
       .doc = "ambient reading above which it seeks again, counts" },
     { .key = "avoid_enter", PARAM_FIELD(P, avoid_enter, uint16_t), .min = 0, .max = 4095,
       .doc = "front IR proximity that starts avoiding, counts" },
@@ -36,7 +36,7 @@ CONTROLLER_ADAPTERS(phototaxis)
 const controller_def_t phototaxis_def = {
     .name = PHOTOTAXIS_NAME,
     .doc = "example: drive to the brightest light and stop under it (docs: Your first controller)",
-    CONTROLLER_FUNCS(phototaxis),
+    CONTROLLER_FUNCS(phototaxis), CONTROLLER_LIVE_PARAMS(phototaxis, params),
     .params = phototaxis_params,
     .observables = phototaxis_observables,
 };

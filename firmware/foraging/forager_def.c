@@ -13,9 +13,9 @@ static const char *const drtm_theta_modes[] = { "offset", "clip", "raw", NULL };
 
 #define FP forager_params_t
 static const param_desc_t forager_params[] = {
-    { .key = "alpha", PARAM_FIELD(FP, alpha, float), .min = 0, .max = 1000,
+    { .key = "alpha", .live = 1, PARAM_FIELD(FP, alpha, float), .min = 0, .max = 1000,
       .doc = "DRTM eq 6 weight of k, per robot/m^2" },
-    { .key = "beta", PARAM_FIELD(FP, beta, float), .min = 0, .max = 1000,
+    { .key = "beta", .live = 1, PARAM_FIELD(FP, beta, float), .min = 0, .max = 1000,
       .doc = "DRTM eq 6 weight of M_A, per OAE" },
     { .key = "T1", PARAM_FIELD(FP, t1_steps, uint16_t), .min = 1, .max = 60000,
       .doc = "T1, steps between decisions in the nest" },
@@ -28,9 +28,9 @@ static const param_desc_t forager_params[] = {
       .doc = "ARTM lower bound of theta, tokens" },
     { .key = "theta_max", PARAM_FIELD(FP, theta_max, float), .min = 0, .max = 1000,
       .doc = "ARTM upper bound of theta, tokens" },
-    { .key = "artm_delta", PARAM_FIELD(FP, artm_delta, float), .min = 0, .max = 1000,
+    { .key = "artm_delta", .live = 1, PARAM_FIELD(FP, artm_delta, float), .min = 0, .max = 1000,
       .doc = "ARTM step of theta per decision, tokens (our reconstruction)" },
-    { .key = "steer_gain", PARAM_FIELD(FP, steer_gain, int16_t), .min = 0, .max = 10000,
+    { .key = "steer_gain", .live = 1, PARAM_FIELD(FP, steer_gain, int16_t), .min = 0, .max = 10000,
       .doc = "wheel speed difference per rad of bearing, steps/s" },
     { .key = "grasp_width_mrad", PARAM_FIELD(FP, grasp_width_mrad, uint16_t), .min = 1, .max = 3142,
       .doc = "a red blob this wide means a token is held, mrad" },
@@ -62,7 +62,7 @@ static const param_desc_t forager_params[] = {
              "and resting (ARGoS's foraging example: 50)" },
     { .key = "report_steps", PARAM_FIELD(FP, report_steps, uint8_t), .min = 1, .max = 50,
       .doc = "in the nest, a report to the beacon every this many steps, staggered by id" },
-    RANDOM_WALK_TUNING_PARAMS(FP, walk.),
+    RANDOM_WALK_TUNING_PARAMS(FP, walk., 0),
     PARAM_END
 };
 #undef FP
@@ -101,7 +101,7 @@ CONTROLLER_ADAPTERS(forager)
 const controller_def_t forager_def = {
     .name = FORAGER_NAME,
     .doc = "seed 000 forager: S_W/S_S/S_R with DRTM, ARTM or FRTM task allocation",
-    CONTROLLER_FUNCS(forager),
+    CONTROLLER_FUNCS(forager), CONTROLLER_LIVE_PARAMS(forager, params),
     .params = forager_params,
     .policies = ta_policy_names,
     .set_policy = forager_set_policy,

@@ -33,7 +33,7 @@ CONTROLLER_ADAPTERS(nest_beacon)
 const controller_def_t nest_beacon_def = {
     .name = NEST_BEACON_NAME,
     .doc = "seed 000 nest beacon: keeps the nest ledger, broadcasts F(t), N_W, M_A",
-    CONTROLLER_FUNCS(nest_beacon),
+    CONTROLLER_FUNCS(nest_beacon), CONTROLLER_LIVE_PARAMS(nest_beacon, params),
     .params = nest_beacon_params,
     .observables = nest_beacon_observables,
     .ircom_bits = 16,

@@ -65,7 +65,7 @@ CONTROLLER_ADAPTERS(nnea)
 const controller_def_t nnea_def = {
     .name = NNEA_NAME,
     .doc = "seed 003 baseline NNEA (Sperati, Trianni, Nolfi 2011): an evolved CTRNN, fixed point",
-    CONTROLLER_FUNCS(nnea),
+    CONTROLLER_FUNCS(nnea), CONTROLLER_LIVE_PARAMS(nnea, params),
     .params = nnea_params,
     .policies = nnea_roles,
     .set_policy = nnea_set_policy,

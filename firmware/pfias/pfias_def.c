@@ -9,14 +9,14 @@ static const char *const pfias_roles[] = { "robot", "nest", "food", NULL };
 
 #define PP pfias_params_t
 static const param_desc_t pfias_params[] = {
-    { .key = "p_join", PARAM_FIELD(PP, p_join, uint16_t), .min = 0, .max = 65535,
+    { .key = "p_join", .live = 1, PARAM_FIELD(PP, p_join, uint16_t), .min = 0, .max = 65535,
       .doc = "P_e->c, explorer to chain member per step at a tail or chainless nest, /65536" },
-    { .key = "p_leave", PARAM_FIELD(PP, p_leave, uint16_t), .min = 0, .max = 65535,
+    { .key = "p_leave", .live = 1, PARAM_FIELD(PP, p_leave, uint16_t), .min = 0, .max = 65535,
       .doc = "P_c->e, tail member to explorer per step, /65536 (reconstruction)" },
     PFIAS_CHAIN_PARAMS(PP),
     { .key = "leave_needs_no_explorer", PARAM_BOOL_FIELD(PP, leave_needs_no_explorer),
       .doc = "true: a tail member leaves only when it perceives no explorer (reconstruction)" },
-    RANDOM_WALK_TUNING_PARAMS(PP, walk.),
+    RANDOM_WALK_TUNING_PARAMS(PP, walk., 0),
     PARAM_END
 };
 #undef PP
@@ -45,7 +45,7 @@ CONTROLLER_ADAPTERS(pfias)
 const controller_def_t pfias_def = {
     .name = PFIAS_NAME,
     .doc = "seed 003 baseline PFIAS (Nouyan, Campo, Dorigo 2008): chains with a 3-colour pattern over the turret",
-    CONTROLLER_FUNCS(pfias),
+    CONTROLLER_FUNCS(pfias), CONTROLLER_LIVE_PARAMS(pfias, params),
     .params = pfias_params,
     .policies = pfias_roles,
     .set_policy = pfias_set_policy,

@@ -9,9 +9,9 @@ static const char *const tsasr_roles[] = { "robot", "nest", "food", NULL };
 
 #define TP tsasr_params_t
 static const param_desc_t tsasr_params[] = {
-    { .key = "p_join", PARAM_FIELD(TP, p_join, uint16_t), .min = 0, .max = 65535,
+    { .key = "p_join", .live = 1, PARAM_FIELD(TP, p_join, uint16_t), .min = 0, .max = 65535,
       .doc = "explorer to chain member per step at a tail or chainless nest, /65536 (PFIAS's P_e->c)" },
-    { .key = "p_leave", PARAM_FIELD(TP, p_leave, uint16_t), .min = 0, .max = 65535,
+    { .key = "p_leave", .live = 1, PARAM_FIELD(TP, p_leave, uint16_t), .min = 0, .max = 65535,
       .doc = "PFIAS's P_c->e: a tail member leaves at random per step, /65536 (reconstruction)" },
     { .key = "elim_steps", PARAM_FIELD(TP, elim_steps, uint16_t), .min = 1, .max = 65535,
       .doc = "elimination: steps a tail may go without the target before it retreats (reconstruction)" },
@@ -24,7 +24,7 @@ static const param_desc_t tsasr_params[] = {
     PFIAS_CHAIN_PARAMS(TP),   /* PFIAS's perception and motion keys */
     { .key = "leave_needs_no_explorer", PARAM_BOOL_FIELD(TP, leave_needs_no_explorer),
       .doc = "true: p_leave applies only when the tail perceives no explorer (as PFIAS)" },
-    RANDOM_WALK_TUNING_PARAMS(TP, walk.),
+    RANDOM_WALK_TUNING_PARAMS(TP, walk., 0),
     PARAM_END
 };
 #undef TP
@@ -57,7 +57,7 @@ CONTROLLER_ADAPTERS(tsasr)
 const controller_def_t tsasr_def = {
     .name = TSASR_NAME,
     .doc = "seed 003 baseline TSASR (Luo et al. 2020), reconstructed: PFIAS chains plus timed elimination of chains that found nothing",
-    CONTROLLER_FUNCS(tsasr),
+    CONTROLLER_FUNCS(tsasr), CONTROLLER_LIVE_PARAMS(tsasr, params),
     .params = tsasr_params,
     .policies = tsasr_roles,
     .set_policy = tsasr_set_policy,

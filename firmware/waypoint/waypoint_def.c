@@ -8,11 +8,11 @@
 
 #define WP waypoint_params_t
 static const param_desc_t waypoint_params[] = {
-    { .key = "speed_steps_s", PARAM_FIELD(WP, speed_steps_s, int16_t), .min = 1, .max = 1000,
+    { .key = "speed_steps_s", .live = 1, PARAM_FIELD(WP, speed_steps_s, int16_t), .min = 1, .max = 1000,
       .doc = "forward speed, steps/s (776 = 0.10 m/s, RepAtt's)" },
-    { .key = "turn_speed_steps_s", PARAM_FIELD(WP, turn_speed_steps_s, int16_t), .min = 1, .max = 1000,
+    { .key = "turn_speed_steps_s", .live = 1, PARAM_FIELD(WP, turn_speed_steps_s, int16_t), .min = 1, .max = 1000,
       .doc = "wheel speed when turning in place (toward a waypoint, avoiding), steps/s" },
-    { .key = "steer_gain", PARAM_FIELD(WP, steer_gain, int16_t), .min = 0, .max = 10000,
+    { .key = "steer_gain", .live = 1, PARAM_FIELD(WP, steer_gain, int16_t), .min = 0, .max = 10000,
       .doc = "wheel speed difference per rad of bearing error to the waypoint, steps/s" },
     { .key = "turn_in_place_mrad", PARAM_FIELD(WP, turn_in_place_mrad, uint16_t), .min = 0, .max = 3142,
       .doc = "bearing error above which the robot turns in place rather than drives, mrad "
@@ -46,7 +46,7 @@ const controller_def_t waypoint_def = {
     .name = WAYPOINT_NAME,
     .doc = "seed 002 ALNS baseline: follows a planned route (host message) with the tracker's pose: "
            "targets in order, a pick-up wait at each, then the drop-off point",
-    CONTROLLER_FUNCS(waypoint),
+    CONTROLLER_FUNCS(waypoint), CONTROLLER_LIVE_PARAMS(waypoint, params),
     .params = waypoint_params,
     .observables = waypoint_observables,
     .ircom_bits = 0,   /* no IR messages */

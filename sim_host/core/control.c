@@ -13,6 +13,7 @@
 #include <lcm/lcm.h>
 
 #include "models/model.h"
+#include "schema.h"
 #include "sim_internal.h"
 #include "swarmlcm_control_status_t.h"
 #include "swarmlcm_control_t.h"
@@ -25,7 +26,10 @@
 #define PAUSED_POLL_MS 100
 /** Commands summary.json lists (all are counted, and all are events). */
 #define RECORD_MAX 1000
-#define TEXT_MAX 160
+#define TEXT_MAX 240
+/** Live keys a robot's details list. */
+#define DETAIL_PARAMS_MAX 32
+#define VALUE_MAX 40
 
 struct control {
     lcm_t *lcm;
@@ -176,6 +180,21 @@ static void send_detail(control_t *c)
     m.heard_bearing_mrad = heard_bearing;
     m.heard_range_mm = heard_range;
     m.ircom_range_m = in.ircom_range_m;
+    char names[DETAIL_PARAMS_MAX][VALUE_MAX], shown[DETAIL_PARAMS_MAX][VALUE_MAX], ranges[DETAIL_PARAMS_MAX][VALUE_MAX];
+    char *name_p[DETAIL_PARAMS_MAX], *value_p[DETAIL_PARAMS_MAX], *range_p[DETAIL_PARAMS_MAX];
+    m.group = (char *)sim->sc->groups[r->group].name;
+    for (const param_desc_t *d = r->def->params; r->ctrl && r->def->params_in_state && d && d->key; d++) {
+        if (d->live && m.n_params < DETAIL_PARAMS_MAX) {
+            int k = m.n_params++;
+            snprintf(names[k], VALUE_MAX, "%s", d->key);
+            schema_format_value(d, (const uint8_t *)r->ctrl + r->def->params_offset, shown[k], VALUE_MAX);
+            schema_format_range(d, ranges[k], VALUE_MAX);
+            name_p[k] = names[k], value_p[k] = shown[k], range_p[k] = ranges[k];
+        }
+    }
+    m.param_names = name_p;
+    m.param_values = value_p;
+    m.param_ranges = range_p;
     swarmlcm_robot_detail_t_publish(c->lcm, CONTROL_CHANNEL_DETAIL, &m);
 }
 
@@ -200,6 +219,99 @@ static int refuse(control_t *c, const char *fmt, ...)
     va_end(ap);
     c->ok = 0;
     return -1;
+}
+
+/* The live keys of `def`, for messages: "alpha, beta" or "none". */
+static void live_keys(const controller_def_t *def, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    for (const param_desc_t *d = def->params; def->params_in_state && d && d->key; d++) {
+        if (d->live) {
+            schema_list_key(buf, len, d->key);
+        }
+    }
+    if (!buf[0]) {
+        snprintf(buf, len, "none");
+    }
+}
+
+/* `set`: a live key of one robot's controller or of a whole group's,
+ * checked as the scenario's loader checks it, then written into each
+ * robot's state (controller.h: CONTROLLER_LIVE_PARAMS), all or nothing. */
+static void set_param(control_t *c, const swarmlcm_control_t *m)
+{
+    struct sim *sim = c->sim;
+    const scenario_t *sc = sim->sc;
+    char detail[TEXT_MAX], keys[120], value[VALUE_MAX], err[SIM_ERR_MAX];
+    uint32_t first, end, g;
+    if (m->group[0]) {
+        for (g = 0; g < sc->group_count && strcmp(sc->groups[g].name, m->group) != 0; g++) {
+        }
+        if (g == sc->group_count) {
+            char names[120] = "";
+            for (uint32_t k = 0; k < sc->group_count; k++) {
+                schema_list_key(names, sizeof names, sc->groups[k].name);
+            }
+            refuse(c, "set: no group '%.40s' in this run (its groups: %s)", m->group, names);
+            return;
+        }
+        for (first = 0; first < sim->n && sim->robots[first].group != g; first++) {
+        }
+        for (end = first; end < sim->n && sim->robots[end].group == g; end++) {
+        }
+        if (first == end) {
+            refuse(c, "set: group '%.40s' has no robots", m->group);
+            return;
+        }
+    } else if (m->robot_id < 0 || (uint32_t)m->robot_id >= sim->n) {
+        refuse(c, "set: no robot %d in this run (ids 0 to %u), and no group named", (int)m->robot_id, sim->n - 1u);
+        return;
+    } else {
+        first = (uint32_t)m->robot_id;
+        end = first + 1u;
+    }
+    const sim_robot_t *r0 = &sim->robots[first];
+    const controller_def_t *def = r0->def;
+    const param_desc_t *d = def->params;
+    while (d && d->key && strcmp(d->key, m->param) != 0) {
+        d++;
+    }
+    live_keys(def, keys, sizeof keys);
+    if (!d || !d->key) {
+        refuse(c, "set: %s has no key '%.40s' (live keys: %s)", def->name, m->param, keys);
+        return;
+    }
+    if (!d->live || !def->params_in_state || !r0->ctrl) {
+        refuse(c, "set: %s's key '%s' is not settable while the run goes: its init derives from it "
+               "(live keys: %s)", def->name, d->key, keys);
+        return;
+    }
+    for (uint32_t i = first; i < end; i++) {
+        if (sim->robots[i].step != def->step) {
+            refuse(c, "set: robot %u runs its image on an emulated MCU (PIL): its parameters are in the image", i);
+            return;
+        }
+    }
+    uint8_t *p0 = (uint8_t *)r0->ctrl + def->params_offset;
+    uint8_t tmp[SCENARIO_CONTROLLER_PARAMS_MAX];
+    memcpy(tmp, p0, def->params_size < sizeof tmp ? def->params_size : sizeof tmp);
+    if (schema_fill_text(d, m->param_value, "set", tmp, err, sizeof err) != 0) {
+        refuse(c, "%s", err);
+        return;
+    }
+    for (uint32_t i = first; i < end; i++) {
+        memcpy((uint8_t *)sim->robots[i].ctrl + def->params_offset + d->offset, tmp + d->offset, d->size);
+    }
+    schema_format_value(d, tmp, value, sizeof value);
+    c->touched = 1;
+    if (m->group[0]) {
+        snprintf(detail, sizeof detail, "set group %s %s %s", m->group, d->key, value);
+        record(c, -1, detail, (int32_t)(end - first));
+    } else {
+        snprintf(detail, sizeof detail, "set %u %s %s", first, d->key, value);
+        record(c, (int32_t)first, detail, 1);
+    }
+    send_detail(c);
 }
 
 /* One command with the right key: done, or refused with a reason. */
@@ -265,10 +377,12 @@ static void apply(control_t *c, const swarmlcm_control_t *m)
             c->selected = m->robot_id;
             send_detail(c);
         }
+    } else if (strcmp(cmd, "set") == 0) {
+        set_param(c, m);
     } else {
         char shown[41];
         snprintf(shown, sizeof shown, "%s", cmd);
-        refuse(c, "unknown command '%s' (pause, resume, step, realtime, move, select)", shown);
+        refuse(c, "unknown command '%s' (pause, resume, step, realtime, move, select, set)", shown);
     }
     c->seq = m->seq;
     send_status(c);

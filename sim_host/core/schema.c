@@ -720,6 +720,35 @@ static void format_value(const param_desc_t *d, const void *base, char *buf, siz
     }
 }
 
+void schema_format_value(const param_desc_t *d, const void *base, char *buf, size_t len)
+{
+    format_value(d, base, buf, len);
+}
+
+void schema_format_range(const param_desc_t *d, char *buf, size_t len)
+{
+    format_range(d, buf, len);
+}
+
+int schema_fill_text(const param_desc_t *d, const char *text, const char *where, void *base, char *err,
+                     size_t err_size)
+{
+    uint8_t tmp[64];
+    loader_t ld = { where, err, err_size };
+    ynode_t v;
+    memset(&v, 0, sizeof v);
+    v.kind = YNODE_SCALAR;
+    v.text = (char *)text;
+    if (d->count > 0 || d->size > sizeof tmp) {
+        return schema_fail(&ld, NULL, d->key, "an array or a long string is not set from one value");
+    }
+    if (fill_one(&ld, d, &v, d->key, tmp) != 0) {
+        return -1;
+    }
+    memcpy((char *)base + d->offset, tmp, d->size);
+    return 0;
+}
+
 void schema_print_params(FILE *f, const char *prefix, const param_desc_t *d, const void *base)
 {
     for (; d != NULL && d->key != NULL; d++) {

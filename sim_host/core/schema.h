@@ -129,6 +129,17 @@ int schema_fill_known(const loader_t *ld, const ypair_t *pair, const char *path,
  *  the end: for schema_t.other_key. */
 const char *schema_key_at(const schema_t *schema, size_t i);
 
+/** The value of field `d` of `base` as a scenario writes it ("300", "0.5",
+ *  "true", an enum's word). */
+void schema_format_value(const param_desc_t *d, const void *base, char *buf, size_t len);
+/** What `d` takes, as messages show it ("[0, 1000]", "a|b", "true|false"). */
+void schema_format_range(const param_desc_t *d, char *buf, size_t len);
+/** Fills field `d` of `base` from one plain scalar `text`, checked as a
+ *  scenario's value is (its type, its range): 0, or -1 with
+ *  "WHERE: KEY: what" in err and the field unchanged.  Scalars only. */
+int schema_fill_text(const param_desc_t *d, const char *text, const char *where, void *base, char *err,
+                     size_t err_size);
+
 /** Appends `key` to a ", "-separated list in buf. */
 void schema_list_key(char *buf, size_t len, const char *key);
 

@@ -4,8 +4,10 @@
 # state hash of one nobody touched; its step counter stops while paused and
 # moves by exactly N for `step N`; every command is an event of the
 # telemetry and a line of summary.json; a moved robot marks the run touched
-# (and changes it); a command for a robot that does not exist, a pose
-# outside the arena, a step of 0 are refused with a reason and change
+# (and changes it); a live controller key set on one robot or a group
+# changes what that robot does, and touches the run; a command for a
+# robot or group that does not exist, a pose outside the arena, a step of
+# 0, a key unknown, not live or out of range are refused with a reason and change
 # nothing; a command without the run's key is ignored; options that
 # cannot work are exit-2 errors.  Each run under control waits (--paused)
 # for the commands, which wait for the run's answers: no fixed sleeps.
@@ -130,6 +132,92 @@ s=$tmp/moved/run_7/summary.json
 check "a moved robot marks the run touched, the move listed" \
     "grep -q '\"control\": {\"touched\": true, \"commands\": 4' '$s' && grep -q '\"robot\": 2, \"command\": \"move 2 0.5000 -0.2500 1.5708\"' '$s'"
 check "... and changes its state hash" "[ \"\$(field '$s' state_hash)\" != '$plain' ]"
+
+# ---- set: a live key of one robot, of a group; refusals change nothing
+start "$tmp/set"
+detail() {   # `step N` with robot R selected: its pose, group and live keys after
+    "$py" - "$url" "$@" <<'EOF'
+import sys, time
+from swarmtools.control import Controller
+c = Controller(sys.argv[1])
+robot, steps = int(sys.argv[2]), int(sys.argv[3])
+c.wait(lambda s: True, 120)
+c.send("select", robot_id=robot)
+at = c.send("step", steps=steps).step + steps
+end = time.monotonic() + 120
+while (c.detail is None or c.detail.robot_id != robot or c.detail.utime < at * 100000) and time.monotonic() < end:
+    time.sleep(0.05)
+d = c.detail
+print(f"{d.x:.4f} {d.y:.4f} {d.group} " + " ".join(f"{n}={v}" for n, v in zip(d.param_names, d.param_values)))
+EOF
+}
+detail 3 1 >"$tmp/da"
+detail 3 30 >"$tmp/d0"
+check "ROBOT_DETAIL lists the robot's group and live keys with their values" \
+    "grep -q ' random_walk speed_steps_s=500 .*turn_chance=1311' '$tmp/d0'"
+ctl set 3 speed_steps_s 0 >/dev/null && ctl set 3 turn_chance 0 >/dev/null
+check "set 3 speed_steps_s 0 and turn_chance 0 are done" "[ $? -eq 0 ]"
+detail 3 30 >"$tmp/d1"
+detail 4 1 >"$tmp/d4"
+detail 3 30 >"$tmp/d2"
+moved() { awk -v a="$(cut -d' ' -f1,2 "$1")" -v b="$(cut -d' ' -f1,2 "$2")" \
+    'BEGIN { split(a, p); split(b, q); d = sqrt((p[1]-q[1])^2 + (p[2]-q[2])^2); exit !(d '"$3"') }'; }
+check "robot 3, set to speed 0 and no tumbles, stands (under 1 cm in 3 s)" \
+    "grep -q 'speed_steps_s=0 .*turn_chance=0' '$tmp/d2' && moved '$tmp/d1' '$tmp/d2' '< 0.01'"
+check "... while it drove 10 cm and more in the 3 s before" "moved '$tmp/da' '$tmp/d0' '> 0.1'"
+check "... and robot 4 keeps its own values" "grep -q 'speed_steps_s=500 .*turn_chance=1311' '$tmp/d4'"
+ctl set random_walk avoid_enter 400 >/dev/null
+check "set GROUP KEY VALUE sets every robot of the group" "[ $? -eq 0 ] && detail 4 1 | grep -q 'avoid_enter=400'"
+ctl set 3 speed_steps_s 5000 2>"$tmp/e4"
+check "set: a value out of the key's range is refused with the range" \
+    "[ $? -eq 1 ] && grep -q 'set: speed_steps_s: 5000 is out of range \[0, 1000\]' '$tmp/e4'"
+ctl set 3 speed_steps_s fast 2>"$tmp/e5"
+check "set: a value of the wrong type is refused" "[ $? -eq 1 ] && grep -q 'expected an integer' '$tmp/e5'"
+ctl set 3 nosuch 1 2>"$tmp/e6"
+check "set: an unknown key is refused, the live keys listed" \
+    "[ $? -eq 1 ] && grep -q \"random_walk has no key 'nosuch' (live keys: speed_steps_s, \" '$tmp/e6'"
+ctl set 99 speed_steps_s 1 2>"$tmp/e7"
+check "set: a robot that does not exist is refused" "[ $? -eq 1 ] && grep -q 'no robot 99 in this run' '$tmp/e7'"
+ctl set nosuch speed_steps_s 1 2>"$tmp/e8"
+check "set: a group that does not exist is refused, the groups listed" \
+    "[ $? -eq 1 ] && grep -q \"no group 'nosuch' in this run (its groups: random_walk)\" '$tmp/e8'"
+ctl status >"$tmp/s5"
+check "... the refusals record nothing (3 sets and 6 steps, no more)" "grep -q '; 9 command' '$tmp/s5'"
+detail 4 1 >"$tmp/d5"
+check "... and change no value" "grep -q 'speed_steps_s=500 .*avoid_enter=400' '$tmp/d5'"
+ctl realtime 1000 >/dev/null
+ctl resume >/dev/null
+wait "$pid"
+s=$tmp/set/run_7/summary.json
+check "a set marks the run touched, each set listed as done" \
+    "grep -q '\"control\": {\"touched\": true' '$s' && grep -q '\"robot\": 3, \"command\": \"set 3 speed_steps_s 0\"' '$s' && grep -q '\"robot\": -1, \"command\": \"set group random_walk avoid_enter 400\"' '$s'"
+"$py" - "$tmp/set/run_7/telemetry.lcmlog" >"$tmp/sets" <<'EOF'
+import sys
+from swarmtools.telemetry import common
+for ev, msg in common.read_log(sys.argv[1], "control.sh"):
+    if ev.channel == "SWARM_EVENT" and msg.kind == "control" and msg.detail.startswith("set"):
+        print(msg.robot_id, msg.detail)
+EOF
+check "each set is a control event of the telemetry log" \
+    "[ \"\$(tr '\n' ';' <'$tmp/sets')\" = '3 set 3 speed_steps_s 0;3 set 3 turn_chance 0;-1 set group random_walk avoid_enter 400;' ]"
+
+# A key its controller's init derives from is not settable while the run goes.
+fb=sim_host/scenarios/foraging_base.yaml
+"$sim" $fb --steps 5 --seed 7 --quiet --out "$tmp/fplain"
+"$sim" $fb --steps 5 --seed 7 --realtime 50 --control --paused --control-lcm "$url" --quiet --out "$tmp/fset" \
+    2>"$tmp/fset.err" &
+pid=$!
+pids+=($pid)
+ctl set foragers n_min 3 2>"$tmp/e9"
+check "set: a key that is not live is refused, the live ones listed" \
+    "[ $? -eq 1 ] && grep -q \"forager's key 'n_min' is not settable while the run goes: its init derives from it (live keys: alpha, beta\" '$tmp/e9'"
+ctl set foragers alpha 2000 2>"$tmp/e10"
+check "set: a live key out of range is refused" "[ $? -eq 1 ] && grep -q 'alpha: 2000 is out of range' '$tmp/e10'"
+ctl realtime 1000 >/dev/null
+ctl resume >/dev/null
+wait "$pid"
+check "... nothing changed: the untouched run's state hash" \
+    "grep -q '\"touched\": false' '$tmp/fset/run_7/summary.json' && [ \"\$(field '$tmp/fset/run_7/summary.json' state_hash)\" = \"\$(field '$tmp/fplain/run_7/summary.json' state_hash)\" ]"
 
 # ---- what cannot work
 "$sim" $rw --steps 10 --control --quiet --out "$tmp/x1" 2>"$tmp/e"

@@ -8,6 +8,8 @@ LCM, from a script or a shell; swarm-live's buttons send the same ones.
     python -m swarmtools.control realtime 5          # 5 times real time
     python -m swarmtools.control move 3 0.2 -0.1 90  # robot 3 to (0.2, -0.1) m, heading 90 degrees
     python -m swarmtools.control select 3            # ROBOT_DETAIL of robot 3 every step (-1: none)
+    python -m swarmtools.control set 3 speed_steps_s 0     # robot 3's controller key, while the run goes
+    python -m swarmtools.control set forager alpha 5       # every robot of group "forager"
 
 Each waits for the run's answer (its control_status_t) and prints it; a
 refused command exits 1 with the run's reason, no run heard exits 2.  The
@@ -29,7 +31,7 @@ DETAIL_CHANNEL = "ROBOT_DETAIL"
 #: The loopback-only bus swarmsim --control listens on by default.
 DEFAULT_URL = common.DEFAULT_URL
 #: Commands and what each needs (control_t's fields).
-COMMANDS = ("pause", "resume", "step", "realtime", "move", "select")
+COMMANDS = ("pause", "resume", "step", "realtime", "move", "select", "set")
 
 
 class NoRun(RuntimeError):
@@ -40,14 +42,26 @@ class Refused(RuntimeError):
     """The run refused a command: its reason."""
 
 
-def message(key, seq, command, robot_id=-1, steps=0, value=0.0, x=0.0, y=0.0, theta=0.0):
+def message(key, seq, command, robot_id=-1, steps=0, value=0.0, x=0.0, y=0.0, theta=0.0, group="", param="",
+            param_value=""):
     """An encoded control_t."""
     m = common.type_class("control_t")()
     m.version = m.VERSION
     m.seq, m.key, m.command = int(seq), key, command
     m.robot_id, m.steps, m.value = int(robot_id), int(steps), float(value)
     m.x, m.y, m.theta = float(x), float(y), float(theta)
+    m.group, m.param, m.param_value = str(group), str(param), str(param_value)
     return m.encode()
+
+
+def set_target(text):
+    """`set`'s first word as control_t fields: a robot id (digits), else a
+    group's name (`group:NAME` for a name of digits)."""
+    if text.startswith("group:"):
+        return {"robot_id": -1, "group": text[len("group:"):]}
+    if text.lstrip("-").isdigit():
+        return {"robot_id": int(text), "group": ""}
+    return {"robot_id": -1, "group": text}
 
 
 class Controller:
@@ -136,14 +150,15 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog=__doc__.split("\n\n", 1)[1])
     ap.add_argument("command", choices=("status",) + COMMANDS)
-    ap.add_argument("args", nargs="*", help="step: N; realtime: X; move: ROBOT X Y [THETA_DEG]; select: ROBOT")
+    ap.add_argument("args", nargs="*", help="step: N; realtime: X; move: ROBOT X Y [THETA_DEG]; select: ROBOT; "
+                    "set: ROBOT|GROUP KEY VALUE")
     ap.add_argument("--lcm", default=DEFAULT_URL, help="the control bus (default %(default)s)")
     ap.add_argument("--timeout", type=float, default=10.0, help="seconds to wait for the run (default %(default)s)")
     ap.add_argument("--wait-step", type=int, metavar="N",
                     help="then wait until the run has done N steps (and is paused, after `step`)")
     o = ap.parse_args(argv)
     want = {"status": (0, 0), "pause": (0, 0), "resume": (0, 0), "step": (1, 1), "realtime": (1, 1),
-            "move": (3, 4), "select": (1, 1)}[o.command]
+            "move": (3, 4), "select": (1, 1), "set": (3, 3)}[o.command]
     if not want[0] <= len(o.args) <= want[1]:
         ap.error(f"{o.command} takes {want[0]}" + (f" to {want[1]}" if want[1] != want[0] else "") + " values")
     try:
@@ -158,6 +173,8 @@ def main(argv=None):
         elif o.command == "move":
             theta = math.radians(float(o.args[3])) if len(o.args) > 3 else 0.0
             fields = {"robot_id": ints[0], "x": float(o.args[1]), "y": float(o.args[2]), "theta": theta}
+        elif o.command == "set":
+            fields = dict(set_target(o.args[0]), param=o.args[1], param_value=o.args[2])
         else:
             fields = {}
     except ValueError as e:

@@ -19,6 +19,9 @@ KINDS = {
                "a finite number"),
     "integer": (lambda v: not isinstance(v, bool) and isinstance(v, int) and -(1 << 31) <= v < (1 << 31),
                 "a whole number"),
+    # A controller's key or its value as a scenario writes it: a word, never a document.
+    "word": (lambda v: isinstance(v, str) and 0 < len(v) <= 64 and v.isprintable(), "a word of 1 to 64 characters"),
+    "boolean": (lambda v: isinstance(v, bool), "true or false"),
 }
 
 #: Command name -> {field: kind}.  A new command is a line here and a
@@ -32,6 +35,8 @@ COMMANDS = {
     "step": {"value": "integer"},
     "move": {"robot": "integer", "x": "number", "y": "number", "theta": "number"},
     "select": {"robot": "integer"},
+    # A live key of the robot's controller; group: of every robot of the robot's group.
+    "set": {"robot": "integer", "group": "boolean", "key": "word", "value": "word"},
 }
 
 

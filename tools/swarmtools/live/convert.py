@@ -111,4 +111,7 @@ def detail(m):
         "heard": [{"value": v, "bearing_mrad": b, "range_mm": r}
                   for v, b, r in zip(m.heard_value, m.heard_bearing_mrad, m.heard_range_mm, strict=True)],
         "ircom_range_m": num(m.ircom_range_m),
+        "group": m.group,
+        "params": [{"name": n, "value": v, "range": r}
+                   for n, v, r in zip(m.param_names, m.param_values, m.param_ranges, strict=True)],
     }

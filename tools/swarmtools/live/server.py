@@ -147,11 +147,11 @@ class Session:
     def apply(self, what, fields):
         """A checked command (commands.COMMANDS): an error text or None."""
         value = fields.get("value")
-        if not self.player and (self.view.control is not None or what in ("step", "move", "select")):
+        if not self.player and (self.view.control is not None or what in ("step", "move", "select", "set")):
             return self.control(what, fields)
         if what == "step":
             return self.player.step(int(value))
-        if what in ("move", "select"):
+        if what in ("move", "select", "set"):
             return f"{what}: a replayed log cannot be changed (only a run under swarmsim --control can)"
         if what in ("play", "pause"):
             if self.player and what == "play":
@@ -188,6 +188,14 @@ class Session:
         if what == "move":
             return self.feed.send_control("move", robot_id=fields["robot"], x=fields["x"], y=fields["y"],
                                           theta=fields["theta"])
+        if what == "set":
+            group = ""
+            if fields["group"]:
+                group = self.view.group_of(fields["robot"])
+                if group is None:
+                    return f"set: no robot {fields['robot']} in this run's groups (RUN_INFO)"
+            return self.feed.send_control("set", robot_id=fields["robot"], group=group, param=fields["key"],
+                                          param_value=fields["value"])
         return f"{what}: a live run is not sought (only a replayed log is)"
 
     def frame_text(self, wall_s):

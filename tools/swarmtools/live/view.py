@@ -98,6 +98,7 @@ class View:
         self.has_swarm = False
         self.clock = None        # simulated time of the run's latest message, s (None: real robots)
         self.control = None      # the latest control_status_t (its key: what commands carry)
+        self.run_info = None     # the latest run_info_t (its groups)
         if self.cuts:
             self._set("limits", self._limits_text)
 
@@ -117,6 +118,16 @@ class View:
     def _set(self, name, to_json, *args):
         self.rev += 1
         self.parts[name] = [self.rev, to_json, args, None]
+
+    def group_of(self, robot):
+        """The name of robot `robot`'s group (ids are consecutive, group
+        after group: run_info_t), or None."""
+        first = 0
+        for name, count in zip(self.run_info.group_names, self.run_info.group_counts, strict=True) if self.run_info else ():
+            if first <= robot < first + count:
+                return name
+            first += count
+        return None
 
     def error(self, text):
         """Something the page should say (a message of another toolkit version)."""
@@ -166,6 +177,7 @@ class View:
         if msg.run != 0 and hasattr(msg, "utime"):
             self.clock = msg.utime / 1e6
         if kind == "run_info_t":
+            self.run_info = msg
             self._set("info", convert.info, msg)
         elif kind == "scene_t":
             self._set("scene", convert.scene, msg)

@@ -14,6 +14,7 @@ import json
 import math
 import subprocess
 import tempfile
+import threading
 import time
 import unittest
 from pathlib import Path
@@ -57,6 +58,29 @@ return arguments[0].map(([x, y]) => Array.from(ctx.getImageData(Math.floor(x), M
 
 def rgb(n):
     return f"{n & 0xFFFFFF:06x}"
+
+
+class Recorder:
+    """Writes what comes on `channel` of LCM bus `url` to an LCM log file,
+    on a thread of its own, until close()."""
+
+    def __init__(self, url, channel, path):
+        lcm = common.lcm_module()
+        self.bus, self.log = lcm.LCM(url), lcm.EventLog(str(path), "w", overwrite=True)
+        self.bus.subscribe(channel, lambda ch, data: self.log.write_event(time.time_ns() // 1000, ch, data))
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def _run(self):
+        while not self.stop.is_set():
+            self.bus.handle_timeout(50)
+
+    def close(self):
+        if not self.stop.is_set():
+            self.stop.set()
+            self.thread.join()
+            self.log.close()
 
 
 class BrowserTest(unittest.TestCase):
@@ -302,11 +326,15 @@ class ControlledRun(BrowserTest):
         url = f"udpm://239.255.76.67:{free_udp_port()}?ttl=0"
         self.serve("--lcm", url, "--control-lcm", url)
         args = [SWARMSIM, GATHER, "--steps", 3000, "--lcm", url, "--realtime", 5, "--control", "--paused",
-                "--control-lcm", url, "--out", self.tmp / "controlled", "--quiet"]
+                "--control-lcm", url, "--telemetry-rate", 10, "--out", self.tmp / "controlled", "--quiet"]
+        # The run's robot states recorded from the bus into an LCM log (lcm.EventLog), to read the panel against.
+        self.log = self.tmp / "robot_states.lcmlog"
+        recorder = Recorder(url, "ROBOT_STATE", self.log)
         sim = subprocess.Popen(list(map(str, args)), cwd=ROOT, stderr=subprocess.PIPE, text=True)
         try:
-            self._steer(sim)
+            self._steer(sim, recorder)
         finally:
+            recorder.close()
             if sim.poll() is None:
                 sim.kill()
             sim.communicate()
@@ -321,7 +349,7 @@ class ControlledRun(BrowserTest):
         self.js("document.getElementById('step-n').value = arguments[0];", str(n))
         self.click("step")
 
-    def _steer(self, sim):
+    def _steer(self, sim, recorder):
         st = self._control(lambda c: c["paused"] and c["step"] == 0, "the run waiting at step 0 (--paused)")
         self.assertEqual(self.driver.find_element("id", "play").text, "resume")
         self.assertTrue(self.driver.find_element("id", "step").is_displayed())
@@ -349,6 +377,9 @@ class ControlledRun(BrowserTest):
         self.assertEqual(len(d["prox"]), 8)
         self.assertIn("robot 3", st["panel"])
         self.assertIn("IR prox " + " ".join(map(str, d["prox"])), st["panel"])
+        self.assertIn(f"robot 3 phototaxis {d['state']}", st["panel"])
+        self.assertIn(f"wheels {d['wheels'][0]} / {d['wheels'][1]} steps/s", st["panel"])
+        clicked = d                                          # read against the run's log at the end
         # Drag it 40 px to the right: the simulator's pose moves there.
         x0, y0 = p3["x"], p3["y"]
         want = self.js("return window.liveView.toWorld(arguments[0], arguments[1]);", x0 + 40, y0)
@@ -376,6 +407,24 @@ class ControlledRun(BrowserTest):
         st = self.state()
         self.assertEqual(st["control"]["commands"], commands)
         self.assertAlmostEqual(st["detail"]["x"], want[0], delta=tol)
+        # Its live keys: a value out of range is refused, said, and changes nothing; one in range is set.
+        st = wait_for(lambda: (s := self.state())["detail"]["params"] and s, "robot 3's live keys in its details")
+        self.assertEqual({p["name"]: p["value"] for p in st["detail"]["params"]}["speed_steps_s"], "400")
+        box = self.driver.find_element("id", "param-speed_steps_s")
+        box.send_keys("5000")
+        self.click("set-speed_steps_s")
+        wait_for(lambda: "speed_steps_s: 5000 is out of range [0, 1000]" in (self.driver.find_element("id", "error").text
+                                                                              or ""), "the set's refusal on the page")
+        st = self.state()
+        self.assertEqual(st["control"]["commands"], commands)
+        self.assertEqual({p["name"]: p["value"] for p in st["detail"]["params"]}["speed_steps_s"], "400")
+        box.clear()
+        box.send_keys("120")
+        self.click("set-speed_steps_s")
+        st = wait_for(lambda: (s := self.state())["control"]["commands"] == commands + 1
+                      and {p["name"]: p["value"] for p in s["detail"]["params"]}["speed_steps_s"] == "120" and s,
+                      "the set done, its value in the details")
+        self.assertIn("120", self.driver.find_element("id", "now-speed_steps_s").text)
         # Zoom in about robot 3: it stays under the cursor, its neighbours move away.
         self.js("document.getElementById('arena').dispatchEvent(new MouseEvent('dblclick', {bubbles: true}));")
         st = wait_for(lambda: (s := self.state())["zoom"]["k"] == 1 and s, "the whole arena again")
@@ -405,7 +454,19 @@ class ControlledRun(BrowserTest):
         summary = json.loads((self.tmp / "controlled" / "run_1" / "summary.json").read_text())
         self.assertTrue(summary["control"]["touched"])
         self.assertEqual([c["command"].split()[0] for c in summary["control"]["listed"]],
-                         ["step", "resume", "pause", "step", "move", "realtime", "resume"])
+                         ["step", "resume", "pause", "step", "move", "set", "realtime", "resume"])
+        self.assertIn({"step": stopped + 10, "robot": 3, "command": "set 3 speed_steps_s 120"},
+                      summary["control"]["listed"])
+        # What the panel showed of robot 3 is what the run's log recorded of it at that step.
+        recorder.close()
+        logged = [m for ev, m in common.read_log(self.log, "test")
+                  if ev.channel == "ROBOT_STATE" and m.robot_id == 3 and m.utime == round(clicked["clock"] * 1e6)]
+        self.assertEqual(len(logged), 1, "robot 3's ROBOT_STATE at the paused step")
+        m = logged[0]
+        self.assertEqual((m.state, [m.wheel_left, m.wheel_right]), (clicked["state"], clicked["wheels"]))
+        self.assertEqual((m.x, m.y), (clicked["x"], clicked["y"]))      # float32 both, through JSON
+        self.assertEqual(list(m.values), clicked["values"])
+        self.assertEqual((m.ir_max, m.ambient_min), (max(clicked["prox"]), min(clicked["ambient"])))
 
 
 if __name__ == "__main__":

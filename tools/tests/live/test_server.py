@@ -218,6 +218,10 @@ class Commands(unittest.TestCase):
         self.assertIn("cannot be changed", s.command({"cmd": "select", "robot": 1}))
         self.assertIn("robot needs a whole number, got 1.5", s.command({"cmd": "select", "robot": 1.5}))
         self.assertIn("needs theta", s.command({"cmd": "move", "robot": 1, "x": 0, "y": 0}))
+        self.assertIn("cannot be changed", s.command({"cmd": "set", "robot": 1, "group": False, "key": "a", "value": "1"}))
+        self.assertIn("value needs a word", s.command({"cmd": "set", "robot": 1, "group": False, "key": "a", "value": ""}))
+        self.assertIn("group needs true or false", s.command({"cmd": "set", "robot": 1, "group": 1, "key": "a",
+                                                               "value": "1"}))
         info = swarmlcm.run_info_t()
         info.version, info.run, info.control_period_ms = info.VERSION, 1, 100
         events = [(0, "RUN_INFO", info)] + [(round(t * 1e6), ch, m) for t, ch, m in two_runs()]
@@ -248,14 +252,27 @@ class Commands(unittest.TestCase):
                     {"cmd": "move", "robot": 2, "x": 0.1, "y": -0.2, "theta": 1.0}, {"cmd": "select", "robot": 2}):
             self.assertIsNone(s.command(cmd))
         self.assertIn("not sought", s.command({"cmd": "seek", "value": 1}))
+        self.assertIn("no robot 2 in this run's groups", s.command({"cmd": "set", "robot": 2, "group": True,
+                                                                   "key": "alpha", "value": "5"}))
+        info = swarmlcm.run_info_t()
+        info.version, info.run, info.n_groups = info.VERSION, 1, 2
+        info.group_names, info.group_controllers, info.group_policies, info.group_counts = \
+            ["a", "b"], ["x", "y"], ["", ""], [2, 3]
+        info.scenario = info.scenario_file = ""
+        bus.lcm.publish("RUN_INFO", info.encode())
+        while bus.lcm.handle_timeout(50) > 0:
+            pass
+        self.assertIsNone(s.command({"cmd": "set", "robot": 2, "group": True, "key": "alpha", "value": "5"}))
+        self.assertIsNone(s.command({"cmd": "set", "robot": 1, "group": False, "key": "beta", "value": "0.5"}))
         while bus.lcm.handle_timeout(50) > 0:
             pass
         self.assertEqual([(m.command, m.key, m.steps, m.value, m.robot_id) for m in sent],
                          [("resume", "k" * 32, 0, 0.0, -1), ("step", "k" * 32, 3, 0.0, -1),
                           ("realtime", "k" * 32, 0, 20.0, -1), ("move", "k" * 32, 0, 0.0, 2),
-                          ("select", "k" * 32, 0, 0.0, 2)])
+                          ("select", "k" * 32, 0, 0.0, 2), ("set", "k" * 32, 0, 0.0, 2), ("set", "k" * 32, 0, 0.0, 1)])
         self.assertAlmostEqual(sent[3].y, -0.2, places=6)
-        self.assertEqual(len({m.seq for m in sent}), 5)
+        self.assertEqual([(m.group, m.param, m.param_value) for m in sent[5:]], [("b", "alpha", "5"), ("", "beta", "0.5")])
+        self.assertEqual(len({m.seq for m in sent}), 7)
         f = bus.view.frame({})
         self.assertEqual((f["control"]["step"], f["control"]["paused"]), (40, True))
         self.assertNotIn("k" * 32, json.dumps(f))                     # the page never gets the key

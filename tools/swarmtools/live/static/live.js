@@ -132,6 +132,8 @@
     Panels.legend(model, robots, colourOf);
     Panels.tiles(model, unplaced, colourOf);
     Panels.robotPanel(model, selected === null ? null : model.robots.get(selected), model.detail, colourOf);
+    Panels.paramsForm(selected !== null && model.detail && model.detail.id === selected ? model.detail : null,
+      (robot, group, key, value) => send({ cmd: "set", robot, group, key, value }));
     const c = model.control;
     if (c && c.seq !== answered) {     // the run's answer to the latest command
       answered = c.seq;
@@ -182,7 +184,9 @@
       control: model.control ? Object.assign({}, model.control) : null,
       detail: model.detail ? { id: model.detail.id, clock: model.detail.clock, prox: model.detail.prox,
                                ambient: model.detail.ambient, blobs: model.detail.blobs.length,
-                               heard: model.detail.heard.length, x: model.detail.x, y: model.detail.y } : null,
+                               heard: model.detail.heard.length, x: model.detail.x, y: model.detail.y,
+                               state: model.detail.state, values: model.detail.values, wheels: model.detail.wheels,
+                               params: model.detail.params } : null,
       panel: $("robot").textContent,
       error: model.error, limits: model.limits,
     };

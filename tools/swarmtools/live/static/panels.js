@@ -162,6 +162,37 @@ const Panels = (() => {
     fill("robot", ...out);
   }
 
+  // The selected robot's live keys (robot_detail_t: those its controller
+  // lets a run under control set while it goes), each with a box for a new
+  // value.  The form is built again only for another robot or other keys,
+  // so that what is being typed stays; the values shown follow the run.
+  let paramsFor = null;
+  function paramsForm(detail, onSet) {
+    const form = document.getElementById("robot-params");
+    const keys = detail && detail.params ? detail.params : [];
+    const id = detail ? `${detail.id}:${detail.group}:${keys.map((p) => p.name).join(",")}` : null;
+    form.hidden = !detail || !keys.length;
+    if (form.hidden) { paramsFor = null; form.replaceChildren(); return; }
+    if (id !== paramsFor) {
+      paramsFor = id;
+      const group = el("input", { type: "checkbox", id: "param-group" });
+      form.replaceChildren(
+        el("h2", { textContent: "parameters (set while the run goes)" }),
+        ...keys.map((p) => {
+          const input = el("input", { type: "text", id: `param-${p.name}`, placeholder: p.value,
+                                      title: `a new value in ${p.range}` });
+          const button = el("button", { type: "button", id: `set-${p.name}`, textContent: "set" });
+          button.addEventListener("click", () => onSet(detail.id, group.checked, p.name, input.value.trim()));
+          input.addEventListener("keydown", (e) => { if (e.key === "Enter") { e.preventDefault(); button.click(); } });
+          return el("div", { className: "row" }, el("span", { className: "key", textContent: p.name }),
+            el("span", { className: "now", id: `now-${p.name}` }), input, button,
+            el("span", { className: "range", textContent: p.range }));
+        }),
+        el("label", { className: "row" }, group, `every robot of group ${detail.group}`));
+    }
+    for (const p of keys) document.getElementById(`now-${p.name}`).textContent = p.value;
+  }
+
   function summary(model) {
     const m = model.summary;
     if (!m) { fill("summary"); return; }
@@ -189,5 +220,5 @@ const Panels = (() => {
     fill("events", el("h2", { textContent: "events" }), el("div", { textContent: counts }), el("ol", {}, ...latest));
   }
 
-  return { el, clock, run, legend, tiles, robotPanel, summary, bridge, events };
+  return { el, clock, run, legend, tiles, robotPanel, paramsForm, summary, bridge, events };
 })();
