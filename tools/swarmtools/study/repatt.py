@@ -218,7 +218,8 @@ def efficiency(rows: Sequence[dict[str, str]]) -> dict[str, Any]:
                 tn_rw, _ = times(by.get((w, "RW", n), []))
                 same_e1 = t1.size > 0 and t1.size == t1_rw.size and bool(np.array_equal(np.sort(t1), np.sort(t1_rw)))
                 e1 = t1.mean() / t1_rw.mean() if t1.size and t1_rw.size else math.nan
-                g, glo, ghi = boot_ratio(tn_rw, tn)
+                # at n = 1 the two samples are the same runs: the ratio is 1 exactly, not an interval
+                g, glo, ghi = (1.0, 1.0, 1.0) if n == 1 and same_e1 else boot_ratio(tn_rw, tn)
                 out[f"{name}/{a}/{n}"] |= {"vs_rw": g * e1, "vs_rw_low": glo * e1, "vs_rw_high": ghi * e1,
                                            "same_e1": same_e1}
     return out
