@@ -211,6 +211,17 @@ def efficiency(rows: Sequence[dict[str, str]]) -> dict[str, Any]:
             out[f"{name}/{a}/{n}"] = {"world": name, "arm": a, "robots": n, "ok": int(tn.size),
                                       "unfinished": unfinished, "mean_s": float(tn.mean()) if tn.size else math.nan,
                                       "E_r": m, "ci_low": lo, "ci_high": hi}
+            if a != "RW":
+                # E_r(arm) / E_r(RW) = [t1(arm) / t1(RW)] x tn(RW) / tn(arm); a lone robot hears no one,
+                # so its runs are the random walk's and the first factor is 1 (checked, not assumed)
+                t1_rw, _ = times(by.get((w, "RW", 1), []))
+                tn_rw, _ = times(by.get((w, "RW", n), []))
+                same_e1 = t1.size > 0 and t1.size == t1_rw.size and bool(np.array_equal(np.sort(t1), np.sort(t1_rw)))
+                e1 = t1.mean() / t1_rw.mean() if t1.size and t1_rw.size else math.nan
+                # at n = 1 the two samples are the same runs: the ratio is 1 exactly, not an interval
+                g, glo, ghi = (1.0, 1.0, 1.0) if n == 1 and same_e1 else boot_ratio(tn_rw, tn)
+                out[f"{name}/{a}/{n}"] |= {"vs_rw": g * e1, "vs_rw_low": glo * e1, "vs_rw_high": ghi * e1,
+                                           "same_e1": same_e1}
     return out
 
 
@@ -259,6 +270,16 @@ def render_scale(res: dict[str, Any]) -> list[str]:
         x = res[k]
         lines.append(f"| {x['world']} | {x['arm']} | {x['robots']} | {fmt(x['mean_s'], 0)} | "
                      f"{fmt(x['E_r'])} [{fmt(x['ci_low'])}, {fmt(x['ci_high'])}] | {x['unfinished']} |")
+    gains = [x for x in res.values() if "vs_rw" in x]
+    if gains:
+        lines += ["", "RepAtt's gain over the random walk at each size, E_r(arm) / E_r(RW) [95 % bootstrap CI]: "
+                  "a lone robot hears no one, so its runs are the random walk's (same E_1: "
+                  + ("yes, in every arm" if all(x["same_e1"] for x in gains) else "NO, not in every arm")
+                  + ") and the ratio is RW's time over the arm's at that size, 1 at n = 1 by construction.", "",
+                  "| world | arm | robots | E_r(arm) / E_r(RW) [95 % CI] |", "|---|---|---:|---:|"]
+        for x in sorted(gains, key=lambda x: (x["world"], x["arm"], x["robots"])):
+            lines.append(f"| {x['world']} | {x['arm']} | {x['robots']} | "
+                         f"{fmt(x['vs_rw'])} [{fmt(x['vs_rw_low'])}, {fmt(x['vs_rw_high'])}] |")
     return lines + [""]
 
 

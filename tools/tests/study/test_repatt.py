@@ -76,6 +76,23 @@ class Arithmetic(unittest.TestCase):
         self.assertAlmostEqual(res["One100m/N0-Q1/10"]["E_r"], 0.9)
         self.assertIn("| One100m | N0-Q1 | 10 | 100 | 0.90 [0.90, 0.90] | 0 |", "\n".join(R.render_scale(res)))
 
+    def test_gain_over_rw_per_size(self) -> None:
+        # the lone robot's runs are the same in both arms; at 10 robots RW takes 300 s, RepAtt 100 s
+        rows = [row("one100", p, 1, 0, 900, count=1) for p in ("random_walk", "repatt")]
+        rows += [row("one100", "random_walk", 1, 0, 300, count=10), row("one100", "repatt", 1, 0, 100, count=10)]
+        res = R.efficiency(rows)
+        self.assertAlmostEqual(res["One100m/N0-Q1/10"]["vs_rw"], 3.0)
+        self.assertEqual((res["One100m/N0-Q1/1"]["vs_rw_low"], res["One100m/N0-Q1/1"]["vs_rw_high"]), (1.0, 1.0))
+        self.assertNotIn("vs_rw", res["One100m/RW/10"])
+        md = "\n".join(R.render_scale(res))
+        self.assertIn("| One100m | N0-Q1 | 10 | 3.00 [3.00, 3.00] |", md)
+        self.assertIn("same E_1: yes, in every arm", md)
+        # a lone RepAtt robot that differs from RW's is said so, and the ratio keeps E_1's factor
+        rows[1] = row("one100", "repatt", 1, 0, 450, count=1)
+        res = R.efficiency(rows)
+        self.assertAlmostEqual(res["One100m/N0-Q1/10"]["vs_rw"], 1.5)
+        self.assertIn("same E_1: NO", "\n".join(R.render_scale(res)))
+
 
 if __name__ == "__main__":
     unittest.main()
