@@ -5,7 +5,7 @@
  * their hal_t: a robot with wheels (0, 0) is a node, one with any other
  * command is not.  Chain detection (three nodes link nest and food; a gap
  * longer than R, a moving robot, or a cylinder across a link breaks it; the
- * chain's order), the hold (a chain must stand `hold` s; a break starts it
+ * chain's order; with `nodes: any` moving robots link too), the hold (a chain must stand `hold` s; a break starts it
  * over; the merge time is its first step), the food's first perception by a
  * moving robot, failure at the budget recorded at the budget (10,000 steps
  * for seed 003's 1000 s) and a merge after the budget not counted, the
@@ -145,6 +145,47 @@ static void test_chain_detection(void **state)
     assert_float_equal(fixture_metric(sim, "chain_nodes"), 3.0, 0);
     assert_float_equal(fixture_metric(sim, "distance_m"), 2.0, 1e-6);
     assert_float_equal(fixture_metric(sim, "completed"), 1.0, 0);
+    sim_destroy(sim);
+    scenario_free(sc);
+    free(sc);
+}
+
+/* nodes: any (NNEA's paths, robots travelling in a line): the same chain
+ * of moving robots that `still` refuses links nest and food. */
+static void test_moving_nodes(void **state)
+{
+    (void)state;
+    scenario_t *sc = world(3);
+    config(sc)->hold = 0.0f;
+    config(sc)->nodes = PATHS_NODES_ANY;
+    sim_t *sim = fixture_sim(sc, 1);
+    pose(sim, 0, -0.5, 0.0);
+    pose(sim, 1, 0.5, 0.0);
+    pose(sim, 2, 0.0, 0.0);
+    for (uint32_t k = 0; k < 3; k++) {
+        drive(sim, k, 1);   /* every one moving */
+    }
+    sim_step(sim);
+    paths_truth_t t = truth(sim);
+    assert_true(t.linked);
+    assert_int_equal(t.nodes, 3);
+    assert_int_equal(t.chain_nodes, 3);
+    assert_float_equal(t.merge_time_s, 0.1, 1e-9);
+    assert_int_equal(sim_done(sim), 1);
+    sim_destroy(sim);
+    /* The default (still) refuses the same moving chain. */
+    config(sc)->nodes = PATHS_NODES_STILL;
+    sim = fixture_sim(sc, 1);
+    pose(sim, 0, -0.5, 0.0);
+    pose(sim, 1, 0.5, 0.0);
+    pose(sim, 2, 0.0, 0.0);
+    for (uint32_t k = 0; k < 3; k++) {
+        drive(sim, k, 1);
+    }
+    sim_step(sim);
+    t = truth(sim);
+    assert_false(t.linked);
+    assert_int_equal(t.nodes, 0);
     sim_destroy(sim);
     scenario_free(sc);
     free(sc);
@@ -443,6 +484,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_chain_detection),
+        cmocka_unit_test(test_moving_nodes),
         cmocka_unit_test(test_links_need_range_and_sight),
         cmocka_unit_test(test_hold),
         cmocka_unit_test(test_food_perceived),

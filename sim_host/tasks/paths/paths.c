@@ -57,6 +57,8 @@ typedef struct paths {
 
 /* ---------------------------------------------------------------- config */
 
+static const char *const nodes_choices[] = { "still", "any", NULL };
+
 #define PC paths_config_t
 static const param_desc_t paths_params[] = {
     { .key = "nest_group", PARAM_STRING_FIELD(PC, nest_group),
@@ -71,6 +73,10 @@ static const param_desc_t paths_params[] = {
     { .key = "hold", PARAM_FIELD(PC, hold, float), .min = 0, .max = 3600,
       .doc = "s: a chain nest-food must stand this long past its first step to count "
              "(rounded to control periods; 0: one step)" },
+    { .key = "nodes", PARAM_ENUM_FIELD(PC, nodes, nodes_choices),
+      .doc = "still: a chain's nodes are robots whose wheels are commanded (0, 0), EAIPP's Robot_Node "
+             "(the default, seed 003's criterion); any: every robot of neither source group, moving or "
+             "not (a path of robots travelling in a line, as NNEA's evolved robots make)" },
     PARAM_END
 };
 #undef PC
@@ -255,7 +261,8 @@ static void paths_after_physics(void *self, sim_t *sim)
     for (uint32_t i = 0; i < p->n; i++) {
         int16_t l, r;
         sim_robot_wheels(sim, i, &l, &r);
-        p->node[i] = p->role[i] == ROLE_OTHER && l == 0 && r == 0;
+        p->node[i] = p->role[i] == ROLE_OTHER
+                     && (p->cfg->nodes == PATHS_NODES_ANY || (l == 0 && r == 0));
         p->nodes += p->node[i];
         p->chain_pos[i] = -1;
     }

@@ -9,6 +9,8 @@
  *     range: 0.6           # m: R, the communication range a link may span
  *     budget: 1000         # s: the run's allowance (seed 003: 10,000 steps of 100 ms)
  *     hold: 1.0            # s: how long a chain must stand to count (0: one step)
+ *     nodes: still         # still: a chain's nodes stand still (EAIPP's Robot_Node);
+ *                          #   any: moving robots count too (the paths NNEA's robots make)
  *
  * The task never reads a controller's state: it judges from poses, the
  * commanded wheel speeds and the obstacles, the same for EAIPP, PFIAS and
@@ -59,7 +61,14 @@ typedef struct paths_config {
     float range;               /**< R, m: a link's longest span */
     float budget;              /**< s: merges and perceptions after it do not count */
     float hold;                /**< s: a chain must stand this long past its first step */
+    int nodes;                 /**< paths_nodes_t: which robots may be a chain's nodes */
 } paths_config_t;
+
+/** `nodes:` which robots of neither source group a chain may pass through. */
+typedef enum paths_nodes {
+    PATHS_NODES_STILL = 0,     /**< `still` (default): wheels commanded (0, 0) this step, EAIPP's Robot_Node */
+    PATHS_NODES_ANY = 1,       /**< `any`: every robot, moving or not (a path of moving robots, Sperati et al.'s) */
+} paths_nodes_t;
 
 extern const task_def_t paths_task;
 

@@ -2,7 +2,7 @@
 Figures 10-17 run through the sweep engine, beside the paper's numbers.
 
     .venv/bin/python -m swarmtools.study.eaipp [--figures maze,distance,...]
-        [--quick] [--reps N] [--steps N] [--out DIR] [--sim PATH]
+        [--quick] [--reps N] [--steps N] [--controllers NNEA,...] [--out DIR] [--sim PATH]
         [--backend slurm ...]                        (make study-eaipp STUDY_ARGS=...)
 
     .venv/bin/python -m swarmtools.study.eaipp --picture [--picture-seed auto|S]
@@ -46,6 +46,9 @@ do (EAIPP red, TSASR green, PFIAS blue, NNEA purple).  NNEA (the evolved
 controller, firmware/nnea, docs/studies/nnea.md) is its scenario
 nnea_square.yaml in the `scenario:` lists of studies/eaipp_distance.yaml
 and eaipp_obstacles.yaml; nothing here names it but its colour.
+`--controllers NNEA` runs one controller's rows alone (the scenario axes
+narrowed to its file), e.g. after a new genome, without rerunning the
+others'.
 
 Cost (2 cores, this machine, EAIPP failing so every run goes the full
 1000 s): a square-arena run about 0.5 s, a maze run (40-70 robots) about 9 s;
@@ -505,9 +508,29 @@ def picture(sim: Path, out_png: Path, work: Path, scenario: Path, seed: str = "a
 
 
 # ------------------------------------------------------------------ driver
+def only_controllers(sw: sweep_spec.Sweep, wanted: set[str]) -> sweep_spec.Sweep | None:
+    """The sweep with only the scenarios of the `wanted` controllers (EAIPP, NNEA, ...) on its scenario
+    axis: one controller's rows without rerunning the others'; None when it runs none of them."""
+    found: set[str] = set()
+    axes = [a for a in sw.axes if SCENARIO_KEY in a.keys]
+    for axis in axes:
+        names = [controller({SCENARIO_KEY: str(c[SCENARIO_KEY])}) for c in axis.combos]
+        found |= set(names)
+        axis.combos = [c for c, n in zip(axis.combos, names, strict=True) if n in wanted]
+    if not axes:
+        found = {controller({}, sw.scenario)}
+    return sw if found & wanted else None
+
+
 def load_sweep(fig: Figure, studies: Path, sim: Path, reps: int | None, quick: bool,
-               steps: int | None) -> sweep_spec.Sweep:
+               steps: int | None, controllers: set[str] | None = None) -> sweep_spec.Sweep | None:
+    """The figure's sweep as this invocation runs it (None: it runs none of `controllers`)."""
     sw = narrow(sweep_spec.load(studies / fig.file, sweep_plan.seed_max(sim)), QUICK["eaipp"] if quick else None)
+    if controllers:
+        narrowed = only_controllers(sw, controllers)
+        if narrowed is None:
+            return None
+        sw = narrowed
     if reps is not None:
         sw.seeds = list(range(1, reps + 1))
     if steps is not None:
@@ -525,6 +548,9 @@ def main(argv: Sequence[str] | None = None) -> int:
                     help=f"a smoke run under a minute: {QUICK['eaipp'].seeds} seed a cell, runs cut at "
                          f"{QUICK['eaipp'].steps} steps, into out/study_eaipp_quick")
     ap.add_argument("--reps", type=int, default=None, help="seeds per cell (default the files' 100)")
+    ap.add_argument("--controllers", default=None,
+                    help="run only these controllers' rows, comma-separated (e.g. NNEA): the scenario axis "
+                         "of each sweep narrowed to their scenario files")
     ap.add_argument("--steps", type=int, default=None,
                     help="cut every run at N steps (a smoke test; default the scenarios' 10,000)")
     ap.add_argument("--out", default=None, help="default out/study_eaipp (out/study_eaipp_quick with --quick)")
@@ -559,7 +585,13 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise SweepError("--reps must be at least 1")
         if a.steps is not None and a.steps < 1:
             raise SweepError("--steps must be at least 1")
-        sweeps = {name: load_sweep(FIGURES[name], Path(a.studies), sim, a.reps, a.quick, a.steps) for name in figs}
+        wanted = {c.strip().upper() for c in a.controllers.split(",") if c.strip()} if a.controllers else None
+        loaded = {name: load_sweep(FIGURES[name], Path(a.studies), sim, a.reps, a.quick, a.steps, wanted)
+                  for name in figs}
+        sweeps = {name: sw for name, sw in loaded.items() if sw is not None}
+        if wanted and not sweeps:
+            raise SweepError(f"--controllers {a.controllers}: none of the sweeps ({', '.join(figs)}) runs "
+                             f"{'it' if len(wanted) == 1 else 'them'}")
         quick = QUICK["eaipp"] if a.quick else None
         announce("study_eaipp", "eaipp", sum(len(sweep_plan.expand(sw)) for sw in sweeps.values()), quick)
         rc_all = 0

@@ -2,8 +2,8 @@
 Wilson interval on a known case, the controllers named by their scenario
 files, success rates, the completion times over the successes and with the
 failures at the budget, the paper's columns), and one tiny real run through
-the sweep engine (2 controllers x 1 distance x 2 seeds, cut at 300 steps)
-and the frame strip, with the real simulator (env SWARMSIM)."""
+the sweep engine (2 controllers x 1 distance x 2 seeds, cut at 300 steps;
+then one controller's rows alone with --controllers) and the frame strip, with the real simulator (env SWARMSIM)."""
 from __future__ import annotations
 
 import contextlib
@@ -204,6 +204,19 @@ class EndToEnd(unittest.TestCase):
                                      "--out", str(out), "--sim", str(SWARMSIM)]), 0)
             again = json.loads((out / "results.json").read_text())
             self.assertEqual(again["cells"], res["cells"])
+            # --controllers: one controller's rows alone
+            one = Path(d) / "one"
+            self.assertEqual(quiet_main(["--figures", "distance", "--studies", str(studies), "--steps", "300",
+                                         "--out", str(one), "--sim", str(SWARMSIM), "--controllers", "pfias"]), 0)
+            res1 = json.loads((one / "results.json").read_text())
+            self.assertEqual(sorted({(r["controller"], r["seed"]) for r in res1["runs"]}), [("PFIAS", 1), ("PFIAS", 2)])
+            self.assertEqual(res1["cells"]["distance"], [c for c in res["cells"]["distance"]
+                                                         if c["controller"] == "PFIAS"])
+            # a controller no sweep runs is an error, nothing run
+            self.assertEqual(quiet_main(["--figures", "distance", "--studies", str(studies), "--steps", "300",
+                                         "--out", str(Path(d) / "none"), "--sim", str(SWARMSIM),
+                                         "--controllers", "NNEA"]), 2)
+            self.assertFalse((Path(d) / "none" / "results.json").exists())
 
     def test_bad_figure(self) -> None:
         self.assertEqual(quiet_main(["--figures", "fig99", "--sim", str(SWARMSIM)]), 2)
