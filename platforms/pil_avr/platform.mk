@@ -51,7 +51,7 @@ $(PIL_AVR_OUT)/avr/obj/%.o: %.c $(PIL_AVR_HDRS) $(FW_LCM_STAMP) | $(BUILD)/confi
 	@mkdir -p $(@D)
 	$(call show,AVR-CC,$<)$(PIL_AVR_CC) $(PIL_AVR_CFLAGS) -c $< -o $@
 $(PIL_AVR_OUT)/avr/libpil.a: $(PIL_AVR_OBJ)
-	$(call show,AR,$@)rm -f $@ && avr-ar rcs $@ $^
+	$(call show,AR,$@)rm -f $@.tmp.$$$$ && avr-ar rcs $@.tmp.$$$$ $^ && mv $@.tmp.$$$$ $@
 $(PIL_AVR_OUT)/avr/%.elf: $(PIL_AVR_GEN)/%_main.c $(PIL_AVR_OUT)/avr/libpil.a
 	$(call show,AVR-LD,$@)$(PIL_AVR_CC) $(PIL_AVR_CFLAGS) -I$(PIL_AVR_GEN) $(PIL_AVR_LDFLAGS) -o $@ $< \
 	  $(PIL_AVR_OUT)/avr/libpil.a -lm
@@ -70,7 +70,7 @@ $(PIL_AVR_OUT)/host/obj/%.o: %.c $(PIL_AVR_HDRS) $(FW_LCM_STAMP) | $(BUILD)/conf
 	@mkdir -p $(@D)
 	$(call show,CC,$<)$(CC) $(PIL_HOST_CFLAGS) -c $< -o $@
 $(PIL_AVR_OUT)/host/libpil.a: $(PIL_HOST_OBJ)
-	$(call show,AR,$@)rm -f $@ && ar rcs $@ $^
+	$(call show,AR,$@)rm -f $@.tmp.$$$$ && ar rcs $@.tmp.$$$$ $^ && mv $@.tmp.$$$$ $@
 $(PIL_AVR_OUT)/host/%: $(PIL_AVR_GEN)/%_main.c $(PIL_AVR_OUT)/host/libpil.a
 	$(call show,LD,$@)$(CC) $(PIL_HOST_CFLAGS) -I$(PIL_AVR_GEN) -Wl,--gc-sections -o $@ $< $(PIL_AVR_OUT)/host/libpil.a -lm
 

@@ -17,5 +17,8 @@ calibrate-sweep: deps $(SIM_SO)
 calibrate-pil: deps $(SIM_SO) pil-avr pil-m4
 	$(PYTHON) -m swarmtools.calibrate.sweep --platform pil_avr --robots $(CALIBRATE_PIL_ROBOTS) --spread $(CALIBRATE_SPREAD) --out out/calibrate-pil/pil_avr
 	$(PYTHON) -m swarmtools.calibrate.sweep --platform pil_m4 --robots $(CALIBRATE_PIL_ROBOTS) --spread $(CALIBRATE_SPREAD) --out out/calibrate-pil/pil_m4
-# test_pil.py runs the calibration image's AVR ELF.
+# test_pil.py runs the calibration image's AVR ELF.  pil-avr is built once in
+# make test's build step, before the groups: python-tests and cli-tests both
+# need it and, run side by side, would otherwise rebuild its archives at once.
 python-tests: pil-avr
+TEST_BUILD += pil-avr
