@@ -490,7 +490,7 @@ static void test_unknown_keys(void **state)
         { "duraton: 5\n", 1, "duraton: unknown key 'duraton' (did you mean 'duration'?)" },
         { RW "    zzzzzz: 1\n", 3,
           "robots[0].zzzzzz: unknown key 'zzzzzz' (valid keys: name, count, controller, policy, "
-          "heading, min_spacing, moves, placement, robot, faults, ground_sensors, platform, image, platform_robots, "
+          "heading, min_spacing, moves, first_id, placement, robot, faults, ground_sensors, platform, image, platform_robots, "
           "selector, params)" },
         { RW "    placement: {shape: circle, radius: 1, centre: 0}\n", 3,
           "robots[0].placement.centre: unknown key 'centre' (valid keys: shape, x, y," },
