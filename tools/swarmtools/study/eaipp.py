@@ -45,7 +45,10 @@ CONTROLLERS below orders and colours the known ones as the paper's figures
 do (EAIPP red, TSASR green, PFIAS blue, NNEA purple).  NNEA (the evolved
 controller, firmware/nnea, docs/studies/nnea.md) is its scenario
 nnea_square.yaml in the `scenario:` lists of studies/eaipp_distance.yaml
-and eaipp_obstacles.yaml; nothing here names it but its colour.
+and eaipp_obstacles.yaml; nothing here names it but its colour and its
+success criterion (CRITERIA: `paths.nodes: any`, set beside its scenario in
+those lists; the tables leave such per-controller settings out of the
+conditions and results.md names them).
 `--controllers NNEA` runs one controller's rows alone (the scenario axes
 narrowed to its file), e.g. after a new genome, without rerunning the
 others'.
@@ -121,6 +124,21 @@ METRICS = ("success", "merge_time_s", "merge_time_capped_s", "food_perceived", "
 # (nnea_square.yaml) is in the sweep files' `scenario:` lists.  Any other
 # prefix is drawn after these in matplotlib's colours.
 CONTROLLERS = {"EAIPP": "tab:red", "TSASR": "tab:green", "PFIAS": "tab:blue", "NNEA": "tab:purple"}
+
+# Each controller's success criterion (the paths task's `nodes:`), as the
+# sweep files' controller axes set it: a chain of still robots (EAIPP's
+# Robot_Node) for all but NNEA, whose robots make paths by travelling and
+# never stop (docs/studies/nnea.md); any other controller: still.  The one
+# documented difference between the controllers' worlds (tested in
+# tools/tests/study/test_eaipp_conditions.py).
+NODES = "paths.nodes"
+CRITERIA = {"NNEA": "any"}
+DEFAULT_CRITERION = "still"
+
+
+def criterion(ctrl: str) -> str:
+    """The `paths.nodes` a controller is scored with."""
+    return CRITERIA.get(ctrl, DEFAULT_CRITERION)
 
 # The override keys the sweep files vary (one place: the files and this script agree).
 COUNT = "robots.2.count"
@@ -275,6 +293,30 @@ def controller(row: dict[str, str], default_scenario: str | Path = "") -> str:
 def controller_order(names: Sequence[str]) -> list[str]:
     known = [c for c in CONTROLLERS if c in names]
     return known + sorted(set(names) - set(known))
+
+
+def own_keys(sw: sweep_spec.Sweep) -> dict[str, dict[str, str]]:
+    """The controllers' own settings: keys of the controller (scenario) axis
+    with one value per controller (its success criterion), {controller:
+    {key: value}}.  They name no condition, so the tables leave them out; a
+    key with two values for one controller stays a condition (its cells apart)."""
+    own: dict[str, dict[str, str]] = {}
+    for axis in (a for a in sw.axes if SCENARIO_KEY in a.keys):
+        for key in (k for k in axis.keys if k != SCENARIO_KEY):
+            values: dict[str, set[str]] = {}
+            for c in axis.combos:
+                values.setdefault(controller({SCENARIO_KEY: str(c[SCENARIO_KEY])}), set()).add(
+                    sweep_spec.set_text(c[key]))
+            if all(len(v) == 1 for v in values.values()):
+                for ctrl, v in values.items():
+                    own.setdefault(ctrl, {})[key] = next(iter(v))
+    return own
+
+
+def condition_keys(sw: sweep_spec.Sweep) -> list[str]:
+    """The varied keys that make a condition (the controllers' own settings left out)."""
+    own = {k for settings in own_keys(sw).values() for k in settings}
+    return [k for k in sw.varied_keys if k not in own]
 
 
 def extra(row: dict[str, str], fig: Figure, varied: Sequence[str]) -> str:
@@ -615,13 +657,16 @@ def main(argv: Sequence[str] | None = None) -> int:
             rc_all = rc_all or rc
             wall = time.monotonic() - t1
             rows = read_rows(sweep_dir / "results.csv")
-            varied = sw.varied_keys
+            varied = condition_keys(sw)
             cs = cells(rows, fig, varied, sw.scenario)
             builds = sorted({r.get("code_version", "") for r in rows})
             ctrls = controller_order([c["controller"] for c in cs])
+            own = own_keys(sw)
+            settings = "; ".join(f"{c} " + ", ".join(f"{k}={v}" for k, v in own[c].items()) for c in ctrls if own.get(c))
             md.append(f"- {name} (Fig {fig.figs}): {len(rows)} runs ({', '.join(ctrls)}; {len(sw.seeds)} seeds a "
                       f"cell), {wall:.0f} s in this invocation, sweep `{sweep_dir}`, simulator build(s) "
-                      f"{', '.join(builds)}.")
+                      f"{', '.join(builds)}" + (f"; each controller's own settings: {settings}" if settings else "")
+                      + ".")
             results["sweeps"][name] = {"file": str(sw.path), "runs": len(rows), "seeds": len(sw.seeds),
                                        "controllers": ctrls, "wall_s": wall, "sweep_dir": str(sweep_dir),
                                        "code_versions": builds}
