@@ -56,5 +56,5 @@ COSTS: dict[str, Cost] = {
     "gains_full": Cost("seed 002's full gains sweep (measured from 150 runs)",
                        ".venv/bin/swarm-sweep run studies/repatt_gains.yaml --backend slurm", 540000, 150.0,
                        "(a cluster)"),
-    "eaipp": Cost("seed 003 (EAIPP): eight sweeps", "make study-eaipp", 8700, 0.62, "19 min"),
+    "eaipp": Cost("seed 003 (EAIPP): eight sweeps, with NNEA's rows", "make study-eaipp", 10500, 1.18, "36 min", "shared"),
 }
