@@ -159,12 +159,15 @@ static void read_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
     (void)worker;
     for (uint32_t i = begin; i < end; i++) {
         sim_robot_t *r = &sim->robots[i];
-        b2Vec2 p = b2Body_GetPosition(r->body);
+        /* Position and rotation in one look-up of the body (the same values
+         * as b2Body_GetPosition and b2Body_GetRotation, each its own). */
+        b2Transform t = b2Body_GetTransform(r->body);
+        b2Vec2 p = t.p;
         float dx = p.x - r->x, dy = p.y - r->y;
         sim->drive[i].moved = sqrt((double)dx * dx + (double)dy * dy);
         r->x = p.x;
         r->y = p.y;
-        r->theta = b2Rot_GetAngle(b2Body_GetRotation(r->body));
+        r->theta = b2Rot_GetAngle(t.q);
         sim->px[i] = p.x;
         sim->py[i] = p.y;
     }

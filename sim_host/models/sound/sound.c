@@ -236,6 +236,66 @@ static void hear(const sound_t *s, sums_t acc, uint32_t src, double loud, const 
 /* Draws are taken this many at a time (sim_rand_normals). */
 #define SOUND_DRAW_BLOCK 96u
 
+/* Source j's eq 1 term at listener i, 0 when it is silent. */
+static inline double loud_of(const struct sim *sim, const sound_t *s, uint32_t i, uint32_t j)
+{
+    if (!s->played[j]) {
+        return 0.0;
+    }
+    const sim_robot_t *a = &sim->robots[i];
+    vec2_t b = sim_robot_at(sim, j);
+    double dx = (double)a->x - (double)b.x, dy = (double)a->y - (double)b.y;
+    return s->cfg->a0 * exp(-s->cfg->alpha * sqrt(dx * dx + dy * dy)) + s->cfg->ae;
+}
+
+/* The near sources' terms in listener i's sums `acc`, in the order of
+ * near[] (hear() for each, its draws taken in blocks). */
+static void near_terms(struct sim *sim, sound_t *s, uint32_t i, const uint32_t *near, uint32_t n_near, sums_t acc)
+{
+    double z[SOUND_DRAW_BLOCK];
+    for (uint32_t c = 0; c < n_near;) {
+        uint32_t end = c, draws = 0;
+        while (end < n_near && draws + draws_of(s, near[end]) <= SOUND_DRAW_BLOCK) {
+            draws += draws_of(s, near[end++]);
+        }
+        sim_rand_normals(&s->rand[i], z, draws);
+        const double *next = z;
+        for (; c < end; c++) {
+            hear(s, acc, near[c], loud_of(sim, s, i, near[c]), &next);
+        }
+    }
+}
+
+/* The same for the common case, `silent_robots: ambient` with noise: every
+ * source adds a term to every band (its own band its eq 1 term, the others
+ * ae) with a draw each, so that the sums stay in registers.  The same
+ * terms, added in the same order, as near_terms. */
+_Static_assert(HAL_SOUND_BANDS == 4, "near_terms_ambient sums bands 1 to 3");
+static void near_terms_ambient(struct sim *sim, sound_t *s, uint32_t i, const uint32_t *near, uint32_t n_near,
+                               sums_t acc)
+{
+    enum { PER = HAL_SOUND_BANDS - 1, BLOCK = SOUND_DRAW_BLOCK / PER };
+    const double noise = s->cfg->noise, ae = s->cfg->ae;
+    const uint8_t *played = s->played;
+    double s1 = acc[1], s2 = acc[2], s3 = acc[3];
+    double z[BLOCK * PER];
+    for (uint32_t c = 0; c < n_near;) {
+        uint32_t end = n_near - c > BLOCK ? c + BLOCK : n_near;
+        sim_rand_normals(&s->rand[i], z, (end - c) * PER);
+        const double *next = z;
+        for (; c < end; c++, next += PER) {
+            uint8_t p = played[near[c]];
+            double loud = loud_of(sim, s, i, near[c]);
+            s1 += (p == 1 ? loud : ae) * (1.0 - noise * next[0]);
+            s2 += (p == 2 ? loud : ae) * (1.0 - noise * next[1]);
+            s3 += (p == 3 ? loud : ae) * (1.0 - noise * next[2]);
+        }
+    }
+    acc[1] = s1;
+    acc[2] = s2;
+    acc[3] = s3;
+}
+
 /* cutoff > 0: listener i's sums from the robot grid.  Robots within the
  * cutoff, in id order, as the all-pairs loop meets them (same terms, same
  * draws); every robot beyond it adds only ae to a band (in `none` mode only
@@ -269,25 +329,12 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
     }
     grid_sort_ids(near, n_near);
     sums_t acc = { 0.0 };
-    double z[SOUND_DRAW_BLOCK];
-    for (uint32_t c = 0; c < n_near;) {
-        uint32_t end = c, draws = 0;
-        while (end < n_near && draws + draws_of(s, near[end]) <= SOUND_DRAW_BLOCK) {
-            draws += draws_of(s, near[end++]);
-        }
-        sim_rand_normals(&s->rand[i], z, draws);
-        const double *next = z;
-        for (; c < end; c++) {
-            double loud = 0.0;
-            if (s->played[near[c]]) {
-                vec2_t b = sim_robot_at(sim, near[c]);
-                double dx = (double)a->x - (double)b.x, dy = (double)a->y - (double)b.y;
-                loud = cfg->a0 * exp(-cfg->alpha * sqrt(dx * dx + dy * dy)) + cfg->ae;
-            }
-            hear(s, acc, near[c], loud, &next);
-        }
-    }
     int ambient = cfg->silent_robots == SOUND_SILENT_AMBIENT;
+    if (ambient && cfg->noise > 0.0) {
+        near_terms_ambient(sim, s, i, near, n_near, acc);
+    } else {
+        near_terms(sim, s, i, near, n_near, acc);
+    }
     for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
         uint32_t m = ambient ? sim->n - 1 - n_near
                              : emitters[k] - near_emit[k] - (s->played[i] == k ? 1u : 0u);
