@@ -28,6 +28,7 @@ from .browser import Browser
 from .serve import LONG, Server, first, free_udp_port, picture_at, poses_at, wait_for
 
 GATHER = SCENARIOS / "phototaxis_gather.yaml"
+FORAGING = SCENARIOS / "foraging_base.yaml"
 STEPS = 300                    # 30 s: the log's end
 POSITION_TOL = 1e-5            # m: the page shows the log's float32 poses, through JSON
 
@@ -268,7 +269,47 @@ class ReplayedRun(BrowserTest):
             self.assertTrue(all(0 <= v <= STEPS / 10 for v in xs) and xs == sorted(xs), (key, xs))
             self.assertGreaterEqual(len(axes["y"]["ticks"]), 2, key)
         self.assertTrue(any(units[k] for k in st["chartAxes"] if k in units))
+        # The robots by state: a line a state, named in its colour.
+        lines = st["chartAxes"]["state."]["lines"]
+        self.assertTrue(lines)
+        self.assertEqual({li["name"]: li["colour"] for li in lines},
+                         {li["name"]: st["stateColours"][li["name"]] for li in lines})
         self.check_robots_at(st, STEPS / 10)
+
+
+class ReplayedForaging(BrowserTest):
+    """Seed 000's base run: the page's legend has the task's nest and food
+    in SCENE's colours, and a searching robot's body has the legend's
+    colour for searching, as in the PNG frames (tests/test_legend.c)."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        run_sim(cls.tmp / "foraging", FORAGING, "--steps", STEPS)
+        cls.log = cls.tmp / "foraging" / "run_1" / "telemetry.lcmlog"
+
+    def test_the_legend_has_the_nest_and_the_food(self):
+        self.serve("--log", self.log, "--paused")
+        t = STEPS / 10
+        st = self.seek(t)
+        scene, drawing = picture_at(self.log, t)
+        legend = {e["label"]: e for e in st["legend"]}
+        sent = {label: (k, "#" + rgb(c)) for k, c, label in zip(scene.key_kind, scene.key_rgb, scene.key_label,
+                                                                 strict=True)}
+        self.assertEqual({label: (e["kind"], e["colour"]) for label, e in legend.items()}, sent)
+        self.assertEqual(legend["nest"]["kind"], 1)                           # a floor area
+        self.assertEqual(legend["nest"]["colour"], "#" + rgb(drawing.shapes[0].rgb))
+        self.assertEqual((legend["food"]["kind"], legend["food"]["colour"]), (3, "#" + rgb(drawing.items[0].rgb)))
+        searching = legend["searching"]["colour"]
+        ids = [r for r, c in zip(drawing.fill_robot, drawing.fill_rgb, strict=True) if "#" + rgb(c) == searching]
+        self.assertTrue(ids, "no robot searching at 30 s")
+        self.assertEqual(legend["searching"]["count"], len(ids))
+        robots = poses_at(self.log, t)
+        where = [self.js("return window.liveView.toCanvas(arguments[0], arguments[1])", robots[r].x, robots[r].y)
+                 for r in ids]
+        shares = self.js(BODY_JS, [[x, y, searching] for x, y in where], st["radiusPx"])
+        self.assertGreater(sum(share > 0.5 for share in shares), len(ids) / 2, shares)
+        self.assertTrue(all(st["bodies"][str(r)] == searching for r in ids))
 
 
 class RealRobots(BrowserTest):

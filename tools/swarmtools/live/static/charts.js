@@ -66,20 +66,32 @@ const Charts = (() => {
     ctx.textBaseline = "top";
     ctx.textAlign = "left";
     ctx.fillText(title, 2, 2);
+    // Several lines: their names in their colours under the title, wrapped.
+    let top = PAD.t, x = 2;
+    if (cols.length > 1) {
+      for (const [name, , colour] of cols) {
+        const w = ctx.measureText(name).width;
+        if (x > 2 && x + w > W - PAD.r) { x = 2; top += 13; }
+        ctx.fillStyle = colour;
+        ctx.fillText(name, x, top);
+        x += w + 8;
+      }
+      top += 13;
+    }
     let lo = Infinity, hi = -Infinity;
     for (const [, v] of cols) for (const x of v) if (x !== null) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
     if (!t.length || lo === Infinity) return null;
     if (hi === lo) { hi += 0.5; lo -= 0.5; }
     const t0 = t[0], t1 = t[t.length - 1] > t0 ? t[t.length - 1] : t0 + 1;
     const X = (x) => PAD.l + ((x - t0) / (t1 - t0)) * (W - PAD.l - PAD.r);
-    const Y = (y) => H - PAD.b - ((y - lo) / (hi - lo)) * (H - PAD.t - PAD.b);
+    const Y = (y) => H - PAD.b - ((y - lo) / (hi - lo)) * (H - top - PAD.b);
     const xt = ticks(t0, t1, Math.max(2, Math.floor((W - PAD.l - PAD.r) / 60)));
-    const yt = ticks(lo, hi, Math.max(2, Math.floor((H - PAD.t - PAD.b) / 25)));
+    const yt = ticks(lo, hi, Math.max(2, Math.floor((H - top - PAD.b) / 25)));
     const xLabel = "time (s)", yLabel = unit || "";
     ctx.strokeStyle = "#888";
     ctx.lineWidth = 1;
     ctx.beginPath();
-    ctx.moveTo(PAD.l, PAD.t);
+    ctx.moveTo(PAD.l, top);
     ctx.lineTo(PAD.l, H - PAD.b);
     ctx.lineTo(W - PAD.r, H - PAD.b);
     for (const v of xt.at) { ctx.moveTo(X(v), H - PAD.b); ctx.lineTo(X(v), H - PAD.b + 3); }
@@ -95,7 +107,7 @@ const Charts = (() => {
     for (const v of yt.at) ctx.fillText(yt.label(v), PAD.l - 5, Y(v));
     if (yLabel) {     // the value's unit, along the value axis
       ctx.save();
-      ctx.translate(8, (PAD.t + H - PAD.b) / 2);
+      ctx.translate(8, (top + H - PAD.b) / 2);
       ctx.rotate(-Math.PI / 2);
       ctx.textAlign = "center";
       ctx.fillText(yLabel, 0, 0);
@@ -113,7 +125,8 @@ const Charts = (() => {
       }
       ctx.stroke();
     }
-    return { x: { label: xLabel, ticks: xt.at.map(xt.label) }, y: { label: yLabel, ticks: yt.at.map(yt.label) } };
+    return { x: { label: xLabel, ticks: xt.at.map(xt.label) }, y: { label: yLabel, ticks: yt.at.map(yt.label) },
+             lines: cols.map(([name, , colour]) => ({ name, colour })) };
   }
 
   // Draws every chart into `box`; returns the chart keys drawn and each
@@ -124,7 +137,7 @@ const Charts = (() => {
       const c = canvasFor(box, key);
       if (key === STATES) {
         const names = Object.keys(series.cols).filter((n) => n.startsWith(STATES));
-        const cols = names.map((n) => [n, series.cols[n], colourOf(n.slice(STATES.length))]);
+        const cols = names.map((n) => [n.slice(STATES.length), series.cols[n], colourOf(n.slice(STATES.length))]);
         axes[key] = plot(c, series.t, cols, "robots by state", series.units[names[0]]);
       } else {
         const col = series.cols[key], unit = series.units[key];
