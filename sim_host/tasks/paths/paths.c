@@ -26,8 +26,8 @@ static const draw_key_t paths_legend[] = {
     [KEY_OTHER] = { 0, "moving, or a source" },
     [KEY_NODE] = { DRAW_RGB_HL_YELLOW, "standing still (a node)" },
     [KEY_CHAIN] = { DRAW_RGB_HL_GREEN, "on the chain nest-food" },
-    [KEY_NEST] = { 0x2878C8u, "nest's range and network", DRAW_KEY_RING, 0 },
-    [KEY_FOOD] = { 0xE08020u, "food's range and network", DRAW_KEY_RING, 0 },
+    [KEY_NEST] = { 0x2878C8u, "nest range, network", DRAW_KEY_RING, 0 },
+    [KEY_FOOD] = { 0xE08020u, "food range, network", DRAW_KEY_RING, 0 },
     [KEY_LINK] = { 0x20A040u, "the chain", DRAW_KEY_LINE, 0 },
     [KEY_END] = { 0, NULL },
 };

@@ -28,7 +28,7 @@ static const draw_key_t targets_legend[] = {
     [KEY_PICKING] = { DRAW_RGB_HL_YELLOW, "waiting on a target" },
     [KEY_NEST] = { 0xB4B4B4u, "nest", DRAW_KEY_AREA, 0 },
     [KEY_TARGET] = { 0, "target", DRAW_KEY_ITEM, HAL_COLOUR_RED },
-    [KEY_HALO] = { 0x9040C0u, "a target's halo", DRAW_KEY_RING, 0 },
+    [KEY_HALO] = { 0x9040C0u, "target halo", DRAW_KEY_RING, 0 },
     [KEY_END] = { 0, NULL },
 };
 
