@@ -30,7 +30,9 @@ typedef struct picture {
 } picture_t;
 
 static const draw_key_t three_keys[] = {
-    { 0, "waiting" }, { GREEN, "searching" }, { YELLOW, "returning" },
+    { 0, "waiting", DRAW_KEY_ROBOT, 0 },
+    { GREEN, "searching", DRAW_KEY_ROBOT, 0 },
+    { YELLOW, "returning", DRAW_KEY_ROBOT, 0 },
 };
 
 /* Three robots: one with the default body, two green; keys for those and
@@ -247,8 +249,9 @@ static void test_legend_wraps(void **state)
 {
     (void)state;
     static const draw_key_t many[] = {
-        { 0x101080u, "first state" }, { 0x108010u, "second state" }, { 0x801010u, "third state" },
-        { 0x808010u, "fourth state" }, { 0x108080u, "fifth state" }, { 0x801080u, "sixth state" },
+        { 0x101080u, "first state", DRAW_KEY_ROBOT, 0 }, { 0x108010u, "second state", DRAW_KEY_ROBOT, 0 },
+        { 0x801010u, "third state", DRAW_KEY_ROBOT, 0 }, { 0x808010u, "fourth state", DRAW_KEY_ROBOT, 0 },
+        { 0x108080u, "fifth state", DRAW_KEY_ROBOT, 0 }, { 0x801080u, "sixth state", DRAW_KEY_ROBOT, 0 },
     };
     render_ctx_t *ctx = render_create(240, 240, NULL);
     assert_non_null(ctx);

@@ -5,7 +5,7 @@
  * the PNG frames (shapes, items, robot fills), at the start, with every
  * RUN_INFO, and at the swarm-state rate whenever it changed (no change
  * missed, none sent twice); a run without tasks sends an empty drawing only
- * with RUN_INFO.
+ * with RUN_INFO.  SCENE also carries the run's legend, the PNG frames'.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -20,6 +20,7 @@
 
 #include <lcm/lcm.h>
 
+#include "core/legend.h"
 #include "core/render.h"
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
@@ -172,6 +173,22 @@ static void close_bus(bus_t *b)
     free_drawing(b->seen.drawing);
 }
 
+/* SCENE's legend is the PNG frames' (legend.h), in the colours they draw
+ * its keys in; returns how many keys. */
+static int32_t check_legend(const swarmlcm_scene_t *s, const sim_t *sim)
+{
+    draw_key_t keys[LEGEND_KEYS_MAX];
+    uint32_t n = legend_collect(sim, keys);
+    assert_int_equal(s->n_keys, n);
+    for (uint32_t k = 0; k < n; k++) {
+        assert_int_equal(s->key_kind[k], keys[k].kind);
+        assert_int_equal((uint32_t)s->key_rgb[k], render_key_rgb(&keys[k]));
+        assert_string_equal(s->key_label[k], keys[k].label);
+    }
+    assert_int_equal(s->robot_rgb, RENDER_RGB_ROBOT);
+    return s->n_keys;
+}
+
 /* The walkthrough's scenario: its arena, obstacle and lamp in SCENE; in
  * TASK_DRAWING after every step, what the gather task draws (the goal ring,
  * its label, the robots inside), sent at each step where it changed. */
@@ -253,6 +270,8 @@ static void test_gather_scene_and_drawing(void **state)
     assert_int_equal(s->obstacles[0].rgb, RENDER_RGB_OBJ_NONE);
     assert_int_equal(s->n_lights, 1);
     assert_true(s->lights[0].x == 0.5f && s->lights[0].y == 0.5f && s->lights[0].height == 0.3f);
+    assert_int_equal(check_legend(s, sim), 3);   /* outside, in goal, the goal */
+    assert_string_equal(s->key_label[2], "goal");
     close_bus(&b);
     sim_destroy(sim);
     scenario_free(sc);
@@ -288,6 +307,15 @@ static void test_foraging_items(void **state)
         assert_int_equal(shown, b.seen.drawing->n_items);
         assert_true(shown > 0);
     }
+    /* The legend has the nest and the food, the food in its items' colour. */
+    const swarmlcm_scene_t *s = b.seen.scene;
+    int32_t n_keys = check_legend(s, sim);
+    assert_int_equal(n_keys, 6);
+    assert_string_equal(s->key_label[4], "nest");
+    assert_int_equal(s->key_kind[4], DRAW_KEY_AREA);
+    assert_string_equal(s->key_label[5], "food");
+    assert_int_equal(s->key_kind[5], DRAW_KEY_ITEM);
+    assert_int_equal(s->key_rgb[5], b.seen.drawing->items[0].rgb);
     assert_int_equal(b.seen.repeated, 0);
     close_bus(&b);
     sim_destroy(sim);
@@ -315,6 +343,7 @@ static void test_no_task_draws_nothing(void **state)
     assert_int_equal(b.seen.scenes, 1 + 300 / 100);
     assert_int_equal(b.seen.drawing->n_shapes + b.seen.drawing->n_items + b.seen.drawing->n_fills, 0);
     assert_int_equal(b.seen.drawing_utime, 300 * 100000);
+    assert_int_equal(check_legend(b.seen.scene, sim), 1);   /* the default body: "robot" */
     close_bus(&b);
     sim_destroy(sim);
     scenario_free(sc);

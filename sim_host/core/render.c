@@ -251,13 +251,22 @@ static int finite2(float a, float b)
 /* Scene                                                               */
 /* ------------------------------------------------------------------ */
 
-static uint32_t object_rgb(int c)
+uint32_t render_colour_rgb(int c)
 {
     switch (c) {
     case 1: return RENDER_RGB_OBJ_RED;
     case 2: return RENDER_RGB_OBJ_GREEN;
     case 3: return RENDER_RGB_OBJ_BLUE;
     default: return RENDER_RGB_OBJ_NONE;
+    }
+}
+
+uint32_t render_key_rgb(const draw_key_t *key)
+{
+    switch (key->kind) {
+    case DRAW_KEY_ROBOT: return key->rgb ? key->rgb : RENDER_RGB_ROBOT;
+    case DRAW_KEY_ITEM: return render_colour_rgb(key->colour);
+    default: return key->rgb;
     }
 }
 
@@ -429,7 +438,7 @@ static void draw_object(const frame_t *f, const render_object_t *o)
     if (!finite2(o->x, o->y))
         return;
     float x = f->cx + o->x * f->s, y = f->cy + o->y * f->s;
-    uint32_t fill = object_rgb(o->colour);
+    uint32_t fill = render_colour_rgb(o->colour);
     if (o->shape == 0) {
         if (!isfinite(o->radius) || o->radius <= 0.0f)
             return;

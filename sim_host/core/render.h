@@ -61,6 +61,15 @@
 #define RENDER_RGB_LED_GREEN    0x10E610u /**< body LED, on */
 #define RENDER_RGB_TEXT         0x10101Au /**< overlay: time stamp, legend, ids */
 
+/** The palette's colour of an obstacle's or an item's colour (0 none, 1 red,
+ *  2 green, 3 blue: hal_colour_t), as the pictures draw it. */
+uint32_t render_colour_rgb(int colour);
+
+/** The colour a legend key's swatch is drawn in (drawing.h): a robot key's
+ *  fill (rgb 0: RENDER_RGB_ROBOT), an item key's render_colour_rgb, else its
+ *  rgb.  The live page gets the same through telemetry_scene.c. */
+uint32_t render_key_rgb(const draw_key_t *key);
+
 /** One robot.  The ring LEDs sit on the rim: LED0 at the front, LED i at
  *  -45*i degrees from the heading (clockwise seen from above). */
 typedef struct render_robot {
@@ -109,13 +118,14 @@ typedef struct render_scene {
     uint32_t light_count;
     double time_s;            /**< simulated time, s (drawn with `overlay`) */
     /** Non-zero: a band above the arena with the time stamp ("T = 12.3 S")
-     *  and the legend (each key's swatch, label and how many robots have
-     *  its fill now), and each robot's id (its index in `robots`) beside
+     *  and the legend (each key's swatch drawn as what it stands for is, its
+     *  label, and for a robot fill how many robots have it now), and each
+     *  robot's id (its index in `robots`) beside
      *  it.  The arena shrinks to make room for the band
      *  (render_overlay_band_px); without it nothing of this is drawn. */
     int overlay;
-    const draw_key_t *legend;       /**< legend_count keys (drawing.h; rgb 0:
-                                         the default body), NULL if 0 */
+    const draw_key_t *legend;       /**< legend_count keys (drawing.h,
+                                         legend.h), NULL if 0 */
     uint32_t legend_count;
 } render_scene_t;
 

@@ -1,7 +1,8 @@
 /*
  * render_overlay.c - what a picture says besides the arena (render.h,
  * render_scene_t.overlay): a band at the top with the simulated time and
- * the legend of robot fills, and each robot's id beside it.
+ * the legend (robot fills with their counts, the tasks' floor areas,
+ * outlines and items), and each robot's id beside it.
  *
  * The band's height depends only on the picture's width, the legend's
  * labels and the robot count, never on the time or the counts shown, so
@@ -51,21 +52,60 @@ static uint32_t key_count(const render_scene_t *sc, uint32_t rgb)
     return n;
 }
 
+/* A key's swatch in the square of side `side` centred on (cx, cy), drawn as
+ * what it stands for is drawn in the arena. */
+static void swatch(const draw_key_t *key, float cx, float cy, float side, float c)
+{
+    float rim = fmaxf(1.0f, 0.5f * c);
+    uint32_t rgb = render_key_rgb(key);
+    switch (key->kind) {
+    case DRAW_KEY_AREA:
+        rgl_colour(rgb);
+        rgl_rect(cx - 0.5f * side, cy - 0.5f * side, cx + 0.5f * side, cy + 0.5f * side);
+        break;
+    case DRAW_KEY_RING:
+        rgl_colour(rgb);
+        rgl_disc(cx, cy, 0.5f * side);
+        rgl_colour(RENDER_RGB_BACKGROUND);
+        rgl_disc(cx, cy, 0.5f * side - rim);
+        break;
+    case DRAW_KEY_LINE:
+        rgl_colour(rgb);
+        rgl_rect(cx - 0.5f * side, cy - rim, cx + 0.5f * side, cy + rim);
+        break;
+    case DRAW_KEY_ITEM:   /* an item as the arena's: rim and colour, smaller than a robot */
+        rgl_colour(RENDER_RGB_OUTLINE);
+        rgl_disc(cx, cy, 0.35f * side);
+        rgl_colour(rgb);
+        rgl_disc(cx, cy, 0.35f * side - rim);
+        break;
+    default:              /* a robot's body: rim, then fill */
+        rgl_colour(RENDER_RGB_OUTLINE);
+        rgl_disc(cx, cy, 0.5f * side);
+        rgl_colour(rgb);
+        rgl_disc(cx, cy, 0.5f * side - rim);
+        break;
+    }
+}
+
 /* Lays the band's items out left to right from its top left, wrapping at
  * the right margin, and draws them when `draw`.  Slot 0 is the time stamp,
  * slot k > 0 legend key k - 1.  Returns the number of lines. */
 static int flow(const render_scene_t *sc, int w, int h, float top, int draw)
 {
     float c = band_cell(w), m = edge_margin(w, h);
-    float line = 5.0f * c, gap = 3.0f * c, swatch = 6.0f * c, sep = 12.0f * c;
+    float line = 5.0f * c, gap = 3.0f * c, side = 6.0f * c, sep = 12.0f * c;
     float x = m, y = top - m - line;   /* GL: the first line's bottom */
     int lines = 1;
     char text[ITEM_TEXT_MAX], widest[ITEM_TEXT_MAX];
     for (uint32_t k = 0; k <= sc->legend_count; k++) {
         const draw_key_t *key = k ? &sc->legend[k - 1] : NULL;
         const char *label = key && key->label ? key->label : "";
-        float lead = key ? swatch + 2.0f * c : 0.0f;
-        if (key) {
+        float lead = key ? side + 2.0f * c : 0.0f;
+        if (key && key->kind != DRAW_KEY_ROBOT) {
+            snprintf(text, sizeof text, "%s", label);
+            snprintf(widest, sizeof widest, "%s", label);
+        } else if (key) {
             /* Laying out needs no count: `widest` has room for any. */
             snprintf(text, sizeof text, "%s %u", label, draw ? key_count(sc, key->rgb) : 0u);
             snprintf(widest, sizeof widest, "%s %0*u", label, digits(sc->robot_count), 0u);
@@ -80,14 +120,8 @@ static int flow(const render_scene_t *sc, int w, int h, float top, int draw)
             lines++;
         }
         if (draw) {
-            if (key) {
-                /* The swatch is drawn as a robot's body is: rim, then fill. */
-                float cx = x + 0.5f * swatch, cy = y + 0.5f * line;
-                rgl_colour(RENDER_RGB_OUTLINE);
-                rgl_disc(cx, cy, 0.5f * swatch);
-                rgl_colour(key->rgb ? key->rgb : RENDER_RGB_ROBOT);
-                rgl_disc(cx, cy, 0.5f * swatch - fmaxf(1.0f, 0.5f * c));
-            }
+            if (key)
+                swatch(key, x + 0.5f * side, y + 0.5f * line, side, c);
             rgl_colour(RENDER_RGB_TEXT);
             rgl_text(x + lead, y, text, c);
         }

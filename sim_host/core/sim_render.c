@@ -2,7 +2,7 @@
  * sim_render.c - a picture of a running simulation: the arena, obstacles,
  * lights and robots from the core, the tasks' items as the camera sees
  * them, each task's drawing (drawing.h) as data, and the overlay: the
- * simulated time, the tasks' legends and the robots' ids.  Only reads the
+ * simulated time, the run's legend (legend.h) and the robots' ids.  Only reads the
  * simulation (a task's draw gets its state as const).
  */
 #include "sim_render.h"
@@ -11,13 +11,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "legend.h"
 #include "sim_internal.h"
 #include "units.h"
 
 /* Room for the shapes of every task's drawing of one step. */
 #define SHAPES_MAX 4096
-/* Room for the legend keys of every task, and the default body's. */
-#define KEYS_MAX 32
 
 /* A scene and the memory behind it. */
 typedef struct sim_scene {
@@ -26,7 +25,7 @@ typedef struct sim_scene {
     render_object_t *objects;
     drawing_t drawing;
     render_light_t lights[SCENARIO_MAX_LIGHTS];
-    draw_key_t keys[KEYS_MAX];
+    draw_key_t keys[LEGEND_KEYS_MAX];
 } sim_scene_t;
 
 static void scene_free(sim_scene_t *ss)
@@ -35,26 +34,6 @@ static void scene_free(sim_scene_t *ss)
     free(ss->objects);
     free(ss->drawing.shapes);
     free(ss->drawing.robot_rgb);
-}
-
-/* The tasks' legends in registry order, then the default body's key if no
- * task says what it means: "other" beside a task's keys, else "robot". */
-static uint32_t collect_legend(const struct sim *sim, draw_key_t *keys)
-{
-    uint32_t n = 0;
-    int has_default = 0;
-    for (uint32_t t = 0; t < sim->n_tasks; t++) {
-        const draw_key_t *k = sim->tasks[t].def->legend;
-        for (; k && k->label && n < KEYS_MAX - 1; k++) {
-            keys[n++] = *k;
-            has_default |= k->rgb == 0;
-        }
-    }
-    if (!has_default) {
-        keys[n] = (draw_key_t){ 0, n ? "other" : "robot" };
-        n++;
-    }
-    return n;
 }
 
 /* Fills ss from the current state of sim.  0, or -1 out of memory. */
@@ -120,7 +99,7 @@ static int scene_build(const sim_t *simp, sim_scene_t *ss)
         .robots = ss->robots, .robot_count = n, .robot_radius = EPUCK_BODY_RADIUS_M,
         .objects = ss->objects, .object_count = n_objects, .lights = ss->lights,
         .light_count = sc->light_count, .time_s = sim_time_s(simp),
-        .overlay = 1, .legend = ss->keys, .legend_count = collect_legend(sim, ss->keys),
+        .overlay = 1, .legend = ss->keys, .legend_count = legend_collect(simp, ss->keys),
     };
     return 0;
 }
@@ -145,6 +124,17 @@ int sim_render_rgb(const sim_t *sim, render_ctx_t *ctx, uint8_t *rgb, char *err)
         return -1;
     }
     int rc = render_scene_rgb(ctx, &ss.scene, rgb, err);
+    scene_free(&ss);
+    return rc;
+}
+
+int sim_render_world_to_pixel(const sim_t *sim, const render_ctx_t *ctx, float x, float y, float *col,
+                              float *row)
+{
+    sim_scene_t ss;
+    if (scene_build(sim, &ss) != 0)
+        return -1;
+    int rc = render_world_to_pixel(ctx, &ss.scene, x, y, col, row);
     scene_free(&ss);
     return rc;
 }

@@ -15,4 +15,10 @@ int sim_render_png(const sim_t *sim, render_ctx_t *ctx, const char *png_path, ch
  *  `err` (SIM_ERR_MAX bytes). */
 int sim_render_rgb(const sim_t *sim, render_ctx_t *ctx, uint8_t *rgb, char *err);
 
+/** Where the world point (x, y) m lands in the picture sim_render_rgb would
+ *  draw now (render_world_to_pixel).  Returns 0, or -1 out of memory or
+ *  with an invalid arena. */
+int sim_render_world_to_pixel(const sim_t *sim, const render_ctx_t *ctx, float x, float y, float *col,
+                              float *row);
+
 #endif

@@ -2,8 +2,8 @@
  * telemetry_scene.c - the picture of a run as telemetry (telemetry_scene.h).
  *
  * The tasks draw into a drawing_t exactly as for a PNG frame (sim_render.c);
- * this turns it, the tasks' items and the scenario's arena, obstacles and
- * lamps into scene_t and task_drawing_t.  Whether the drawing changed is
+ * this turns it, the tasks' items, the scenario's arena, obstacles and
+ * lamps and the run's legend (legend.h) into scene_t and task_drawing_t.  Whether the drawing changed is
  * decided on its encoded bytes (with utime 0), so a change is any change of
  * any bit, NaN included, and no field can be forgotten in a comparison.
  */
@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "legend.h"
 #include "render.h"
 #include "sim_internal.h"
 #include "units.h"
@@ -21,6 +22,10 @@
 struct telemetry_scene {
     swarmlcm_scene_obstacle_t *obstacles;
     swarmlcm_scene_light_t lights[SCENARIO_MAX_LIGHTS];
+    draw_key_t keys[LEGEND_KEYS_MAX];  /* the run's legend */
+    int8_t key_kind[LEGEND_KEYS_MAX];
+    int32_t key_rgb[LEGEND_KEYS_MAX];
+    char *key_label[LEGEND_KEYS_MAX];
 
     drawing_t drawing;               /* what the tasks draw this step */
     swarmlcm_scene_shape_t *shapes;  /* TELEMETRY_SCENE_SHAPES_MAX */
@@ -93,17 +98,6 @@ static int64_t utime_of(const struct sim *sim)
     return (int64_t)sim->step * sim->sc->control_period_ms * 1000;
 }
 
-/* A hal_colour_t in the PNG frames' palette (render.h). */
-static int32_t colour_rgb(int colour)
-{
-    switch (colour) {
-    case HAL_COLOUR_RED: return RENDER_RGB_OBJ_RED;
-    case HAL_COLOUR_GREEN: return RENDER_RGB_OBJ_GREEN;
-    case HAL_COLOUR_BLUE: return RENDER_RGB_OBJ_BLUE;
-    default: return RENDER_RGB_OBJ_NONE;
-    }
-}
-
 void telemetry_scene_fill(telemetry_scene_t *s, const sim_t *simp, swarmlcm_scene_t *m)
 {
     const struct sim *sim = simp;
@@ -119,7 +113,7 @@ void telemetry_scene_fill(telemetry_scene_t *s, const sim_t *simp, swarmlcm_scen
         out->depth = o->depth;
         out->angle = o->angle;
         out->height = o->height;
-        out->rgb = colour_rgb(o->colour);
+        out->rgb = (int32_t)render_colour_rgb(o->colour);
     }
     for (uint32_t l = 0; l < sc->light_count; l++) {
         swarmlcm_scene_light_t light = { sc->lights[l].x, sc->lights[l].y, sc->lights[l].height,
@@ -137,6 +131,17 @@ void telemetry_scene_fill(telemetry_scene_t *s, const sim_t *simp, swarmlcm_scen
     m->obstacles = s->obstacles;
     m->n_lights = (int16_t)sc->light_count;
     m->lights = s->lights;
+    uint32_t n_keys = legend_collect(simp, s->keys);
+    for (uint32_t k = 0; k < n_keys; k++) {
+        s->key_kind[k] = (int8_t)s->keys[k].kind;
+        s->key_rgb[k] = (int32_t)render_key_rgb(&s->keys[k]);
+        s->key_label[k] = (char *)s->keys[k].label;   /* the task's constant; LCM only reads it */
+    }
+    m->robot_rgb = (int32_t)RENDER_RGB_ROBOT;
+    m->n_keys = (int16_t)n_keys;
+    m->key_kind = s->key_kind;
+    m->key_rgb = s->key_rgb;
+    m->key_label = s->key_label;
 }
 
 /* The tasks' items as the PNG frames draw them: those in the world and of a
@@ -159,7 +164,7 @@ static int32_t collect_items(telemetry_scene_t *s, const struct sim *sim)
         }
         for (uint32_t k = 0; k < count; k++) {
             if (isfinite(items[k].x) && items[k].colour != HAL_COLOUR_NONE) {
-                swarmlcm_scene_item_t it = { items[k].x, items[k].y, items[k].radius, colour_rgb(items[k].colour) };
+                swarmlcm_scene_item_t it = { items[k].x, items[k].y, items[k].radius, (int32_t)render_colour_rgb(items[k].colour) };
                 s->items[n++] = it;
             }
         }

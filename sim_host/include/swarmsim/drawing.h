@@ -32,13 +32,24 @@ typedef enum draw_layer {
 #define DRAW_RGB_HL_BLUE      0x8CA0F0u
 #define DRAW_RGB_HL_YELLOW    0xF0DC5Au
 
-/* One entry of a legend: a robot fill and what it means.  rgb 0 is the
- * default body, as in drawing_t.robot_rgb.  A task lists its entries in
- * task_def_t.legend and its draw takes the fills from that same table, so
- * the pictures' legend cannot drift from the colours robots are given. */
+/* What a legend entry stands for, and so how its swatch is drawn. */
+typedef enum draw_key_kind {
+    DRAW_KEY_ROBOT = 0,   /**< a robot fill (counted in the pictures' legend) */
+    DRAW_KEY_AREA = 1,    /**< a floor area a task draws filled (a nest) */
+    DRAW_KEY_RING = 2,    /**< a task's outline on the floor (a goal, a range) */
+    DRAW_KEY_ITEM = 3,    /**< an item the cameras see (sim_item_t: food, a target) */
+    DRAW_KEY_LINE = 4     /**< a task's lines (links between robots) */
+} draw_key_kind_t;
+
+/* One entry of a legend: a colour and what it means.  A task lists its
+ * entries in task_def_t.legend, robot fills first, and its draw takes the
+ * colours from that same table, so the legend cannot drift from what is
+ * drawn.  Every view's legend is that table (sim_host/core/legend.h). */
 typedef struct draw_key {
-    uint32_t rgb;              /**< 0xRRGGBB; 0: the default body */
+    uint32_t rgb;              /**< 0xRRGGBB; ROBOT: 0 the default body; ITEM: unused */
     const char *label;         /**< NULL ends a table */
+    uint8_t kind;              /**< draw_key_kind_t (0: a robot fill) */
+    uint8_t colour;            /**< ITEM: its hal_colour_t, drawn as the frames draw items */
 } draw_key_t;
 
 typedef struct draw_shape {

@@ -118,8 +118,10 @@ typedef struct task_def {
     /** Appends its picture of the current step. */
     void (*draw)(const void *self, const sim_t *sim, drawing_t *out);
 
-    /** What the robot fills of `draw` mean ({0, NULL}-terminated, or NULL):
-     *  the pictures' legend.  `draw` should take its fills from this table. */
+    /** Its legend ({0, NULL}-terminated, or NULL): what the robot fills of
+     *  `draw` mean, then its floor areas, outlines and items (drawing.h,
+     *  draw_key_t).  The PNG frames, the videos and the live page all show
+     *  this table; `draw` takes its colours from it. */
     const draw_key_t *legend;
 
     /** Non-zero when the experiment is over (a stop condition): the run

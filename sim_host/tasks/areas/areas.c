@@ -8,10 +8,14 @@
 
 #include "models/ground/ground.h"
 
-#define RGB_NEST 0x404040u
-#define RGB_FOOD 0x909090u
-
 enum { AREA_NONE = 0, AREA_NEST = 1, AREA_FOOD = 2 };
+/* The areas in pictures (the legend's table sets their colours). */
+enum { KEY_NEST, KEY_FOOD, KEY_END };
+static const draw_key_t areas_legend[] = {
+    [KEY_NEST] = { 0x404040u, "nest area", DRAW_KEY_RING, 0 },
+    [KEY_FOOD] = { 0x909090u, "food area", DRAW_KEY_RING, 0 },
+    [KEY_END] = { 0, NULL },
+};
 enum { ROLE_OTHER = 0, ROLE_NEST = 1, ROLE_FOOD = 2 };
 
 typedef struct areas {
@@ -217,7 +221,7 @@ static void areas_draw(const void *self, const sim_t *sim, drawing_t *out)
     (void)sim;
     for (uint32_t s = 0; s < a->n_sources; s++) {
         draw_shape_t ring = { .kind = DRAW_RING, .layer = DRAW_FLOOR,
-                              .rgb = a->src_kind[s] == AREA_NEST ? RGB_NEST : RGB_FOOD,
+                              .rgb = areas_legend[a->src_kind[s] == AREA_NEST ? KEY_NEST : KEY_FOOD].rgb,
                               .x = a->src_x[s], .y = a->src_y[s], .radius = a->cfg->radius, .line = 0.01f };
         drawing_add(out, &ring);
     }
@@ -245,4 +249,5 @@ const task_def_t areas_task = {
     .summary = areas_summary,
     .final = areas_final,
     .draw = areas_draw,
+    .legend = areas_legend,
 };

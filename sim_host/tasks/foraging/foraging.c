@@ -23,15 +23,16 @@
 #define GRASP_TOLERANCE 0.025f
 #define CARRY_GAP 0.005f
 #define PLACE_TRIES 100000
-/* Drawing: the grey nest floor, and robots by task state (the legend's
- * table is the one place their colours are set). */
-#define RGB_NEST 0xB4B4B4u
-enum { KEY_WAITING, KEY_SEARCHING, KEY_RETURNING, KEY_BEACON, KEY_END };
+/* Drawing: robots by task state, the grey nest floor, the red food (the
+ * legend's table is the one place their colours are set). */
+enum { KEY_WAITING, KEY_SEARCHING, KEY_RETURNING, KEY_BEACON, KEY_NEST, KEY_FOOD, KEY_END };
 static const draw_key_t foraging_legend[] = {
     [KEY_WAITING] = { 0, "waiting" },
     [KEY_SEARCHING] = { DRAW_RGB_HL_GREEN, "searching" },
     [KEY_RETURNING] = { DRAW_RGB_HL_YELLOW, "returning" },
     [KEY_BEACON] = { DRAW_RGB_HL_BLUE, "beacon" },
+    [KEY_NEST] = { 0xB4B4B4u, "nest", DRAW_KEY_AREA, 0 },
+    [KEY_FOOD] = { 0, "food", DRAW_KEY_ITEM, HAL_COLOUR_RED },
     [KEY_END] = { 0, NULL },
 };
 
@@ -362,7 +363,7 @@ static void *foraging_create(sim_t *sim, const void *config, char err[SIM_ERR_MA
     for (uint32_t k = 0; k < f->n_tokens; k++) {
         f->tokens[k].radius = c->token_radius;
         f->tokens[k].height = c->token_height;
-        f->tokens[k].colour = HAL_COLOUR_RED;
+        f->tokens[k].colour = foraging_legend[KEY_FOOD].colour;
         if (place_token(f, sim, k) != 0) {
             snprintf(err, SIM_ERR_MAX, "cannot place food token %u of %u outside the nest and obstacles",
                      k + 1, f->n_tokens);
@@ -662,7 +663,7 @@ static void foraging_final(const void *self, const sim_t *sim, double *v)
 static void foraging_draw(const void *self, const sim_t *sim, drawing_t *out)
 {
     const foraging_t *f = self;
-    draw_shape_t nest = { .kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = RGB_NEST,
+    draw_shape_t nest = { .kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = foraging_legend[KEY_NEST].rgb,
                           .x = f->cfg->nest.x, .y = f->cfg->nest.y, .radius = nest_radius(f) };
     draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = 0x303030u,
                            .x = f->cfg->nest.x - nest_radius(f), .y = f->cfg->nest.y + nest_radius(f) };

@@ -5,12 +5,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define RGB_GOAL 0x2878C8u
-/* Robots by where they are (the legend's table sets their colours). */
-enum { KEY_OUTSIDE, KEY_INSIDE, KEY_END };
+/* Robots by where they are, and the goal (the legend's table sets their
+ * colours). */
+enum { KEY_OUTSIDE, KEY_INSIDE, KEY_GOAL, KEY_END };
 static const draw_key_t gather_legend[] = {
     [KEY_OUTSIDE] = { 0, "outside" },
     [KEY_INSIDE] = { DRAW_RGB_HL_GREEN, "in goal" },
+    [KEY_GOAL] = { 0x2878C8u, "goal", DRAW_KEY_RING, 0 },
     [KEY_END] = { 0, NULL },
 };
 
@@ -133,9 +134,9 @@ static void gather_final(const void *self, const sim_t *sim, double *v)
 static void gather_draw(const void *self, const sim_t *sim, drawing_t *out)
 {
     const gather_t *g = self;
-    draw_shape_t ring = { .kind = DRAW_RING, .layer = DRAW_FLOOR, .rgb = RGB_GOAL, .x = g->cfg->goal.x,
+    draw_shape_t ring = { .kind = DRAW_RING, .layer = DRAW_FLOOR, .rgb = gather_legend[KEY_GOAL].rgb, .x = g->cfg->goal.x,
                           .y = g->cfg->goal.y, .radius = g->cfg->goal.radius, .line = 0.01f };
-    draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = RGB_GOAL,
+    draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = gather_legend[KEY_GOAL].rgb,
                            .x = g->cfg->goal.x - g->cfg->goal.radius,
                            .y = g->cfg->goal.y + g->cfg->goal.radius + 0.03f };
     (void)sim;

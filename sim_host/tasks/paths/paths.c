@@ -10,10 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Pictures: the nest's network blue, the food's orange, the chain green. */
-#define RGB_NEST 0x2878C8u
-#define RGB_FOOD 0xE08020u
-#define RGB_CHAIN 0x20A040u
+/* Pictures: the nest's network blue, the food's orange, the chain green
+ * (colours set in the legend's table). */
 #define CHAIN_LINE_M 0.02f
 /* A time is within the budget up to rounding of steps x period. */
 #define BUDGET_EPS_S 1e-9
@@ -23,11 +21,14 @@ enum { ROLE_OTHER = 0, ROLE_NEST = 1, ROLE_FOOD = 2 };
 #define UNREACHED (-2)
 #define ROOT (-1)
 
-enum { KEY_OTHER, KEY_NODE, KEY_CHAIN, KEY_END };
+enum { KEY_OTHER, KEY_NODE, KEY_CHAIN, KEY_NEST, KEY_FOOD, KEY_LINK, KEY_END };
 static const draw_key_t paths_legend[] = {
     [KEY_OTHER] = { 0, "moving, or a source" },
     [KEY_NODE] = { DRAW_RGB_HL_YELLOW, "standing still (a node)" },
     [KEY_CHAIN] = { DRAW_RGB_HL_GREEN, "on the chain nest-food" },
+    [KEY_NEST] = { 0x2878C8u, "nest range, network", DRAW_KEY_RING, 0 },
+    [KEY_FOOD] = { 0xE08020u, "food range, network", DRAW_KEY_RING, 0 },
+    [KEY_LINK] = { 0x20A040u, "the chain", DRAW_KEY_LINE, 0 },
     [KEY_END] = { 0, NULL },
 };
 
@@ -392,7 +393,7 @@ static void paths_draw(const void *self, const sim_t *sim, drawing_t *out)
         }
         double x, y, t;
         sim_robot_pose(sim, i, &x, &y, &t);
-        uint32_t rgb = p->role[i] == ROLE_NEST ? RGB_NEST : RGB_FOOD;
+        uint32_t rgb = paths_legend[p->role[i] == ROLE_NEST ? KEY_NEST : KEY_FOOD].rgb;
         draw_shape_t ring = { .kind = DRAW_RING, .layer = DRAW_FLOOR, .rgb = rgb, .x = (float)x, .y = (float)y,
                               .radius = p->cfg->range, .line = 0.0f };
         draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = rgb, .x = (float)x + 0.05f,
@@ -404,14 +405,14 @@ static void paths_draw(const void *self, const sim_t *sim, drawing_t *out)
     /* Each network's links (its breadth-first tree), then the chain. */
     for (uint32_t v = 0; v < p->n; v++) {
         if (p->role[v] == ROLE_OTHER && p->from_nest[v] >= 0) {
-            add_line(out, sim, v, (uint32_t)p->from_nest[v], RGB_NEST, 0.0f);
+            add_line(out, sim, v, (uint32_t)p->from_nest[v], paths_legend[KEY_NEST].rgb, 0.0f);
         }
         if (p->role[v] == ROLE_OTHER && p->from_food[v] >= 0) {
-            add_line(out, sim, v, (uint32_t)p->from_food[v], RGB_FOOD, 0.0f);
+            add_line(out, sim, v, (uint32_t)p->from_food[v], paths_legend[KEY_FOOD].rgb, 0.0f);
         }
     }
     for (uint32_t k = 1; k < p->chain_len; k++) {
-        add_line(out, sim, p->chain[k - 1], p->chain[k], RGB_CHAIN, CHAIN_LINE_M);
+        add_line(out, sim, p->chain[k - 1], p->chain[k], paths_legend[KEY_LINK].rgb, CHAIN_LINE_M);
     }
     for (uint32_t i = 0; i < p->n && i < out->robot_count; i++) {
         if (p->chain_pos[i] >= 0 && p->role[i] == ROLE_OTHER) {

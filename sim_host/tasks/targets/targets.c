@@ -17,17 +17,18 @@
  * from every stream of a run (those are keyed by the run seed). */
 #define LAYOUT_STREAM UINT64_C(0x7461726765747300)   /* "targets" */
 /* Drawing: the nest's floor, the targets' halo (the paper's purple). */
-#define RGB_NEST 0xB4B4B4u
-#define RGB_TARGET_HALO 0x9040C0u
 /* A target's halo in a picture: this many target radii, and at least this
  * share of the layout square (a 1 cm target in a 16 m world is a pixel). */
 #define HALO_RADII 3.0f
 #define HALO_SIDE_SHARE 0.004f
 
-enum { KEY_MOVING, KEY_PICKING, KEY_END };
+enum { KEY_MOVING, KEY_PICKING, KEY_NEST, KEY_TARGET, KEY_HALO, KEY_END };
 static const draw_key_t targets_legend[] = {
     [KEY_MOVING] = { 0, "other" },
     [KEY_PICKING] = { DRAW_RGB_HL_YELLOW, "waiting on a target" },
+    [KEY_NEST] = { 0xB4B4B4u, "nest", DRAW_KEY_AREA, 0 },
+    [KEY_TARGET] = { 0, "target", DRAW_KEY_ITEM, HAL_COLOUR_RED },
+    [KEY_HALO] = { 0x9040C0u, "target halo", DRAW_KEY_RING, 0 },
     [KEY_END] = { 0, NULL },
 };
 
@@ -265,7 +266,8 @@ static void *targets_create(sim_t *sim, const void *config, char err[SIM_ERR_MAX
     t->n_robots = n;
     t->n_targets = c->count;
     for (uint32_t k = 0; k < c->count; k++) {
-        t->items[k] = (sim_item_t){ x[k], y[k], c->target_radius, c->target_height, HAL_COLOUR_RED };
+        t->items[k] = (sim_item_t){ x[k], y[k], c->target_radius, c->target_height,
+                                    targets_legend[KEY_TARGET].colour };
     }
     free(x);
     free(y);
@@ -410,7 +412,7 @@ static void targets_draw(const void *self, const sim_t *sim, drawing_t *out)
     const targets_t *t = self;
     const targets_config_t *c = t->cfg;
     float halo = fmaxf(HALO_RADII * c->target_radius, HALO_SIDE_SHARE * c->layout_side);
-    draw_shape_t nest = { .kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = RGB_NEST, .x = c->nest.x,
+    draw_shape_t nest = { .kind = DRAW_DISC, .layer = DRAW_FLOOR, .rgb = targets_legend[KEY_NEST].rgb, .x = c->nest.x,
                           .y = c->nest.y, .radius = c->nest.radius };
     draw_shape_t cross = { .kind = DRAW_LINE, .layer = DRAW_FLOOR, .rgb = 0x000000u, .line = 0.0f };
     draw_shape_t label = { .kind = DRAW_LABEL, .layer = DRAW_OVER, .rgb = 0x303030u,
@@ -428,7 +430,7 @@ static void targets_draw(const void *self, const sim_t *sim, drawing_t *out)
     drawing_add(out, &cross);
     for (uint32_t k = 0; k < t->n_targets; k++) {
         if (isfinite(t->items[k].x)) {
-            draw_shape_t h = { .kind = DRAW_RING, .layer = DRAW_FLOOR, .rgb = RGB_TARGET_HALO,
+            draw_shape_t h = { .kind = DRAW_RING, .layer = DRAW_FLOOR, .rgb = targets_legend[KEY_HALO].rgb,
                                .x = t->items[k].x, .y = t->items[k].y, .radius = halo, .line = 0.0f };
             drawing_add(out, &h);
         }

@@ -31,6 +31,11 @@ def scene(m):
                        "width": num(o.width), "depth": num(o.depth), "angle": num(o.angle), "rgb": o.rgb}
                       for o in m.obstacles],
         "lights": [{"x": num(li.x), "y": num(li.y)} for li in m.lights],
+        # The run's legend, the PNG frames' (sim_host/core/legend.h): the
+        # page colours robots and lists the keys from it.
+        "robot_rgb": m.robot_rgb,
+        "legend": [{"kind": k, "rgb": rgb, "label": label}
+                   for k, rgb, label in zip(m.key_kind, m.key_rgb, m.key_label, strict=True)],
     }
 
 

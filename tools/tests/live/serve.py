@@ -56,6 +56,20 @@ def poses_at(log, t):
     return out
 
 
+def picture_at(log, t):
+    """(scene_t, task_drawing_t) latest at or before log time t (s from the
+    first event), None where none came: what the page draws robots' colours
+    and its legend from."""
+    got, t0 = {}, None
+    for ev, msg in common.read_log(log, "test"):
+        t0 = ev.timestamp if t0 is None else t0
+        if (ev.timestamp - t0) / 1e6 > t:
+            break
+        if type(msg).__name__ in ("scene_t", "task_drawing_t"):
+            got[type(msg).__name__] = msg
+    return got.get("scene_t"), got.get("task_drawing_t")
+
+
 def first(log, kind):
     """The first message of type `kind` in a log."""
     return next(msg for _, msg in common.read_log(log, "test") if type(msg).__name__ == kind)

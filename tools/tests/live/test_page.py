@@ -25,15 +25,16 @@ from swarmtools.telemetry import common
 
 from ..telemetry.helpers import ROOT, SCENARIOS, SWARMSIM, robot_state, run_sim, schema, write_log
 from .browser import Browser
-from .serve import LONG, Server, first, free_udp_port, poses_at, wait_for
+from .serve import LONG, Server, first, free_udp_port, picture_at, poses_at, wait_for
 
 GATHER = SCENARIOS / "phototaxis_gather.yaml"
+FORAGING = SCENARIOS / "foraging_base.yaml"
 STEPS = 300                    # 30 s: the log's end
 POSITION_TOL = 1e-5            # m: the page shows the log's float32 poses, through JSON
 
 # The share of a robot's body (pixels between 0.35 and 0.75 of its radius
-# from its centre, where no LED or heading bar is) that must have its
-# state's colour, and each robot's dominant colour there.
+# from its centre, where no LED or heading bar is) that has the colour it
+# should have.
 BODY_JS = """
 const [robots, r] = arguments;
 const ctx = document.getElementById('arena').getContext('2d');
@@ -138,6 +139,8 @@ class ReplayedRun(BrowserTest):
         cls.run_dir = cls.tmp / "gather" / "run_1"
         cls.log = cls.run_dir / "telemetry.lcmlog"
 
+    has_scene = True    # the log has SCENE and TASK_DRAWING
+
     def check_robots_at(self, st, t):
         """The page's robots are the log's at time t: states, and places both
         in the page's state and on the canvas."""
@@ -155,16 +158,33 @@ class ReplayedRun(BrowserTest):
         self.assertEqual(len(st["placed"]), 12)
         self.assertEqual(st["tiles"], 0)
         self.assertFalse(st["noPositions"])
-        # On the canvas: where the log's pose maps, the robot's body has its state's colour.
+        # On the canvas: where the log's pose maps, the robot's body is drawn.
         where = [self.js("return window.liveView.toCanvas(arguments[0], arguments[1])", m.x, m.y) for m in want.values()]
         placed = {p["id"]: (p["x"], p["y"]) for p in st["placed"]}
         for rid, (x, y) in zip(want, where, strict=True):
             self.assertAlmostEqual(placed[rid][0], x, delta=0.01)
             self.assertAlmostEqual(placed[rid][1], y, delta=0.01)
-        colours = [st["stateColours"][m.state] for m in want.values()]
+        # Its colour: the fill its task gives it now, else the default body,
+        # as the PNG frames draw it (both from the log's SCENE and
+        # TASK_DRAWING); in a log without them, a colour per state.
+        scene, drawing = picture_at(self.log, t) if self.has_scene else (None, None)
+        fills = dict(zip(drawing.fill_robot, drawing.fill_rgb, strict=True)) if drawing else {}
+        colours = ["#" + rgb(fills.get(rid, scene.robot_rgb)) if scene else st["stateColours"][m.state]
+                   for rid, m in want.items()]
         shares = self.js(BODY_JS, [[x, y, c] for (x, y), c in zip(where, colours, strict=True)], st["radiusPx"])
         for rid, share in zip(want, shares, strict=True):
-            self.assertGreater(share, 0.5, f"robot {rid}: {share:.0%} of its body in its state's colour")
+            self.assertGreater(share, 0.5, f"robot {rid}: {share:.0%} of its body in its colour")
+        if scene:
+            # The legend: the scene's keys in its colours, each robot key
+            # with the robots of its colour, the task's goal among them.
+            keys = [{"kind": k, "colour": "#" + rgb(c), "label": label,
+                     "count": colours.count("#" + rgb(c)) if k == 0 else None}
+                    for k, c, label in zip(scene.key_kind, scene.key_rgb, scene.key_label, strict=True)]
+            self.assertEqual(st["legend"], keys)
+            self.assertIn({"kind": 2, "colour": "#" + rgb(drawing.shapes[0].rgb), "label": "goal", "count": None}, keys)
+            text = self.driver.find_element("id", "legend").text
+            for k in keys:
+                self.assertIn(k["label"] if k["count"] is None else f"{k['label']} {k['count']}", text)
 
     def test_robots_at_the_logs_places_and_seek(self):
         self.serve("--log", self.log, "--paused")
@@ -207,7 +227,9 @@ class ReplayedRun(BrowserTest):
         self.serve("--log", old, "--paused")
         st = self.seek(10.0)
         self.assertEqual((st["obstacles"], st["lights"], st["shapes"]), (0, 0, 0))
+        self.has_scene = False
         self.check_robots_at(st, 10.0)
+        self.assertEqual({e["label"] for e in st["legend"]}, {m.state for m in poses_at(self.log, 10.0).values()})
 
     def test_plays_pauses_and_ends_with_the_summary(self):
         self.serve("--log", self.log, "--speed", "4")
@@ -233,7 +255,61 @@ class ReplayedRun(BrowserTest):
         self.assertEqual(st["seriesPoints"], STEPS + 1)
         self.assertIn("swarm.in_goal", st["charts"])          # the swarm schema's values, and the states
         self.assertIn("state.", st["charts"])
+        # Every chart has a time axis and a value axis in its value's unit
+        # (the swarm schema's; robots by state: "robots"), with ticks.
+        swarm = next(m for _, m in common.read_log(self.log, "test")
+                     if type(m).__name__ == "schema_t" and m.kind == "swarm")
+        units = {f"swarm.{n}": u for n, u in zip(swarm.names, swarm.units, strict=True)} | {"state.": "robots"}
+        self.assertEqual(set(st["chartAxes"]), set(st["charts"]))
+        for key, axes in st["chartAxes"].items():
+            self.assertEqual(axes["x"]["label"], "time (s)", key)
+            self.assertEqual(axes["y"]["label"], units.get(key, axes["y"]["label"]), key)
+            xs = [float(v) for v in axes["x"]["ticks"]]
+            self.assertGreaterEqual(len(xs), 2, key)
+            self.assertTrue(all(0 <= v <= STEPS / 10 for v in xs) and xs == sorted(xs), (key, xs))
+            self.assertGreaterEqual(len(axes["y"]["ticks"]), 2, key)
+        self.assertTrue(any(units[k] for k in st["chartAxes"] if k in units))
+        # The robots by state: a line a state, named in its colour.
+        lines = st["chartAxes"]["state."]["lines"]
+        self.assertTrue(lines)
+        self.assertEqual({li["name"]: li["colour"] for li in lines},
+                         {li["name"]: st["stateColours"][li["name"]] for li in lines})
         self.check_robots_at(st, STEPS / 10)
+
+
+class ReplayedForaging(BrowserTest):
+    """Seed 000's base run: the page's legend has the task's nest and food
+    in SCENE's colours, and a searching robot's body has the legend's
+    colour for searching, as in the PNG frames (tests/test_legend.c)."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        run_sim(cls.tmp / "foraging", FORAGING, "--steps", STEPS)
+        cls.log = cls.tmp / "foraging" / "run_1" / "telemetry.lcmlog"
+
+    def test_the_legend_has_the_nest_and_the_food(self):
+        self.serve("--log", self.log, "--paused")
+        t = STEPS / 10
+        st = self.seek(t)
+        scene, drawing = picture_at(self.log, t)
+        legend = {e["label"]: e for e in st["legend"]}
+        sent = {label: (k, "#" + rgb(c)) for k, c, label in zip(scene.key_kind, scene.key_rgb, scene.key_label,
+                                                                 strict=True)}
+        self.assertEqual({label: (e["kind"], e["colour"]) for label, e in legend.items()}, sent)
+        self.assertEqual(legend["nest"]["kind"], 1)                           # a floor area
+        self.assertEqual(legend["nest"]["colour"], "#" + rgb(drawing.shapes[0].rgb))
+        self.assertEqual((legend["food"]["kind"], legend["food"]["colour"]), (3, "#" + rgb(drawing.items[0].rgb)))
+        searching = legend["searching"]["colour"]
+        ids = [r for r, c in zip(drawing.fill_robot, drawing.fill_rgb, strict=True) if "#" + rgb(c) == searching]
+        self.assertTrue(ids, "no robot searching at 30 s")
+        self.assertEqual(legend["searching"]["count"], len(ids))
+        robots = poses_at(self.log, t)
+        where = [self.js("return window.liveView.toCanvas(arguments[0], arguments[1])", robots[r].x, robots[r].y)
+                 for r in ids]
+        shares = self.js(BODY_JS, [[x, y, searching] for x, y in where], st["radiusPx"])
+        self.assertGreater(sum(share > 0.5 for share in shares), len(ids) / 2, shares)
+        self.assertTrue(all(st["bodies"][str(r)] == searching for r in ids))
 
 
 class RealRobots(BrowserTest):

@@ -1,8 +1,8 @@
 // arena.js - draws the arena on a canvas as the simulator's PNG frames do
 // (sim_host/core/render.c: the same palette and the same order: walls,
 // the tasks' floor shapes, obstacles and items, lamps, robots, then the
-// shapes over everything), except that a robot's body shows its controller
-// state's colour and a task's mark on a robot is a halo around it.
+// shapes over everything); a robot's body has its colour of the legend
+// (keys.js).
 "use strict";
 
 const Arena = (() => {
@@ -16,7 +16,7 @@ const Arena = (() => {
                               // 2,000 robots' ids cost more than the rest of the frame (tools/bench/live_page.py)
   const LED_BODY = 8, LED_FRONT = 9;   // robot_state_t.leds bits
 
-  const hex = (rgb) => "#" + ((rgb >>> 0) & 0xffffff).toString(16).padStart(6, "0");
+  const hex = Keys.hex;
   const finite = (...v) => v.every((x) => typeof x === "number" && Number.isFinite(x));
 
   // World (m, +y up, origin at the arena's centre) to canvas pixels, for the
@@ -125,21 +125,14 @@ const Arena = (() => {
     }
   }
 
-  // One robot: halo (a task's mark), rim, body in its state's colour, body
-  // LED, heading bar, front LED, ring LEDs (LED i at -45*i degrees from the
-  // heading), id.  Returns where it went.
-  function robot(ctx, L, rb, r, fill, mark) {
+  // One robot: rim, body in its colour, body LED, heading bar, front LED,
+  // ring LEDs (LED i at -45*i degrees from the heading), id.  Returns where
+  // it went.
+  function robot(ctx, L, rb, r, fill) {
     const [x, y] = L.toCanvas(rb.x, rb.y);
     const th = finite(rb.theta) ? rb.theta : 0;
     const c = Math.cos(th), s = -Math.sin(th);     // canvas y points down
     const rim = Math.max(1, 0.08 * r);
-    if (mark) {
-      ctx.strokeStyle = hex(mark);
-      ctx.lineWidth = 2;
-      ctx.beginPath();
-      ctx.arc(x, y, r + 2, 0, 2 * Math.PI);
-      ctx.stroke();
-    }
     disc(ctx, x, y, r, C.outline);
     disc(ctx, x, y, r - rim, fill);
     if (r < DETAIL_PX) {
@@ -240,9 +233,10 @@ const Arena = (() => {
   }
 
   // Draws everything; returns the layout (null: nothing to place) and
-  // where each robot went.  `zoom` as layout's; `selected`: a robot id
-  // whose perception (`detail`) is drawn, or null.
-  function draw(canvas, model, robots, colourOf, zoom, selected, detail) {
+  // where each robot went.  `bodyOf(robot)`: its body's colour; `zoom` as
+  // layout's; `selected`: a robot id whose perception (`detail`) is drawn,
+  // or null.
+  function draw(canvas, model, robots, bodyOf, zoom, selected, detail) {
     const ctx = canvas.getContext("2d");
     ctx.fillStyle = C.background;
     ctx.fillRect(0, 0, canvas.width, canvas.height);
@@ -274,8 +268,7 @@ const Arena = (() => {
     }
     const radius = model.scene && finite(model.scene.robot_radius) ? model.scene.robot_radius : 0.035;
     const r = Math.max(radius * L.s, MIN_ROBOT_PX);
-    const fills = model.drawing ? model.drawing.fills : {};
-    const drawn = posed.map((rb) => robot(ctx, L, rb, r, colourOf(rb.state), fills[rb.id]));
+    const drawn = posed.map((rb) => robot(ctx, L, rb, r, bodyOf(rb)));
     shapes.filter((d) => d.layer !== 0).forEach((d) => shape(ctx, L, d));
     const sel = selected === null ? null : posed.find((rb) => rb.id === selected);
     if (sel) perception(ctx, L, sel, detail, r);

@@ -10,15 +10,7 @@
 "use strict";
 
 (() => {
-  // A colour per controller state, in the order states are first seen (kept
-  // across seeks, so a state keeps its colour).
-  const PALETTE = ["#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#b07aa1", "#edc948",
-                   "#76b7b2", "#ff9da7", "#9c755f", "#bab0ac", "#2f4b7c", "#a05195"];
-  const colours = new Map();
-  const colourOf = (state) => {
-    if (!colours.has(state)) colours.set(state, PALETTE[colours.size % PALETTE.length]);
-    return colours.get(state);
-  };
+  const bodyOf = (rb) => Keys.body(model, rb);    // a robot's colour (keys.js)
   const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 5, 10, 20, 50, 100, 1000];
   const PARTS = ["info", "schemas", "scene", "drawing", "swarm", "summary", "bridge", "events", "error", "limits",
                  "control", "detail"];
@@ -30,10 +22,10 @@
     mode: null, source: "", time: 0, clock: null, end: null, playing: false, speed: 1, ended: false,
     robots: new Map(), series: { t: [], cols: {}, units: {} },
   };
-  let ws = null, connected = false, frames = 0, seeking = false, chartsAt = 0, chartTimer = null, chartKeys = [];
+  let ws = null, connected = false, frames = 0, seeking = false, chartsAt = 0, chartTimer = null, chartKeys = [], chartAxes = {};
   let drawn = { layout: null, drawn: [], radius: 0 };
   const zoom = { k: 1, px: 0, py: 0 };
-  let selected = null, press = null, answered = null;
+  let selected = null, press = null, answered = null, legend = [];
 
   function clear() {
     for (const p of PARTS) model[p] = null;
@@ -109,7 +101,7 @@
         zoom.py = canvas.height / 2 - v;
       }
     }
-    drawn = Arena.draw(canvas, model, robots, colourOf, zoom, selected, model.detail);
+    drawn = Arena.draw(canvas, model, robots, bodyOf, zoom, selected, model.detail);
     if (press && press.robot !== null && press.moved && drawn.layout) {   // where a dragged robot would go
       const ctx = canvas.getContext("2d");
       ctx.strokeStyle = "#d62728";
@@ -129,9 +121,10 @@
       : "no positions: these robots publish no pose (pose_known 0, no tracker), so they are shown as tiles of their states";
     Panels.clock(model);
     Panels.run(model, robots);
-    Panels.legend(model, robots, colourOf);
-    Panels.tiles(model, unplaced, colourOf);
-    Panels.robotPanel(model, selected === null ? null : model.robots.get(selected), model.detail, colourOf);
+    legend = Keys.entries(model, robots);
+    Panels.legend(legend);
+    Panels.tiles(model, unplaced, bodyOf);
+    Panels.robotPanel(model, selected === null ? null : model.robots.get(selected), model.detail, bodyOf);
     Panels.paramsForm(selected !== null && model.detail && model.detail.id === selected ? model.detail : null,
       (robot, group, key, value) => send({ cmd: "set", robot, group, key, value }));
     const c = model.control;
@@ -158,9 +151,11 @@
   function charts() {
     clearTimeout(chartTimer);
     chartTimer = null;
-    chartKeys = Charts.render($("charts"), model.series, colourOf);
+    const drawnCharts = Charts.render($("charts"), model.series, Keys.stateColour);
+    chartKeys = drawnCharts.keys;
+    chartAxes = drawnCharts.axes;
     chartsAt = performance.now();
-    if (window.liveState) window.liveState.charts = chartKeys.slice();
+    if (window.liveState) Object.assign(window.liveState, { charts: chartKeys.slice(), chartAxes });
   }
 
   function publish(robots, unplaced) {
@@ -176,8 +171,9 @@
       placed: drawn.drawn, radiusPx: drawn.radius, tiles: unplaced.length, noPositions: !$("nopos").hidden,
       obstacles: sc ? sc.obstacles.length : 0, lights: sc ? sc.lights.length : 0,
       shapes: d ? d.shapes.length : 0, items: d ? d.items.length : 0,
-      seriesPoints: model.series.t.length, charts: chartKeys.slice(),
-      stateColours: Object.fromEntries(colours),
+      seriesPoints: model.series.t.length, charts: chartKeys.slice(), chartAxes,
+      stateColours: Keys.stateColours(), legend: legend.map((e) => Object.assign({}, e)),
+      bodies: Object.fromEntries(robots.map((r) => [r.id, bodyOf(r)])),
       summary: model.summary ? model.summary.state_hash : null,
       bridgeDevices: model.bridge ? model.bridge.devices.length : 0,
       selected, zoom: Object.assign({}, zoom), scaleM: drawn.scale || null,

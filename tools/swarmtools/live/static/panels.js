@@ -1,5 +1,5 @@
-// panels.js - the page's text: the clock, what runs, robots by state (the
-// legend), tiles for robots without a position, the run's summary, the
+// panels.js - the page's text: the clock, what runs, the legend (keys.js),
+// tiles for robots without a position, the run's summary, the
 // bridge's counters and the latest events.  Built with DOM nodes and
 // textContent: names come from the telemetry and are never HTML.
 "use strict";
@@ -18,9 +18,12 @@ const Panels = (() => {
     return box;
   }
 
-  function swatch(colour) {
-    const s = el("span", { className: "swatch" });
-    s.style.background = colour;
+  // kind: drawing.h's draw_key_kind_t (0 a robot, 1 an area, 2 an outline,
+  // 3 an item, 4 a line): the swatch looks like what it stands for.
+  const SWATCH = ["robot", "area", "ring", "item", "line"];
+  function swatch(colour, kind) {
+    const s = el("span", { className: `swatch ${SWATCH[kind] || "robot"}` });
+    if (kind === 2) s.style.borderColor = colour; else s.style.background = colour;
     return s;
   }
 
@@ -60,15 +63,10 @@ const Panels = (() => {
     fill("run", ...out);
   }
 
-  // Robots by state: the swarm's counts, or counted from the robots.
-  function legend(model, robots, colourOf) {
-    let states = model.swarm ? model.swarm.states : null;
-    if (!states) {
-      const n = new Map();
-      robots.forEach((r) => n.set(r.state, (n.get(r.state) || 0) + 1));
-      states = [...n.entries()];
-    }
-    fill("legend", ...states.map(([name, count]) => el("span", {}, swatch(colourOf(name)), `${name} ${count}`)));
+  // The legend: Keys.entries's, a robot key with its count.
+  function legend(entries) {
+    fill("legend", ...entries.map((e) => el("span", { className: "key" }, swatch(e.colour, e.kind),
+      e.count === null ? e.label : `${e.label} ${e.count}`)));
   }
 
   function valueLines(model, rb) {
@@ -81,11 +79,11 @@ const Panels = (() => {
   }
 
   // A tile per robot the arena cannot place.
-  function tiles(model, unplaced, colourOf) {
+  function tiles(model, unplaced, bodyOf) {
     const box = fill("tiles", ...unplaced.map((rb) => {
       const age = model.time - rb.seen;
       const state = el("span", { className: "state", textContent: rb.state });
-      state.style.background = colourOf(rb.state);
+      state.style.background = bodyOf(rb);
       const leds = [];
       for (let i = 0; i < 10; i++) if (rb.leds & (1 << i)) leds.push(i < 8 ? `${i}` : i === 8 ? "body" : "front");
       return el("div", { className: "tile" + (age > 5 ? " stale" : "") },
@@ -128,12 +126,12 @@ const Panels = (() => {
 
   // The selected robot: its state and values (robot_state_t), and, from a
   // run under control, its latest readings (robot_detail_t).
-  function robotPanel(model, rb, detail, colourOf) {
+  function robotPanel(model, rb, detail, bodyOf) {
     if (!rb) { fill("robot"); return; }
     const d = detail && detail.id === rb.id ? detail : null;
     const src = d || rb;
     const state = el("span", { className: "state", textContent: src.state });
-    state.style.background = colourOf(src.state);
+    state.style.background = bodyOf(src);
     const leds = [];
     for (let i = 0; i < 10; i++) if (src.leds & (1 << i)) leds.push(i < 8 ? `${i}` : i === 8 ? "body" : "front");
     const deg = (rad) => `${Math.round((rad * 180) / Math.PI)}°`;
