@@ -189,6 +189,14 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out)
+{
+    (void)hal;
+    (void)colour;
+    memset(out, 0, sizeof *out);
+    return HAL_ERR_UNAVAILABLE;
+}
+
 hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 {
     if (mic >= HAL_MIC_COUNT || band == 0u || band >= HAL_SOUND_BANDS) {

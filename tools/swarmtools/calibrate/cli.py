@@ -43,6 +43,8 @@ def fit_recording(rec: Recording) -> dict:
             out[proc] = fitting.fit_wheels(steps, rec.setup)
         elif proc == "camera":
             out[proc] = fitting.fit_camera(steps)
+        elif proc == "colours":
+            out[proc] = fitting.fit_colours(steps)
         elif proc == "sound":
             out[proc] = fitting.fit_sound(steps, rec.setup)
     return out
@@ -112,7 +114,7 @@ def parser() -> argparse.ArgumentParser:
                    help="a second e-puck on the calibration image (its own port) that plays the microphone "
                         "procedure's tones as the kit tells it (default: you make the emitter play)")
     r.add_argument("--procedures", type=_procedures, default=list(procedures.PROCEDURES),
-                   help="comma-separated, in order (default: ir,ambient,wheels,camera,sound)")
+                   help="comma-separated, in order (default: " + ",".join(procedures.PROCEDURES) + ")")
     r.add_argument("--lamp-height-mm", type=float, default=100.0)
     r.add_argument("--lamp-intensity", type=float, default=1.0,
                    help="the lamp's intensity in the scenarios' units (1: it defines the unit)")

@@ -126,13 +126,18 @@ class RobotLink:
         """Starts a stream and returns its first `windows` valid windows
         (after the robot's settling)."""
         want = protocol.STREAM_STATES[payload[:1]]
-        self.command(payload, lambda w: w.state in (protocol.SETTLE, protocol.NO_SOUND), what)
+        lacking = (protocol.NO_SOUND, protocol.NO_FRAME)
+        self.command(payload, lambda w: w.state in (protocol.SETTLE, *lacking), what)
         out = []
         while len(out) < windows:
-            w = self.wait_window(lambda w: w.state in (want, protocol.NO_SOUND), what)
+            w = self.wait_window(lambda w: w.state in (want, *lacking), what)
             if w.state == protocol.NO_SOUND:
                 raise LinkError(f"{self.device.path}: {what}: the robot has no microphones (an image "
                                 f"built without sound?)")
+            if w.state == protocol.NO_FRAME:
+                raise LinkError(f"{self.device.path}: {what}: the robot passes no camera frames on (no "
+                                f"camera, or a processor-in-the-loop robot): leave out the colour cards "
+                                f"(--procedures without colours)")
             out.append(w)
         return out
 
