@@ -55,19 +55,9 @@ static int32_t div_round(int32_t num, int32_t den)
     return -((-num + den / 2) / den);
 }
 
-/* A pixel's channels expanded to 0..255 by bit replication (the header). */
-static void expand_rgb565(uint16_t pixel, uint8_t ch[3])
-{
-    uint8_t r5 = (uint8_t)((pixel >> 11) & 0x1Fu);
-    uint8_t g6 = (uint8_t)((pixel >> 5) & 0x3Fu);
-    uint8_t b5 = (uint8_t)(pixel & 0x1Fu);
-    ch[0] = (uint8_t)((uint8_t)(r5 << 3) | (uint8_t)(r5 >> 2));
-    ch[1] = (uint8_t)((uint8_t)(g6 << 2) | (uint8_t)(g6 >> 4));
-    ch[2] = (uint8_t)((uint8_t)(b5 << 3) | (uint8_t)(b5 >> 2));
-}
-
 uint8_t blob_classify_rgb565(const blob_detect_params_t *p, uint16_t pixel)
 {
+    uint8_t r5, g6, b5;
     uint8_t ch[3];
     uint8_t best = 0u, m, s;
     uint16_t diff;
@@ -76,7 +66,12 @@ uint8_t blob_classify_rgb565(const blob_detect_params_t *p, uint16_t pixel)
     if (p == NULL) {
         return (uint8_t)HAL_COLOUR_NONE;
     }
-    expand_rgb565(pixel, ch);
+    r5 = (uint8_t)((pixel >> 11) & 0x1Fu);
+    g6 = (uint8_t)((pixel >> 5) & 0x3Fu);
+    b5 = (uint8_t)(pixel & 0x1Fu);
+    ch[0] = (uint8_t)((uint8_t)(r5 << 3) | (uint8_t)(r5 >> 2));
+    ch[1] = (uint8_t)((uint8_t)(g6 << 2) | (uint8_t)(g6 >> 4));
+    ch[2] = (uint8_t)((uint8_t)(b5 << 3) | (uint8_t)(b5 >> 2));
 
     for (i = 1u; i < 3u; i++) {
         if (ch[i] > ch[best]) {
@@ -356,6 +351,19 @@ uint8_t blob_detect(const blob_detect_params_t *p, const uint8_t *rgb565,
         out[k] = work->blobs[k];
     }
     return n;
+}
+
+/* A pixel's channels expanded to 0..255 as blob_classify_rgb565 expands
+ * them (the header), which keeps its own copy inline: a call there costs
+ * every image with a camera flash, for the statistics' sake. */
+static void expand_rgb565(uint16_t pixel, uint8_t ch[3])
+{
+    uint8_t r5 = (uint8_t)((pixel >> 11) & 0x1Fu);
+    uint8_t g6 = (uint8_t)((pixel >> 5) & 0x3Fu);
+    uint8_t b5 = (uint8_t)(pixel & 0x1Fu);
+    ch[0] = (uint8_t)((uint8_t)(r5 << 3) | (uint8_t)(r5 >> 2));
+    ch[1] = (uint8_t)((uint8_t)(g6 << 2) | (uint8_t)(g6 >> 4));
+    ch[2] = (uint8_t)((uint8_t)(b5 << 3) | (uint8_t)(b5 >> 2));
 }
 
 /* floor(sqrt(v)), bit by bit (no division, no float). */
