@@ -21,6 +21,7 @@
 
 #include "blob_detect.h"
 #include "blob_detect_lut.h"
+#include "tone_detect.h"        /* tone_detect_isqrt: the frame statistics' sd */
 
 /* The working memory must stay small on every target (documented sizes). */
 typedef char blob_detect_work_is_small[(sizeof(blob_detect_work_t) <= 128u) ? 1 : -1];
@@ -366,31 +367,19 @@ static void expand_rgb565(uint16_t pixel, uint8_t ch[3])
     ch[2] = (uint8_t)((uint8_t)(b5 << 3) | (uint8_t)(b5 >> 2));
 }
 
-/* floor(sqrt(v)), bit by bit (no division, no float). */
-static uint16_t isqrt32(uint32_t v)
-{
-    uint32_t res = 0u;
-    uint32_t bit = (uint32_t)1u << 30;
-    while (bit > v) {
-        bit >>= 2;
-    }
-    while (bit != 0u) {
-        if (v >= res + bit) {
-            v -= res + bit;
-            res = (res >> 1) + bit;
-        } else {
-            res >>= 1;
-        }
-        bit >>= 2;
-    }
-    return (uint16_t)res;
-}
-
-/* Pixel k of a frame, assembled from its two bytes in the frame's order. */
-static uint16_t frame_pixel(const blob_detect_params_t *p, const uint8_t *rgb565, size_t k)
+/* 1 and pixel k's channels in ch when the statistics of `colour` count it
+ * (every pixel for HAL_COLOUR_NONE, else the classifier's), else 0; the
+ * pixel assembled from its two bytes in the frame's order. */
+static uint8_t counted_pixel(const blob_detect_params_t *p, const uint8_t *rgb565, size_t k, uint8_t colour,
+                             uint8_t ch[3])
 {
     uint8_t ih = (p->byte_order == (uint8_t)BLOB_BYTE_ORDER_LITTLE) ? 1u : 0u;
-    return (uint16_t)((uint16_t)((uint16_t)rgb565[2u * k + ih] << 8) | rgb565[2u * k + (1u - ih)]);
+    uint16_t px = (uint16_t)((uint16_t)((uint16_t)rgb565[2u * k + ih] << 8) | rgb565[2u * k + (1u - ih)]);
+    if (colour != (uint8_t)HAL_COLOUR_NONE && blob_classify_rgb565(p, px) != colour) {
+        return 0u;
+    }
+    expand_rgb565(px, ch);
+    return 1u;
 }
 
 /* Two passes: the means, then the squared deviations from them, so every
@@ -419,11 +408,9 @@ int8_t blob_colour_stats(const blob_detect_params_t *p, const uint8_t *rgb565,
     }
     n_px = (size_t)width * (size_t)height;
     for (k = 0u; k < n_px; k++) {
-        uint16_t px = frame_pixel(p, rgb565, k);
-        if (colour != (uint8_t)HAL_COLOUR_NONE && blob_classify_rgb565(p, px) != colour) {
+        if (counted_pixel(p, rgb565, k, colour, ch) == 0u) {
             continue;
         }
-        expand_rgb565(px, ch);
         for (i = 0u; i < 3u; i++) {
             sum[i] += ch[i];
         }
@@ -437,18 +424,16 @@ int8_t blob_colour_stats(const blob_detect_params_t *p, const uint8_t *rgb565,
         sum[i] = 0u;
     }
     for (k = 0u; k < n_px; k++) {
-        uint16_t px = frame_pixel(p, rgb565, k);
-        if (colour != (uint8_t)HAL_COLOUR_NONE && blob_classify_rgb565(p, px) != colour) {
+        if (counted_pixel(p, rgb565, k, colour, ch) == 0u) {
             continue;
         }
-        expand_rgb565(px, ch);
         for (i = 0u; i < 3u; i++) {
             int16_t d = (int16_t)((int16_t)ch[i] - (int16_t)out->mean[i]);
             sum[i] += (uint32_t)((int32_t)d * (int32_t)d);
         }
     }
     for (i = 0u; i < 3u; i++) {
-        out->sd[i] = (uint8_t)isqrt32(sum[i] / n);
+        out->sd[i] = (uint8_t)tone_detect_isqrt(sum[i] / n);
     }
     out->pixels = n;
     return 0;

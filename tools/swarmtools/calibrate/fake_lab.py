@@ -45,8 +45,8 @@ def perturbed(rng: random.Random, spread: float = 1.0) -> dict:
         "camera": {"range": round(0.9 + rng.uniform(-0.3, 0.3) * spread, 3),
                    "fov": round(56 + rng.uniform(-8, 8) * spread, 2),
                    # The colour response against green (the exposure sets the level).
-                   "gain_r": round(math.exp(rng.uniform(-0.2, 0.2) * spread), 3),
-                   "gain_b": round(math.exp(rng.uniform(-0.2, 0.2) * spread), 3)},
+                   "gain_r": round(math.exp(rng.uniform(-0.15, 0.15) * spread), 3),
+                   "gain_b": round(math.exp(rng.uniform(-0.15, 0.15) * spread), 3)},
         "sound": {"alpha": round(0.726 * math.exp(rng.uniform(-0.3, 0.3) * spread), 4),
                   "ae": round(48.18 * math.exp(rng.uniform(-0.3, 0.3) * spread), 3),
                   "noise": round(rng.uniform(0.03, 0.09), 4),
