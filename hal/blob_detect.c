@@ -21,6 +21,7 @@
 
 #include "blob_detect.h"
 #include "blob_detect_lut.h"
+#include "tone_detect.h"        /* tone_detect_isqrt: the frame statistics' sd */
 
 /* The working memory must stay small on every target (documented sizes). */
 typedef char blob_detect_work_is_small[(sizeof(blob_detect_work_t) <= 128u) ? 1 : -1];
@@ -351,4 +352,89 @@ uint8_t blob_detect(const blob_detect_params_t *p, const uint8_t *rgb565,
         out[k] = work->blobs[k];
     }
     return n;
+}
+
+/* A pixel's channels expanded to 0..255 as blob_classify_rgb565 expands
+ * them (the header), which keeps its own copy inline: a call there costs
+ * every image with a camera flash, for the statistics' sake. */
+static void expand_rgb565(uint16_t pixel, uint8_t ch[3])
+{
+    uint8_t r5 = (uint8_t)((pixel >> 11) & 0x1Fu);
+    uint8_t g6 = (uint8_t)((pixel >> 5) & 0x3Fu);
+    uint8_t b5 = (uint8_t)(pixel & 0x1Fu);
+    ch[0] = (uint8_t)((uint8_t)(r5 << 3) | (uint8_t)(r5 >> 2));
+    ch[1] = (uint8_t)((uint8_t)(g6 << 2) | (uint8_t)(g6 >> 4));
+    ch[2] = (uint8_t)((uint8_t)(b5 << 3) | (uint8_t)(b5 >> 2));
+}
+
+/* 1 and pixel k's channels in ch when the statistics of `colour` count it
+ * (every pixel for HAL_COLOUR_NONE, else the classifier's), else 0; the
+ * pixel assembled from its two bytes in the frame's order. */
+static uint8_t counted_pixel(const blob_detect_params_t *p, const uint8_t *rgb565, size_t k, uint8_t colour,
+                             uint8_t ch[3])
+{
+    uint8_t ih = (p->byte_order == (uint8_t)BLOB_BYTE_ORDER_LITTLE) ? 1u : 0u;
+    uint16_t px = (uint16_t)((uint16_t)((uint16_t)rgb565[2u * k + ih] << 8) | rgb565[2u * k + (1u - ih)]);
+    if (colour != (uint8_t)HAL_COLOUR_NONE && blob_classify_rgb565(p, px) != colour) {
+        return 0u;
+    }
+    expand_rgb565(px, ch);
+    return 1u;
+}
+
+/* Two passes: the means, then the squared deviations from them, so every
+ * sum stays within 32 bits (25,600 x 255^2 < 2^31) and nothing cancels.
+ * The 32-bit divisions are library calls on the dsPIC: a frame's statistics
+ * are a calibration's, not a control step's. */
+int8_t blob_colour_stats(const blob_detect_params_t *p, const uint8_t *rgb565,
+                         uint16_t width, uint16_t height, uint8_t colour, hal_colour_stats_t *out)
+{
+    uint32_t sum[3] = { 0u, 0u, 0u };
+    size_t n_px, k;
+    uint16_t n = 0u;
+    uint8_t ch[3], i;
+
+    if (out == NULL) {
+        return -1;
+    }
+    for (i = 0u; i < 3u; i++) {
+        out->mean[i] = 0u;
+        out->sd[i] = 0u;
+    }
+    out->pixels = 0u;
+    if (p == NULL || rgb565 == NULL || colour >= (uint8_t)HAL_COLOUR_COUNT ||
+        width == 0u || width > BLOB_MAX_WIDTH || height == 0u || height > BLOB_MAX_HEIGHT) {
+        return -1;
+    }
+    n_px = (size_t)width * (size_t)height;
+    for (k = 0u; k < n_px; k++) {
+        if (counted_pixel(p, rgb565, k, colour, ch) == 0u) {
+            continue;
+        }
+        for (i = 0u; i < 3u; i++) {
+            sum[i] += ch[i];
+        }
+        n++;
+    }
+    if (n == 0u) {
+        return 0;
+    }
+    for (i = 0u; i < 3u; i++) {
+        out->mean[i] = (uint8_t)((sum[i] + n / 2u) / n);
+        sum[i] = 0u;
+    }
+    for (k = 0u; k < n_px; k++) {
+        if (counted_pixel(p, rgb565, k, colour, ch) == 0u) {
+            continue;
+        }
+        for (i = 0u; i < 3u; i++) {
+            int16_t d = (int16_t)((int16_t)ch[i] - (int16_t)out->mean[i]);
+            sum[i] += (uint32_t)((int32_t)d * (int32_t)d);
+        }
+    }
+    for (i = 0u; i < 3u; i++) {
+        out->sd[i] = (uint8_t)tone_detect_isqrt(sum[i] / n);
+    }
+    out->pixels = n;
+    return 0;
 }

@@ -156,4 +156,12 @@ uint8_t blob_detect(const blob_detect_params_t *p, const uint8_t *rgb565,
                     uint16_t width, uint16_t height,
                     blob_detect_work_t *work, hal_blob_t *out, uint8_t max);
 
+/** Statistics of a frame's pixels (hal_camera_colour_stats): with `colour`
+ *  HAL_COLOUR_NONE every pixel, else those blob_classify_rgb565() gives
+ *  `colour`; each channel's mean and standard deviation as the classifier
+ *  expands it to 8 bits.  0, or -1 (and *out zeroed) for a NULL pointer, a
+ *  colour above HAL_COLOUR_BLUE or a frame size out of range. */
+int8_t blob_colour_stats(const blob_detect_params_t *p, const uint8_t *rgb565,
+                         uint16_t width, uint16_t height, uint8_t colour, hal_colour_stats_t *out);
+
 #endif /* BLOB_DETECT_H */

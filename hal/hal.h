@@ -127,6 +127,25 @@ uint8_t hal_camera_widest(hal_t *hal, uint8_t colour, hal_blob_t *widest);
  *  20): HAL_OK, or HAL_ERR_UNAVAILABLE without a camera. */
 hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *height_px);
 
+/** Raw statistics of the pixels of one frame (hal_camera_colour_stats):
+ *  each 8-bit channel (R, G, B, expanded from RGB565 as the detector
+ *  expands them) over the pixels counted. */
+typedef struct hal_colour_stats {
+    uint16_t pixels;       /**< pixels counted */
+    uint8_t mean[3];       /**< R, G, B mean, rounded; 0 when none counted */
+    uint8_t sd[3];         /**< R, G, B standard deviation, rounded down */
+} hal_colour_stats_t;
+
+/** Statistics of the latest complete frame's pixels: with `colour` 0
+ *  (HAL_COLOUR_NONE) every pixel of the frame, else the pixels the blob
+ *  detector classifies as `colour` (its thresholds, hal/blob_detect.h).
+ *  For the calibration image (camera thresholds and colour response);
+ *  a frame's worth of work, not for a controller's every step.  HAL_OK,
+ *  HAL_ERR_RANGE for a colour above HAL_COLOUR_BLUE, HAL_ERR_UNAVAILABLE
+ *  without a camera or where the platform does not pass frames on (the
+ *  processor-in-the-loop robots); *out is zeroed unless HAL_OK. */
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out);
+
 /* ------------------------------------------------------------------ */
 /* Ground sensors (the ground-sensor module, an extension)             */
 /* ------------------------------------------------------------------ */

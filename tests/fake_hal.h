@@ -36,6 +36,8 @@ struct hal {
     uint16_t ambient[HAL_IR_COUNT];
     hal_blob_t blobs[HAL_MAX_BLOBS];
     uint8_t n_blobs;
+    hal_colour_stats_t frame_stats;  /* what hal_camera_colour_stats gives, */
+    uint8_t has_frames;              /* when set (else unavailable) */
     uint32_t mic[HAL_MIC_COUNT][HAL_SOUND_BANDS];  /**< level counts */
     uint8_t has_ground;           /**< the robot carries the ground-sensor module */
     uint16_t ground[HAL_GROUND_COUNT];             /**< its readings, counts */
@@ -186,6 +188,19 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     (void)hal;
     *width_px = 40u;
     *height_px = 20u;
+    return HAL_OK;
+}
+
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out)
+{
+    memset(out, 0, sizeof *out);
+    if (colour >= (uint8_t)HAL_COLOUR_COUNT) {
+        return HAL_ERR_RANGE;
+    }
+    if (!hal->has_frames) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    *out = hal->frame_stats;
     return HAL_OK;
 }
 

@@ -2,6 +2,7 @@
  * test_blob_detect.c - CMocka tests of hal/blob_detect on synthetic frames.
  */
 #include <stdarg.h>
+#include <math.h>
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
@@ -868,6 +869,48 @@ static void test_blob_arithmetic_extremes_match_old(void **state)
     }
 }
 
+/* blob_colour_stats: every pixel's statistics, a class's alone, and the
+ * refusals.  A grey frame with a red rectangle: the channels' means and sds
+ * are those of a two-valued distribution, computed here in double. */
+static void test_colour_stats(void **state)
+{
+    (void)state;
+    blob_detect_params_t p = blob_detect_default_params();
+    hal_colour_stats_t st;
+    const double n_red = 10.0 * 8.0, n = (double)FW * FH;
+    /* 255 and 128 survive RGB565 exactly (bit replication of 11111 and 10000
+     * gives 255 and 132 in 5 bits, 130 in 6: the expanded values). */
+    const double grey5 = 132.0, grey6 = 130.0;
+    double mean_r, sd_r;
+    fill(FW, FH, GREY);
+    rect(FW, 5u, 5u, 10u, 8u, RED, BLOB_BYTE_ORDER_BIG);
+
+    assert_int_equal(blob_colour_stats(&p, frame, FW, FH, HAL_COLOUR_RED, &st), 0);
+    assert_int_equal(st.pixels, 80);
+    assert_int_equal(st.mean[0], 255);
+    assert_int_equal(st.mean[1], 0);
+    assert_int_equal(st.sd[0], 0);
+
+    assert_int_equal(blob_colour_stats(&p, frame, FW, FH, HAL_COLOUR_NONE, &st), 0);
+    assert_int_equal(st.pixels, FW * FH);
+    mean_r = (n_red * 255.0 + (n - n_red) * grey5) / n;
+    assert_int_equal(st.mean[0], (int)floor(mean_r + 0.5));
+    assert_int_equal(st.mean[1], (int)floor(((n - n_red) * grey6) / n + 0.5));
+    /* The sd is taken about the rounded mean, rounded down. */
+    sd_r = sqrt((n_red * pow(255.0 - st.mean[0], 2) + (n - n_red) * pow(grey5 - st.mean[0], 2)) / n);
+    assert_int_equal(st.sd[0], (int)floor(sd_r));
+
+    assert_int_equal(blob_colour_stats(&p, frame, FW, FH, HAL_COLOUR_GREEN, &st), 0);
+    assert_int_equal(st.pixels, 0);
+    assert_int_equal(st.mean[1], 0);
+
+    assert_int_equal(blob_colour_stats(&p, frame, FW, FH, HAL_COLOUR_COUNT, &st), -1);
+    assert_int_equal(st.pixels, 0);
+    assert_int_equal(blob_colour_stats(&p, frame, 0u, FH, HAL_COLOUR_NONE, &st), -1);
+    assert_int_equal(blob_colour_stats(&p, NULL, FW, FH, HAL_COLOUR_NONE, &st), -1);
+    assert_int_equal(blob_colour_stats(&p, frame, FW, FH, HAL_COLOUR_NONE, NULL), -1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -895,6 +938,7 @@ int main(void)
         cmocka_unit_test(test_lut_every_pixel),
         cmocka_unit_test(test_matches_old_detector),
         cmocka_unit_test(test_blob_arithmetic_extremes_match_old),
+        cmocka_unit_test(test_colour_stats),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -85,6 +85,37 @@ static void test_ambient_and_mic_channels(void **state)
     assert_string_equal(calib_state_name(&self), "no_sound");
 }
 
+/* 'F': the frame's pixel statistics, as hal_camera_colour_stats gives
+ * them; a platform without frames says so. */
+static void test_frame_statistics(void **state)
+{
+    (void)state;
+    calib_t self;
+    hal_t hal;
+    start(&self, &hal);
+    const uint8_t cmd[2] = { 'F', 1 };
+    hal.has_frames = 1u;
+    hal.frame_stats.pixels = 800u;
+    hal.frame_stats.mean[0] = 172u;
+    hal.frame_stats.mean[1] = 38u;
+    hal.frame_stats.mean[2] = 43u;
+    hal.frame_stats.sd[0] = 4u;
+    hal.frame_stats.sd[2] = 6u;
+    fake_hal_host_push(&hal, cmd, 2);
+    steps(&self, &hal, 20);
+    assert_string_equal(calib_state_name(&self), "frame");
+    assert_float_equal(self.mean[0], 800.0f, 1e-3);
+    assert_float_equal(self.mean[1], 172.0f, 1e-3);
+    assert_float_equal(self.mean[3], 43.0f, 1e-3);
+    assert_float_equal(self.mean[4], 4.0f, 1e-3);
+    assert_float_equal(self.mean[6], 6.0f, 1e-3);
+    assert_float_equal(self.var[1], 0.0f, 1e-6);
+    hal.has_frames = 0u;
+    fake_hal_host_push(&hal, cmd, 2);
+    steps(&self, &hal, 1);
+    assert_string_equal(calib_state_name(&self), "no_frame");
+}
+
 static void test_drive_counts_through_the_wrap(void **state)
 {
     (void)state;
@@ -139,6 +170,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_prox_settles_then_latches_windows),
         cmocka_unit_test(test_ambient_and_mic_channels),
+        cmocka_unit_test(test_frame_statistics),
         cmocka_unit_test(test_drive_counts_through_the_wrap),
         cmocka_unit_test(test_malformed_commands_are_counted),
     };

@@ -71,6 +71,7 @@ static void take_command(calib_t *self, hal_t *hal, const calib_cmd_t *cmd)
     case CALIB_MSG_AMBIENT: self->mode = CALIB_AMBIENT; break;
     case CALIB_MSG_MIC: self->mode = CALIB_MIC; break;
     case CALIB_MSG_CAMERA: self->mode = CALIB_CAMERA; break;
+    case CALIB_MSG_FRAME: self->mode = CALIB_FRAME; break;
     case CALIB_MSG_DRIVE:
         self->mode = CALIB_DRIVE;
         self->cmd_left = cmd->left;
@@ -142,6 +143,18 @@ static uint8_t read_channels(calib_t *self, hal_t *hal, float x[CALIB_CHANNELS])
         x[1] = n > 0u ? (float)widest.width_mrad : 0.0f;
         x[2] = (float)n;
         return 3u;
+    }
+    case CALIB_FRAME: {
+        hal_colour_stats_t st;
+        if (hal_camera_colour_stats(hal, self->arg, &st) != HAL_OK) {
+            self->unavailable = 1u;
+        }
+        x[0] = (float)st.pixels;
+        for (k = 0u; k < 3u; k++) {
+            x[1u + k] = (float)st.mean[k];
+            x[4u + k] = (float)st.sd[k];
+        }
+        return 7u;
     }
     default:
         return 0u;
@@ -231,7 +244,7 @@ const char *calib_state_name(const calib_t *self)
         return self->unavailable ? "no_sound" : "tone";
     }
     if (self->unavailable) {
-        return "no_sound";
+        return self->mode == CALIB_FRAME ? "no_frame" : "no_sound";
     }
     if (!self->latched) {
         return "settle";
@@ -240,6 +253,7 @@ const char *calib_state_name(const calib_t *self)
     case CALIB_PROX: return "prox";
     case CALIB_AMBIENT: return "ambient";
     case CALIB_MIC: return "mic";
+    case CALIB_FRAME: return "frame";
     default: return "camera";
     }
 }

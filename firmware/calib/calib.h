@@ -21,6 +21,9 @@
  *   mic        k = microphone 0..2 of the band asked, level counts
  *   camera     k = 0 bearing, 1 width of the widest blob of the colour
  *              asked (mrad; 0 when none), 2 blobs of it in view
+ *   frame      k = 0 pixels counted, 1..3 their R, G, B mean, 4..6 their
+ *              R, G, B sd (0..255; every pixel for colour 0, else those
+ *              the detector gives the colour asked: hal_camera_colour_stats)
  *   drive      mean0, mean1: left and right steps counted since the
  *   driven     command; mean2: periods driven ("driven": stopped, and
  *              the counts read after the last period driven: final); no
@@ -29,6 +32,7 @@
  *   tone       mean0: the band its speaker plays ('T', 0: silent): the
  *              emitter of another robot's microphone procedure
  *   no_sound   a mic command on an image or platform without sound
+ *   no_frame   a frame command on a platform that passes no frames on
  *
  * Variances are of the readings within a window, from sums of differences
  * to the window's first reading (no cancellation in float).  The controller
@@ -58,14 +62,15 @@ typedef enum calib_mode {
     CALIB_MIC = 3,
     CALIB_CAMERA = 4,
     CALIB_DRIVE = 5,
-    CALIB_TONE = 6
+    CALIB_TONE = 6,
+    CALIB_FRAME = 7
 } calib_mode_t;
 
 typedef struct calib {
     calib_params_t params;
     uint32_t seed;             /**< kept by the contract; it draws nothing */
     uint8_t mode;              /**< calib_mode_t */
-    uint8_t arg;               /**< the band (mic) or colour (camera) asked */
+    uint8_t arg;               /**< the band (mic) or colour (camera, frame) asked */
     uint8_t dropped;           /**< windows dropped since the command (to settle_windows) */
     uint8_t latched;           /**< 1: a window was latched since the command */
     uint8_t samples;           /**< readings in the current window */

@@ -19,6 +19,7 @@ int8_t calib_msg_decode(const uint8_t *buf, uint8_t len, calib_cmd_t *out)
         return len == 1u ? 0 : -1;
     case CALIB_MSG_MIC:
     case CALIB_MSG_CAMERA:
+    case CALIB_MSG_FRAME:
     case CALIB_MSG_TONE:
         if (len != 2u) {
             return -1;

@@ -11,6 +11,10 @@
  *   'C' colour:u8            stream the widest blob of `colour`
  *                            (hal_colour_t): bearing and width (mrad) and
  *                            the blobs of that colour in view
+ *   'F' colour:u8            stream the latest frame's pixel statistics
+ *                            (hal_camera_colour_stats): every pixel's for
+ *                            colour 0, else the pixels the detector gives
+ *                            `colour`: their number and R, G, B mean and sd
  *   'D' l:i16 r:i16 n:u16    drive: wheel speeds l, r (steps/s) for
  *                            exactly n control periods, then stop; the
  *                            values are the steps counted since
@@ -30,6 +34,7 @@
 #define CALIB_MSG_AMBIENT 'A'
 #define CALIB_MSG_MIC 'M'
 #define CALIB_MSG_CAMERA 'C'
+#define CALIB_MSG_FRAME 'F'
 #define CALIB_MSG_DRIVE 'D'
 #define CALIB_MSG_STOP 'S'
 #define CALIB_MSG_TONE 'T'
@@ -41,7 +46,7 @@ typedef struct calib_cmd {
     uint8_t kind;          /**< one of CALIB_MSG_* */
     int16_t left, right;   /**< drive: steps/s */
     uint16_t periods;      /**< drive: control periods */
-    uint8_t arg;           /**< mic, tone: the band; camera: the colour */
+    uint8_t arg;           /**< mic, tone: the band; camera, frame: the colour */
 } calib_cmd_t;
 
 /** Decodes one message: 0 and *out filled, or -1 for a malformed one. */

@@ -81,6 +81,15 @@ uint8_t hal_camera_blobs(hal_t *hal, hal_blob_t *out, uint8_t max)
 }
 
 hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *w, uint16_t *h) { (void)hal; *w = 40u; *h = 20u; return HAL_OK; }
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out)
+{
+    (void)hal;
+    (void)colour;
+    out->pixels = 0u;
+    out->mean[0] = out->mean[1] = out->mean[2] = 0u;
+    out->sd[0] = out->sd[1] = out->sd[2] = 0u;
+    return HAL_ERR_UNAVAILABLE;
+}
 hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)
 {
     *level = 0;

@@ -408,6 +408,19 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out)
+{
+    const uint8_t *frame = hal->frames + (size_t)hal->cam_complete * hal->frame_bytes;
+    if (hal->cam_state != HAL_EPUCK_CAM_RUNNING || hal->cam_complete > 1u) {
+        (void)blob_colour_stats(&hal->cfg.blob, NULL, 0u, 0u, 0u, out);   /* zeroes *out */
+        return HAL_ERR_UNAVAILABLE;
+    }
+    if (blob_colour_stats(&hal->cfg.blob, frame, hal->cfg.cam_width, hal->cfg.cam_height, colour, out) != 0) {
+        return HAL_ERR_RANGE;
+    }
+    return HAL_OK;
+}
+
 /* Lazy: a microphone's block is copied and analysed at its first read in
  * a step (hal_epuck.h: the window). */
 hal_status_t hal_mic_level(hal_t *hal, uint8_t mic, uint8_t band, uint32_t *level)

@@ -415,6 +415,19 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out)
+{
+    if (hal->cam_state != HAL_EPUCK2_CAM_RUNNING || hal->cam_have_frame == 0u) {
+        (void)blob_colour_stats(&hal->cfg.blob, NULL, 0u, 0u, 0u, out);   /* zeroes *out */
+        return HAL_ERR_UNAVAILABLE;
+    }
+    if (blob_colour_stats(&hal->cfg.blob, hal->frame, HAL_EPUCK2_CAM_WIDTH, HAL_EPUCK2_CAM_HEIGHT, colour,
+                          out) != 0) {
+        return HAL_ERR_RANGE;
+    }
+    return HAL_OK;
+}
+
 /* The newest TONE_DETECT_N samples of hal.h's microphone `mic` (the
  * library's MIC_RIGHT, MIC_LEFT, MIC_BACK: indices 0..2 of each group of
  * four), oldest first. */

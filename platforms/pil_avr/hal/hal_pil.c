@@ -42,6 +42,20 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return pil_robot_frame_size(&hal->link, width_px, height_px);
 }
 
+/* The link carries blobs, not frames: no frame statistics on the PIL robot. */
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out)
+{
+    uint8_t i;
+    (void)hal;
+    (void)colour;
+    out->pixels = 0u;
+    for (i = 0u; i < 3u; i++) {
+        out->mean[i] = 0u;
+        out->sd[i] = 0u;
+    }
+    return HAL_ERR_UNAVAILABLE;
+}
+
 hal_status_t hal_ground(hal_t *hal, uint8_t index, uint16_t *reflected)
 {
     return pil_robot_ground(&hal->link, index, reflected);

@@ -61,6 +61,18 @@ static const param_desc_t camera_params[] = {
              "(unset: each robot model's, e-puck1 4.3, e-puck2 15 [?]; 0: fresh every control step)" },
     { .key = "noise", PARAM_FIELD(C, noise, float), .min = 0, .max = 255,
       .doc = "rendered: Gaussian sd added to each pixel's 8-bit channels, counts" },
+    { .key = "gain_r", PARAM_FIELD(C, gain[0], float), .min = 0, .max = 10,
+      .doc = "colour response: the drawn frame's red channel times this (rendered, frame statistics)" },
+    { .key = "gain_g", PARAM_FIELD(C, gain[1], float), .min = 0, .max = 10,
+      .doc = "colour response: the green channel's gain" },
+    { .key = "gain_b", PARAM_FIELD(C, gain[2], float), .min = 0, .max = 10,
+      .doc = "colour response: the blue channel's gain" },
+    { .key = "min_value", PARAM_FIELD(C, min_value, uint8_t), .min = 0, .max = 255,
+      .doc = "rendered: the detector's least dominant channel, 0..255 (hal/blob_detect.h; the robot image's 64)" },
+    { .key = "min_margin", PARAM_FIELD(C, min_margin, uint8_t), .min = 0, .max = 255,
+      .doc = "rendered: the dominant channel's least lead on the second, 0..255 (40)" },
+    { .key = "min_saturation_q8", PARAM_FIELD(C, min_saturation_q8, uint8_t), .min = 0, .max = 255,
+      .doc = "rendered: the least lead relative to the dominant channel, /256 (64: 25 %)" },
     PARAM_END
 };
 #undef C
@@ -72,18 +84,24 @@ static const param_desc_t robot_params[] = {
       .doc = "its horizontal field of view, deg (absent: the section's)" },
     { .key = "range", PARAM_FIELD(RC, range, float), .min = 0.01, .max = 100,
       .doc = "its reach, m (absent: the section's)" },
+    { .key = "gain_r", PARAM_FIELD(RC, gain[0], float), .min = 0, .max = 10,
+      .doc = "its colour response, red (absent: the section's)" },
+    { .key = "gain_g", PARAM_FIELD(RC, gain[1], float), .min = 0, .max = 10,
+      .doc = "its colour response, green (absent: the section's)" },
+    { .key = "gain_b", PARAM_FIELD(RC, gain[2], float), .min = 0, .max = 10,
+      .doc = "its colour response, blue (absent: the section's)" },
     PARAM_END
 };
 #undef RC
 static const schema_t robot_schema = { robot_params, NULL, NULL, NULL };
-static const camera_robot_cal_t robot_default = { 0, NAN, NAN };
+static const camera_robot_cal_t robot_default = { 0, NAN, NAN, { NAN, NAN, NAN } };
 static const seq_desc_t robots_seq = {
     "robots", PER_ROBOT_MAX, sizeof(camera_robot_cal_t), &robot_default, &robot_schema,
     offsetof(camera_config_t, robots), offsetof(camera_config_t, robot_count), NULL, 1, NULL
 };
 static const child_t camera_children[] = {
-    { "robots", CHILD_SEQUENCE, NULL, &robots_seq, "reach and field of view fitted to one robot id (the "
-      "calibration kit; the geometric model)" },
+    { "robots", CHILD_SEQUENCE, NULL, &robots_seq, "reach, field of view (the geometric model) and colour "
+      "response fitted to one robot id (the calibration kit)" },
     CHILD_END
 };
 
@@ -103,6 +121,15 @@ void camera_lens(const camera_config_t *cfg, uint16_t id, float *fov_deg, float 
         const camera_robot_cal_t *e = &cfg->robots[k];
         *fov_deg = isnan(e->fov) ? *fov_deg : e->fov;
         *range_m = isnan(e->range) ? *range_m : e->range;
+    }
+}
+
+void camera_colour_gain(const camera_config_t *cfg, uint16_t id, float gain[3])
+{
+    int32_t k = cfg->robot_count == 0 ? -1 : per_robot_find(cfg->robots, cfg->robot_count, sizeof *cfg->robots,
+                                                             offsetof(camera_robot_cal_t, id), id);
+    for (int ch = 0; ch < 3; ch++) {
+        gain[ch] = k >= 0 && !isnan(cfg->robots[k].gain[ch]) ? cfg->robots[k].gain[ch] : cfg->gain[ch];
     }
 }
 
@@ -126,6 +153,11 @@ static void camera_defaults(void *config)
     c->model = CAMERA_GEOMETRIC;
     c->fps = NAN;
     c->noise = 0.0f;
+    blob_detect_params_t bp = blob_detect_default_params();
+    c->min_value = bp.min_value;
+    c->min_margin = bp.min_margin;
+    c->min_saturation_q8 = bp.min_saturation_q8;
+    c->gain[0] = c->gain[1] = c->gain[2] = 1.0f;
     c->robot_count = 0;
     c->robots = NULL;
 }
@@ -146,11 +178,13 @@ static int camera_check(const void *config, const scenario_t *sc, char path[SCHE
     if (c->model != CAMERA_RENDERED) {
         return 0;
     }
-    if (c->robot_count > 0) {
-        snprintf(path, SCHEMA_PATH_MAX, "camera.robots");
-        snprintf(msg, SIM_ERR_MAX, "per-robot cameras are the geometric model's: camera.model rendered "
-                 "takes the section's fov and range");
-        return -1;
+    for (uint32_t k = 0; k < c->robot_count; k++) {
+        if (!isnan(c->robots[k].fov) || !isnan(c->robots[k].range)) {
+            snprintf(path, SCHEMA_PATH_MAX, "camera.robots.%u", (unsigned)k);
+            snprintf(msg, SIM_ERR_MAX, "per-robot lenses are the geometric model's: camera.model rendered "
+                     "takes the section's fov and range (a robot's colour gains it takes)");
+            return -1;
+        }
     }
     if (c->fov > CAMERA_PINHOLE_MAX_DEG) {
         key = "camera.fov";
@@ -195,6 +229,11 @@ static int camera_create(sim_t *sim, const void *config, void **self, char err[S
         cs->robot[i].fps = isnan(cs->cfg->fps) ? robot_camera_fps(robot_facts(sim, i)) : cs->cfg->fps;
     }
     cs->record_robot = -1;
+    if (pthread_mutex_init(&cs->frame_lock, NULL) != 0) {
+        free(cs);
+        snprintf(err, SIM_ERR_MAX, "camera: cannot make a lock");
+        return -1;
+    }
     *self = cs;
     return 0;
 }
@@ -204,6 +243,7 @@ static void camera_destroy(void *self)
     camera_t *cs = self;
     if (cs) {
         camera_render_destroy(cs->render);
+        pthread_mutex_destroy(&cs->frame_lock);
         free(cs->rgb);
         free(cs->rgb565);
         free(cs);
@@ -259,18 +299,26 @@ static int draw(struct sim *sim, camera_t *cs, uint32_t i)
     return 0;
 }
 
-/* The rendered model: sensor noise, RGB565 as the robot's driver stores
- * it, and the robot's own detector with the robot image's parameters
- * (hal_epuck_default_config: blob_detect_default_params, the frame's field
- * of view). */
-static uint8_t rendered_blobs(camera_t *cs, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
+/* The drawn frame of robot i as its sensor gives it: its colour response
+ * (camera.gain_*; 1: none, the frame untouched), sensor noise, RGB565 as
+ * the robot's driver stores it. */
+static void sensor_frame(const sim_t *sim, camera_t *cs, uint32_t i)
 {
     const camera_config_t *cfg = cs->cfg;
     size_t px = (size_t)cfg->width_px * cfg->height_px;
     float sd = cfg->noise;
+    float gain[3];
     camera_robot_t *r = &cs->robot[i];
+    camera_colour_gain(cfg, sim->robots[i].id, gain);
+    int gained = gain[0] != 1.0f || gain[1] != 1.0f || gain[2] != 1.0f;
     for (size_t k = 0; k < px; k++) {
         uint8_t *c = &cs->rgb[3u * k];
+        if (gained) {
+            for (int ch = 0; ch < 3; ch++) {
+                float v = c[ch] * gain[ch];
+                c[ch] = (uint8_t)(v >= 255.0f ? 255.0f : floorf(v + 0.5f));
+            }
+        }
         if (sd > 0.0f) {
             for (int ch = 0; ch < 3; ch++) {
                 double v = c[ch] + sd * sim_rand_normal(&r->rand);
@@ -281,9 +329,27 @@ static uint8_t rendered_blobs(camera_t *cs, uint32_t i, hal_blob_t out[HAL_MAX_B
         cs->rgb565[2u * k] = (uint8_t)(p >> 8);
         cs->rgb565[2u * k + 1u] = (uint8_t)p;
     }
+}
+
+/* The robot image's detector (hal_epuck_default_config: blob_detect_default_params,
+ * the frame's field of view) with the section's thresholds. */
+static blob_detect_params_t detector_params(const camera_config_t *cfg)
+{
     blob_detect_params_t bp = blob_detect_default_params();
     bp.fov_mrad = (uint16_t)lround(cfg->fov * UNITS_PI / 180.0 * 1000.0);
     bp.byte_order = BLOB_BYTE_ORDER_BIG;
+    bp.min_value = cfg->min_value;
+    bp.min_margin = cfg->min_margin;
+    bp.min_saturation_q8 = cfg->min_saturation_q8;
+    return bp;
+}
+
+/* The rendered model: the sensor's frame through the robot's own detector. */
+static uint8_t rendered_blobs(const sim_t *sim, camera_t *cs, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS])
+{
+    const camera_config_t *cfg = cs->cfg;
+    sensor_frame(sim, cs, i);
+    blob_detect_params_t bp = detector_params(cfg);
     blob_detect_work_t work;
     return blob_detect(&bp, cs->rgb565, cfg->width_px, cfg->height_px, &work, out,
                        (uint8_t)HAL_MAX_BLOBS);
@@ -300,7 +366,7 @@ static uint8_t capture(struct sim *sim, camera_t *cs, uint32_t i, hal_blob_t out
         if (cs->err[0] || draw(sim, cs, i) != 0) {
             return 0;
         }
-        n = rendered_blobs(cs, i, out);
+        n = rendered_blobs(sim, cs, i, out);
     } else {
         n = camera_geometric_blobs(sim, i, out);
         if (record && draw(sim, cs, i) != 0) {   /* for the picture only */
@@ -317,6 +383,19 @@ static uint8_t capture(struct sim *sim, camera_t *cs, uint32_t i, hal_blob_t out
     return n;
 }
 
+/* Robot i's camera clock and noise, drawn at its first frame (blobs or
+ * frame statistics, whichever comes first). */
+static void ready(const struct sim *sim, camera_robot_t *r, uint32_t i)
+{
+    if (!r->ready) {
+        sim_rand_seed(&r->rand, sim->seed, i, RAND_CAMERA);
+        r->phase_s = r->fps > 0.0f ? (1.0 / r->fps) * sim_rand_uniform(&r->rand) : 0.0;
+        r->capture = INT64_MIN;
+        r->blob_count = 0;         /* no frame complete yet */
+        r->ready = 1;
+    }
+}
+
 /* Brings robot i's blobs up to this step: a new frame when one is due. */
 static void camera_update(struct sim *sim, camera_t *cs, uint32_t i)
 {
@@ -328,13 +407,7 @@ static void camera_update(struct sim *sim, camera_t *cs, uint32_t i)
         return;
     }
     double period = 1.0 / fps;
-    if (!r->ready) {
-        sim_rand_seed(&r->rand, sim->seed, i, RAND_CAMERA);
-        r->phase_s = period * sim_rand_uniform(&r->rand);
-        r->capture = INT64_MIN;
-        r->blob_count = 0;         /* no frame complete yet */
-        r->ready = 1;
-    }
+    ready(sim, r, i);
     double t = (double)sim->step * sim->sc->control_period_ms / 1000.0;
     int64_t k = (int64_t)floor((t - r->phase_s) / period);   /* the capture under way */
     if (k >= 0 && k != r->capture) {
@@ -407,7 +480,39 @@ hal_status_t hal_camera_frame_size(hal_t *hal, uint16_t *width_px, uint16_t *hei
     return HAL_OK;
 }
 
-static const char *const camera_hal_calls[] = { "hal_camera_blobs", "hal_camera_frame_size", NULL };
+/* A frame drawn now, whatever camera.model says (the geometric model has
+ * no pixels), through the robot's colour response and noise; the lock
+ * keeps robots stepped side by side off each other's frame. */
+hal_status_t hal_camera_colour_stats(hal_t *hal, uint8_t colour, hal_colour_stats_t *out)
+{
+    camera_t *cs = sim_model_self(hal->sim, SIM_MODEL_camera);
+    const camera_config_t *cfg = cs->cfg;
+    hal_status_t status = HAL_OK;
+    memset(out, 0, sizeof *out);
+    if (colour >= (uint8_t)HAL_COLOUR_COUNT) {
+        return HAL_ERR_RANGE;
+    }
+    if (cfg->width_px > CAMERA_RENDERED_MAX_PX || cfg->height_px > CAMERA_RENDERED_MAX_PX ||
+        cfg->fov > CAMERA_PINHOLE_MAX_DEG || faults_camera_blind(hal->sim, hal->index)) {
+        return HAL_ERR_UNAVAILABLE;
+    }
+    pthread_mutex_lock(&cs->frame_lock);
+    ready(hal->sim, &cs->robot[hal->index], hal->index);
+    if (cs->err[0] || draw(hal->sim, cs, hal->index) != 0) {
+        status = HAL_ERR_UNAVAILABLE;
+    } else {
+        sensor_frame(hal->sim, cs, hal->index);
+        blob_detect_params_t bp = detector_params(cfg);
+        if (blob_colour_stats(&bp, cs->rgb565, cfg->width_px, cfg->height_px, colour, out) != 0) {
+            status = HAL_ERR_RANGE;
+        }
+    }
+    pthread_mutex_unlock(&cs->frame_lock);
+    return status;
+}
+
+static const char *const camera_hal_calls[] = { "hal_camera_blobs", "hal_camera_frame_size",
+                                                "hal_camera_colour_stats", NULL };
 
 static const model_field_t camera_fields[] = {
     { "camera.blob_count", "blobs", "blobs of the robot's latest frame", SIM_FIELD_U8, 0,

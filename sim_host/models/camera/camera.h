@@ -51,6 +51,7 @@ typedef struct camera_robot_cal {
     uint16_t id;               /**< hal_robot_id */
     float fov;                 /**< deg */
     float range;               /**< m */
+    float gain[3];             /**< colour response: R, G, B gain on its frames */
 } camera_robot_cal_t;
 
 typedef struct camera_config {
@@ -64,6 +65,8 @@ typedef struct camera_config {
                                     (platform.h: CAMERA_EPUCK_FPS on an e-puck1); 0: fresh
                                     every control step */
     float noise;               /**< rendered: Gaussian sd per 8-bit channel, counts */
+    float gain[3];             /**< colour response: R, G, B gain on the drawn frame (rendered, frame statistics) */
+    uint8_t min_value, min_margin, min_saturation_q8; /**< the detector's thresholds (hal/blob_detect.h) */
     uint32_t robot_count;      /**< `robots` (the geometric model's only) */
     camera_robot_cal_t *robots; /**< on the heap (free_config) */
 } camera_config_t;
@@ -75,6 +78,9 @@ MODEL_CONFIG_ACCESSORS(camera, camera_config_t)
 /** Robot `id`'s field of view (deg) and range (m): its `robots` entry's,
  *  else the section's. */
 void camera_lens(const camera_config_t *cfg, uint16_t id, float *fov_deg, float *range_m);
+
+/** Robot `id`'s colour response: R, G, B gains (its `robots` entry's, else the section's). */
+void camera_colour_gain(const camera_config_t *cfg, uint16_t id, float gain[3]);
 
 uint8_t camera_geometric_blobs(sim_t *sim, uint32_t i, hal_blob_t out[HAL_MAX_BLOBS]);
 

@@ -5,6 +5,7 @@
 #ifndef SIM_MODELS_CAMERA_INTERNAL_H
 #define SIM_MODELS_CAMERA_INTERNAL_H
 
+#include <pthread.h>
 #include <stdint.h>
 
 #include "camera.h"
@@ -38,6 +39,7 @@ typedef struct camera {
     int64_t record_robot;          /* -1: no pictures */
     char record_dir[CAMERA_DIR_MAX];
     char err[SIM_ERR_MAX];         /* the first error; empty: none */
+    pthread_mutex_t frame_lock;    /* frame statistics: robots' steps may run side by side */
 } camera_t;
 
 /* An angular interval seen from the camera, rad, and its nearest distance, m. */

@@ -21,10 +21,11 @@ import sys
 from pathlib import Path
 
 from ..sweep.store import atomic_write
+from ..telemetry import common
 from . import fit as fitting
 from . import fragment, procedures, report
 from .link import LinkError, RobotLink
-from .operator import Aborted, TerminalOperator
+from .operator import Aborted, LiveOperator, TerminalOperator
 from .record import Recording, RecordingError
 
 PROG = "swarm-calibrate"
@@ -43,6 +44,8 @@ def fit_recording(rec: Recording) -> dict:
             out[proc] = fitting.fit_wheels(steps, rec.setup)
         elif proc == "camera":
             out[proc] = fitting.fit_camera(steps)
+        elif proc == "colours":
+            out[proc] = fitting.fit_colours(steps)
         elif proc == "sound":
             out[proc] = fitting.fit_sound(steps, rec.setup)
     return out
@@ -57,14 +60,18 @@ def write_outputs(fits_by_robot: dict, out: Path) -> Path:
 
 
 def record(device: str, procs: list[str], setup: procedures.Setup, operator, robot_id=None, timeout_s=10.0,
-           log=print, emitter: str | None = None) -> Recording:
-    with RobotLink(device, robot_id=robot_id, timeout_s=timeout_s) as link:
+           log=print, emitter: str | None = None, publish=None) -> Recording:
+    """`publish(channel, data)`: the robot's telemetry and the prompts also go
+    out there (an LCM's publish: the live view, --live)."""
+    with RobotLink(device, robot_id=robot_id, timeout_s=timeout_s, also_publish=publish) as link:
+        if publish is not None:
+            operator = LiveOperator(operator, publish, lambda: link.robot_id)
         rid = link.hello()
         log(f"{PROG}: robot {rid} on {device} answers")
         em = None
         try:
             if emitter is not None and "sound" in procs:
-                em = RobotLink(emitter, timeout_s=timeout_s)
+                em = RobotLink(emitter, timeout_s=timeout_s, also_publish=publish)
                 eid = em.hello()
                 if eid == rid:
                     raise LinkError(f"{emitter}: the emitter reports robot {rid}, the robot calibrated: "
@@ -80,11 +87,11 @@ def record(device: str, procs: list[str], setup: procedures.Setup, operator, rob
 
 
 def calibrate(device: str, out: Path, procs: list[str], setup: procedures.Setup, operator, robot_id=None,
-              timeout_s=10.0, log=print, emitter: str | None = None) -> tuple:
+              timeout_s=10.0, log=print, emitter: str | None = None, publish=None) -> tuple:
     """Records, fits and writes; (recording, fits).  Raises LinkError,
     Aborted, FitError with nothing written.  `emitter`: the port of a
     second robot on the calibration image that plays the tones."""
-    rec = record(device, procs, setup, operator, robot_id, timeout_s, log, emitter)
+    rec = record(device, procs, setup, operator, robot_id, timeout_s, log, emitter, publish)
     fits = fit_recording(rec)
     rec.save(out / "recording.json")
     write_outputs({rec.robot_id: fits}, out)
@@ -112,7 +119,7 @@ def parser() -> argparse.ArgumentParser:
                    help="a second e-puck on the calibration image (its own port) that plays the microphone "
                         "procedure's tones as the kit tells it (default: you make the emitter play)")
     r.add_argument("--procedures", type=_procedures, default=list(procedures.PROCEDURES),
-                   help="comma-separated, in order (default: ir,ambient,wheels,camera,sound)")
+                   help="comma-separated, in order (default: " + ",".join(procedures.PROCEDURES) + ")")
     r.add_argument("--lamp-height-mm", type=float, default=100.0)
     r.add_argument("--lamp-intensity", type=float, default=1.0,
                    help="the lamp's intensity in the scenarios' units (1: it defines the unit)")
@@ -120,6 +127,9 @@ def parser() -> argparse.ArgumentParser:
                    help="the emitter's sound.a0 in your scenarios: the microphone gains are against it")
     r.add_argument("--windows", type=int, default=2, help="1 s windows recorded per placement")
     r.add_argument("--timeout", type=float, default=10.0, help="s to wait for the robot before giving up")
+    r.add_argument("--live", nargs="?", const=common.DEFAULT_URL, metavar="LCM_URL",
+                   help="also publish the robot's telemetry and each prompt and progress line (events, kind "
+                        "'calibrate') on LCM for the live view (swarm-live); default URL: the bridge's")
     f = sub.add_parser("fit", help="fit recordings again (one or many robots: the lab's fragment)")
     f.add_argument("recordings", nargs="+", type=Path)
     f.add_argument("--out", required=True, type=Path)
@@ -137,8 +147,11 @@ def main(argv=None) -> int:
         if args.cmd == "run":
             setup = procedures.Setup(args.lamp_height_mm, args.lamp_intensity, windows=args.windows,
                                      sound_a0=args.sound_a0)
+            publish = None
+            if args.live is not None:
+                publish = common.lcm_module().LCM(args.live).publish
             rec, fits = calibrate(args.device, args.out, args.procedures, setup, TerminalOperator(),
-                                  args.robot_id, args.timeout, emitter=args.emitter)
+                                  args.robot_id, args.timeout, emitter=args.emitter, publish=publish)
             print(f"{PROG}: robot {rec.robot_id}: {args.out / 'fragment.yaml'}, {args.out / 'report' / 'report.md'}")
         elif args.cmd == "fit":
             fits = {}

@@ -21,6 +21,12 @@ ARENA_M = 2.4
 LAMP = {"x": 0.0, "y": 0.0, "height": 0.1, "intensity": 1.0}
 #: The camera procedure's card, far from the other procedures' places.
 CARD = (0.0, 0.9)
+#: The colours procedure's cards (procedures.COLOUR_CARDS), upright cylinders
+#: by the arena's right wall, out of the camera procedure's view: x, y, radius.
+COLOUR_CARDS = {0: (1.0, -0.1), 1: (1.0, 0.15), 2: (1.0, -0.65), 3: (1.0, -0.9)}
+COLOUR_CARD_RADIUS = 0.1
+#: The sensor noise of the fake robot's frames (camera.noise), counts.
+CAMERA_NOISE = 4.0
 #: The emitter of the sound procedure: the world's second robot, out of the others' way.
 EMITTER = (-1.0, -1.0)
 
@@ -37,7 +43,10 @@ def perturbed(rng: random.Random, spread: float = 1.0) -> dict:
         "wheels": {"gain_left": round(1 + rng.uniform(-0.05, 0.05) * spread, 4),
                    "gain_right": round(1 + rng.uniform(-0.05, 0.05) * spread, 4)},
         "camera": {"range": round(0.9 + rng.uniform(-0.3, 0.3) * spread, 3),
-                   "fov": round(56 + rng.uniform(-8, 8) * spread, 2)},
+                   "fov": round(56 + rng.uniform(-8, 8) * spread, 2),
+                   # The colour response against green (the exposure sets the level).
+                   "gain_r": round(math.exp(rng.uniform(-0.15, 0.15) * spread), 3),
+                   "gain_b": round(math.exp(rng.uniform(-0.15, 0.15) * spread), 3)},
         "sound": {"alpha": round(0.726 * math.exp(rng.uniform(-0.3, 0.3) * spread), 4),
                   "ae": round(48.18 * math.exp(rng.uniform(-0.3, 0.3) * spread), 3),
                   "noise": round(rng.uniform(0.03, 0.09), 4),
@@ -59,11 +68,13 @@ def world(robot_id: int, truth: dict) -> dict:
         "ir": {"robots": [{"id": robot_id, **truth["ir"]}]},
         "ambient": {"robots": [{"id": robot_id, **truth["ambient"]}]},
         "wheels": {"robots": [{"id": robot_id, **truth["wheels"]}]},
-        "camera": {"robots": [{"id": robot_id, **truth["camera"]}]},
+        "camera": {"noise": CAMERA_NOISE, "robots": [{"id": robot_id, **truth["camera"]}]},
         "sound": {"enabled": True, **{k: v for k, v in truth["sound"].items() if not k.startswith("gain")},
                   "robots": [{"id": robot_id, **{k: v for k, v in truth["sound"].items() if k.startswith("gain")}}]},
         "objects": [{"shape": "cylinder", "x": CARD[0], "y": CARD[1], "radius": procedures.CARD_DIAMETER_MM / 2000,
-                     "height": 0.08, "colour": "red"}],
+                     "height": 0.08, "colour": "red"}]
+        + [{"shape": "cylinder", "x": x, "y": y, "radius": COLOUR_CARD_RADIUS, "height": 0.15,
+            "colour": procedures.COLOUR_CARDS[c] if c else "none"} for c, (x, y) in COLOUR_CARDS.items()],
     }
 
 
@@ -99,6 +110,10 @@ class SimOperator:
         elif placement.procedure == "camera":
             x, y, th = procedures.camera_pose_for(placement)  # the card's centre at the origin, looking along +y here
             pose = (CARD[0] - y, CARD[1] + x, th + math.pi / 2)
+        elif placement.procedure == "colours":
+            x, y, th = procedures.colour_pose_for(placement)  # the card's face at x = 0
+            cx, cy = COLOUR_CARDS[placement.colour]
+            pose = (cx - COLOUR_CARD_RADIUS + x, cy + y, th)
         elif placement.procedure == "ambient":
             x, y, th = procedures.robot_pose_for(placement)   # the lamp's foot at the origin
             pose = (LAMP["x"] + x, LAMP["y"] + y, th)

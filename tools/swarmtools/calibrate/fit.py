@@ -22,7 +22,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from . import geometry
-from .procedures import CARD_DIAMETER_MM, Setup, Step, ir_distance_m, irradiance, seen
+from .procedures import CARD_DIAMETER_MM, COLOUR_CARDS, Setup, Step, ir_distance_m, irradiance, seen
 
 #: A mean at or above this is saturated (the ADC's 4095, less the noise).
 SATURATED = 4000.0
@@ -285,3 +285,124 @@ def fit_sound(steps: list[Step], setup: Setup) -> Fit:
     return Fit("sound", {"alpha": round(alpha, 5), "ae": round(ae, 4), "noise": round(noise, 5),
                          **{f"gain{b}": round(g, 5) for b, g in gains.items()}}, points,
                float(np.sqrt(np.mean(r ** 2))), "relative")
+
+
+#: A card's channel mean at or above this is clipped (the sensor's 255).
+COLOUR_SATURATED = 250.0
+#: The pixel spreads (sd) a threshold keeps from a card's and the grey card's
+#: distributions: 2 sd on each side (about 98 % of a normal channel's pixels).
+COLOUR_K = 2.0
+#: Least distances per card (a distribution and a check).
+MIN_COLOUR_DISTANCES = 2
+
+
+def _card_stats(steps):
+    """{(card, stats): [(distance, pixels, mean[3], sd[3])]}: each channel's
+    mean over the windows and its spread (within frames and between them)."""
+    out = {}
+    for st in steps:
+        p = st.placement
+        m = np.array([w[0] for w in st.windows], float)
+        mean = m[:, 1:4].mean(axis=0)
+        spread = np.sqrt((m[:, 4:7] ** 2).mean(axis=0) + (m[:, 1:4].var(axis=0) if len(m) > 1 else 0.0))
+        out.setdefault((p.colour, p.stats), []).append((p.distance_mm, float(m[:, 0].mean()), mean, spread))
+    return out
+
+
+def colour_limits(mean, sd, cls: int) -> dict:
+    """The largest thresholds (hal/blob_detect.h's rules) that still admit a
+    card's pixel COLOUR_K sd below its mean in its own channel and above it
+    in the others: the dominant value m, its lead m - s and the lead in
+    /256 of m."""
+    c = cls - 1
+    m = float(mean[c] - COLOUR_K * sd[c])
+    s = max(float(mean[j] + COLOUR_K * sd[j]) for j in range(3) if j != c)
+    lead = m - s
+    return {"value": m, "margin": lead, "saturation_q8": 256.0 * lead / m if m > 0 else 0.0}
+
+
+def grey_limits(mean, sd) -> dict:
+    """The largest lead (absolute, and in /256 of the top channel) of any
+    channel over the others in the grey card's pixels, COLOUR_K sd out:
+    thresholds above these reject it."""
+    lead, sat = 0.0, 0.0
+    for a in range(3):
+        top = float(mean[a] + COLOUR_K * sd[a])
+        second = max(float(mean[b] - COLOUR_K * sd[b]) for b in range(3) if b != a)
+        lead = max(lead, top - second)
+        sat = max(sat, 256.0 * (top - second) / top if top > 0 else 0.0)
+    return {"margin": lead, "saturation_q8": sat}
+
+
+def thresholds(cards: list[dict], greys: list[dict]) -> dict:
+    """The detector's shared thresholds between the cards' limits (every
+    card of every robot admitted) and the grey's (every grey rejected): the
+    midpoint of the gap, which keeps the most room on both sides (the
+    largest least margin).  Both the lead and the saturation are set so; a
+    grey is rejected when either one is above its own, so one gap is
+    enough: where the other has none it is put at half the cards' least
+    (no grey rejected by it, no card either).  min_value: half the dimmest
+    card's dominant channel (it only rejects black).  None: no gap."""
+    out = {}
+    for key in ("margin", "saturation_q8"):
+        lo, hi = max(g[key] for g in greys), min(c[key] for c in cards)
+        out[key] = (0.5 * (lo + hi), hi - lo) if hi > lo else (0.5 * hi, None)
+    if out["margin"][1] is None and out["saturation_q8"][1] is None:
+        return None
+    return {"min_value": int(max(1, min(255, math.floor(0.5 * min(c["value"] for c in cards))))),
+            "min_margin": int(min(255, max(1, round(out["margin"][0])))),
+            "min_saturation_q8": int(min(255, max(1, round(out["saturation_q8"][0]))))}
+
+
+def fit_colours(steps: list[Step]) -> Fit:
+    """The camera's colour response (camera.gain_r, gain_b against green:
+    the grey card's channels over the simulator's grey, the exposure
+    setting the level) and the blob detector's thresholds that keep every
+    card in its class and the grey card out (thresholds())."""
+    stats = _card_stats(steps)
+    redo = "the colours steps of the {} card"
+    for c, name in COLOUR_CARDS.items():
+        rows = stats.get((c, 0), [])
+        if len(rows) < MIN_COLOUR_DISTANCES:
+            raise FitError("colours", f"the {name} card was recorded at {len(rows)} distances (at least "
+                           f"{MIN_COLOUR_DISTANCES})", redo.format(name))
+        for d, _, mean, _ in rows:
+            if max(mean) >= COLOUR_SATURATED:
+                ch = "RGB"[int(np.argmax(mean))]
+                raise FitError("colours", f"the {name} card at {d:g} mm is saturated ({ch} {max(mean):.0f} of 255)",
+                               redo.format(name) + " with less light on it (a matt card, no lamp behind you)")
+            if c and int(np.argmax(mean)) != c - 1:
+                raise FitError("colours", f"the {name} card at {d:g} mm reads R, G, B {mean[0]:.0f}, {mean[1]:.0f}, "
+                               f"{mean[2]:.0f}: never {name} (another channel leads)",
+                               redo.format(name) + " (the right card? coloured light on it?)")
+    grey = geometry.obstacle_grey()
+    rg, bg, cards, greys, points = [], [], [], [], []
+    for d, _, mean, sd in stats[(0, 0)]:
+        if mean[1] <= 0:
+            raise FitError("colours", f"the grey card at {d:g} mm reads black", redo.format("grey") + " with light on it")
+        rg.append(mean[0] / mean[1] * grey[1] / grey[0])
+        bg.append(mean[2] / mean[1] * grey[1] / grey[2])
+        greys.append(grey_limits(mean, sd))
+    for c in (1, 2, 3):
+        seen = {d: n for d, n, *_ in stats.get((c, c), [])}
+        for d, n, mean, sd in stats[(c, 0)]:
+            lim = colour_limits(mean, sd, c)
+            if lim["margin"] <= 0:
+                raise FitError("colours", f"the {COLOUR_CARDS[c]} card at {d:g} mm: its pixels' channels overlap "
+                               f"(R, G, B {mean[0]:.0f}, {mean[1]:.0f}, {mean[2]:.0f} +- {sd[0]:.0f}, {sd[1]:.0f}, "
+                               f"{sd[2]:.0f}): no threshold keeps it {COLOUR_CARDS[c]}",
+                               redo.format(COLOUR_CARDS[c]) + " with a deeper-coloured card")
+            cards.append(lim)
+            points.append({"x": d, "label": f"{COLOUR_CARDS[c]} card", "card": c, "mean": [float(v) for v in mean],
+                           "sd": [float(v) for v in sd], "limits": lim, "measured": float(seen.get(d, math.nan)),
+                           "pixels": n})
+    th = thresholds(cards, greys)
+    if th is None:
+        raise FitError("colours", "the grey card's pixels lead by as much as the coloured cards' (no threshold "
+                       "separates them)", "the colours procedure with a neutral grey card and deeper colours")
+    params = {**th, "gain_r": round(float(np.mean(rg)), 4), "gain_g": 1.0, "gain_b": round(float(np.mean(bg)), 4),
+              "limits": {"cards": [{k: round(v, 2) for k, v in lim.items()} for lim in cards],
+                         "grey": [{k: round(v, 2) for k, v in g.items()} for g in greys]}}
+    for p in points:
+        p["simulated"] = p["pixels"]     # the frame's pixels: every one of the card is in its class
+    return Fit("colours", params, points, 0.0, "pixels")

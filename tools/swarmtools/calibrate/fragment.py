@@ -12,6 +12,7 @@ import numpy as np
 import yaml
 
 from ..sweep.store import atomic_write
+from . import fit as fitting
 
 HEADER = """# Model parameters fitted to a lab's e-pucks by swarm-calibrate
 # (docs/how-to/calibrate.md): per robot id in each section's `robots:`, the
@@ -50,10 +51,28 @@ def build(fits_by_robot: dict) -> dict:
     if snd:
         out["sound"] = {k: _mean([p[k] for _, p in snd]) for k in ("alpha", "ae", "noise")}
         out["sound"]["robots"] = [{"id": i, **{k: v for k, v in p.items() if k.startswith("gain")}} for i, p in snd]
-    cam = [(i, fits_by_robot[i]["camera"].params) for i in ids if "camera" in fits_by_robot[i]]
-    if cam:
-        out["camera"] = {"range": _mean([p["range"] for _, p in cam]), "fov": _mean([p["fov"] for _, p in cam]),
-                         "robots": [{"id": i, "range": p["range"], "fov": p["fov"]} for i, p in cam]}
+    cam = {i: fits_by_robot[i]["camera"].params for i in ids if "camera" in fits_by_robot[i]}
+    col = {i: fits_by_robot[i]["colours"].params for i in ids if "colours" in fits_by_robot[i]}
+    if cam or col:
+        section, entries = {}, {i: {"id": i} for i in ids if i in cam or i in col}
+        if cam:
+            section.update({"range": _mean([p["range"] for p in cam.values()]),
+                            "fov": _mean([p["fov"] for p in cam.values()])})
+            for i, p in cam.items():
+                entries[i].update({"range": p["range"], "fov": p["fov"]})
+        if col:
+            # One image, one detector: the lab's thresholds keep every robot's cards in their classes.
+            th = fitting.thresholds([c for p in col.values() for c in p["limits"]["cards"]],
+                                    [g for p in col.values() for g in p["limits"]["grey"]])
+            if th is None:
+                raise fitting.FitError("colours", "no thresholds separate every robot's cards from its grey card "
+                                       f"(robots {', '.join(map(str, col))})", "the colours procedure of the "
+                                       "robot whose limits the report shows furthest off")
+            section.update(th)
+            section.update({k: _mean([p[k] for p in col.values()]) for k in ("gain_r", "gain_g", "gain_b")})
+            for i, p in col.items():
+                entries[i].update({k: p[k] for k in ("gain_r", "gain_g", "gain_b")})
+        out["camera"] = {**section, "robots": [entries[i] for i in sorted(entries)]}
     return out
 
 

@@ -52,6 +52,11 @@ def camera_width_px() -> int:
     return _units()["EPUCK_CAMERA_WIDTH_PX"]
 
 
+def camera_height_px() -> int:
+    """The e-puck image's frame height, rows."""
+    return _units()["EPUCK_CAMERA_HEIGHT_PX"]
+
+
 def ir_bearings_deg() -> tuple:
     return _units()["bearings"]
 
@@ -68,3 +73,16 @@ def ir_curve(d_m: float, range_m: float = 0.1) -> float:
     """The simulator's noise-free proximity at d_m from a surface, before a
     sensor's gain and offset."""
     return float(_curve_fn()(d_m, range_m))
+
+
+RENDER_H = _lib.ROOT / "sim_host" / "core" / "render.h"
+
+
+@cache
+def obstacle_grey() -> tuple:
+    """R, G, B (0..255) the simulator draws an obstacle without colour in
+    (RENDER_RGB_OBJ_NONE): the colours procedure's grey card, the
+    reference of the camera's colour response."""
+    m = re.search(r"#define RENDER_RGB_OBJ_NONE\s+0x([0-9A-Fa-f]{6})u", RENDER_H.read_text(encoding="utf-8"))
+    v = int(m.group(1), 16)
+    return (v >> 16 & 0xFF, v >> 8 & 0xFF, v & 0xFF)

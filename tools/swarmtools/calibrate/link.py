@@ -28,7 +28,7 @@ class RobotLink:
     robot (a robot that does not answer is an error, never a hang)."""
 
     def __init__(self, device: str, robot_id: int | None = None, baud: int = 115200, timeout_s: float = 10.0,
-                 clock=time.monotonic):
+                 clock=time.monotonic, also_publish=None):
         self.device = Device(device, baud=baud, writable=True)
         self.bridge = Bridge([self.device], self._publish, clock=clock)
         self.robot_id = robot_id
@@ -39,6 +39,7 @@ class RobotLink:
         self.cursor = 0                  # the next window not yet looked at
         self.other_controller = None
         self.commands = 0
+        self.also_publish = also_publish   # every frame on, as the bridge would (the live view: --live)
         if not self.device.open():
             raise LinkError(f"{device}: cannot open it ({self.device.last_error or 'no such device'})")
 
@@ -54,6 +55,8 @@ class RobotLink:
     # ------------------------------------------------------------ input
 
     def _publish(self, channel, data):
+        if self.also_publish is not None:
+            self.also_publish(channel, data)
         if not channel.endswith("ROBOT_STATE"):
             return
         msg = common.decode(data, "ROBOT_STATE")
@@ -126,13 +129,18 @@ class RobotLink:
         """Starts a stream and returns its first `windows` valid windows
         (after the robot's settling)."""
         want = protocol.STREAM_STATES[payload[:1]]
-        self.command(payload, lambda w: w.state in (protocol.SETTLE, protocol.NO_SOUND), what)
+        lacking = (protocol.NO_SOUND, protocol.NO_FRAME)
+        self.command(payload, lambda w: w.state in (protocol.SETTLE, *lacking), what)
         out = []
         while len(out) < windows:
-            w = self.wait_window(lambda w: w.state in (want, protocol.NO_SOUND), what)
+            w = self.wait_window(lambda w: w.state in (want, *lacking), what)
             if w.state == protocol.NO_SOUND:
                 raise LinkError(f"{self.device.path}: {what}: the robot has no microphones (an image "
                                 f"built without sound?)")
+            if w.state == protocol.NO_FRAME:
+                raise LinkError(f"{self.device.path}: {what}: the robot passes no camera frames on (no "
+                                f"camera, or a processor-in-the-loop robot): leave out the colour cards "
+                                f"(--procedures without colours)")
             out.append(w)
         return out
 

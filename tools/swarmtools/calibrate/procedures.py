@@ -46,7 +46,14 @@ SOUND_BANDS = (1, 2, 3)
 #: hal/sound_bands.h's tones, Hz (for the operator's prompts).
 BAND_HZ = {1: 1160, 2: 1960, 3: 2720}
 
-PROCEDURES = ("ir", "ambient", "wheels", "camera", "sound")
+#: The colours procedure: a card of each class the blob detector knows
+#: (hal/blob_detect.h: red, green, blue) and a grey one (its "none", the
+#: simulator's obstacle grey), each filling the camera's view at these
+#: distances from the robot's front, mm.
+COLOUR_CARDS = {0: "grey", 1: "red", 2: "green", 3: "blue"}
+COLOUR_DISTANCES_MM = (30, 60)
+
+PROCEDURES = ("ir", "ambient", "wheels", "camera", "colours", "sound")
 
 
 @dataclass
@@ -67,6 +74,8 @@ class Placement:
     gap_mm: float | None = None      # ir: body to wall; None: nothing within reach
     distance_mm: float | None = None  # ambient: body to the lamp's foot
     bearing_deg: float | None = None  # camera: the card's centre from the lens, CCW +
+    colour: int | None = None        # colours: the card (COLOUR_CARDS)
+    stats: int = 0                   # colours: the frame's pixels counted (0 all, else the detector's class)
     band: int = 0                    # sound: the band listened to
     tone: bool = False               # sound: the emitter plays it (else it is silent)
     left: int = 0                    # wheels
@@ -83,6 +92,9 @@ class Placement:
         if self.procedure == "sound":
             return (f"the robot {self.distance_mm:g} mm (centre to centre) from the emitter, which "
                     + (f"plays band {self.band} ({BAND_HZ[self.band]} Hz)" if self.tone else "is silent"))
+        if self.procedure == "colours":
+            return (f"the {COLOUR_CARDS[self.colour]} card upright, square on, {self.distance_mm:g} mm from the "
+                    f"robot's front, filling its camera's view")
         if self.procedure == "camera":
             where = "straight ahead" if not self.bearing_deg else f"{self.bearing_deg:.1f} deg to the left"
             return (f"the red card ({CARD_DIAMETER_MM:g} mm across) {where}, its near side {self.distance_mm:g} mm "
@@ -121,6 +133,10 @@ SETUP_TEXT = {
                "{h:g} mm above the table, a ruler or tape from the lamp's foot.",
     "camera": "Camera: a red cylinder (a can) {d:g} mm across on a plain, uncoloured floor, nothing else "
               "coloured in view, a ruler and a protractor sheet under the robot.",
+    "colours": "Colour cards: four matt sheets of card at least 150 x 100 mm, red, green, blue (the blob "
+               "detector's classes) and a mid grey (the simulator's obstacle grey, its reference of white "
+               "balance); the room's light as in your experiments, no lamp shining into the lens. You will "
+               "hold each upright, square on in front of the robot, filling its camera's view.",
     "sound": "Microphones: a quiet room; a second e-puck (or a PC speaker at the e-puck's loudness) as the "
              "emitter, on the table; you will make it play each band in turn, or stay silent.",
     "wheels": "Wheels: a flat floor with 40 cm of room around a start mark, a ruler (or the tracker) to "
@@ -140,6 +156,14 @@ def placements(procedure: str, sensors=range(8)) -> list[Placement]:
         return [Placement("wheels", left=left, right=right, periods=n) for left, right, n in WHEEL_RUNS]
     if procedure == "camera":
         return []                    # adaptive: run_camera chooses each step from the last
+    if procedure == "colours":
+        out = []
+        for c in COLOUR_CARDS:
+            for d in COLOUR_DISTANCES_MM:
+                out.append(Placement("colours", colour=c, distance_mm=d, stats=0))
+                if c:
+                    out.append(Placement("colours", colour=c, distance_mm=d, stats=c))
+        return out
     if procedure == "sound":
         out = []
         for b in SOUND_BANDS:
@@ -178,8 +202,16 @@ def run(procedure: str, link: RobotLink, operator, setup: Setup, steps=None, emi
         if procedure == "sound" and playing != (p.band if p.tone else 0):
             playing = p.band if p.tone else 0
             play(playing, what)
-        operator.place(p, f"[{k + 1}/{len(steps)}] Put {p.describe()}.")
-        if procedure == "sound":
+        if procedure == "colours" and k and (p.colour, p.distance_mm) == (steps[k - 1].colour,
+                                                                          steps[k - 1].distance_mm):
+            operator.progress(f"colours: the {COLOUR_CARDS[p.colour]} card's pixels the detector calls "
+                              f"{COLOUR_CARDS[p.stats]}: keep it there")
+        else:
+            operator.place(p, f"[{k + 1}/{len(steps)}] Put {p.describe()}.")
+        if procedure == "colours":
+            ws = link.stream(protocol.frame(p.stats), setup.windows, what)
+            out.append(Step(p, [(w.mean, w.var) for w in ws]))
+        elif procedure == "sound":
             ws = link.stream(protocol.mic(p.band), max(setup.windows, SOUND_WINDOWS), what)
             out.append(Step(p, [(w.mean, w.var) for w in ws]))
         elif procedure in ("ir", "ambient"):
@@ -280,3 +312,9 @@ def irradiance(p: Placement, setup: Setup) -> list[float]:
         along = (hx * ax + hy * ay) / math.sqrt(d2)
         out.append(setup.lamp_intensity * along / d2 if along > 0 else 0.0)
     return out
+
+
+def colour_pose_for(p: Placement) -> tuple:
+    """(x, y, heading) of the robot's centre with the card's face at x = 0
+    (the card beyond +x), the robot looking at it."""
+    return (-(p.distance_mm / 1000.0 + geometry.body_radius_m()), 0.0, 0.0)

@@ -13,9 +13,10 @@ CHANNELS = 8
 N_VALUES = 2 * CHANNELS
 
 #: The state a stream reports once its windows are valid, per command letter.
-STREAM_STATES = {b"P": "prox", b"A": "ambient", b"M": "mic", b"C": "camera"}
+STREAM_STATES = {b"P": "prox", b"A": "ambient", b"M": "mic", b"C": "camera", b"F": "frame"}
 SETTLE = "settle"
 DRIVE, DRIVEN, IDLE, NO_SOUND, TONE = "drive", "driven", "idle", "no_sound", "tone"
+NO_FRAME = "no_frame"
 
 
 def prox() -> bytes:
@@ -32,6 +33,12 @@ def mic(band: int) -> bytes:
 
 def camera(colour: int) -> bytes:
     return b"C" + bytes([colour])
+
+
+def frame(colour: int) -> bytes:
+    """The latest frame's pixel statistics: every pixel's (colour 0) or
+    those the detector gives `colour`: pixels, R, G, B mean, R, G, B sd."""
+    return b"F" + bytes([colour])
 
 
 def stop() -> bytes:

@@ -21,7 +21,9 @@ NOT_MEASURED = {
     "ambient": "a dark reading per sensor (one per robot is fitted); light from more than one lamp",
     "wheels": "the speed noise (wheels.speed_noise_rel) and the bias of seed 003's eq 3; the axle "
               "(53 mm is kept); slip on other floors",
-    "camera": "the colour thresholds (the robot's own detector decides); the rendered camera's noise",
+    "camera": "the rendered camera's noise; how the reach depends on the light (one room's light)",
+    "colours": "the exposure (gain_g is 1: the level is the camera's automatic exposure); other colours than "
+               "the detector's three and grey; light other than the room's",
     "sound": "sound.a0 (one product with the gains: they are against the scenario's a0); each microphone "
              "apart (the model's three hear the same); more than one emitter",
 }
@@ -72,6 +74,27 @@ def _plot_camera(fit, path):
     _save(fig, path)
 
 
+def _plot_colours(fit, path):
+    """Each card's limits (the largest threshold that keeps it in its
+    class) and the grey card's (the least that rejects it), and the fitted
+    threshold between them."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.5))
+    lim = fit.params["limits"]
+    for ax, key, param, unit in ((axes[0], "margin", "min_margin", "lead, counts"),
+                                 (axes[1], "saturation_q8", "min_saturation_q8", "lead, /256 of the top channel")):
+        ax.plot(range(len(lim["cards"])), [c[key] for c in lim["cards"]], "o", label="cards: admitted below")
+        ax.plot([len(lim["cards"]) + k for k in range(len(lim["grey"]))], [g[key] for g in lim["grey"]], "s",
+                color="grey", label="grey card: rejected above")
+        ax.axhline(fit.params[param], color="C1", label=f"fitted {param} {fit.params[param]}")
+        ax.set_xticks(range(len(lim["cards"]) + len(lim["grey"])),
+                      [p["label"].split()[0] + f" {p['x']:g}" for p in fit.points] + ["grey"] * len(lim["grey"]),
+                      fontsize=7, rotation=30)
+        ax.set_ylabel(unit)
+        ax.legend(fontsize=7)
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.2, top=0.95, wspace=0.25)
+    _save(fig, path)
+
+
 def _plot_generic(fit, path, xlabel):
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
     m = [p["measured"] for p in fit.points]
@@ -107,19 +130,28 @@ def write(fits_by_robot: dict, out: Path, fragment_name: str) -> Path:
                 _plot_ir(fit, out / png)
             elif proc == "camera":
                 _plot_camera(fit, out / png)
+            elif proc == "colours":
+                _plot_colours(fit, out / png)
             else:
                 _plot_generic(fit, out / png, {"ambient": "measurement", "sound": "placement"}.get(proc, "run, quantity"))
-            params = {k: v for k, v in fit.params.items() if k != "sensors"}
+            params = {k: v for k, v in fit.params.items() if k not in ("sensors", "limits")}
             lines += [f"### {proc}", "", f"rms residual {fit.rms:.3g} {fit.unit}; parameters: "
                       + ", ".join(f"{k} = {v}" for k, v in params.items()), ""]
             if "sensors" in fit.params:
                 lines += ["| sensor | gain | offset |", "|---|---|---|"]
                 lines += [f"| IR{s} | {c['gain']} | {c['offset']} |" for s, c in enumerate(fit.params["sensors"])]
                 lines.append("")
+            if proc == "colours":
+                lines += ["| card | mm | R, G, B mean | sd | its pixels the robot's detector put in its class |",
+                          "|---|---|---|---|---|"]
+                lines += [f"| {p['label']} | {p['x']:g} | {', '.join(f'{v:.0f}' for v in p['mean'])} | "
+                          f"{', '.join(f'{v:.1f}' for v in p['sd'])} | {p['measured']:.0f} of {p['pixels']:.0f} |"
+                          for p in fit.points]
+                lines.append("")
             lines += [f"![{proc}]({png})", ""]
     lines += ["## Not measured", ""]
     for proc, text in NOT_MEASURED.items():
-        if proc not in measured and proc in ("ir", "ambient", "wheels", "camera", "sound"):
+        if proc not in measured:
             lines.append(f"- {proc}: not measured in these recordings: the defaults stay")
         lines.append(f"- {proc}: {text}")
     report = out / "report.md"

@@ -152,6 +152,69 @@ class Unfittable(unittest.TestCase):
         self.assertIn("redo: the camera procedure", str(cm.exception))
 
 
+    @staticmethod
+    def colour_steps(read):
+        """The colours procedure's steps, each window what read(card, stats) says: (mean R, G, B, sd)."""
+        out = []
+        for p in procedures.placements("colours"):
+            (r, g, b), sd = read(p.colour, p.stats)
+            values = (800.0, r, g, b, sd, sd, sd, 0.0)
+            out.append(Step(p, [(values, tuple([0.0] * 8))]))
+        return out
+
+    GOOD = {0: (110.0, 110.0, 115.0), 1: (180.0, 40.0, 40.0), 2: (30.0, 160.0, 60.0), 3: (25.0, 75.0, 215.0)}
+
+    def test_colours_fit(self):
+        """The kit's own check of its rule: a neutral grey gives gains of 1, the thresholds fall between."""
+        got = fit.fit_colours(self.colour_steps(lambda c, s: (self.GOOD[c], 4.0))).params
+        self.assertAlmostEqual(got["gain_r"], 1.0, delta=1e-3)
+        self.assertAlmostEqual(got["gain_b"], 1.0, delta=1e-3)
+        self.assertLess(max(g["margin"] for g in got["limits"]["grey"]), got["min_margin"])
+        self.assertLess(got["min_margin"], min(c["margin"] for c in got["limits"]["cards"]))
+
+    def test_colours_too_few_distances(self):
+        steps = [st for st in self.colour_steps(lambda c, s: (self.GOOD[c], 4.0))
+                 if not (st.placement.colour == 2 and st.placement.distance_mm == 60)]
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_colours(steps)
+        self.assertIn("colours: the green card was recorded at 1 distances (at least 2)", str(cm.exception))
+        self.assertIn("redo: the colours steps of the green card", str(cm.exception))
+
+    def test_colours_a_saturated_card(self):
+        read = {**self.GOOD, 1: (255.0, 60.0, 50.0)}
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_colours(self.colour_steps(lambda c, s: (read[c], 2.0)))
+        self.assertIn("colours: the red card at 30 mm is saturated (R 255 of 255)", str(cm.exception))
+        self.assertIn("with less light on it", str(cm.exception))
+
+    def test_colours_a_class_never_seen(self):
+        read = {**self.GOOD, 3: (25.0, 170.0, 150.0)}     # a teal card: green leads
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_colours(self.colour_steps(lambda c, s: (read[c], 4.0)))
+        self.assertIn("colours: the blue card at 30 mm reads R, G, B 25, 170, 150: never blue", str(cm.exception))
+
+    def test_colours_no_gap_to_the_grey(self):
+        read = {**self.GOOD, 0: (150.0, 100.0, 100.0)}    # a pink "grey": it leads like a red card
+        with self.assertRaises(fit.FitError) as cm:
+            fit.fit_colours(self.colour_steps(lambda c, s: (read[c], 12.0)))
+        self.assertIn("no threshold separates them", str(cm.exception))
+
+    def test_colours_nothing_written(self):
+        """A recording whose colour cards cannot be fitted: `fit` names it and writes nothing."""
+        from swarmtools.calibrate.record import Recording
+        read = {**self.GOOD, 2: (250.0, 252.0, 250.0)}
+        with tempfile.TemporaryDirectory() as tmp:
+            path, out = Path(tmp) / "r.json", Path(tmp) / "out"
+            Recording(7, Setup(), {"colours": self.colour_steps(lambda c, s: (read[c], 3.0))}, "dev").save(path)
+            err = io.StringIO()
+            with redirect_stderr(err):
+                rc = cli.main(["fit", str(path), "--out", str(out)])
+            self.assertEqual(rc, 1)
+            self.assertIn("r.json: robot 7: colours: the green card at 30 mm is saturated (G 252 of 255)",
+                          err.getvalue())
+            self.assertIn("nothing written", err.getvalue())
+            self.assertFalse(out.exists())
+
     def test_a_band_never_heard(self):
         steps = [Step(p, [(tuple([0.0] * 8), tuple([0.0] * 8))]) for p in procedures.placements("sound")]
         with self.assertRaises(fit.FitError) as cm:
@@ -216,7 +279,16 @@ class SimulatorRefuses(Silent):
     def test_per_robot_cameras_are_the_geometric_models(self):
         msg = self.load({"camera": {"model": "rendered", "robots": [{"id": 4, "fov": 50.0}]}})
         self.assertIn("camera.robots", msg)
-        self.assertIn("per-robot cameras are the geometric model's", msg)
+        self.assertIn("per-robot lenses are the geometric model's", msg)
+
+    def test_per_robot_colour_gains_the_rendered_camera_takes(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / "s.yaml"
+            path.write_text(yaml.safe_dump({"arena": {"width": 1.0, "height": 1.0}, "camera": {
+                "model": "rendered", "robots": [{"id": 4, "gain_r": 0.9, "gain_b": 1.1}]},
+                "robots": [{"count": 1, "controller": "calib"}]}))
+            with Sim(path) as sim:
+                sim.step(1)
 
     def test_a_camera_fov_out_of_range(self):
         msg = self.load({"camera": {"robots": [{"id": 4, "fov": 200.0}]}})

@@ -26,7 +26,7 @@ ROBOT_ID = 7
 #: of the true value, or counts for the IR offsets.
 TOL = {"ir_gain": 0.03, "ir_offset": 6.0, "ir_noise": 0.25, "ambient_dark": 0.01, "ambient_half": 0.05,
        "ambient_noise": 0.25, "wheel_gain": 0.01, "camera_range_m": 0.015, "camera_fov_deg": 1.0,
-       "sound_alpha": 0.07, "sound_ae": 0.05, "sound_noise": 0.25, "sound_gain": 0.05}
+       "colour_gain": 0.03, "sound_alpha": 0.07, "sound_ae": 0.05, "sound_noise": 0.25, "sound_gain": 0.05}
 
 
 def rel(a, b):
@@ -60,7 +60,7 @@ class Recovery(unittest.TestCase):
         out = self.dir / "out"
         for name in ("recording.json", "fragment.yaml", "report/report.md", "report/robot7_ir.png",
                      "report/robot7_ambient.png", "report/robot7_wheels.png", "report/robot7_camera.png",
-                     "report/robot7_sound.png"):
+                     "report/robot7_colours.png", "report/robot7_sound.png"):
             self.assertTrue((out / name).is_file(), name)
         text = (out / "report" / "report.md").read_text()
         self.assertIn("## Not measured", text)
@@ -90,6 +90,38 @@ class Recovery(unittest.TestCase):
         got, want = self.fits["camera"].params, self.truth["camera"]
         self.assertLess(abs(got["range"] - want["range"]), TOL["camera_range_m"], f"{got} vs {want}")
         self.assertLess(abs(got["fov"] - want["fov"]), TOL["camera_fov_deg"], f"{got} vs {want}")
+
+    def test_colour_response_recovered(self):
+        got, want = self.fits["colours"].params, self.truth["camera"]
+        for k in ("gain_r", "gain_b"):
+            self.assertLess(rel(got[k], want[k]), TOL["colour_gain"], f"{k}: {got[k]} vs {want[k]}")
+
+    @staticmethod
+    def _classified(sim, card: int, colour: int) -> float:
+        """Pixels of the truth robot's frame the detector gives `colour`, the robot 30 mm from `card`."""
+        p = procedures.Placement("colours", colour=card, distance_mm=30)
+        x, y, th = procedures.colour_pose_for(p)
+        cx, cy = fake_lab.COLOUR_CARDS[card]
+        sim.set_pose(0, cx - fake_lab.COLOUR_CARD_RADIUS + x, cy + y, th)
+        sim.host_send(0, procedures.protocol.frame(colour))
+        sim.step(21)                   # a window to settle, and one latched
+        return float(sim.robots.observable("mean0")[0])
+
+    def test_thresholds_fitted_separate_the_classes(self):
+        """The fragment's thresholds on the truth robot (its colour response, its sensor noise): every
+        pixel of each card in its class, none of the grey card in any; the fitted values within the gaps
+        the limits leave."""
+        cam = yaml.safe_load((self.dir / "out" / "fragment.yaml").read_text())["camera"]
+        keys = {f"camera.{k}": cam[k] for k in ("min_value", "min_margin", "min_saturation_q8")}
+        lim = self.fits["colours"].params["limits"]
+        self.assertLess(max(g["margin"] for g in lim["grey"]), cam["min_margin"])
+        self.assertLess(cam["min_margin"], min(c["margin"] for c in lim["cards"]))
+        frame = geometry.camera_width_px() * geometry.camera_height_px()
+        with Sim(self.world, overrides={"host.live": True, **keys}) as sim:
+            sim.set_robot_id(0, ROBOT_ID)
+            for card in (1, 2, 3):
+                self.assertGreaterEqual(self._classified(sim, card, card), 0.99 * frame, f"card {card}")
+                self.assertEqual(self._classified(sim, 0, card), 0.0, f"grey as {card}")
 
     def test_the_emitter_played_as_the_kit_told_it(self):
         """The tones came from the second robot's calibration image, through its own port: 4 commands at
