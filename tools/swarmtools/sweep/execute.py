@@ -148,6 +148,12 @@ class Executor:
                 doc = json.loads(summary.read_text())
                 rec.update(status="ok", steps=doc["steps"], state_hash=doc["state_hash"],
                            metrics={k: (math.nan if v is None else v) for k, v in doc["metrics"].items()})
+                control = doc.get("control")
+                if isinstance(control, dict) and control.get("touched") is not False:
+                    # A run steered by hand (swarmsim --control moved a robot or
+                    # set a parameter) is not its scenario's run: never a result.
+                    rec.update(status="failed", error=f"touched by hand (swarmsim --control, "
+                               f"{control.get('commands', '?')} commands): not a run of this sweep")
             except (OSError, ValueError, KeyError, TypeError) as e:
                 rec.update(status="failed", error=f"exit status 0 but no readable summary.json: {e}")
             if not self.plan.get("keep_timeseries", True):

@@ -382,6 +382,22 @@ class LocalBackend(TempDir):
         self.assertEqual(r.returncode, 1)
         self.assertTrue(all(x["error"].startswith("killed by SIGSEGV") for x in read_table(self.dir / "out2")))
 
+    def test_a_run_touched_by_hand_is_never_a_result(self) -> None:
+        # The simulator's summary says a run was steered (swarmsim --control:
+        # a robot moved); the sweep records it as failed, with the reason.
+        mark = ("import json, pathlib, sys; p = next(pathlib.Path(sys.argv[1]).glob('run_*/summary.json')); "
+                "d = json.loads(p.read_text()); d['control'] = {'touched': True, 'commands': 1}; "
+                "p.write_text(json.dumps(d))")
+        sim = fake_sim(self.dir, '[ "$check" = 0 ] && [ "$seed" = 2 ] && { out=""; prev=""; '
+                       'for a in "$@"; do [ "$prev" = --out ] && out=$a; prev=$a; done; '
+                       f'{SWARMSIM} "$@" || exit $?; {sys.executable} -c "{mark}" "$out"; exit $?; }}')
+        out = self.dir / "out"
+        r = self.run_sweep(self.write(sweep_text()), out, sim=sim)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        failed = [x for x in read_table(out) if x["status"] == "failed"]
+        self.assertEqual({x["seed"] for x in failed}, {"2"})
+        self.assertTrue(all(x["error"].startswith("touched by hand") for x in failed), failed)
+
     def test_interrupted_sweep_keeps_finished_runs_and_resumes_to_the_same_table(self) -> None:
         # Seeds 1 and 2 finish; each seed-3 run waits for a gate that never
         # opens, so the SIGINT finds both workers busy, whatever the load.
