@@ -14,7 +14,7 @@ enum { KEY_NEST, KEY_FOOD, KEY_END };
 static const draw_key_t areas_legend[] = {
     [KEY_NEST] = { 0x404040u, "nest area", DRAW_KEY_RING, 0 },
     [KEY_FOOD] = { 0x909090u, "food area", DRAW_KEY_RING, 0 },
-    [KEY_END] = { 0, NULL },
+    [KEY_END] = { 0 },
 };
 enum { ROLE_OTHER = 0, ROLE_NEST = 1, ROLE_FOOD = 2 };
 

@@ -27,13 +27,13 @@
  * legend's table is the one place their colours are set). */
 enum { KEY_WAITING, KEY_SEARCHING, KEY_RETURNING, KEY_BEACON, KEY_NEST, KEY_FOOD, KEY_END };
 static const draw_key_t foraging_legend[] = {
-    [KEY_WAITING] = { 0, "waiting" },
-    [KEY_SEARCHING] = { DRAW_RGB_HL_GREEN, "searching" },
-    [KEY_RETURNING] = { DRAW_RGB_HL_YELLOW, "returning" },
-    [KEY_BEACON] = { DRAW_RGB_HL_BLUE, "beacon" },
+    [KEY_WAITING] = { 0, "waiting", DRAW_KEY_ROBOT, 0 },
+    [KEY_SEARCHING] = { DRAW_RGB_HL_GREEN, "searching", DRAW_KEY_ROBOT, 0 },
+    [KEY_RETURNING] = { DRAW_RGB_HL_YELLOW, "returning", DRAW_KEY_ROBOT, 0 },
+    [KEY_BEACON] = { DRAW_RGB_HL_BLUE, "beacon", DRAW_KEY_ROBOT, 0 },
     [KEY_NEST] = { 0xB4B4B4u, "nest", DRAW_KEY_AREA, 0 },
     [KEY_FOOD] = { 0, "food", DRAW_KEY_ITEM, HAL_COLOUR_RED },
-    [KEY_END] = { 0, NULL },
+    [KEY_END] = { 0 },
 };
 
 typedef struct foraging {

@@ -9,10 +9,10 @@
  * colours). */
 enum { KEY_OUTSIDE, KEY_INSIDE, KEY_GOAL, KEY_END };
 static const draw_key_t gather_legend[] = {
-    [KEY_OUTSIDE] = { 0, "outside" },
-    [KEY_INSIDE] = { DRAW_RGB_HL_GREEN, "in goal" },
+    [KEY_OUTSIDE] = { 0, "outside", DRAW_KEY_ROBOT, 0 },
+    [KEY_INSIDE] = { DRAW_RGB_HL_GREEN, "in goal", DRAW_KEY_ROBOT, 0 },
     [KEY_GOAL] = { 0x2878C8u, "goal", DRAW_KEY_RING, 0 },
-    [KEY_END] = { 0, NULL },
+    [KEY_END] = { 0 },
 };
 
 typedef struct gather {

@@ -23,13 +23,13 @@ enum { ROLE_OTHER = 0, ROLE_NEST = 1, ROLE_FOOD = 2 };
 
 enum { KEY_OTHER, KEY_NODE, KEY_CHAIN, KEY_NEST, KEY_FOOD, KEY_LINK, KEY_END };
 static const draw_key_t paths_legend[] = {
-    [KEY_OTHER] = { 0, "moving, or a source" },
-    [KEY_NODE] = { DRAW_RGB_HL_YELLOW, "standing still (a node)" },
-    [KEY_CHAIN] = { DRAW_RGB_HL_GREEN, "on the chain nest-food" },
+    [KEY_OTHER] = { 0, "moving, or a source", DRAW_KEY_ROBOT, 0 },
+    [KEY_NODE] = { DRAW_RGB_HL_YELLOW, "standing still (a node)", DRAW_KEY_ROBOT, 0 },
+    [KEY_CHAIN] = { DRAW_RGB_HL_GREEN, "on the chain nest-food", DRAW_KEY_ROBOT, 0 },
     [KEY_NEST] = { 0x2878C8u, "nest range, network", DRAW_KEY_RING, 0 },
     [KEY_FOOD] = { 0xE08020u, "food range, network", DRAW_KEY_RING, 0 },
     [KEY_LINK] = { 0x20A040u, "the chain", DRAW_KEY_LINE, 0 },
-    [KEY_END] = { 0, NULL },
+    [KEY_END] = { 0 },
 };
 
 typedef struct paths {

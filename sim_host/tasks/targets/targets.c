@@ -24,12 +24,12 @@
 
 enum { KEY_MOVING, KEY_PICKING, KEY_NEST, KEY_TARGET, KEY_HALO, KEY_END };
 static const draw_key_t targets_legend[] = {
-    [KEY_MOVING] = { 0, "other" },
-    [KEY_PICKING] = { DRAW_RGB_HL_YELLOW, "waiting on a target" },
+    [KEY_MOVING] = { 0, "other", DRAW_KEY_ROBOT, 0 },
+    [KEY_PICKING] = { DRAW_RGB_HL_YELLOW, "waiting on a target", DRAW_KEY_ROBOT, 0 },
     [KEY_NEST] = { 0xB4B4B4u, "nest", DRAW_KEY_AREA, 0 },
     [KEY_TARGET] = { 0, "target", DRAW_KEY_ITEM, HAL_COLOUR_RED },
     [KEY_HALO] = { 0x9040C0u, "target halo", DRAW_KEY_RING, 0 },
-    [KEY_END] = { 0, NULL },
+    [KEY_END] = { 0 },
 };
 
 typedef struct targets {
