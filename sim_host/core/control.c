@@ -42,6 +42,11 @@ struct control {
     int64_t pending;             /* steps of a `step` command still to run */
     double realtime;
     int32_t selected;            /* -1: none */
+    /* Each robot's state as last seen and the step it was first seen in it
+     * (robot_detail_t's state_time_s): kept for every robot, from the run's
+     * start, so that selecting a robot shows its whole time in its state. */
+    const char **state_seen;
+    int64_t *state_since;
     int32_t commands;            /* recorded */
     int touched;
     uint64_t foreign;            /* commands with another key, ignored */
@@ -132,6 +137,7 @@ static void send_detail(control_t *c)
     m.robot_id = (int16_t)i;
     m.controller = (char *)r->def->name;
     m.state = (char *)sim_robot_state_name(sim, i);
+    m.state_time_s = (float)((double)(sim->step - (uint64_t)c->state_since[i]) * sim->sc->control_period_ms / 1000.0);
     m.x = r->x;
     m.y = r->y;
     m.theta = r->theta;
@@ -421,6 +427,18 @@ int control_open(const char *url, int paused, sim_t *sim, uint64_t steps, teleme
     c->ok = 1;
     c->realtime = telemetry_realtime(tel);
     c->record_f = open_memstream(&c->record, &c->record_len);
+    c->state_seen = calloc(sim->n ? sim->n : 1, sizeof *c->state_seen);
+    c->state_since = calloc(sim->n ? sim->n : 1, sizeof *c->state_since);
+    if (!c->state_seen || !c->state_since) {
+        snprintf(err, SIM_ERR_MAX, "control: out of memory");
+        control_close(c);
+        return -1;
+    }
+    for (uint32_t i = 0; i < sim->n; i++) {
+        const char *now = sim_robot_state_name(sim, i);
+        c->state_seen[i] = now ? now : "";
+        c->state_since[i] = (int64_t)sim->step;
+    }
     if (!c->record_f || make_key(c->key) != 0) {
         snprintf(err, SIM_ERR_MAX, "control: %s", c->record_f ? "cannot read /dev/urandom for the key" : "out of memory");
         control_close(c);
@@ -476,11 +494,28 @@ int control_before_step(control_t *c, const volatile sig_atomic_t *stop)
     }
 }
 
+/* Notes each robot that changed state in the step just done (controllers'
+ * state names are string literals: the same pointer is the same name). */
+static void track_states(control_t *c)
+{
+    for (uint32_t i = 0; i < c->sim->n; i++) {
+        const char *now = sim_robot_state_name(c->sim, i);
+        if (!now) {
+            now = "";
+        }
+        if (now != c->state_seen[i] && strcmp(now, c->state_seen[i]) != 0) {
+            c->state_since[i] = (int64_t)c->sim->step;
+        }
+        c->state_seen[i] = now;
+    }
+}
+
 void control_after_step(control_t *c)
 {
     if (!c) {
         return;
     }
+    track_states(c);
     send_detail(c);
     if (c->paused && c->pending == 0) {
         send_status(c);     /* the step the page waited for is done */
@@ -521,5 +556,7 @@ void control_close(control_t *c)
     if (c->lcm) lcm_destroy(c->lcm);
     if (c->record_f) fclose(c->record_f);
     free(c->record);
+    free(c->state_seen);
+    free(c->state_since);
     free(c);
 }

@@ -133,6 +133,34 @@ check "a moved robot marks the run touched, the move listed" \
     "grep -q '\"control\": {\"touched\": true, \"commands\": 4' '$s' && grep -q '\"robot\": 2, \"command\": \"move 2 0.5000 -0.2500 1.5708\"' '$s'"
 check "... and changes its state hash" "[ \"\$(field '$s' state_hash)\" != '$plain' ]"
 
+# ---- a robot's time in its state (ROBOT_DETAIL's state_time_s), step by step
+start "$tmp/times" --set robots.0.params.turn_chance=8000   # a tumble every ~8 steps
+"$py" - "$url" >"$tmp/times.out" <<'EOF'
+import sys, time
+from swarmtools.control import Controller
+c = Controller(sys.argv[1])
+c.wait(lambda s: True, 120)
+c.send("select", robot_id=3)
+seen, bad = [], []
+for k in range(1, 121):
+    c.send("step", steps=1)
+    end = time.monotonic() + 120
+    while (c.detail is None or c.detail.utime < k * 100000) and time.monotonic() < end:
+        time.sleep(0.01)
+    d = c.detail
+    seen.append((d.utime / 1e6, d.state, d.state_time_s))
+for (t0, s0, a0), (t1, s1, a1) in zip(seen, seen[1:]):
+    want = a0 + (t1 - t0) if s1 == s0 else 0.0     # one more period in it, or entered at this step
+    if abs(a1 - want) > 1e-3 or not 0 <= a1 <= t1 + 1e-3:
+        bad.append((t1, s0, s1, a0, a1))
+changes = sum(s0 != s1 for (_, s0, _), (_, s1, _) in zip(seen, seen[1:]))
+print("ok" if not bad and changes >= 2 else f"bad {bad[:3]}", changes)
+c.send("resume")
+EOF
+check "state_time_s grows by a period while robot 3 stays in a state and is 0 when it enters one" \
+    "grep -q '^ok ' '$tmp/times.out' || { cat '$tmp/times.out'; false; }"
+wait "$pid"
+
 # ---- set: a live key of one robot, of a group; refusals change nothing
 start "$tmp/set"
 detail() {   # `step N` with robot R selected: its pose, group and live keys after

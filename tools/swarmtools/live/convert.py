@@ -104,8 +104,8 @@ def control(m):
 def detail(m):
     """The selected robot's readings (robot_detail_t)."""
     return {
-        "id": m.robot_id, "controller": m.controller, "state": m.state, "clock": m.utime / 1e6,
-        "x": num(m.x), "y": num(m.y), "theta": num(m.theta), "wheels": [m.wheel_left, m.wheel_right],
+        "id": m.robot_id, "controller": m.controller, "state": m.state, "state_time_s": num(m.state_time_s),
+        "clock": m.utime / 1e6, "x": num(m.x), "y": num(m.y), "theta": num(m.theta), "wheels": [m.wheel_left, m.wheel_right],
         "leds": m.leds, "values": [num(v) for v in m.values],
         "prox": list(m.prox) if m.prox_known else None, "ambient": list(m.ambient) if m.ambient_known else None,
         "ir_bearing_mrad": list(m.ir_bearing_mrad),

@@ -12,6 +12,7 @@ page.  If the browser cannot start, the tests fail with the reason.
 """
 import json
 import math
+import re
 import subprocess
 import tempfile
 import threading
@@ -455,6 +456,9 @@ class ControlledRun(BrowserTest):
         self.assertIn("IR prox " + " ".join(map(str, d["prox"])), st["panel"])
         self.assertIn(f"robot 3 phototaxis {d['state']}", st["panel"])
         self.assertIn(f"wheels {d['wheels'][0]} / {d['wheels'][1]} steps/s", st["panel"])
+        shown = re.search(r"robot 3 phototaxis \S+ for ([0-9.]+) s", st["panel"])
+        self.assertIsNotNone(shown, st["panel"])              # its time in its state
+        self.assertAlmostEqual(float(shown.group(1)), d["state_time_s"], delta=0.05)
         clicked = d                                          # read against the run's log at the end
         # Drag it 40 px to the right: the simulator's pose moves there.
         x0, y0 = p3["x"], p3["y"]
@@ -543,6 +547,19 @@ class ControlledRun(BrowserTest):
         self.assertEqual((m.x, m.y), (clicked["x"], clicked["y"]))      # float32 both, through JSON
         self.assertEqual(list(m.values), clicked["values"])
         self.assertEqual((m.ir_max, m.ambient_min), (max(clicked["prox"]), min(clicked["ambient"])))
+        # Its time in its state: since the log's first message of robot 3 in
+        # that state after the last one in another (bounds when the log is
+        # sparser than the steps).
+        trail = sorted((m.utime / 1e6, m.state) for ev, m in common.read_log(self.log, "test")
+                       if ev.channel == "ROBOT_STATE" and m.robot_id == 3 and m.utime <= round(clicked["clock"] * 1e6))
+        first, before = trail[-1][0], 0.0
+        for t, state in reversed(trail):
+            if state != clicked["state"]:
+                before = t
+                break
+            first = t
+        self.assertGreaterEqual(clicked["state_time_s"], clicked["clock"] - first - 1e-3, trail[-5:])
+        self.assertLessEqual(clicked["state_time_s"], clicked["clock"] - before + 1e-3, trail[-5:])
 
 
 if __name__ == "__main__":

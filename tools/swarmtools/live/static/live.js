@@ -181,7 +181,7 @@
       detail: model.detail ? { id: model.detail.id, clock: model.detail.clock, prox: model.detail.prox,
                                ambient: model.detail.ambient, blobs: model.detail.blobs.length,
                                heard: model.detail.heard.length, x: model.detail.x, y: model.detail.y,
-                               state: model.detail.state, values: model.detail.values, wheels: model.detail.wheels,
+                               state: model.detail.state, state_time_s: model.detail.state_time_s, values: model.detail.values, wheels: model.detail.wheels,
                                params: model.detail.params } : null,
       panel: $("robot").textContent,
       error: model.error, limits: model.limits,

@@ -136,7 +136,8 @@ const Panels = (() => {
     for (let i = 0; i < 10; i++) if (src.leds & (1 << i)) leds.push(i < 8 ? `${i}` : i === 8 ? "body" : "front");
     const deg = (rad) => `${Math.round((rad * 180) / Math.PI)}°`;
     const out = [
-      el("h2", {}, `robot ${rb.id} `, el("span", { textContent: `${src.controller} ` }), state),
+      el("h2", {}, `robot ${rb.id} `, el("span", { textContent: `${src.controller} ` }), state,
+        d && d.state_time_s != null ? el("span", { className: "state-time", textContent: ` for ${Charts.fmt(d.state_time_s)} s` }) : null),
       el("div", { className: "values" }, ...valueLines(model, { controller: src.controller, values: src.values })),
       el("div", { className: "values", textContent:
         `pose ${rb.pose || d ? `(${Charts.fmt(src.x)}, ${Charts.fmt(src.y)}) m, ${deg(src.theta)}` : "unknown"}` }),
