@@ -115,11 +115,7 @@ from swarmtools.control import Controller
 c = Controller(sys.argv[1])
 c.wait(lambda s: True, 120)
 c.send("step", steps=2)
-import time
-end = time.monotonic() + 120
-while (c.detail is None or c.detail.utime < 200000) and time.monotonic() < end:
-    time.sleep(0.05)
-d = c.detail
+d = c.wait_detail(lambda d: d.utime >= 200000, 120)
 print(d.robot_id, d.controller, int(d.prox_known), len(d.prox), d.n_blobs >= 0)
 EOF
 check "select 3: ROBOT_DETAIL of robot 3 with its IR readings" "[ \"\$(cat '$tmp/detail')\" = '3 random_walk 1 8 True' ]"
@@ -136,7 +132,7 @@ check "... and changes its state hash" "[ \"\$(field '$s' state_hash)\" != '$pla
 # ---- a robot's time in its state (ROBOT_DETAIL's state_time_s), step by step
 start "$tmp/times" --set robots.0.params.turn_chance=8000   # a tumble every ~8 steps
 "$py" - "$url" >"$tmp/times.out" <<'EOF'
-import sys, time
+import sys
 from swarmtools.control import Controller
 c = Controller(sys.argv[1])
 c.wait(lambda s: True, 120)
@@ -144,10 +140,7 @@ c.send("select", robot_id=3)
 seen, bad = [], []
 for k in range(1, 121):
     c.send("step", steps=1)
-    end = time.monotonic() + 120
-    while (c.detail is None or c.detail.utime < k * 100000) and time.monotonic() < end:
-        time.sleep(0.01)
-    d = c.detail
+    d = c.wait_detail(lambda d: d.utime >= k * 100000, 120)
     seen.append((d.utime / 1e6, d.state, d.state_time_s))
 for (t0, s0, a0), (t1, s1, a1) in zip(seen, seen[1:]):
     want = a0 + (t1 - t0) if s1 == s0 else 0.0     # one more period in it, or entered at this step
@@ -165,17 +158,14 @@ wait "$pid"
 start "$tmp/set"
 detail() {   # `step N` with robot R selected: its pose, group and live keys after
     "$py" - "$url" "$@" <<'EOF'
-import sys, time
+import sys
 from swarmtools.control import Controller
 c = Controller(sys.argv[1])
 robot, steps = int(sys.argv[2]), int(sys.argv[3])
 c.wait(lambda s: True, 120)
 c.send("select", robot_id=robot)
 at = c.send("step", steps=steps).step + steps
-end = time.monotonic() + 120
-while (c.detail is None or c.detail.robot_id != robot or c.detail.utime < at * 100000) and time.monotonic() < end:
-    time.sleep(0.05)
-d = c.detail
+d = c.wait_detail(lambda d: d.robot_id == robot and d.utime >= at * 100000, 120)
 print(f"{d.x:.4f} {d.y:.4f} {d.group} " + " ".join(f"{n}={v}" for n, v in zip(d.param_names, d.param_values)))
 EOF
 }

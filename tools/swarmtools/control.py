@@ -115,15 +115,23 @@ class Controller:
     def wait(self, test, timeout):
         """Waits until test(status) holds; returns the status, or raises
         NoRun after `timeout` seconds."""
+        return self._wait_for("status", test, timeout)
+
+    def wait_detail(self, test, timeout):
+        """Waits until test(detail) holds for the latest robot_detail_t (the
+        selected robot's); returns it, or raises NoRun after `timeout` s."""
+        return self._wait_for("detail", test, timeout)
+
+    def _wait_for(self, name, test, timeout):
         end = time.monotonic() + timeout
         with self._cond:
-            while self.status is None or not test(self.status):
+            while getattr(self, name) is None or not test(getattr(self, name)):
                 left = end - time.monotonic()
                 if left <= 0:
                     raise NoRun("no simulation under control answered on the bus (swarmsim --realtime X --control)"
                                 if self.status is None else "the run did not get there in time")
                 self._cond.wait(left)
-            return self.status
+            return getattr(self, name)
 
     def send(self, command, timeout=10.0, **fields):
         """Sends a command and waits for the run's answer: its status.
