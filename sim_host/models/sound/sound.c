@@ -107,6 +107,12 @@ static void sound_defaults(void *config)
     c->robots = NULL;
 }
 
+/* Eq 1: an emitter's term at d_m, the one place it is written. */
+static inline double eq1(const sound_config_t *cfg, double d_m)
+{
+    return cfg->a0 * exp(-cfg->alpha * d_m) + cfg->ae;
+}
+
 double sound_term(const sound_config_t *cfg, double d_m, int emits)
 {
     if (!emits) {
@@ -115,7 +121,7 @@ double sound_term(const sound_config_t *cfg, double d_m, int emits)
     if (cfg->cutoff > 0.0 && d_m > cfg->cutoff) {
         return cfg->ae;
     }
-    return cfg->a0 * exp(-cfg->alpha * d_m) + cfg->ae;
+    return eq1(cfg, d_m);
 }
 
 uint32_t sound_counts(double units)
@@ -245,7 +251,7 @@ static inline double loud_of(const struct sim *sim, const sound_t *s, uint32_t i
     const sim_robot_t *a = &sim->robots[i];
     vec2_t b = sim_robot_at(sim, j);
     double dx = (double)a->x - (double)b.x, dy = (double)a->y - (double)b.y;
-    return s->cfg->a0 * exp(-s->cfg->alpha * sqrt(dx * dx + dy * dy)) + s->cfg->ae;
+    return eq1(s->cfg, sqrt(dx * dx + dy * dy));
 }
 
 /* The near sources' terms in listener i's sums `acc`, in the order of
@@ -418,8 +424,7 @@ static void update_all_pairs(struct sim *sim, sound_t *s)
             double loud = 0.0;
             if (s->played[i] || s->played[j]) {
                 double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
-                double d = sqrt(dx * dx + dy * dy);
-                loud = cfg->a0 * exp(-cfg->alpha * d) + cfg->ae;
+                loud = eq1(cfg, sqrt(dx * dx + dy * dy));
             }
             double z[HAL_SOUND_BANDS];
             const double *next = z;
