@@ -1,7 +1,7 @@
 /*
  * sim_fixture.h - what the simulator's tests share: a run built from a
- * scenario (the test fails with the simulator's message when it cannot be)
- * and a summary metric by name.  Include after <cmocka.h>.
+ * scenario file or an idle one (the test fails with the simulator's message
+ * when it cannot be) and a summary metric by name.  Include after <cmocka.h>.
  */
 #ifndef TESTS_SIM_FIXTURE_H
 #define TESTS_SIM_FIXTURE_H
@@ -30,6 +30,17 @@ static inline scenario_t *fixture_idle_scenario(uint32_t robots, float arena)
     sc->groups[0].count = robots;
     sc->groups[0].placement.shape = PLACE_GRID;
     sc->arena.width = sc->arena.height = arena;
+    return sc;
+}
+
+/** The scenario file at `path` (on the heap: scenario_free, free); fails
+ *  the test with the loader's message when it cannot be read. */
+static inline scenario_t *fixture_load(const char *path)
+{
+    scenario_t *sc = malloc(sizeof *sc);
+    char err[SIM_ERR_MAX];
+    assert_non_null(sc);
+    if (scenario_load(path, NULL, 0, sc, err) != 0) fail_msg("%s", err);
     return sc;
 }
 

@@ -11,6 +11,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,23 +33,6 @@
 #define WALK "../sim_host/scenarios/random_walk.yaml"
 #define W 800
 #define H 800
-
-static scenario_t *load(const char *path)
-{
-    scenario_t *sc = malloc(sizeof *sc);
-    char err[SIM_ERR_MAX];
-    assert_non_null(sc);
-    if (scenario_load(path, NULL, 0, sc, err) != 0) fail_msg("%s", err);
-    return sc;
-}
-
-static sim_t *run_of(const scenario_t *sc, uint64_t seed)
-{
-    char err[SIM_ERR_MAX];
-    sim_t *sim = sim_create(sc, seed, err);
-    if (!sim) fail_msg("%s", err);
-    return sim;
-}
 
 static void done(sim_t *sim, scenario_t *sc)
 {
@@ -81,8 +66,8 @@ static const draw_key_t *key_named(const draw_key_t *keys, uint32_t n, const cha
 static void test_foraging_keys(void **state)
 {
     (void)state;
-    scenario_t *sc = load(BASE);
-    sim_t *sim = run_of(sc, 1);
+    scenario_t *sc = fixture_load(BASE);
+    sim_t *sim = fixture_sim(sc, 1);
     draw_key_t keys[LEGEND_KEYS_MAX];
     uint32_t n = legend_collect(sim, keys);
     static const char *const labels[] = { "waiting", "searching", "returning", "beacon", "nest", "food", NULL };
@@ -104,8 +89,8 @@ static void test_foraging_keys(void **state)
 static void test_gather_keys(void **state)
 {
     (void)state;
-    scenario_t *sc = load(GATHER);
-    sim_t *sim = run_of(sc, 1);
+    scenario_t *sc = fixture_load(GATHER);
+    sim_t *sim = fixture_sim(sc, 1);
     draw_key_t keys[LEGEND_KEYS_MAX];
     uint32_t n = legend_collect(sim, keys);
     static const char *const labels[] = { "outside", "in goal", "goal", NULL };
@@ -118,8 +103,8 @@ static void test_gather_keys(void **state)
 static void test_no_task_key(void **state)
 {
     (void)state;
-    scenario_t *sc = load(WALK);
-    sim_t *sim = run_of(sc, 1);
+    scenario_t *sc = fixture_load(WALK);
+    sim_t *sim = fixture_sim(sc, 1);
     draw_key_t keys[LEGEND_KEYS_MAX];
     uint32_t n = legend_collect(sim, keys);
     static const char *const labels[] = { "robot", NULL };
@@ -167,8 +152,8 @@ static int band_count(const uint8_t *rgb, int rows, uint32_t want)
 static void test_frame_draws_the_legend(void **state)
 {
     (void)state;
-    scenario_t *sc = load(BASE);
-    sim_t *sim = run_of(sc, 2);
+    scenario_t *sc = fixture_load(BASE);
+    sim_t *sim = fixture_sim(sc, 2);
     for (int k = 0; k < 300; k++) sim_step(sim);
     draw_key_t keys[LEGEND_KEYS_MAX];
     uint32_t n_keys = legend_collect(sim, keys);

@@ -42,15 +42,6 @@
 #define MAX_VALUES 64
 #define NAME 40
 
-static scenario_t *load(const char *path)
-{
-    scenario_t *sc = malloc(sizeof *sc);
-    char err[SIM_ERR_MAX];
-    assert_non_null(sc);
-    if (scenario_load(path, NULL, 0, sc, err) != 0) fail_msg("%s", err);
-    return sc;
-}
-
 /* Event kinds counted by name. */
 static const char *const kinds[] = {
     "oae", "deposits", "state", "escaped", "pickup", "deposit", "token_dropped", "token_lost", NULL
@@ -289,7 +280,7 @@ static int column(const schema_seen_t *sc, const char *name)
 static void test_memq_foraging_run(void **state)
 {
     (void)state;
-    scenario_t *sc = load(BASE);
+    scenario_t *sc = fixture_load(BASE);
     sim_t *sim = fixture_sim(sc, 3);
     seen_t *s = calloc(1, sizeof *s);
     s->swarm_steps_in_order = 1;
@@ -388,7 +379,7 @@ static void test_memq_foraging_run(void **state)
 static void test_memq_rates(void **state)
 {
     (void)state;
-    scenario_t *sc = load(WALK);
+    scenario_t *sc = fixture_load(WALK);
     const uint64_t steps = 300;   /* 30 s */
     for (int pass = 0; pass < 2; pass++) {
         sim_t *sim = fixture_sim(sc, 1);
@@ -426,7 +417,7 @@ static void test_memq_rates(void **state)
 static void test_telemetry_does_not_change_a_run(void **state)
 {
     (void)state;
-    scenario_t *sc = load(BASE);
+    scenario_t *sc = fixture_load(BASE);
     sim_t *a = fixture_sim(sc, 11), *b = fixture_sim(sc, 11);
     telemetry_t *t = open_memq(b, 10.0, 10.0);
     seen_t *s = calloc(1, sizeof *s);
@@ -469,7 +460,7 @@ static void test_parse_rate(void **state)
 static void test_disabled(void **state)
 {
     (void)state;
-    scenario_t *sc = load(WALK);
+    scenario_t *sc = fixture_load(WALK);
     sim_t *sim = fixture_sim(sc, 1);
     telemetry_options_t o;
     telemetry_t *t = (telemetry_t *)&o;
@@ -511,7 +502,7 @@ static void test_log_file(void **state)
     snprintf(path, sizeof path, "%s/" TELEMETRY_LOG_NAME, dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     snprintf(copy, sizeof copy, "%s/copy.lcmlog", dir);
-    scenario_t *sc = load(BASE);
+    scenario_t *sc = fixture_load(BASE);
     sim_t *sim = fixture_sim(sc, 5);
     telemetry_options_t o;
     telemetry_t *t = NULL;
@@ -584,7 +575,7 @@ static void test_log_file(void **state)
 static void test_bad_url(void **state)
 {
     (void)state;
-    scenario_t *sc = load(WALK);
+    scenario_t *sc = fixture_load(WALK);
     sim_t *sim = fixture_sim(sc, 1);
     telemetry_options_t o;
     telemetry_t *t = NULL;

@@ -13,6 +13,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -106,15 +108,6 @@ static void on_drawing(const lcm_recv_buf_t *rb, const char *ch, const swarmlcm_
     s->drawing_utime = m->utime;
 }
 
-static scenario_t *load(const char *path)
-{
-    scenario_t *sc = malloc(sizeof *sc);
-    char err[SIM_ERR_MAX];
-    assert_non_null(sc);
-    if (scenario_load(path, NULL, 0, sc, err) != 0) fail_msg("%s", err);
-    return sc;
-}
-
 /* The drawing the PNG frames would get now, from the task's own hook. */
 static void task_draws(const sim_t *sim, const task_def_t *def, drawing_t *d)
 {
@@ -195,7 +188,7 @@ static int32_t check_legend(const swarmlcm_scene_t *s, const sim_t *sim)
 static void test_gather_scene_and_drawing(void **state)
 {
     (void)state;
-    scenario_t *sc = load(GATHER);
+    scenario_t *sc = fixture_load(GATHER);
     char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 1, err);
     if (!sim) fail_msg("%s", err);
@@ -283,7 +276,7 @@ static void test_gather_scene_and_drawing(void **state)
 static void test_foraging_items(void **state)
 {
     (void)state;
-    scenario_t *sc = load(BASE);
+    scenario_t *sc = fixture_load(BASE);
     char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 2, err);
     if (!sim) fail_msg("%s", err);
@@ -327,7 +320,7 @@ static void test_foraging_items(void **state)
 static void test_no_task_draws_nothing(void **state)
 {
     (void)state;
-    scenario_t *sc = load(WALK);
+    scenario_t *sc = fixture_load(WALK);
     char err[SIM_ERR_MAX];
     sim_t *sim = sim_create(sc, 1, err);
     if (!sim) fail_msg("%s", err);
