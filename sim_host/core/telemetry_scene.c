@@ -22,7 +22,7 @@
 struct telemetry_scene {
     swarmlcm_scene_obstacle_t *obstacles;
     swarmlcm_scene_light_t lights[SCENARIO_MAX_LIGHTS];
-    draw_key_t keys[LEGEND_KEYS_MAX];  /* the run's legend */
+    /* the run's legend (legend.h), as scene_t carries it */
     int8_t key_kind[LEGEND_KEYS_MAX];
     int32_t key_rgb[LEGEND_KEYS_MAX];
     char *key_label[LEGEND_KEYS_MAX];
@@ -131,11 +131,12 @@ void telemetry_scene_fill(telemetry_scene_t *s, const sim_t *simp, swarmlcm_scen
     m->obstacles = s->obstacles;
     m->n_lights = (int16_t)sc->light_count;
     m->lights = s->lights;
-    uint32_t n_keys = legend_collect(simp, s->keys);
+    draw_key_t keys[LEGEND_KEYS_MAX];
+    uint32_t n_keys = legend_collect(simp, keys);
     for (uint32_t k = 0; k < n_keys; k++) {
-        s->key_kind[k] = (int8_t)s->keys[k].kind;
-        s->key_rgb[k] = (int32_t)render_key_rgb(&s->keys[k]);
-        s->key_label[k] = (char *)s->keys[k].label;   /* the task's constant; LCM only reads it */
+        s->key_kind[k] = (int8_t)keys[k].kind;
+        s->key_rgb[k] = (int32_t)render_key_rgb(&keys[k]);
+        s->key_label[k] = (char *)keys[k].label;   /* the task's constant; LCM only reads it */
     }
     m->robot_rgb = (int32_t)RENDER_RGB_ROBOT;
     m->n_keys = (int16_t)n_keys;
