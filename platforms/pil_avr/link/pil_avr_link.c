@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <inttypes.h>
 #include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -116,7 +117,9 @@ static void gone(pil_avr_link_t *l, char *err, const char *what)
 {
     int status = 0;
     pid_t r = 0;
-    for (int k = 0; k < 100 && r == 0; k++) {
+    /* Its pipes closed, it is dying: a busy machine can take seconds to
+     * reap QEMU's threads, so wait up to 10 s for its status. */
+    for (int k = 0; k < 1000 && r == 0; k++) {
         r = waitpid(l->pid, &status, WNOHANG);
         if (r == 0) {
             struct timespec ten_ms = { 0, 10000000 };
@@ -207,12 +210,35 @@ static int read_frame(pil_avr_link_t *l, uint8_t *buf, uint16_t cap, uint16_t *l
     return 0;
 }
 
+/* A write into a pipe whose reader has died raises SIGPIPE, which kills
+ * the simulator without a word.  Blocked around the write, it becomes
+ * EPIPE (reported as the emulator's death), and the signal the write left
+ * pending for this thread is taken back; one pending before is left. */
+static ssize_t write_quietly(int fd, const void *buf, size_t n)
+{
+    sigset_t pipe_only, old, pending;
+    sigemptyset(&pipe_only);
+    sigaddset(&pipe_only, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe_only, &old);
+    int was_pending = sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1;
+    ssize_t k = write(fd, buf, n);
+    int saved = errno;
+    if (k < 0 && saved == EPIPE && !was_pending) {
+        struct timespec now = { 0, 0 };
+        while (sigtimedwait(&pipe_only, NULL, &now) < 0 && errno == EINTR) {
+        }
+    }
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    errno = saved;
+    return k;
+}
+
 static int link_send(void *ctx, const uint8_t *frame, uint16_t len, char *err)
 {
     pil_avr_link_t *l = ctx;
     size_t done = 0;
     while (done < len) {
-        ssize_t k = write(l->to, frame + done, len - done);
+        ssize_t k = write_quietly(l->to, frame + done, len - done);
         if (k < 0 && errno == EINTR) {
             continue;
         }

@@ -251,6 +251,14 @@ int main(int argc, char **argv)
             int st;
             while (done == stop_at && waitpid(a->link.pid, &st, WUNTRACED) < 0 && errno == EINTR) {
             }
+            /* A kill is whole when the emulator is a zombie (its pipes
+             * closed): the step then always meets a dead robot, at its
+             * send (EPIPE) or its read (end of file), never a live one.
+             * WNOWAIT leaves the status for the link to report. */
+            siginfo_t info;
+            while (done == kill_at && waitid(P_PID, (id_t)a->link.pid, &info, WEXITED | WNOWAIT) < 0
+                   && errno == EINTR) {
+            }
         }
         if (step(a, err) != 0 || (h && step(h, err) != 0)) {
             failed = 1;
