@@ -38,8 +38,9 @@ int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n);
 uint32_t grid_gather(const grid_t *g, float minx, float miny, float maxx, float maxy, uint32_t *out,
                      uint32_t max);
 
-/** Sorts ids ascending: candidates from several cells visited in index
- *  order, as a scan of every item would visit them. */
+/** Sorts distinct ids ascending: candidates from several cells visited in
+ *  index order, as a scan of every item would visit them.  Ids must be
+ *  distinct (a grid holds each point once) and below UINT32_MAX. */
 void grid_sort_ids(uint32_t *ids, uint32_t n);
 
 /** Bins `n` boxes given as min x, min y, max x, max y. */

@@ -450,10 +450,14 @@ static void sense_ambient(struct sim *sim, const ir_t *m, uint32_t i, uint16_t o
         for (uint32_t l = 0; l < sc->light_count; l++) {
             const light_def_t *L = &sc->lights[l];
             double hx = L->x - p.x, hy = L->y - p.y, dz = L->height - SENSOR_HEIGHT;
-            double d2 = hx * hx + hy * hy + dz * dz;
-            double along = (hx * a.x + hy * a.y) / sqrt(d2);
-            if (along > 0.0 && d2 > 1e-12) {
-                irr += L->intensity * along / d2;
+            double d2 = hx * hx + hy * hy + dz * dz, facing = hx * a.x + hy * a.y;
+            /* A lamp behind the sensor (facing <= 0) adds nothing: its square
+             * root and two divisions are skipped, the sum as it was. */
+            if (facing > 0.0 && d2 > 1e-12) {
+                double along = facing / sqrt(d2);
+                if (along > 0.0) {
+                    irr += L->intensity * along / d2;
+                }
             }
         }
         /* The raw value falls as light rises: dark at irr = 0, dark/2 at

@@ -382,18 +382,12 @@ static void receive_range(uint32_t begin, uint32_t end, uint32_t worker, void *c
                 || r->y < s.y - reach || r->y > s.y + reach) {
                 continue;
             }
-            /* Insert by turn: (i - first) mod n. */
-            uint32_t turn = i >= d->first ? i - d->first : i + sim->n - d->first, at = kept++;
-            while (at > 0) {
-                uint32_t p = from[at - 1], pt = p >= d->first ? p - d->first : p + sim->n - d->first;
-                if (pt < turn) break;
-                from[at] = p;
-                at--;
-            }
-            from[at] = i;
+            /* Kept by turn, (i - first) mod n: sorted as ids, then back. */
+            from[kept++] = i >= d->first ? i - d->first : i + sim->n - d->first;
         }
+        grid_sort_ids(from, kept);
         for (uint32_t c = 0; c < kept; c++) {
-            uint32_t i = from[c];
+            uint32_t turn = from[c], i = turn < sim->n - d->first ? turn + d->first : turn - (sim->n - d->first);
             const ircom_out_t *o = &im->out[i];
             if (reaches(sim, im, ws, i, j, reach)) {
                 for (uint8_t f = 0; f < o->n; f++) {

@@ -1,0 +1,88 @@
+/* test_grid.c - the robot grid's queries: a gather holds every point in
+ * its box, and grid_sort_ids orders distinct ids as a full sort does, at
+ * every size around its rank sort's four-wide blocks and its limit. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include <cmocka.h>
+
+#include "swarmsim/grid.h"
+
+static int ascending(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* A small deterministic generator: the test's own, not the simulator's. */
+static uint32_t next(uint64_t *s)
+{
+    *s = *s * 6364136223846793005u + 1442695040888963407u;
+    return (uint32_t)(*s >> 33);
+}
+
+static void test_sort_ids_matches_a_full_sort(void **state)
+{
+    (void)state;
+    uint64_t seed = 1;
+    for (uint32_t n = 0; n <= 70; n++) {
+        for (int round = 0; round < 50; round++) {
+            uint32_t ids[70], want[70];
+            for (uint32_t k = 0; k < n; k++) {
+                /* Distinct: a random high part over the position; the
+                 * largest allowed id (UINT32_MAX - 1) in some rounds. */
+                ids[k] = round % 7 == 0 && k == 0 ? UINT32_MAX - 1 : (next(&seed) % 1000u) * 128u + k;
+                want[k] = ids[k];
+            }
+            qsort(want, n, sizeof *want, ascending);
+            grid_sort_ids(ids, n);
+            for (uint32_t k = 0; k < n; k++) {
+                assert_int_equal(ids[k], want[k]);
+            }
+        }
+    }
+}
+
+static void test_gather_holds_every_point_in_the_box(void **state)
+{
+    (void)state;
+    enum { N = 500 };
+    float x[N], y[N];
+    uint64_t seed = 3;
+    grid_t g;
+    assert_int_equal(grid_init(&g, -5.0f, -5.0f, 10.0f, 10.0f, 0.4f), 0);
+    for (uint32_t k = 0; k < N; k++) {
+        x[k] = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f;
+        y[k] = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f;
+    }
+    assert_int_equal(grid_build_points(&g, x, y, N), 0);
+    for (int q = 0; q < 100; q++) {
+        float cx = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f, cy = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f;
+        float h = 0.1f + (float)(q % 10) * 0.3f;
+        uint32_t out[N], seen[N] = { 0 };
+        uint32_t n = grid_gather(&g, cx - h, cy - h, cx + h, cy + h, out, N);
+        grid_sort_ids(out, n);
+        for (uint32_t k = 0; k < n; k++) {
+            assert_true(k == 0 || out[k - 1] < out[k]);   /* each once, ascending */
+            seen[out[k]] = 1;
+        }
+        for (uint32_t k = 0; k < N; k++) {
+            if (x[k] >= cx - h && x[k] <= cx + h && y[k] >= cy - h && y[k] <= cy + h) {
+                assert_true(seen[k]);
+            }
+        }
+    }
+    grid_free(&g);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sort_ids_matches_a_full_sort),
+        cmocka_unit_test(test_gather_holds_every_point_in_the_box),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
