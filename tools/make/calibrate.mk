@@ -20,5 +20,5 @@ calibrate-pil: deps $(SIM_SO) pil-avr pil-m4
 # test_pil.py runs the calibration image's AVR ELF.  pil-avr is built once in
 # make test's build step, before the groups: python-tests and cli-tests both
 # need it and, run side by side, would otherwise rebuild its archives at once.
-python-tests: pil-avr
+python-tests-deps: pil-avr
 TEST_BUILD += pil-avr

@@ -34,4 +34,4 @@ $(SIM_SO): $(BUILD)/libswarm.a $(BUILD)/obj/sim_host/version.o
 	  $(SIM_SO_OBJ) $(LDLIBS_SIM) && mv $@.tmp $@
 
 all: $(SIM_SO)
-python-tests: $(SIM_SO)
+python-tests-deps: $(SIM_SO)

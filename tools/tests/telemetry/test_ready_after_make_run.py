@@ -61,6 +61,17 @@ class NamedInTheReadme(unittest.TestCase):
         self.assertEqual(sorted(goals - targets), [], "make goals the documentation names but the Makefile lacks")
 
 
+class TestHalves(unittest.TestCase):
+    def test_make_tests_halves_run_every_group_once(self):
+        # make test runs run.py's groups in two halves (tools/make/python.mk):
+        # a group added to run.py and to neither half would never run there.
+        mk = (ROOT / "tools/make/python.mk").read_text()
+        halves = [re.search(rf"^{v} = (.*)$", mk, re.M).group(1).split()
+                  for v in ("PYTHON_TESTS_1", "PYTHON_TESTS_2")]
+        groups = re.search(r"^GROUPS = \((.*)\)$", (ROOT / "tools/tests/run.py").read_text(), re.M).group(1)
+        self.assertEqual(sorted(halves[0] + halves[1]), sorted(g.strip(' "') for g in groups.split(",")))
+
+
 class MissingPieces(TempDir):
     """A module stubbed out through PYTHONPATH (which comes before .venv's
     site-packages) stands for what `make deps` installs."""
