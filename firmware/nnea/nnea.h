@@ -5,7 +5,7 @@
  * constants are evolved (tools/swarmtools/evolve, studies/nnea_evolve.yaml);
  * the robots have no explicit rules: the behaviour is the genome.
  *
- * The network (docs/models/nnea.md says what is the paper's and what is
+ * The network (docs/studies/nnea.md says what is the paper's and what is
  * reconstructed):
  *
  *   14 inputs   4 obstacle sectors (IR proximity: front, right, back, left),

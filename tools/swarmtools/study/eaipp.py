@@ -313,10 +313,11 @@ def own_keys(sw: sweep_spec.Sweep) -> dict[str, dict[str, str]]:
     return own
 
 
-def condition_keys(sw: sweep_spec.Sweep) -> list[str]:
-    """The varied keys that make a condition (the controllers' own settings left out)."""
-    own = {k for settings in own_keys(sw).values() for k in settings}
-    return [k for k in sw.varied_keys if k not in own]
+def condition_keys(sw: sweep_spec.Sweep, own: dict[str, dict[str, str]] | None = None) -> list[str]:
+    """The varied keys that make a condition (the controllers' own settings,
+    own_keys(sw) unless given, left out)."""
+    left_out = {k for settings in (own_keys(sw) if own is None else own).values() for k in settings}
+    return [k for k in sw.varied_keys if k not in left_out]
 
 
 def extra(row: dict[str, str], fig: Figure, varied: Sequence[str]) -> str:
@@ -657,11 +658,11 @@ def main(argv: Sequence[str] | None = None) -> int:
             rc_all = rc_all or rc
             wall = time.monotonic() - t1
             rows = read_rows(sweep_dir / "results.csv")
-            varied = condition_keys(sw)
+            own = own_keys(sw)
+            varied = condition_keys(sw, own)
             cs = cells(rows, fig, varied, sw.scenario)
             builds = sorted({r.get("code_version", "") for r in rows})
             ctrls = controller_order([c["controller"] for c in cs])
-            own = own_keys(sw)
             settings = "; ".join(f"{c} " + ", ".join(f"{k}={v}" for k, v in own[c].items()) for c in ctrls if own.get(c))
             md.append(f"- {name} (Fig {fig.figs}): {len(rows)} runs ({', '.join(ctrls)}; {len(sw.seeds)} seeds a "
                       f"cell), {wall:.0f} s in this invocation, sweep `{sweep_dir}`, simulator build(s) "
