@@ -87,7 +87,7 @@ static const cli_option_t options[] = {
       "with --realtime and one repetition: take commands over LCM (swarm-live's buttons, "
       "python -m swarmtools.control): pause, resume, step N, realtime X, move a robot, select one to "
       "inspect.  Each is an event in the telemetry and a line of summary.json's \"control\"; a moved "
-      "robot marks the run touched.  On a loopback-only bus (" CONTROL_DEFAULT_URL ") unless "
+      "robot or a parameter set (set ROBOT|GROUP KEY VALUE, a key its controller declares live) marks the run touched.  On a loopback-only bus (" CONTROL_DEFAULT_URL ") unless "
       "--control-lcm names another" },
     { "--paused", NULL, NULL, 0, 0, F(control_paused), NO_FIELD, NULL, NULL,
       "with --control: wait for a command (resume, step) before the first step" },

@@ -142,7 +142,7 @@ int swarmsim_command(int argc, char **argv, const char *code_version, volatile s
         control_url = cli.control_url ? cli.control_url : CONTROL_DEFAULT_URL;
         if (why) {
             fprintf(stderr, "swarmsim: %s\n", why);
-        } else if (telemetry_check_url(control_url, err) != 0) {
+        } else if (telemetry_check_url("--control-lcm", control_url, err) != 0) {
             fprintf(stderr, "swarmsim: %s\n", err);
             why = err;
         }

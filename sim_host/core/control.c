@@ -270,7 +270,7 @@ static void set_param(control_t *c, const swarmlcm_control_t *m)
             return;
         }
     } else if (m->robot_id < 0 || (uint32_t)m->robot_id >= sim->n) {
-        refuse(c, "set: no robot %d in this run (ids 0 to %u), and no group named", (int)m->robot_id, sim->n - 1u);
+        refuse(c, "set: no robot %d in this run (ids 0 to %u)", (int)m->robot_id, sim->n - 1u);
         return;
     } else {
         first = (uint32_t)m->robot_id;

@@ -458,7 +458,7 @@ static int check_setup(const run_options_t *opt, metric_list_t *names, metric_te
         names->doc[k] = text[k][2];
     }
     sim_destroy(probe);
-    if (opt->telemetry.enabled && opt->telemetry.url && telemetry_check_url(opt->telemetry.url, e) != 0) {
+    if (opt->telemetry.enabled && opt->telemetry.url && telemetry_check_url("--lcm", opt->telemetry.url, e) != 0) {
         snprintf(err, SIM_ERR_MAX, "%s", e);
         return -1;
     }

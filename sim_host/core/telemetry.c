@@ -110,12 +110,12 @@ static int parse_hz(const char *text, const char *stop, double *out)
     return 0;
 }
 
-int telemetry_check_url(const char *url, char err[SIM_ERR_MAX])
+int telemetry_check_url(const char *option, const char *url, char err[SIM_ERR_MAX])
 {
     lcm_t *lcm = lcm_create(url);
     if (!lcm) {
-        snprintf(err, SIM_ERR_MAX, "--lcm %s: no LCM provider takes this URL (udpm://GROUP:PORT?ttl=0, "
-                 "file://PATH?mode=w, memq://)", url);
+        snprintf(err, SIM_ERR_MAX, "%s %s: no LCM provider takes this URL (udpm://GROUP:PORT?ttl=0, "
+                 "file://PATH?mode=w, memq://)", option, url);
         return -1;
     }
     lcm_destroy(lcm);

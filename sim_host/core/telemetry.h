@@ -63,9 +63,10 @@ void telemetry_default_options(telemetry_options_t *opt);
  *  `opt`.  Returns 0, or -1 if the text is not that. */
 int telemetry_parse_rate(const char *text, telemetry_options_t *opt);
 
-/** Whether an LCM provider takes `url` (opened and closed at once).
+/** Whether an LCM provider takes `url` (opened and closed at once), given
+ *  by the command-line `option` the message names ("--lcm").
  *  Returns 0, or -1 with a message in `err`. */
-int telemetry_check_url(const char *url, char err[SIM_ERR_MAX]);
+int telemetry_check_url(const char *option, const char *url, char err[SIM_ERR_MAX]);
 
 typedef struct telemetry telemetry_t;
 

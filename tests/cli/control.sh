@@ -65,6 +65,12 @@ later = c.wait(lambda s: s is not later, 120)
 print(first.step, later.step, later.paused)
 EOF
 check "paused, the step counter stops" "[ \"\$(cat '$tmp/s2')\" = '10 10 True' ]"
+# Waiting for a step a paused run will not reach: heard, so exit 3 (not 2), saying where it is.
+ctl status --wait-step 50 --timeout 2 2>"$tmp/e0"
+check "--wait-step a paused run does not reach: exit 3, with its step" \
+    "[ $? -eq 3 ] && grep -q 'wait-step 50: not there after 2 s: run 7: step 10, paused' '$tmp/e0'"
+ctl step abc 2>"$tmp/e0"
+check "step abc: a usage error naming the value" "[ $? -eq 2 ] && grep -q \"'abc' is not a whole number of steps\" '$tmp/e0'"
 ctl realtime 1000 >/dev/null
 ctl resume >/dev/null
 wait "$pid"
@@ -195,7 +201,7 @@ ctl set 3 nosuch 1 2>"$tmp/e6"
 check "set: an unknown key is refused, the live keys listed" \
     "[ $? -eq 1 ] && grep -q \"random_walk has no key 'nosuch' (live keys: speed_steps_s, \" '$tmp/e6'"
 ctl set 99 speed_steps_s 1 2>"$tmp/e7"
-check "set: a robot that does not exist is refused" "[ $? -eq 1 ] && grep -q 'no robot 99 in this run' '$tmp/e7'"
+check "set: a robot that does not exist is refused, with the ids" "[ $? -eq 1 ] && grep -q 'no robot 99 in this run (ids 0 to 19)\$' '$tmp/e7'"
 ctl set nosuch speed_steps_s 1 2>"$tmp/e8"
 check "set: a group that does not exist is refused, the groups listed" \
     "[ $? -eq 1 ] && grep -q \"no group 'nosuch' in this run (its groups: random_walk)\" '$tmp/e8'"
@@ -245,7 +251,7 @@ check "--control with --reps 2: exit 2" "[ $? -eq 2 ] && grep -q 'one run' '$tmp
 "$sim" $rw --steps 10 --realtime 10 --paused --quiet --out "$tmp/x3" 2>"$tmp/e"
 check "--paused without --control: exit 2" "[ $? -eq 2 ] && grep -q 'not given' '$tmp/e'"
 "$sim" $rw --steps 10 --realtime 10 --control --control-lcm 'nosuch://x' --quiet --out "$tmp/x4" 2>"$tmp/e"
-check "--control-lcm with a URL no provider takes: exit 2" "[ $? -eq 2 ] && grep -q 'no LCM provider' '$tmp/e'"
+check "--control-lcm with a URL no provider takes: exit 2, the option named" "[ $? -eq 2 ] && grep -q '^swarmsim: --control-lcm nosuch://x: no LCM provider' '$tmp/e'"
 
 echo "control.sh: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -5,14 +5,17 @@ LCM, from a script or a shell; swarm-live's buttons send the same ones.
     python -m swarmtools.control pause
     python -m swarmtools.control resume
     python -m swarmtools.control step 10             # 10 control periods, then paused
+    python -m swarmtools.control status --wait-step 500   # wait until the run has done 500 steps
     python -m swarmtools.control realtime 5          # 5 times real time
     python -m swarmtools.control move 3 0.2 -0.1 90  # robot 3 to (0.2, -0.1) m, heading 90 degrees
     python -m swarmtools.control select 3            # ROBOT_DETAIL of robot 3 every step (-1: none)
-    python -m swarmtools.control set 3 speed_steps_s 0     # robot 3's controller key, while the run goes
-    python -m swarmtools.control set forager alpha 5       # every robot of group "forager"
+    python -m swarmtools.control set 3 alpha 5       # robot 3's controller key (one it declares live)
+    python -m swarmtools.control set foragers beta 2 # every robot of group "foragers"
 
 Each waits for the run's answer (its control_status_t) and prints it; a
-refused command exits 1 with the run's reason, no run heard exits 2.  The
+refused command exits 1 with the run's reason, no run heard exits 2, and a
+run heard that had not done --wait-step's steps within --timeout exits 3
+(a paused run, or one that stopped before: say where it is).  The
 run announces a key with its status (sim_host/core/control.h); a command
 counts only with it, so this listens for a status before it sends.
 """
@@ -36,6 +39,10 @@ COMMANDS = ("pause", "resume", "step", "realtime", "move", "select", "set")
 
 class NoRun(RuntimeError):
     """No simulation under control was heard on the bus."""
+
+
+class NotYet(RuntimeError):
+    """The run was heard but what was waited for did not come in time."""
 
 
 class Refused(RuntimeError):
@@ -114,7 +121,8 @@ class Controller:
 
     def wait(self, test, timeout):
         """Waits until test(status) holds; returns the status, or raises
-        NoRun after `timeout` seconds."""
+        NoRun (none heard) or NotYet (heard, the test never held) after
+        `timeout` seconds."""
         return self._wait_for("status", test, timeout)
 
     def wait_detail(self, test, timeout):
@@ -128,8 +136,10 @@ class Controller:
             while getattr(self, name) is None or not test(getattr(self, name)):
                 left = end - time.monotonic()
                 if left <= 0:
-                    raise NoRun("no simulation under control answered on the bus (swarmsim --realtime X --control)"
-                                if self.status is None else "the run did not get there in time")
+                    if self.status is None:
+                        raise NoRun("no simulation under control answered on the bus "
+                                    "(swarmsim --realtime X --control)")
+                    raise NotYet(f"not there after {timeout:g} s: {describe(self.status)}")
                 self._cond.wait(left)
             return getattr(self, name)
 
@@ -171,7 +181,11 @@ def main(argv=None):
         ap.error(f"{o.command} takes {want[0]}" + (f" to {want[1]}" if want[1] != want[0] else "") + " values")
     try:
         if o.command in ("step", "select", "move"):
-            ints = [int(o.args[0])]
+            try:
+                ints = [int(o.args[0])]
+            except ValueError:
+                raise ValueError(f"{o.args[0]!r} is not a whole number "
+                                 + ("of steps" if o.command == "step" else "(a robot id)")) from None
         if o.command == "step":
             fields = {"steps": ints[0]}
         elif o.command == "realtime":
@@ -200,6 +214,9 @@ def main(argv=None):
     except NoRun as e:
         print(f"swarmtools.control: {e}", file=sys.stderr)
         return 2
+    except NotYet as e:
+        print(f"swarmtools.control: --wait-step {o.wait_step}: {e}", file=sys.stderr)
+        return 3
     finally:
         c.close()
 
