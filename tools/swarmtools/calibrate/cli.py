@@ -32,22 +32,28 @@ PROG = "swarm-calibrate"
 EPILOG = "exit status: 0 done; 1 a procedure failed (the message names it and what to redo); 2 bad arguments"
 
 
-def fit_recording(rec: Recording) -> dict:
-    """{procedure: Fit} of one robot's recording (FitError names what to redo)."""
+def fit_recording(rec: Recording, max_rms: dict | None = None) -> dict:
+    """{procedure: Fit} of one robot's recording (FitError names the robot
+    and what to redo).  `max_rms`: {procedure: largest rms residual}, the
+    others fit.MAX_RMS's."""
+    tol = max_rms or {}
     out = {}
-    for proc, steps in rec.steps.items():
-        if proc == "ir":
-            out[proc] = fitting.fit_ir(steps)
-        elif proc == "ambient":
-            out[proc] = fitting.fit_ambient(steps, rec.setup)
-        elif proc == "wheels":
-            out[proc] = fitting.fit_wheels(steps, rec.setup)
-        elif proc == "camera":
-            out[proc] = fitting.fit_camera(steps)
-        elif proc == "colours":
-            out[proc] = fitting.fit_colours(steps)
-        elif proc == "sound":
-            out[proc] = fitting.fit_sound(steps, rec.setup)
+    try:
+        for proc, steps in rec.steps.items():
+            if proc == "ir":
+                out[proc] = fitting.fit_ir(steps, tol.get(proc))
+            elif proc == "ambient":
+                out[proc] = fitting.fit_ambient(steps, rec.setup, tol.get(proc))
+            elif proc == "wheels":
+                out[proc] = fitting.fit_wheels(steps, rec.setup, tol.get(proc))
+            elif proc == "camera":
+                out[proc] = fitting.fit_camera(steps)
+            elif proc == "colours":
+                out[proc] = fitting.fit_colours(steps)
+            elif proc == "sound":
+                out[proc] = fitting.fit_sound(steps, rec.setup, tol.get(proc))
+    except fitting.FitError as e:
+        raise e.of_robot(rec.robot_id) from e
     return out
 
 
@@ -87,12 +93,13 @@ def record(device: str, procs: list[str], setup: procedures.Setup, operator, rob
 
 
 def calibrate(device: str, out: Path, procs: list[str], setup: procedures.Setup, operator, robot_id=None,
-              timeout_s=10.0, log=print, emitter: str | None = None, publish=None) -> tuple:
+              timeout_s=10.0, log=print, emitter: str | None = None, publish=None, max_rms: dict | None = None
+              ) -> tuple:
     """Records, fits and writes; (recording, fits).  Raises LinkError,
     Aborted, FitError with nothing written.  `emitter`: the port of a
     second robot on the calibration image that plays the tones."""
     rec = record(device, procs, setup, operator, robot_id, timeout_s, log, emitter, publish)
-    fits = fit_recording(rec)
+    fits = fit_recording(rec, max_rms)
     rec.save(out / "recording.json")
     write_outputs({rec.robot_id: fits}, out)
     return rec, fits
@@ -105,6 +112,26 @@ def _procedures(text: str) -> list[str]:
         raise argparse.ArgumentTypeError(f"unknown procedure {bad[0] if bad else text!r} "
                                          f"(procedures: {', '.join(procedures.PROCEDURES)})")
     return out
+
+
+def _max_rms(text: str) -> tuple:
+    proc, sep, value = text.partition("=")
+    if not sep or proc not in fitting.MAX_RMS:
+        raise argparse.ArgumentTypeError(f"{text!r}: give PROCEDURE=VALUE, PROCEDURE one of "
+                                         f"{', '.join(fitting.MAX_RMS)}")
+    try:
+        v = float(value)
+    except ValueError:
+        v = float("nan")
+    if not v > 0 or v == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text!r}: the tolerance is a positive number")
+    return proc, v
+
+
+MAX_RMS_HELP = ("PROCEDURE=VALUE: the largest rms residual of a procedure's fit, in its report's units, above "
+                "which the fit fails (repeatable; defaults: "
+                + ", ".join(f"{k}={v:g}" for k, v in fitting.MAX_RMS.items())
+                + ": ir and ambient counts, wheels mm / deg, sound relative)")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -130,9 +157,13 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--live", nargs="?", const=common.DEFAULT_URL, metavar="LCM_URL",
                    help="also publish the robot's telemetry and each prompt and progress line (events, kind "
                         "'calibrate') on LCM for the live view (swarm-live); default URL: the bridge's")
+    r.add_argument("--max-rms", type=_max_rms, action="append", default=[], metavar="PROCEDURE=VALUE",
+                   help=MAX_RMS_HELP)
     f = sub.add_parser("fit", help="fit recordings again (one or many robots: the lab's fragment)")
     f.add_argument("recordings", nargs="+", type=Path)
     f.add_argument("--out", required=True, type=Path)
+    f.add_argument("--max-rms", type=_max_rms, action="append", default=[], metavar="PROCEDURE=VALUE",
+                   help=MAX_RMS_HELP)
     a = sub.add_parser("apply", help="a scenario with a fragment's parameters")
     a.add_argument("scenario", type=Path)
     a.add_argument("fragment", type=Path)
@@ -151,7 +182,8 @@ def main(argv=None) -> int:
             if args.live is not None:
                 publish = common.lcm_module().LCM(args.live).publish
             rec, fits = calibrate(args.device, args.out, args.procedures, setup, TerminalOperator(),
-                                  args.robot_id, args.timeout, emitter=args.emitter, publish=publish)
+                                  args.robot_id, args.timeout, emitter=args.emitter, publish=publish,
+                                  max_rms=dict(args.max_rms))
             print(f"{PROG}: robot {rec.robot_id}: {args.out / 'fragment.yaml'}, {args.out / 'report' / 'report.md'}")
         elif args.cmd == "fit":
             fits = {}
@@ -160,12 +192,13 @@ def main(argv=None) -> int:
                 if rec.robot_id in fits:
                     raise RecordingError(f"{path}: robot {rec.robot_id} again (one recording per robot)")
                 try:
-                    fits[rec.robot_id] = fit_recording(rec)
+                    fits[rec.robot_id] = fit_recording(rec, dict(args.max_rms))
                 except fitting.FitError as e:
-                    raise RecordingError(f"{path}: robot {rec.robot_id}: {e}") from e
-            print(f"{PROG}: {len(fits)} robots: {write_outputs(fits, args.out)}")
+                    raise RecordingError(f"{path}: {e}") from e
+            n = len(fits)
+            print(f"{PROG}: {n} robot{'' if n == 1 else 's'}: {write_outputs(fits, args.out)}")
         else:
-            atomic_write(args.output, fragment.apply(args.scenario, args.fragment, args.average))
+            fragment.apply_checked(args.scenario, args.fragment, args.output, args.average)
             print(f"{PROG}: {args.output}")
     except (LinkError, Aborted, fitting.FitError, RecordingError, fragment.FragmentError, OSError) as e:
         print(f"{PROG}: {e}; nothing written", file=sys.stderr)

@@ -1,7 +1,10 @@
 """The fits: each model's parameters from a procedure's steps, by least
 squares (scipy.optimize.least_squares), with what is left over (residuals)
 for the report.  A fit that cannot be made (too few usable points, every
-reading saturated) raises FitError naming the procedure and what to redo.
+reading saturated), or that lands on a bound of a parameter or leaves
+residuals larger than the model allows (MAX_RMS: readings the model does
+not describe, such as wheel runs answered 0 0 0), raises FitError naming
+the procedure and what to redo.
 
   ir       per sensor: reading = gain * curve(d) + offset, the curve the
            simulator's table (ir_curve); per robot: the noise, variance =
@@ -32,10 +35,47 @@ FLOOR = 20.0
 MIN_IR_POINTS = 3
 
 
+#: The largest rms residual of a fit, in its report's units, above which the
+#: readings are not what the model describes (swarm-calibrate --max-rms
+#: PROCEDURE=VALUE).  Each is well above what a working robot leaves (the
+#: fake lab's robots, tools/tests/calibrate/: IR under 10 counts, ambient
+#: under 16, wheels under 0.6 mm / deg, sound under 0.013) and well below
+#: what readings unrelated to the placements give (ambient readings that do
+#: not change with distance: 1.8e3 counts; wheel runs answered 0 0 0: 99):
+#: IR and ambient 100 counts (2.5 % of the ADC's range), wheels 5 mm / deg
+#: (five times the ruler's and the protractor's 1 mm and 1 deg), sound 0.1
+#: (10 % of each level).
+MAX_RMS = {"ir": 100.0, "ambient": 100.0, "wheels": 5.0, "sound": 0.1}
+
+
 class FitError(ValueError):
-    def __init__(self, procedure: str, what: str, redo: str):
-        super().__init__(f"{procedure}: {what}; redo: {redo}")
-        self.procedure = procedure
+    def __init__(self, procedure: str, what: str, redo: str, robot_id: int | None = None):
+        who = f"robot {robot_id}: " if robot_id is not None else ""
+        super().__init__(f"{who}{procedure}: {what}; redo: {redo}")
+        self.procedure, self.what, self.redo, self.robot_id = procedure, what, redo, robot_id
+
+    def of_robot(self, robot_id: int) -> FitError:
+        """The same error naming the robot."""
+        return FitError(self.procedure, self.what, self.redo, robot_id)
+
+
+def _check_bounds(procedure: str, res, names: list, lo: list, hi: list, redo: str, reachable=()):
+    """A least-squares fit whose parameter ended on its bound did not find
+    the model's minimum there (the bounds are far outside any robot's
+    values): the readings do not follow the model.  `reachable`: (name,
+    -1 lower / +1 upper) bounds that are physical limits a robot's value
+    may sit at (no noise term, the ADC's full scale), not failures."""
+    for k, active in enumerate(res.active_mask):
+        if active and (names[k], int(active)) not in reachable:
+            raise FitError(procedure, f"{names[k]} came out {res.x[k]:.4g}, the bound of its fit "
+                           f"({lo[k]:g} to {hi[k]:g}): the readings do not follow the model", redo)
+
+
+def _check_rms(procedure: str, rms: float, unit: str, max_rms: float | None, redo: str):
+    tol = MAX_RMS[procedure] if max_rms is None else max_rms
+    if not rms <= tol:
+        raise FitError(procedure, f"the fit's rms residual is {rms:.3g} {unit}, above the tolerance {tol:g} "
+                       f"{unit} (--max-rms {procedure}=...): the readings do not follow the model", redo)
 
 
 @dataclass
@@ -56,7 +96,7 @@ def _pooled(windows):
     return m.mean(axis=0), v.mean(axis=0) + (m.var(axis=0) if len(windows) > 1 else 0.0)
 
 
-def fit_ir(steps: list[Step]) -> Fit:
+def fit_ir(steps: list[Step], max_rms: float | None = None) -> Fit:
     if not steps:
         raise FitError("ir", "no steps recorded", "the whole ir procedure")
     offsets_seen = np.zeros(8)
@@ -103,13 +143,19 @@ def fit_ir(steps: list[Step]) -> Fit:
         model = np.sqrt((q[0] * mu) ** 2 + q[1] ** 2 + 1.0 / 12.0)
         return (model - np.sqrt(var)) / np.sqrt(model)
 
-    nr = least_squares(noise_res, x0=[0.01, 5.0], bounds=([0.0, 0.0], [1.0, 4095.0]))
+    lo, hi = [0.0, 0.0], [1.0, 4095.0]
+    nr = least_squares(noise_res, x0=[0.01, 5.0], bounds=(lo, hi))
+    redo = "the ir procedure (a white wall, square on, the gaps measured)"
+    # A noise term of 0 is a sensor without it, not a failed fit.
+    _check_bounds("ir", nr, ["noise_rel", "noise_abs"], lo, hi, redo, {("noise_rel", -1), ("noise_abs", -1)})
     r = np.array([p["measured"] - p["simulated"] for p in points])
+    rms = float(np.sqrt(np.mean(r ** 2)))
+    _check_rms("ir", rms, "counts", max_rms, redo)
     return Fit("ir", {"sensors": sensors, "noise_rel": round(float(nr.x[0]), 5),
-                      "noise_abs": round(float(nr.x[1]), 3)}, points, float(np.sqrt(np.mean(r ** 2))), "counts")
+                      "noise_abs": round(float(nr.x[1]), 3)}, points, rms, "counts")
 
 
-def fit_ambient(steps: list[Step], setup: Setup) -> Fit:
+def fit_ambient(steps: list[Step], setup: Setup, max_rms: float | None = None) -> Fit:
     if not steps:
         raise FitError("ambient", "no steps recorded", "the whole ambient procedure")
     e, y, sd = [], [], []
@@ -128,8 +174,12 @@ def fit_ambient(steps: list[Step], setup: Setup) -> Fit:
     if np.all(y[lit] < FLOOR):
         raise FitError("ambient", "every lit reading is near 0 (saturated by light)",
                        "the ambient procedure with a dimmer lamp or further from it")
+    lo, hi = [0.0, 1e-6], [4095.0, 1e6]
     res = least_squares(lambda q: (q[0] * q[1] / (q[1] + e) - y) / sd, x0=[float(y.max()), 1.0],
-                        bounds=([0.0, 1e-6], [4095.0, 1e6]), x_scale=[1000.0, 1.0])
+                        bounds=(lo, hi), x_scale=[1000.0, 1.0])
+    redo = "the ambient procedure (one lamp in a dark room, the distances from its foot measured)"
+    # A dark reading at the ADC's full scale is a sensor that reads so in the dark.
+    _check_bounds("ambient", res, ["dark", "half"], lo, hi, redo, {("dark", 1)})
     dark, half = float(res.x[0]), float(res.x[1])
     model = dark * half / (half + e)
     var = np.array([st_var for st in steps for st_var in _pooled(st.windows)[1]])
@@ -137,9 +187,10 @@ def fit_ambient(steps: list[Step], setup: Setup) -> Fit:
     rel = float(np.sqrt(max(0.0, np.mean(np.maximum(var[usable] - 1.0 / 12.0, 0.0) / model[usable] ** 2))))
     points = [{"sensor": s, "x": float(ei), "label": f"{dist:g} mm", "measured": float(yi), "simulated": float(mi)}
               for (s, dist), ei, yi, mi in zip(labels, e, y, model, strict=True)]
-    r = y - model
+    rms = float(np.sqrt(np.mean((y - model) ** 2)))
+    _check_rms("ambient", rms, "counts", max_rms, redo)
     return Fit("ambient", {"dark": round(dark, 2), "half": round(half, 5), "noise_rel": round(rel, 5)}, points,
-               float(np.sqrt(np.mean(r ** 2))), "counts")
+               rms, "counts")
 
 
 def wheel_end(gl: float, gr: float, left: int, right: int, periods: int, period_s: float) -> tuple:
@@ -158,7 +209,7 @@ def wheel_end(gl: float, gr: float, left: int, right: int, periods: int, period_
 RULER_MM, PROTRACTOR_DEG = 1.0, 1.0
 
 
-def fit_wheels(steps: list[Step], setup: Setup) -> Fit:
+def fit_wheels(steps: list[Step], setup: Setup, max_rms: float | None = None) -> Fit:
     runs = [st for st in steps if st.moved is not None]
     if len(runs) < 2 or not any(st.placement.left == st.placement.right for st in runs):
         raise FitError("wheels", f"{len(runs)} runs measured, none straight" if runs else "no runs measured",
@@ -175,7 +226,10 @@ def fit_wheels(steps: list[Step], setup: Setup) -> Fit:
                     (math.degrees(ft) - mt) / PROTRACTOR_DEG]
         return np.array(out)
 
-    fit = least_squares(res, x0=[1.0, 1.0], bounds=([0.1, 0.1], [10.0, 10.0]))
+    lo, hi = [0.1, 0.1], [10.0, 10.0]
+    fit = least_squares(res, x0=[1.0, 1.0], bounds=(lo, hi))
+    redo = "the wheels procedure (every run, its end measured from the start mark)"
+    _check_bounds("wheels", fit, ["gain_left", "gain_right"], lo, hi, redo)
     gl, gr = float(fit.x[0]), float(fit.x[1])
     points = []
     for st in runs:
@@ -190,9 +244,9 @@ def fit_wheels(steps: list[Step], setup: Setup) -> Fit:
             raise FitError("wheels", f"run {label} counted {st.steps[0]:g}, {st.steps[1]:g} steps where "
                            f"{want[0]:g}, {want[1]:g} were commanded (motors clipped? period not "
                            f"{setup.period_ms} ms?)", f"the wheels run {label}")
-    r = res(fit.x)
-    return Fit("wheels", {"gain_left": round(gl, 5), "gain_right": round(gr, 5)}, points,
-               float(np.sqrt(np.mean(r ** 2))), "mm / deg")
+    rms = float(np.sqrt(np.mean(res(fit.x) ** 2)))
+    _check_rms("wheels", rms, "mm / deg", max_rms, redo)
+    return Fit("wheels", {"gain_left": round(gl, 5), "gain_right": round(gr, 5)}, points, rms, "mm / deg")
 
 
 def _threshold(rows, what, redo):
@@ -236,7 +290,7 @@ def fit_camera(steps: list[Step]) -> Fit:
                points, 0.0, "seen (0/1)")
 
 
-def fit_sound(steps: list[Step], setup: Setup) -> Fit:
+def fit_sound(steps: list[Step], setup: Setup, max_rms: float | None = None) -> Fit:
     """Seed 002's eq 1 heard through this robot's microphones: level (counts)
     = 1000 gain_b (a0 e^(-alpha d) + ae) while the emitter plays band b at
     d (centre to centre), 1000 gain_b ae while it is silent; alpha shared by
@@ -270,8 +324,12 @@ def fit_sound(steps: list[Step], setup: Setup) -> Fit:
 
     y = np.array([level for b in bands for _, level, _ in by_band[b]])
     x0 = [0.7] + [v for b in bands for v in (max(y) / 1000.0, min(y) / 1000.0)]
-    res = least_squares(lambda q: (model(q) - y) / np.maximum(y, 1.0), x0=x0,
-                        bounds=([0.0] + [0.0] * 2 * len(bands), [1000.0] + [1e7] * 2 * len(bands)))
+    lo, hi = [0.0] + [0.0] * 2 * len(bands), [1000.0] + [1e7] * 2 * len(bands)
+    res = least_squares(lambda q: (model(q) - y) / np.maximum(y, 1.0), x0=x0, bounds=(lo, hi))
+    redo = "the sound procedure (the distances from the emitter measured, the emitter playing)"
+    # A silent level of 0 is a quiet room, not a failed fit.
+    _check_bounds("sound", res, ["alpha"] + [f"band {b}'s {w}" for b in bands for w in ("a0", "ae")], lo, hi, redo,
+                  {(f"band {b}'s ae", -1) for b in bands})
     alpha = float(res.x[0])
     gains = {b: float(res.x[1 + 2 * k]) / setup.sound_a0 for k, b in enumerate(bands)}
     ae = float(np.mean([res.x[2 + 2 * k] / gains[b] for k, b in enumerate(bands)]))
@@ -281,10 +339,10 @@ def fit_sound(steps: list[Step], setup: Setup) -> Fit:
     points = [{"band": b, "x": p.distance_mm if p.tone else 0.0, "label": f"band {b}" + ("" if p.tone else " silent"),
                "measured": level, "simulated": float(s)}
               for (b, (p, level, _)), s in zip(((b, r) for b in bands for r in by_band[b]), sim, strict=True)]
-    r = (sim - y) / np.maximum(y, 1.0)
+    rms = float(np.sqrt(np.mean(((sim - y) / np.maximum(y, 1.0)) ** 2)))
+    _check_rms("sound", rms, "relative", max_rms, redo)
     return Fit("sound", {"alpha": round(alpha, 5), "ae": round(ae, 4), "noise": round(noise, 5),
-                         **{f"gain{b}": round(g, 5) for b, g in gains.items()}}, points,
-               float(np.sqrt(np.mean(r ** 2))), "relative")
+                         **{f"gain{b}": round(g, 5) for b, g in gains.items()}}, points, rms, "relative")
 
 
 #: A card's channel mean at or above this is clipped (the sensor's 255).

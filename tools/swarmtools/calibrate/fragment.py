@@ -6,6 +6,8 @@ per robot id or as the lab's average only."""
 
 from __future__ import annotations
 
+import os
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -93,8 +95,10 @@ class FragmentError(ValueError):
 
 def _load_mapping(path, what):
     try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    except (OSError, yaml.YAMLError) as e:
+        # From the open file, so that a YAML error names it (from a string it says "<unicode string>").
+        with open(path, encoding="utf-8") as f:
+            data = yaml.safe_load(f)
+    except (OSError, UnicodeDecodeError, yaml.YAMLError) as e:
         raise FragmentError(f"{path}: cannot read the {what}: {e}") from e
     if not isinstance(data, dict):
         raise FragmentError(f"{path}: the {what} is not a mapping of sections")
@@ -118,3 +122,44 @@ def apply(scenario: str | Path, fragment: str | Path, average: bool = False) -> 
     how = "the lab's average" if average else "per robot id"
     return (f"# {Path(scenario).name} with the calibration {Path(fragment).name} ({how}), by swarm-calibrate apply\n"
             + yaml.safe_dump(sc, sort_keys=False, default_flow_style=None))
+
+
+def apply_checked(scenario: str | Path, fragment: str | Path, output: str | Path, average: bool = False) -> None:
+    """apply() into `output`, once the simulator has loaded the merged
+    scenario: a fragment the simulator refuses (a sensors list of the wrong
+    length, a negative gain, an id twice) is a FragmentError naming the
+    fragment and the simulator's reason, and nothing is written."""
+    from ..sim import ScenarioError, Sim, SimError
+    from ..sim._lib import LibraryMissing
+    text = apply(scenario, fragment, average)
+    output = Path(output)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    # The check loads the very file that becomes the output, in the output's
+    # folder (where any path in it will be read from), and is then renamed
+    # into place: the output is whole and checked, or absent.
+    fd, tmp = tempfile.mkstemp(prefix=f".{output.name}.", suffix=".yaml", dir=output.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        try:
+            with Sim(tmp):
+                pass
+        except ScenarioError as e:
+            where = f"{e.key}: " if e.key else ""
+            raise FragmentError(f"{fragment}: the simulator refuses {Path(scenario).name} with it: "
+                                f"{where}{e.reason}") from e
+        except SimError as e:
+            raise FragmentError(f"{fragment}: the simulator cannot run {Path(scenario).name} with it: "
+                                f"{str(e).replace(tmp, str(output))}") from e
+        except LibraryMissing as e:
+            raise FragmentError(f"cannot check {output} with the simulator: {e}") from e
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, output)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise

@@ -57,6 +57,15 @@ def _run(args) -> int:
     if any(not 0 <= i <= 0xFFFE for i in ids):
         print(f"{PROG}: --id: robot ids are 0..65534", file=sys.stderr)
         return 2
+    # Every image runs in the simulator's library: without it a robot would
+    # only say so in its log once flashed (with --background, after this
+    # command had reported success), so refuse here, before any port exists.
+    from ..sim._lib import LibraryMissing, lib
+    try:
+        lib()
+    except (LibraryMissing, OSError) as e:
+        print(f"{PROG}: the fake robots could run no image: {e}", file=sys.stderr)
+        return 1
     log = None if args.quiet else log_to_stderr(PROG)
     fakes = FakeEpucks(args.robots, args.dir, images=images, ids=ids, faults=[faults] * args.robots,
                        world=args.world, speed=args.speed, log=log, platform=args.platform,

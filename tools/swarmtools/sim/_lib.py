@@ -131,9 +131,9 @@ def lib():
         return _lib
     path = library_path()
     if not path.is_file():
-        where = "$SWARMSIM_LIB" if os.environ.get("SWARMSIM_LIB") else "it"
-        raise LibraryMissing(f"the simulator library {path} is not built: run `make` in {ROOT} "
-                             f"(it builds build/libswarmsim.so), or point {where} at one")
+        why = "$SWARMSIM_LIB names no such file" if os.environ.get("SWARMSIM_LIB") else "it is not built"
+        raise LibraryMissing(f"the simulator library {path}: {why}: build it with `make build/libswarmsim.so` "
+                             f"in {ROOT} (`make` builds it too), or set SWARMSIM_LIB to a built libswarmsim.so")
     loaded = ctypes.CDLL(str(path))
     libc = ctypes.CDLL(None)
     for name, (restype, argtypes) in _PROTOTYPES.items():

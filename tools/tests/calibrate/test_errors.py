@@ -6,11 +6,13 @@ naming the procedure (or file) and what to redo, and writes nothing."""
 from __future__ import annotations
 
 import io
+import json
+import math
 import os
 import random
 import tempfile
 import unittest
-from contextlib import redirect_stderr
+from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import yaml
@@ -19,6 +21,7 @@ from swarmtools.calibrate import cli, fake_lab, fit, geometry, procedures
 from swarmtools.calibrate.link import LinkError
 from swarmtools.calibrate.operator import Aborted, TerminalOperator
 from swarmtools.calibrate.procedures import Placement, Setup, Step
+from swarmtools.calibrate.record import Recording
 from swarmtools.sim import ScenarioError, Sim
 
 
@@ -247,6 +250,206 @@ class BadFiles(Silent):
         self.assertEqual(rc, 1)
         self.assertIn("f.yaml: 'arena' is not a section a calibration fragment has", err)
         self.assertFalse((self.dir / "o.yaml").exists())
+
+
+def wheel_runs(moved=None):
+    """The wheels procedure's runs, each counted as commanded, each measured
+    where wheel gains of 1 end it (or at `moved`)."""
+    period = Setup().period_ms / 1000.0
+    out = []
+    for p in procedures.placements("wheels"):
+        fx, fy, ft = fit.wheel_end(1.0, 1.0, p.left, p.right, p.periods, period)
+        end = moved if moved is not None else (fx * 1000, fy * 1000, math.degrees(ft))
+        out.append(Step(p, moved=tuple(end), steps=(p.left * p.periods * period, p.right * p.periods * period)))
+    return out
+
+
+def ambient_steps(read):
+    return [Step(p, [(tuple(read() for _ in range(8)), tuple([9.0] * 8))]) for p in procedures.placements("ambient")]
+
+
+class Nonsense(Silent):
+    """Readings unrelated to the placements: `fit` must not write a fit of them (docs: status 1)."""
+
+    def fit_cli(self, steps, *options):
+        path, out = self.dir / "r.json", self.dir / "out"
+        Recording(7, Setup(), steps, "dev").save(path)
+        err, std = io.StringIO(), io.StringIO()
+        with redirect_stderr(err), redirect_stdout(std):
+            rc = cli.main(["fit", str(path), "--out", str(out), *options])
+        return rc, err.getvalue(), std.getvalue(), out
+
+    def test_good_wheel_runs_fit(self):
+        """The check on the nonsense below: runs that follow the model fit (and "1 robot", singular)."""
+        rc, err, std, out = self.fit_cli({"wheels": wheel_runs()})
+        self.assertEqual(rc, 0, err)
+        self.assertIn("swarm-calibrate: 1 robot: ", std)
+        self.assertTrue((out / "fragment.yaml").is_file())
+
+    def test_wheel_runs_answered_0_0_0(self):
+        rc, err, _, out = self.fit_cli({"wheels": wheel_runs(moved=(0.0, 0.0, 0.0))})
+        self.assertEqual(rc, 1)
+        self.assertIn("r.json: robot 7: wheels: gain_left came out 0.1, the bound of its fit (0.1 to 10)", err)
+        self.assertIn("redo: the wheels procedure", err)
+        self.assertIn("nothing written", err)
+        self.assertFalse(out.exists())
+
+    def test_wheel_runs_off_the_model(self):
+        """Ends 40 mm off, ahead and behind in turn: gains within their bounds, residuals beyond the tolerance."""
+        runs = [Step(st.placement, moved=(st.moved[0] + (40.0 if k % 2 else -40.0), st.moved[1], st.moved[2]),
+                     steps=st.steps) for k, st in enumerate(wheel_runs())]
+        rc, err, _, out = self.fit_cli({"wheels": runs})
+        self.assertEqual(rc, 1)
+        self.assertRegex(err, r"robot 7: wheels: the fit's rms residual is [0-9.e+]+ mm / deg, above the "
+                              r"tolerance 5 mm / deg \(--max-rms wheels=\.\.\.\)")
+        self.assertFalse(out.exists())
+
+    def test_ambient_readings_that_do_not_change_with_distance(self):
+        rng = random.Random(1)
+        steps = ambient_steps(lambda: rng.uniform(0.0, 4000.0))
+        rc, err, _, out = self.fit_cli({"ambient": steps})
+        self.assertEqual(rc, 1)
+        self.assertRegex(err, r"r\.json: robot 7: ambient: the fit's rms residual is [0-9.e+]+ counts, above the "
+                              r"tolerance 100 counts")
+        self.assertIn("nothing written", err)
+        self.assertFalse(out.exists())
+        # The tolerance is a parameter: loosened, the same readings fit.
+        rc, err, _, out = self.fit_cli({"ambient": steps}, "--max-rms", "ambient=5000")
+        self.assertEqual(rc, 0, err)
+        self.assertTrue((out / "fragment.yaml").is_file())
+
+    def test_ambient_readings_all_the_same(self):
+        rc, err, _, out = self.fit_cli({"ambient": ambient_steps(lambda: 1510.0)})
+        self.assertEqual(rc, 1)
+        self.assertIn("robot 7: ambient: half came out 1e+06, the bound of its fit (1e-06 to 1e+06)", err)
+        self.assertFalse(out.exists())
+
+    def test_a_bad_tolerance_option(self):
+        for bad in ("wheels", "camera=1", "wheels=-1", "wheels=nan", "wheels=x"):
+            with self.subTest(option=bad), redirect_stderr(io.StringIO()) as err, self.assertRaises(SystemExit) as cm:
+                cli.main(["fit", "r.json", "--out", str(self.dir / "out"), "--max-rms", bad])
+            self.assertEqual(cm.exception.code, 2)
+            self.assertIn("--max-rms", err.getvalue())
+
+
+class MalformedRecordings(Silent):
+    """Each value of a recording is checked when it is read: the error names the file, the step and the key."""
+
+    def good(self) -> dict:
+        path = self.dir / "good.json"
+        Recording(7, Setup(), {"wheels": wheel_runs(), "ambient": ambient_steps(lambda: 3000.0)}, "dev").save(path)
+        return json.loads(path.read_text())
+
+    CASES = (
+        # (what, change to the good recording's JSON, words the error must have)
+        ("moved not a number", lambda d: d["procedures"]["wheels"][0].update(moved=["a", 0, 0]),
+         "procedures.wheels[0].moved[0]: 'a' is not a finite number"),
+        ("moved with 2 values", lambda d: d["procedures"]["wheels"][1].update(moved=[1.0, 2.0]),
+         "procedures.wheels[1].moved: 2 values: give 3 numbers"),
+        ("moved not a list", lambda d: d["procedures"]["wheels"][1].update(moved=5),
+         "procedures.wheels[1].moved: 5: give 3 numbers"),
+        ("a speed in words", lambda d: d["procedures"]["wheels"][2]["placement"].update(left="fast"),
+         "procedures.wheels[2].placement.left: 'fast' is not an integer"),
+        ("NaN moved", lambda d: d["procedures"]["wheels"][0].update(moved=[float("nan"), 0, 0]),
+         "procedures.wheels[0].moved[0]: nan is not a finite number"),
+        ("infinite steps counted", lambda d: d["procedures"]["wheels"][0].update(steps=[float("inf"), 0]),
+         "procedures.wheels[0].steps[0]: inf is not a finite number"),
+        ("steps with 3 values", lambda d: d["procedures"]["wheels"][0].update(steps=[1, 2, 3]),
+         "procedures.wheels[0].steps: 3 values: give 2 numbers"),
+        ("NaN in a window", lambda d: d["procedures"]["ambient"][3]["windows"][0][0].__setitem__(2, float("nan")),
+         "procedures.ambient[3].windows[0][0][2]: nan is not a finite number"),
+        ("a window of 7 channels", lambda d: d["procedures"]["ambient"][0]["windows"][0][1].pop(),
+         "procedures.ambient[0].windows[0][1]: 7 values: give 8 numbers"),
+        ("a window without variances", lambda d: d["procedures"]["ambient"][0]["windows"][0].pop(),
+         "procedures.ambient[0].windows[0]: give [means, variances]"),
+        ("no windows", lambda d: d["procedures"]["ambient"][0].update(windows=[]),
+         "procedures.ambient[0].windows: none recorded"),
+        ("a sensor that is not there", lambda d: d["procedures"]["ambient"][0]["placement"].update(sensor=9),
+         "procedures.ambient[0].placement.sensor: 9 is not a sensor"),
+        ("a distance missing", lambda d: d["procedures"]["ambient"][0]["placement"].update(distance_mm=None),
+         "procedures.ambient[0].placement.distance_mm: missing"),
+        ("a distance in words", lambda d: d["procedures"]["ambient"][0]["placement"].update(distance_mm="far"),
+         "procedures.ambient[0].placement.distance_mm: 'far' is not a finite number"),
+        ("a step of another procedure", lambda d: d["procedures"]["ambient"][0]["placement"].update(procedure="ir"),
+         "procedures.ambient[0].placement.procedure: 'ir' under 'ambient'"),
+        ("an unknown placement key", lambda d: d["procedures"]["ambient"][0]["placement"].update(tilt=3),
+         "procedures.ambient[0].placement.tilt: not a placement key"),
+        ("steps not a list", lambda d: d["procedures"].update(wheels={"a": 1}),
+         "procedures.wheels: not a list of steps"),
+        ("no setup", lambda d: d.pop("setup"), "good.json: setup: missing"),
+        ("a setup in words", lambda d: d["setup"].update(period_ms="100"),
+         "setup.period_ms: '100' is not a positive integer"),
+        ("a NaN lamp", lambda d: d["setup"].update(lamp_height_mm=float("nan")),
+         "setup.lamp_height_mm: nan is not a positive number"),
+        ("an emitter level of 0", lambda d: d["setup"].update(sound_a0=0),
+         "setup.sound_a0: 0 is not a positive number"),
+        ("a robot id in words", lambda d: d.update(robot_id="7"), "robot_id: '7' is not a robot id"),
+    )
+
+    def test_each_malformed_value(self):
+        for what, change, words in self.CASES:
+            with self.subTest(what):
+                d = self.good()
+                change(d)
+                path = self.dir / "good.json"
+                path.write_text(json.dumps(d))          # NaN and Infinity as Python's json writes them
+                out = self.dir / "out"
+                err = io.StringIO()
+                with redirect_stderr(err):
+                    rc = cli.main(["fit", str(path), "--out", str(out)])
+                self.assertEqual(rc, 1, err.getvalue())
+                self.assertIn(f"{path}: ", err.getvalue())
+                self.assertIn(words, err.getvalue())
+                self.assertIn("nothing written", err.getvalue())
+                self.assertFalse(out.exists())
+
+    def test_the_good_one_loads(self):
+        """The cases' base is valid: each error above is its change's."""
+        self.good()
+        rec = Recording.load(self.dir / "good.json")
+        self.assertEqual((rec.robot_id, sorted(rec.steps)), (7, ["ambient", "wheels"]))
+        self.assertEqual(rec.steps["wheels"][0].moved, wheel_runs()[0].moved)
+
+
+class ApplyRefused(Silent):
+    """`apply` loads the merged scenario in the simulator before writing it."""
+
+    def apply(self, fragment_text: str):
+        sc, fr, out = self.dir / "s.yaml", self.dir / "lab_fragment.yaml", self.dir / "o" / "mine.yaml"
+        sc.write_text(yaml.safe_dump({"robots": [{"count": 2, "controller": "calib"}]}))
+        fr.write_text(fragment_text)
+        err = io.StringIO()
+        with redirect_stderr(err), redirect_stdout(io.StringIO()):
+            rc = cli.main(["apply", str(sc), str(fr), "-o", str(out)])
+        return rc, err.getvalue(), out
+
+    def test_fragments_the_simulator_refuses(self):
+        for what, text, words in (
+                ("one IR sensor", "ir:\n  sensors: [{gain: 1.0, offset: 3.0}]\n",
+                 "ir.sensors: lists 1 sensors: give all 8"),
+                ("a negative gain", "wheels:\n  gain_left: -3\n", "wheels.gain_left: -3 is out of range"),
+                ("an id twice", "wheels:\n  robots: [{id: 1, gain_left: 1.0}, {id: 1, gain_left: 1.1}]\n",
+                 "wheels.robots[1].id: robot id listed twice")):
+            with self.subTest(what):
+                rc, err, out = self.apply(text)
+                self.assertEqual(rc, 1, err)
+                self.assertIn("lab_fragment.yaml: the simulator refuses s.yaml with it: " + words, err)
+                self.assertIn("nothing written", err)
+                self.assertFalse(out.exists())
+                self.assertEqual(list(out.parent.iterdir()), [], "no temporary file left")
+
+    def test_a_fragment_the_simulator_takes(self):
+        rc, err, out = self.apply("wheels:\n  gain_left: 1.02\n  robots: [{id: 1, gain_right: 0.98}]\n")
+        self.assertEqual(rc, 0, err)
+        self.assertEqual(yaml.safe_load(out.read_text())["wheels"]["gain_left"], 1.02)
+        self.assertEqual(list(out.parent.iterdir()), [out])
+
+    def test_a_fragment_yaml_error_names_the_file(self):
+        rc, err, out = self.apply("wheels: [\n")
+        self.assertEqual(rc, 1)
+        self.assertIn('in "' + str(self.dir / "lab_fragment.yaml") + '", line 2', err)
+        self.assertNotIn("<unicode string>", err)
+        self.assertFalse(out.exists())
 
 
 class SimulatorRefuses(Silent):

@@ -135,6 +135,20 @@ class CommandLine(FakeCase):
         self.assertFalse(os.path.lexists(d / "rfcomm0"), "the ports go with the robots")
         self.assertIn("stopped by SIGTERM", (d / "fake-epuck.log").read_text())
 
+    def test_no_simulator_library_fails_the_background_start(self):
+        """Without the library no image can run: the start says so and fails, not the log after a success."""
+        d = self.tmp / "nolib"
+        r = subprocess.run([PYTHON, "-m", "swarmtools.fake_epuck", "run", "--dir", str(d), "--image", "calib",
+                            "--background"], capture_output=True, text=True, timeout=60,
+                           env={**os.environ, "SWARMSIM_LIB": str(self.tmp / "no_such_lib.so")})
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("could run no image", r.stderr)
+        self.assertIn("SWARMSIM_LIB", r.stderr)
+        self.assertIn("make build/libswarmsim.so", r.stderr)
+        self.assertNotIn("running in the background", r.stdout)
+        self.assertFalse((d / "fake-epuck.pid").exists())
+        self.assertFalse(os.path.lexists(d / "rfcomm0"))
+
     def test_errors(self):
         for args, words in ((["run", "--image", "no_such_image"], "no_such_image"),
                             (["run", "--robots", "2", "--id", "1"], "--id"),
