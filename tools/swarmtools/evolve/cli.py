@@ -6,8 +6,10 @@ through the sweep engine (here on local cores, or as SLURM job arrays).
 
 The file (spec.py) names the scenario(s), the genome (a group's params with
 their ranges), the fitness (fitness.py), the trials, the algorithm and the
-budget.  DIR (default out/evolve/<name>) gets, after every generation, all of
-them written whole (atomically):
+budget; before anything runs or is written the simulator checks the genome
+against the controller's keys and the fitness against the runs' metrics.
+DIR (default out/evolve/<name>) gets, after every generation, all of them
+written whole (atomically):
 
   checkpoint.pkl       the finished generations' genomes and fitnesses: a
                        rerun of the same command resumes after the last one
@@ -21,7 +23,8 @@ them written whole (atomically):
   best_params.h        the same as C initialisers (PREFIX_KEY { ... }) for an
                        image's defaults (firmware/nnea/nnea_evolved.h is one)
   best_scenario.yaml   the first scenario with the best genome written in: a
-                       scenario file that runs it (swarmsim best_scenario.yaml)
+                       scenario file that runs it; its header names the seeds
+                       and --steps that measured the fitness
   evals/               the sweep folder of every run (records, frozen simulator)
 
 A generation's runs are one sweep (its unique genomes x scenarios x trial
@@ -49,7 +52,7 @@ from typing import Any
 
 from swarmtools.evolve import algorithms
 from swarmtools.evolve.fitness import Fitness, FitnessError
-from swarmtools.evolve.spec import EvolveError, Spec, load
+from swarmtools.evolve.spec import EvolveError, Spec, check_with_simulator, load
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as planmod
 from swarmtools.sweep.plan import file_sha256
@@ -148,7 +151,14 @@ def read_checkpoint(path: Path, sp: Spec) -> list[dict[str, Any]]:
 
 
 def write_checkpoint(path: Path, sp: Spec, history: list[dict[str, Any]]) -> None:
-    atomic_write(path, pickle.dumps({"identity": identity(sp), "history": history}, protocol=4))
+    # pickle shares objects by identity (a string met twice is written once),
+    # so the same content pickles to other bytes when a resumed run's history
+    # holds the unpickled strings beside fresh ones.  Rebuilt through JSON
+    # (exact for floats; dict keys shared by json's memo) the sharing, and so
+    # the bytes, depend on the content alone: a resumed evolution writes the
+    # uninterrupted one's checkpoint byte for byte.
+    state = json.loads(json.dumps({"identity": identity(sp), "history": history}))
+    atomic_write(path, pickle.dumps(state, protocol=4))
 
 
 # ------------------------------------------------------------------ outputs
@@ -254,7 +264,21 @@ def _best_files(sp: Spec, best: dict[str, Any], out: Path, sim: Path) -> None:
         copies = sorted(Path(tmp).glob("run_*/scenario.yaml"))
         if p.returncode != 0 or not copies:
             raise Stop(1, f"writing best_scenario.yaml: {p.stderr.strip() or 'no scenario copy'}")
-        atomic_write(out / "best_scenario.yaml", f"{head}\n" + copies[0].read_text())
+        atomic_write(out / "best_scenario.yaml", f"{head}\n{_measured(sp, best)}\n" + copies[0].read_text())
+
+
+def _measured(sp: Spec, best: dict[str, Any]) -> str:
+    """The header line saying how to rerun what the fitness measured.  A
+    scenario file cannot hold a step count (its `duration` is no substitute:
+    tasks check their budgets against it, and faults draw their onsets over
+    it), so the evolution's `steps:` is given as the --steps to pass."""
+    seeds = sp.trial_seeds(best["generation"])
+    steps = f" --steps {sp.steps}" if sp.steps is not None else ""
+    length = f"{sp.steps}-step runs (the evolution's steps:; without --steps a run lasts the scenario's duration)" \
+        if sp.steps is not None else "runs of the scenario's duration"
+    return (f"# measured in {length}, the mean over seeds {', '.join(map(str, seeds))}"
+            f"{' and the scenarios' if len(sp.scenarios) > 1 else ''}: "
+            f"swarmsim best_scenario.yaml{steps} --seed {seeds[0]} reruns the first")
 
 
 def _controller_of(sp: Spec) -> str:
@@ -270,6 +294,7 @@ def _controller_of(sp: Spec) -> str:
 def run(sp: Spec, a: argparse.Namespace) -> int:
     sim = Path(a.sim) if a.sim else sweep_cli.default_sim()
     out = Path(a.out) if a.out else REPO_ROOT / "out" / "evolve" / sp.name
+    check_with_simulator(sp, sim)      # a bad genome or fitness found now, at its line, with nothing written
     out.mkdir(parents=True, exist_ok=True)
     marker = out / ".swarm-evolve"
     if any(p.name != marker.name for p in out.iterdir()) and not marker.exists():
@@ -327,7 +352,7 @@ def build_parser() -> argparse.ArgumentParser:
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("file", help="the evolution file (YAML)")
     ap.add_argument("--out", help="the evolution's folder (default out/evolve/<name>)")
-    ap.add_argument("--jobs", type=int, default=0, help="local: runs at a time (default: the CPUs)")
+    ap.add_argument("--jobs", type=int, default=0, help="local: runs at a time (default 0: one per CPU)")
     ap.add_argument("--sim", help="simulator binary (default build/swarmsim)")
     ap.add_argument("--stop-after", type=int, help="stop after this many generations in this invocation "
                                                    "(a rerun resumes)")
@@ -343,8 +368,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         sweep_cli.check_args(a)
         if a.no_wait:
             raise EvolveError("--no-wait: an evolution needs each generation's results before the next")
-        if a.stop_after is not None and a.stop_after < 0:
-            raise EvolveError("--stop-after must be at least 0")
+        if a.stop_after is not None and a.stop_after < 1:
+            raise EvolveError(f"--stop-after must be at least 1 (got {a.stop_after}): the generations to run "
+                              "in this invocation")
         return run(load(a.file), a)
     except Stop as e:
         print(f"{TAG}: {e}", file=sys.stderr)

@@ -1,4 +1,6 @@
-"""Evolution files: what to evolve, read strictly (every error names FILE:LINE).
+"""Evolution files: what to evolve, read strictly (every error names FILE:LINE);
+check_with_simulator then checks the genome and the fitness against what the
+simulator's controllers and tasks declare, before anything runs.
 
 An evolution file is YAML::
 
@@ -34,14 +36,19 @@ robots.G.params.KEY=V`), a longer one an array (`=[v0, v1, ...]`).
 
 from __future__ import annotations
 
+import difflib
 import hashlib
+import json
+import re
+import subprocess
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import yaml
 
-from swarmtools.sweep.spec import NAME_RE, SweepError, Value, _Reader, resolve_scenario
+from swarmtools.sweep.spec import NAME_RE, SweepError, Value, _Reader, resolve_scenario, set_text
 
 TOP_KEYS = ("name", "scenarios", "set", "steps", "genome", "fitness", "goal", "trials", "seed",
             "trial_seeds", "algorithm", "generations", "max_evaluations")
@@ -96,6 +103,7 @@ class Spec:
     generations: int = 1
     max_evaluations: int = 0
     sha256: str = ""
+    lines: dict[str, int] = field(default_factory=dict)   # the file's line of each key path read
 
     @property
     def dimension(self) -> int:
@@ -161,7 +169,6 @@ def _load(path: Path) -> Spec:
     have: dict[str, tuple[yaml.Node, yaml.Node]] = {}
     for key, knode, vnode in r.mapping(root, ""):
         if key not in TOP_KEYS:
-            import difflib
             best = difflib.get_close_matches(key, TOP_KEYS, n=1)
             hint = f" (did you mean '{best[0]}'?)" if best else f" (valid: {', '.join(TOP_KEYS)})"
             raise _err(r.fail(knode, key, f"unknown key '{key}'{hint}"))
@@ -170,6 +177,7 @@ def _load(path: Path) -> Spec:
         if need not in have:
             raise _err(r.fail(root, need, "missing"))
     sp = Spec(path=path, name=path.stem, scenarios=[], sha256=hashlib.sha256(text.encode()).hexdigest())
+    sp.lines = {k: _line(v) for k, (_, v) in have.items()}
     if "name" in have:
         sp.name = str(r.scalar(have["name"][1], "name"))
         if not NAME_RE.fullmatch(sp.name) or sp.name in (".", ".."):
@@ -180,9 +188,11 @@ def _load(path: Path) -> Spec:
         if p is None or not p.is_file():
             raise _err(r.fail(node, f"scenarios[{i}]", f"no such scenario file: {p or v}"))
         sp.scenarios.append(p)
+        sp.lines[f"scenarios[{i}]"] = _line(node)
     if "set" in have:
         for key, knode, vnode in r.mapping(have["set"][1], "set"):
             sp.fixed.append((r.set_key(knode, "set"), r.value(vnode, f"set.{key}")))
+            sp.lines[f"set.{sp.fixed[-1][0]}"] = _line(knode)
     if "steps" in have:
         sp.steps = r.integer(have["steps"][1], "steps", 1, 10_000_000_000)
     _genome(r, have["genome"][1], sp)
@@ -225,6 +235,10 @@ def _err(e: SweepError) -> EvolveError:
     return EvolveError(str(e))
 
 
+def _line(node: yaml.Node) -> int:
+    return node.start_mark.line + 1
+
+
 def _genome(r: _Reader, node: yaml.Node, sp: Spec) -> None:
     fields = {k: (kn, v) for k, kn, v in r.mapping(node, "genome")}
     for k, (kn, _) in fields.items():
@@ -234,6 +248,7 @@ def _genome(r: _Reader, node: yaml.Node, sp: Spec) -> None:
         raise _err(r.fail(node, "genome.params", "missing: the params that are the genome"))
     if "group" in fields:
         g = r.scalar(fields["group"][1], "genome.group")
+        sp.lines["genome.group"] = _line(fields["group"][1])
         sp.group = _group_index(r, fields["group"][1], g, sp.scenarios)
     seen: dict[str, int] = {}
     for i, item in enumerate(r.sequence(fields["params"][1], "genome.params")):
@@ -264,6 +279,8 @@ def _genome(r: _Reader, node: yaml.Node, sp: Spec) -> None:
             if not isinstance(integer, bool):
                 raise _err(r.fail(f["integer"][1], f"{where}.integer", "expected true or false"))
         sp.genes.append(Gene(str(key), size, float(lo), float(hi), integer))
+        sp.lines[where] = _line(item)
+        sp.lines.update({f"{where}.{k}": _line(v) for k, (_, v) in f.items()})
     if sp.dimension > MAX_GENES:
         raise _err(r.fail(fields["params"][1], "genome.params", f"{sp.dimension} genes: at most {MAX_GENES}"))
 
@@ -315,3 +332,85 @@ def _algorithm(r: _Reader, node: yaml.Node, sp: Spec) -> None:
                 raise _err(r.fail(v, f"algorithm.{k}", f"expected a number in [{lo:g}, {hi:g}], got '{v.value}'"))
             sp.settings[k] = float(x)
 
+
+# ------------------------------------------------------------------ against the simulator
+def check_with_simulator(sp: Spec, sim: Path) -> None:
+    """What only the simulator knows, checked before anything runs or is
+    written: each scenario loads with the `set:` overrides, and with the
+    genome at both ends of its ranges and at a point between (which an
+    integer key refuses when `integer: true` is missing): the controller's
+    own descriptors judge the keys, sizes and ranges.  A one-step run of each
+    scenario lists the metrics its runs report, which the fitness must read.
+    Each refusal is an EvolveError naming the evolution file's line."""
+    from swarmtools.evolve.fitness import Fitness
+    fixed = [a for k, v in sp.fixed for a in ("--set", f"{k}={set_text(v)}")]
+    for i, scenario in enumerate(sp.scenarios):
+        def check(*args: str, scenario: Path = scenario, i: int = i) -> None:
+            p = _simulate(sim, [str(scenario), "--check", "--quiet", *fixed, *args])
+            if p.returncode != 0:
+                raise _blame(sp, i, _last_line(p))
+        check()
+        for x in (0.0, 1.0, 0.37):    # 0.37: no range's end, and not a whole number of most ranges
+            check(*(a for k, v in sp.decode([x] * sp.dimension).items() for a in ("--set", f"{k}={set_text(v)}")))
+        with tempfile.TemporaryDirectory(prefix="swarm-evolve-check.") as tmp:
+            p = _simulate(sim, [str(scenario), "--steps", "1", "--lcm", "off", "--quiet", "--out", f"{tmp}/o", *fixed])
+            if p.returncode != 0:
+                raise _blame(sp, i, _last_line(p))
+            try:
+                summary = next(Path(tmp, "o").glob("run_*/summary.json"))
+                metrics = sorted(json.loads(summary.read_text())["metrics"])
+            except (StopIteration, OSError, ValueError, KeyError, TypeError):
+                raise EvolveError(f"{sim}: a one-step run of {scenario} wrote no readable summary.json "
+                                  "(is it swarmsim?)") from None
+        for name in Fitness(sp.fitness).names:
+            if name not in metrics:
+                best = difflib.get_close_matches(name, metrics, n=1)
+                hint = f"did you mean '{best[0]}'? " if best else ""
+                raise EvolveError(f"{sp.path}:{sp.lines['fitness']}: fitness: {scenario.name}'s runs report no metric "
+                                  f"'{name}' ({hint}they report: {', '.join(metrics)})")
+
+
+def _simulate(sim: Path, args: list[str]) -> subprocess.CompletedProcess:
+    try:
+        return subprocess.run([str(sim), *args], capture_output=True, text=True, timeout=120, check=False)
+    except OSError as e:
+        raise EvolveError(f"{sim}: cannot run the simulator: {e.strerror or e}") from None
+    except subprocess.TimeoutExpired:
+        raise EvolveError(f"{sim}: the simulator did not load {args[0]} within 120 s") from None
+
+
+def _last_line(p: subprocess.CompletedProcess) -> str:
+    lines = p.stderr.strip().splitlines()
+    return lines[-1] if lines else f"exit status {p.returncode}"
+
+
+def _blame(sp: Spec, scenario: int, msg: str) -> EvolveError:
+    """The simulator's refusal as an error at the line of the evolution
+    file's key that caused it: its --set key is a gene's or a `set:` one;
+    otherwise the scenario itself is at fault."""
+    name = sp.scenarios[scenario].name
+    m = re.match(r"swarmsim: --set ([^=\s]+)=.*?: (robots\[.*|[a-z_][\w.\[\]]*: .*)$", msg)
+    if m is None:                       # not an override's fault: the scenario's (or the simulator's)
+        return EvolveError(f"{sp.path}:{sp.lines[f'scenarios[{scenario}]']}: scenarios[{scenario}]: {msg}")
+    key, reason = m.group(1), m.group(2)
+    if f"set.{key}" in sp.lines:
+        return EvolveError(f"{sp.path}:{sp.lines[f'set.{key}']}: set.{key}: {name} refuses it: {reason}")
+    genes = {sp.key_path(g): i for i, g in enumerate(sp.genes)}
+    if key not in genes:
+        return EvolveError(f"{sp.path}:{sp.lines['genome']}: genome: {name} refuses it: {reason}")
+    i, g = genes[key], sp.genes[genes[key]]
+    where = f"genome.params[{i}]"
+    if reason.startswith(f"robots[{sp.group}]:"):        # no such group: the index is wrong
+        field, what = "genome.group", f"{name} has no group {sp.group}"
+    elif "unknown key" in reason:
+        field, what = f"{where}.key", f"'{g.key}' is not a param of the group's controller in {name}"
+    elif "out of range" in reason:
+        field, what = f"{where}.range", f"[{g.lo:g}, {g.hi:g}] goes beyond what {name}'s controller takes"
+    elif "expected an integer" in reason and not g.integer:
+        field, what = f"{where}.integer", f"'{g.key}' holds integers: add `integer: true`"
+    elif "exactly" in reason or "sequence" in reason:
+        field, what = f"{where}.size", f"size {g.size} is not the length of '{g.key}' in {name}"
+    else:
+        field, what = f"{where}.key", f"{name} refuses '{g.key}'"
+    line = sp.lines.get(field) or sp.lines.get(where) or sp.lines["genome"]
+    return EvolveError(f"{sp.path}:{line}: {field}: {what} (swarmsim: {reason})")

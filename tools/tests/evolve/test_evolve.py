@@ -5,23 +5,31 @@
 The fitness parser's whitelist (never eval), the evolution file's strict
 errors with their lines, the searches' determinism (CMA-ES and the GA, given
 the seed and the generation), and a tiny CMA-ES evolution on the sweep
-engine: the same files from two runs, and from a run stopped after its first
-generation and resumed; a checkpoint of another evolution refused.
+engine: the same files, byte for byte, from two runs, from a run stopped
+after its first generation and resumed, and from one interrupted in the middle
+of a generation and resumed; a checkpoint of another evolution refused; the
+genome and the fitness checked against the simulator before anything runs;
+best_scenario.yaml's header reruns the measured fitness.
 """
 
 from __future__ import annotations
 
 import contextlib
 import io
+import json
 import os
+import re
 import subprocess
 import tempfile
 import unittest
 from pathlib import Path
+from unittest import mock
 
 from swarmtools.evolve import algorithms, cli
 from swarmtools.evolve.fitness import Fitness, FitnessError
-from swarmtools.evolve.spec import EvolveError, load
+from swarmtools.evolve.spec import EvolveError, check_with_simulator, load
+from swarmtools.sweep import plan as planmod
+from swarmtools.sweep.store import Store
 
 ROOT = Path(__file__).resolve().parents[3]
 SWARMSIM = Path(os.environ.get("SWARMSIM", ROOT / "build" / "swarmsim"))
@@ -29,7 +37,9 @@ if not SWARMSIM.is_absolute():
     SWARMSIM = ROOT / SWARMSIM
 TINY = ROOT / "tests" / "data" / "evolve" / "tiny.yaml"
 SQUARE = ROOT / "sim_host" / "scenarios" / "nnea_square.yaml"
-OUTPUTS = ("generations.csv", "evaluations.csv", "best_params.yaml", "best_params.h", "best_scenario.yaml")
+# Every file the how-to (Determinism) says is the same byte for byte.
+OUTPUTS = ("checkpoint.pkl", "generations.csv", "generations.parquet", "evaluations.csv", "fitness.png",
+           "best_params.yaml", "best_params.h", "best_scenario.yaml")
 
 
 def evolve(*args: str) -> subprocess.CompletedProcess:
@@ -37,7 +47,7 @@ def evolve(*args: str) -> subprocess.CompletedProcess:
     exit status and stderr as a CompletedProcess."""
     err = io.StringIO()
     with contextlib.redirect_stderr(err):
-        rc = cli.main([*args, "--sim", str(SWARMSIM), "--jobs", "2"])
+        rc = cli.main([*args, "--sim", str(SWARMSIM), *(() if "--jobs" in args else ("--jobs", "2"))])
     return subprocess.CompletedProcess(args, rc, "", err.getvalue())
 
 
@@ -97,7 +107,9 @@ class Files(unittest.TestCase):
     def test_the_shipped_evolutions_load(self) -> None:
         for f in sorted((ROOT / "studies").glob("*evolve*.yaml")):
             with self.subTest(f=f.name):
-                self.assertEqual(load(f).dimension, 95)
+                sp = load(f)
+                self.assertEqual(sp.dimension, 95)
+                check_with_simulator(sp, SWARMSIM)     # their genome and fitness are the controller's and task's
 
     def test_each_mistake_is_named_with_its_line(self) -> None:
         cases = (
@@ -117,6 +129,62 @@ class Files(unittest.TestCase):
             with self.subTest(want=want), self.assertRaises(EvolveError) as e:
                 load(self.write(text))
             self.assertIn(want, str(e.exception))
+
+
+    def test_each_mistake_the_simulator_finds_is_named_with_its_line(self) -> None:
+        # Found when the file is checked, before any run: the controller's own
+        # descriptors judge the genome, a one-step run lists the metrics.
+        two = self.BASE.replace("integer: true}\n", "integer: true}\n    - {key: tau, size: 4, range: [0, 255], "
+                                                      "integer: true}\n")
+        cases = (
+            (two.replace("[0, 255]", "[0, 999]"),
+             ":6: genome.params[1].range: [0, 999] goes beyond what nnea_square.yaml's controller takes "
+             "(swarmsim: robots[2].params.tau[0]: 999 is out of range [0, 255])"),
+            (two.replace("[-100, 100]", "[-9000, 100]"), ":5: genome.params[0].range: [-9000, 100] goes beyond"),
+            (two.replace("size: 4", "size: 5"),
+             ":6: genome.params[1].size: size 5 is not the length of 'tau' in nnea_square.yaml (swarmsim: "
+             "robots[2].params.tau: expected exactly 4 numbers, got 5)"),
+            (two.replace("key: tau", "key: stop_band"), ":6: genome.params[1].size: size 4 is not the length of "
+                                                         "'stop_band'"),
+            (two.replace("key: tau", "key: tauu"),
+             ":6: genome.params[1].key: 'tauu' is not a param of the group's controller in nnea_square.yaml "
+             "(swarmsim: robots[2].params.tauu: unknown key 'tauu' (did you mean 'tau'?))"),
+            (two.replace("range: [0, 255], integer: true", "range: [0, 255]"),
+             ":6: genome.params[1].integer: 'tau' holds integers: add `integer: true`"),
+            (two.replace("group: swarm", "group: 7"), ":3: genome.group: nnea_square.yaml has no group 7"),
+            (two.replace("fitness: trips_total", "fitness: trips_per_robt"),
+             ":7: fitness: nnea_square.yaml's runs report no metric 'trips_per_robt' (did you mean "
+             "'trips_per_robot'? they report: budget_s,"),
+            (two.replace("fitness: trips_total", "fitness: 2 * trips_total + max(succes, 0)"),
+             ":7: fitness: nnea_square.yaml's runs report no metric 'succes' (did you mean 'success'?"),
+            ("set:\n  robots.2.count: -4\n" + two, ":2: set.robots.2.count: nnea_square.yaml refuses it: "
+                                                   "robots[2].count: -4 is out of range"),
+        )
+        for text, want in cases:
+            with self.subTest(want=want), self.assertRaises(EvolveError) as e:
+                check_with_simulator(load(self.write(text)), SWARMSIM)
+            self.assertIn(want, str(e.exception))
+            self.assertLess(len(str(e.exception)), 600)    # the reason, not every gene's value
+        check_with_simulator(load(self.write(two)), SWARMSIM)   # and the good file passes
+
+    def test_a_bad_genome_or_argument_writes_nothing(self) -> None:
+        bad = self.write(self.BASE.replace("fitness: trips_total", "fitness: trips_per_robt"))
+        good = self.write_other(self.BASE)
+        for args, want in (((str(bad),), ":6: fitness: nnea_square.yaml's runs report no metric 'trips_per_robt'"),
+                           ((str(good), "--stop-after", "0"), "--stop-after must be at least 1 (got 0)"),
+                           ((str(good), "--jobs", "-1"), "--jobs must be at least 0")):
+            out = self.dir / "out"
+            with self.subTest(args=args):
+                r = evolve(*args, "--out", str(out))
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertIn(want, r.stderr)
+                self.assertNotIn("Traceback", r.stderr)
+                self.assertFalse(out.exists())
+
+    def write_other(self, text: str) -> Path:
+        p = self.dir / "good.yaml"
+        p.write_text(text)
+        return p
 
 
 class Searches(unittest.TestCase):
@@ -153,8 +221,9 @@ class TinyEvolution(unittest.TestCase):
     def tearDown(self) -> None:
         self._tmp.cleanup()
 
-    def files(self, out: Path) -> dict[str, str]:
-        return {name: (out / name).read_text() for name in OUTPUTS}
+    def assertSameFiles(self, out: Path, want: Path) -> None:  # noqa: N802 (unittest's style)
+        for name in OUTPUTS:      # a byte diff of a pickle or a PNG says nothing: name the file
+            self.assertTrue((out / name).read_bytes() == (want / name).read_bytes(), f"{out / name} differs")
 
     def test_same_result_twice_and_after_a_resume(self) -> None:
         spec = self.dir / "tiny.yaml"
@@ -179,7 +248,27 @@ class TinyEvolution(unittest.TestCase):
         r = evolve(str(spec), "--out", str(part))
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("resuming after generation 0", r.stderr)
-        self.assertEqual(self.files(part), self.files(whole))
+        self.assertSameFiles(part, whole)
+        # interrupted in the middle of generation 1 (half its runs recorded),
+        # then resumed: the same files
+        cut = self.dir / "cut"
+        real = cli.sweep_cli.run_sweep
+
+        def interrupted(sw, ns, sim):
+            rc = real(sw, ns, sim)
+            if not sw.name.endswith("_gen00001"):
+                return rc
+            runs = planmod.expand(sw)
+            for run in runs[len(runs) // 2:]:
+                (Store(Path(ns.out)).records / f"{run.run_id}.json").unlink()
+            return 130
+        with mock.patch.object(cli.sweep_cli, "run_sweep", interrupted):
+            r = evolve(str(spec), "--out", str(cut))
+        self.assertEqual(r.returncode, 130, r.stderr)
+        self.assertIn("interrupted in generation 1", r.stderr)
+        r = evolve(str(spec), "--out", str(cut))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertSameFiles(cut, whole)
         # another evolution's checkpoint is refused, and nothing is overwritten
         before = (part / "checkpoint.pkl").read_bytes()
         spec.write_text(spec.read_text().replace("seed: 3", "seed: 4"))
@@ -187,6 +276,34 @@ class TinyEvolution(unittest.TestCase):
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("made by another evolution", r.stderr)
         self.assertEqual((part / "checkpoint.pkl").read_bytes(), before)
+
+    def test_best_scenario_reruns_the_measured_fitness(self) -> None:
+        # Its header's command, at each of the seeds it names, gives back the
+        # header's fitness exactly: the evolution's steps, not the scenario's.
+        spec = self.dir / "tiny.yaml"
+        spec.write_text(TINY.read_text().replace("../../../sim_host", str(ROOT / "sim_host"))
+                        .replace("generations: 3", "generations: 1"))
+        out = self.dir / "out"
+        r = evolve(str(spec), "--out", str(out))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        head = (out / "best_scenario.yaml").read_text().splitlines()[:2]
+        fitness = float(re.search(r"fitness ([-0-9.e]+):", head[0]).group(1))
+        m = re.search(r"seeds ([0-9, ]+): swarmsim best_scenario.yaml --steps 150 --seed", head[1])
+        self.assertIsNotNone(m, head[1])
+        seeds = [int(s) for s in m.group(1).split(", ")]
+        self.assertEqual(len(seeds), 2)                 # the trials
+        fit = Fitness(load(spec).fitness)
+        values = []
+        for seed in seeds:
+            runs = self.dir / f"rerun{seed}"
+            p = subprocess.run([str(SWARMSIM), str(out / "best_scenario.yaml"), "--steps", "150", "--seed", str(seed),
+                                "--lcm", "off", "--quiet", "--out", str(runs)], capture_output=True, text=True,
+                               timeout=120, check=False)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            summary = json.loads((runs / f"run_{seed}" / "summary.json").read_text())
+            self.assertEqual(summary["steps"], 150)
+            values.append(fit(summary["metrics"]))
+        self.assertEqual(sum(values) / len(values), fitness)
 
 
 if __name__ == "__main__":
