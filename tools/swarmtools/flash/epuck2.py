@@ -13,12 +13,16 @@ it), `load` (writes the image's sections to flash), `compare-sections`
 image runs.  PORT is the programmer's serial device, or HOST:PORT for a GDB
 server over TCP; with --no-scan and --start jump it drives any GDB server
 that takes `load` (QEMU's gdbstub, which the tests use: there the image is
-started by setting SP and PC from its vector table and detaching).
+started by setting SP and PC from its vector table and detaching).  A
+server that refuses `monitor swdp_scan` is named as not a probe and left
+as it was (GDB disconnects before `attach 1`, which would kill it).
 
 Before GDB starts, the image is checked: an ELF file for 32-bit ARM whose
 loadable sections all lie in the STM32F407's flash (0x08000000, 1 MB), so an
 e-puck1 .hex, an AVR image or an image linked elsewhere is refused with
-nothing written; and so is a port that does not exist.
+nothing written; and so is a port that does not exist.  A HOST:PORT is
+connected to first: nothing listening there fails at once, as "no GDB
+server".
 
 Exit codes: 0 flashed and verified; 1 the programmer or the transfer failed
 (no GDB server at PORT, no target found, load error, a section that does
@@ -29,6 +33,7 @@ import argparse
 import os
 import re
 import shutil
+import socket
 import struct
 import subprocess
 import sys
@@ -41,6 +46,29 @@ EM_ARM = 40
 PT_LOAD = 1
 #: What `make deps` installs for it (tools/deps.sh).
 GDB_PACKAGE = 'gdb-multiarch'
+#: How long a HOST:PORT may take to accept the connection tried before GDB
+#: starts (GDB itself retries a refused one for about 12 s).
+CONNECT_TIMEOUT_S = 5.0
+#: What the Python of SCAN prints when the server refused the probe's scan.
+NOT_A_PROBE = 'epuck2-flash: not a probe'
+#: `monitor swdp_scan` and what follows it, as GDB's Python.  A server that is
+#: not a probe (QEMU's gdbstub, OpenOCD) refuses the command and has a halted
+#: CPU attached already: `attach 1` would then ask "Kill it?", which batch
+#: mode answers yes, and the server would die.  So on a refusal GDB leaves
+#: the server as it found it (disconnect, not detach, which would resume it)
+#: and stops before attach, with nothing written.
+SCAN = rf"""
+import re
+try:
+    said = gdb.execute('monitor swdp_scan', to_string=True)
+except gdb.error as e:  # no monitor commands at all: an error, not output
+    said = str(e)
+print(said, end='')
+if re.search(r"unknown command|invalid command|Target does not support this command|Protocol error with Rcmd", said, re.I):
+    print('{NOT_A_PROBE}: it does not know monitor swdp_scan')
+    gdb.execute('disconnect')
+    gdb.execute('quit 3')
+"""
 
 
 class ImageError(Exception):
@@ -85,7 +113,7 @@ def check_image(path):
 def gdb_commands(port, scan, start):
     cmds = [f'target extended-remote {port}']
     if scan:
-        cmds += ['monitor swdp_scan', 'attach 1']
+        cmds += [f'python exec({SCAN!r})', 'attach 1']
     cmds += ['load', 'compare-sections']
     if start == 'reset':
         cmds.append('kill')
@@ -97,6 +125,11 @@ def gdb_commands(port, scan, start):
 def diagnose(rc, out, port, scan):
     """None when GDB's transcript says the image is loaded and verified,
     else what went wrong."""
+    if scan and NOT_A_PROBE in out:
+        return (f'the GDB server at {port} is not a probe (it does not know `monitor swdp_scan`), and it was '
+                'left as it was: for QEMU\'s gdbstub or another plain GDB server use --no-scan --start jump')
+    if 'Python scripting is not supported' in out:
+        return f'this GDB has no Python, which the probe\'s scan needs: use {GDB_PACKAGE} (make deps installs it)'
     if re.search(r'MIS-MATCHED', out):
         bad = re.findall(r'Section (\S+), range .*MIS-MATCHED', out)
         return f'verify failed: {", ".join(bad) or "a section"} does not match what was loaded'
@@ -122,7 +155,8 @@ def main(argv=None):
     ap.add_argument('port', metavar='PORT', help="the programmer's serial device (/dev/ttyACM0), or HOST:PORT")
     ap.add_argument('--gdb', default=GDB_PACKAGE, help='the GDB to run (gdb-multiarch)')
     ap.add_argument('--no-scan', action='store_true',
-                    help='skip monitor swdp_scan and attach 1 (a GDB server that is not a probe)')
+                    help='skip monitor swdp_scan and attach 1 (a GDB server that is not a probe: '
+                         'QEMU\'s gdbstub takes --no-scan --start jump)')
     ap.add_argument('--start', choices=('reset', 'jump'), default='reset',
                     help='how the image starts: the probe resets the robot (reset), or SP and PC are set '
                          'from its vector table (jump: QEMU)')
@@ -136,7 +170,10 @@ def main(argv=None):
     except ImageError as e:
         print(f'{PROG}: {e}', file=sys.stderr)
         return 2
-    tcp = re.fullmatch(r'[\w.-]*:\d+', args.port) is not None
+    tcp = re.fullmatch(r'([\w.-]*):(\d+)', args.port)
+    if tcp and not 0 < int(tcp[2]) < 65536:
+        print(f'{PROG}: {args.port}: port {tcp[2]} is not a TCP port (1 to 65535)', file=sys.stderr)
+        return 2
     if not tcp and not os.path.exists(args.port):
         print(f'{PROG}: {args.port}: no such port: plug the robot in by USB and switch it on '
               '(ls /dev/serial/by-id/ shows its two serial ports: the programmer is one of them)', file=sys.stderr)
@@ -146,6 +183,20 @@ def main(argv=None):
         print(f'{PROG}: {args.gdb} not found: install {GDB_PACKAGE} (make deps does)', file=sys.stderr)
         return 2
 
+    if tcp:
+        # Nothing listening fails here at once, the same whatever --timeout
+        # (GDB would retry for 12 s, or run into a shorter --timeout).
+        host = tcp[1] or 'localhost'
+        try:
+            socket.create_connection((host, int(tcp[2])), timeout=CONNECT_TIMEOUT_S).close()
+        except socket.gaierror:
+            print(f'{PROG}: {args.port}: no such host {host}', file=sys.stderr)
+            return 2
+        except OSError as e:
+            why = 'nothing answered' if isinstance(e, socket.timeout) else (e.strerror or str(e))
+            print(f'{PROG}: no GDB server at {args.port} ({why}): is the GDB server running there '
+                  '(for QEMU: -gdb tcp:HOST:PORT)?', file=sys.stderr)
+            return 1
     cmd = [gdb, '-nx', '--batch']
     for c in gdb_commands(args.port, not args.no_scan, args.start):
         cmd += ['-ex', c]

@@ -100,10 +100,21 @@ class Checks(unittest.TestCase):
         self.assertIn('install gdb-multiarch', err)
 
     def test_commands(self):
-        self.assertEqual(ef.gdb_commands('/dev/ttyACM0', True, 'reset'),
-                         ['target extended-remote /dev/ttyACM0', 'monitor swdp_scan', 'attach 1', 'load',
-                          'compare-sections', 'kill'])
+        cmds = ef.gdb_commands('/dev/ttyACM0', True, 'reset')
+        self.assertEqual(cmds[:1] + cmds[2:], ['target extended-remote /dev/ttyACM0', 'attach 1', 'load',
+                                               'compare-sections', 'kill'])
+        self.assertIn("monitor swdp_scan", cmds[1])      # in GDB's Python, which stops on a refusal
         self.assertEqual(ef.gdb_commands('h:1', False, 'jump')[-1], 'detach')
+        self.assertNotIn('swdp_scan', ' '.join(ef.gdb_commands('h:1', False, 'jump')))
+
+    def test_bad_tcp_port_and_host(self):
+        good = self.write('good.elf', minimal_elf())
+        rc, _out, err = run_flasher(good, '127.0.0.1:70000')
+        self.assertEqual(rc, 2)
+        self.assertIn('port 70000 is not a TCP port', err)
+        rc, _out, err = run_flasher(good, 'no-such-host.invalid:3333')
+        self.assertEqual(rc, 2)
+        self.assertIn('no such host no-such-host.invalid', err)
 
 
 FAKE_GDB = r'''#!/bin/sh
@@ -125,6 +136,7 @@ noscan) echo 'SW-DP scan failed!'; echo "Don't know how to attach.  Try \"help t
 mismatch) echo 'Loading section .text, size 0x10 lma 0x8000000'; echo 'Section .text, range 0x8000000 -- 0x8000010: MIS-MATCHED!';;
 refused) echo '/dev/ttyACM0: No such file or directory.' >&2; exit 1;;
 erase) echo 'Loading section .text, size 0x10 lma 0x8000000'; echo 'Error erasing flash with vFlashErase packet' >&2; exit 1;;
+notprobe) echo "unknown command: 'swdp_scan'"; echo 'epuck2-flash: not a probe: it does not know monitor swdp_scan'; exit 3;;
 esac
 '''
 
@@ -157,17 +169,30 @@ class ProbeReplies(unittest.TestCase):
         self.assertIn('loaded and verified', out)
         with open(self.args) as f:
             args = f.read().split('\n')
-        want = [f'target extended-remote {self.port}', 'monitor swdp_scan', 'attach 1', 'load',
-                'compare-sections', 'kill']
+        want = [f'target extended-remote {self.port}', 'attach 1', 'load', 'compare-sections', 'kill']
         self.assertEqual([a for a in args if a in want], want)
+        self.assertIn('monitor swdp_scan', args[args.index('attach 1') - 2])
         self.assertEqual(args[-2], self.elf)
 
     def test_failures(self):
         for case, why in [('noscan', 'found no target'), ('mismatch', 'verify failed: .text'),
-                          ('refused', 'no GDB server at'), ('erase', 'the load failed: Error erasing flash')]:
+                          ('refused', 'no GDB server at'), ('erase', 'the load failed: Error erasing flash'),
+                          ('notprobe', 'is not a probe (it does not know `monitor swdp_scan`)')]:
             rc, _out, err = self.flash(case)
             self.assertEqual(rc, 1, (case, err))
             self.assertIn(why, err, case)
+
+    def test_nothing_listening_fails_before_gdb(self):
+        # The same answer at once whatever --timeout: GDB is not even started.
+        port = free_port()
+        os.environ['FAKE_CASE'] = 'ok'
+        os.environ['FAKE_ARGS'] = self.args
+        for extra in ([], ['--timeout', '5'], ['--timeout', '0.5']):
+            with self.subTest(extra=extra):
+                rc, _out, err = run_flasher(self.elf, f'127.0.0.1:{port}', '--gdb', self.gdb, *extra)
+                self.assertEqual(rc, 1, err)
+                self.assertIn(f'no GDB server at 127.0.0.1:{port} (Connection refused)', err)
+                self.assertFalse(os.path.exists(self.args), 'GDB was started')
 
 
 def free_port():
@@ -177,7 +202,8 @@ def free_port():
 
 
 class QemuGdbServer(unittest.TestCase):
-    """load and compare-sections through QEMU's gdbstub, then the image runs."""
+    """Refused as a probe, then load and compare-sections through QEMU's
+    gdbstub, and the image runs."""
 
     def test_load_verify_run(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -199,6 +225,13 @@ class QemuGdbServer(unittest.TestCase):
                     except OSError:
                         return False
                 wait_for(listening, "QEMU's gdbstub", timeout=TIMEOUT_S, every=0.05)
+                # As a probe (the defaults): refused by name, and QEMU is left
+                # running, halted, for the right command.
+                rc, _out, err = run_flasher_command(ELF, f'127.0.0.1:{port}')
+                self.assertEqual(rc, 1, err)
+                self.assertIn(f'the GDB server at 127.0.0.1:{port} is not a probe', err)
+                self.assertIn('--no-scan --start jump', err)
+                self.assertIsNone(qemu.poll(), 'QEMU was killed')
                 rc, out, err = run_flasher_command(ELF, f'127.0.0.1:{port}', '--no-scan', '--start', 'jump')
                 self.assertEqual(rc, 0, err)
                 self.assertIn('loaded and verified', out)
