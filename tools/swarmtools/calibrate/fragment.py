@@ -6,8 +6,6 @@ per robot id or as the lab's average only."""
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -133,16 +131,8 @@ def apply_checked(scenario: str | Path, fragment: str | Path, output: str | Path
     from ..sim._lib import LibraryMissing
     text = apply(scenario, fragment, average)
     output = Path(output)
-    output.parent.mkdir(parents=True, exist_ok=True)
-    # The check loads the very file that becomes the output, in the output's
-    # folder (where any path in it will be read from), and is then renamed
-    # into place: the output is whole and checked, or absent.
-    fd, tmp = tempfile.mkstemp(prefix=f".{output.name}.", suffix=".yaml", dir=output.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
+
+    def check(tmp: str) -> None:
         try:
             with Sim(tmp):
                 pass
@@ -155,11 +145,8 @@ def apply_checked(scenario: str | Path, fragment: str | Path, output: str | Path
                                 f"{str(e).replace(tmp, str(output))}") from e
         except LibraryMissing as e:
             raise FragmentError(f"cannot check {output} with the simulator: {e}") from e
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, output)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
+
+    # The check loads the very file that becomes the output, in the output's
+    # folder (where any path in it will be read from), before it is renamed
+    # into place: the output is whole and checked, or absent.
+    atomic_write(output, text, check=check, suffix=".yaml")

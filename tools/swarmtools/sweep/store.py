@@ -52,14 +52,19 @@ TEXT_COLUMNS = ("run_id", "status", "state_hash", "scenario_sha256", "code_versi
                 "sim_sha256", "host", "error", SCENARIO_KEY)
 
 
-def atomic_write(path: Path, data: bytes | str) -> None:
+def atomic_write(path: Path, data: bytes | str, check=None, suffix: str = ".tmp") -> None:
+    """Writes `path` whole or not at all: a temporary file beside it, renamed
+    into place.  `check(tmp)`, if given, is called on the written temporary
+    file (named ...`suffix`) before the rename; what it raises leaves no file."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data.encode() if isinstance(data, str) else data)
             f.flush()
             os.fsync(f.fileno())
+        if check is not None:
+            check(tmp)
         os.chmod(tmp, 0o644)
         os.replace(tmp, path)
     except BaseException:
