@@ -634,7 +634,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         sweeps = {name: sw for name, sw in loaded.items() if sw is not None}
         if wanted and not sweeps:
             raise SweepError(f"--controllers {a.controllers}: none of the sweeps ({', '.join(figs)}) runs "
-                             f"{'it' if len(wanted) == 1 else 'them'}")
+                             f"{'it' if len(wanted) == 1 else 'them'} (the paper's controllers: "
+                             f"{', '.join(CONTROLLERS)})")
         quick = QUICK["eaipp"] if a.quick else None
         announce("study_eaipp", "eaipp", sum(len(sweep_plan.expand(sw)) for sw in sweeps.values()), quick)
         rc_all = 0

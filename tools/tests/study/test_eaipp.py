@@ -213,9 +213,13 @@ class EndToEnd(unittest.TestCase):
             self.assertEqual(res1["cells"]["distance"], [c for c in res["cells"]["distance"]
                                                          if c["controller"] == "PFIAS"])
             # a controller no sweep runs is an error, nothing run
-            self.assertEqual(quiet_main(["--figures", "distance", "--studies", str(studies), "--steps", "300",
-                                         "--out", str(Path(d) / "none"), "--sim", str(SWARMSIM),
-                                         "--controllers", "NNEA"]), 2)
+            err = io.StringIO()
+            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+                rc = E.main(["--figures", "distance", "--studies", str(studies), "--steps", "300",
+                             "--out", str(Path(d) / "none"), "--sim", str(SWARMSIM), "--controllers", "NNEA"])
+            self.assertEqual(rc, 2)
+            self.assertIn("none of the sweeps (distance) runs it (the paper's controllers: EAIPP, TSASR, PFIAS, "
+                          "NNEA)", err.getvalue())
             self.assertFalse((Path(d) / "none" / "results.json").exists())
 
     def test_bad_figure(self) -> None:
