@@ -85,6 +85,7 @@ class Controller:
             raise SystemExit(f"swarmtools.control: cannot open LCM URL {url!r}: {e}") from None
         self.status = None
         self.detail = None
+        self.answer = None
         self._seq = int(time.time() * 1000) % (1 << 40)
         self._cond = threading.Condition()
         self._stop = threading.Event()
@@ -104,6 +105,12 @@ class Controller:
             return
         with self._cond:
             self.status = msg
+            # The first status of a command's seq is its answer, sent as the
+            # command was taken; later ones carry the same seq (a step's
+            # "done" among them), so the latest status alone would let
+            # send("step") return after the steps were done, its .step late.
+            if self.answer is None or msg.seq != self.answer.seq:
+                self.answer = msg
             self._cond.notify_all()
 
     def _on_detail(self, channel, data):
@@ -144,13 +151,18 @@ class Controller:
             return getattr(self, name)
 
     def send(self, command, timeout=10.0, **fields):
-        """Sends a command and waits for the run's answer: its status.
-        Raises Refused with the run's reason, NoRun if none answers."""
+        """Sends a command and waits for the run's answer: its status as it
+        took the command (for `step`, before the steps).  Raises Refused
+        with the run's reason, NoRun if none answers."""
         status = self.wait(lambda s: True, timeout)
         self._seq += 1
         seq = self._seq
         self.lcm.publish(CHANNEL, message(status.key, seq, command, **fields))
-        answer = self.wait(lambda s: s.seq == seq, timeout)
+        try:
+            answer = self._wait_for("answer", lambda s: s.seq == seq, timeout)
+        except NotYet:
+            raise NoRun(f"the run ({describe(self.status)}) did not answer {command} "
+                        f"within {timeout:g} s") from None
         if not answer.ok:
             raise Refused(answer.text)
         return answer
