@@ -128,10 +128,12 @@ def _max_rms(text: str) -> tuple:
     return proc, v
 
 
-MAX_RMS_HELP = ("PROCEDURE=VALUE: the largest rms residual of a procedure's fit, in its report's units, above "
-                "which the fit fails (repeatable; defaults: "
-                + ", ".join(f"{k}={v:g}" for k, v in fitting.MAX_RMS.items())
-                + ": ir and ambient counts, wheels mm / deg, sound relative)")
+def _add_max_rms(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--max-rms", type=_max_rms, action="append", default=[], metavar="PROCEDURE=VALUE",
+                   help="the largest rms residual of a procedure's fit, in its report's units, above which the "
+                        "fit fails (repeatable; defaults: "
+                        + ", ".join(f"{k}={v:g}" for k, v in fitting.MAX_RMS.items())
+                        + ": ir and ambient counts, wheels mm / deg, sound relative)")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -157,13 +159,11 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--live", nargs="?", const=common.DEFAULT_URL, metavar="LCM_URL",
                    help="also publish the robot's telemetry and each prompt and progress line (events, kind "
                         "'calibrate') on LCM for the live view (swarm-live); default URL: the bridge's")
-    r.add_argument("--max-rms", type=_max_rms, action="append", default=[], metavar="PROCEDURE=VALUE",
-                   help=MAX_RMS_HELP)
+    _add_max_rms(r)
     f = sub.add_parser("fit", help="fit recordings again (one or many robots: the lab's fragment)")
     f.add_argument("recordings", nargs="+", type=Path)
     f.add_argument("--out", required=True, type=Path)
-    f.add_argument("--max-rms", type=_max_rms, action="append", default=[], metavar="PROCEDURE=VALUE",
-                   help=MAX_RMS_HELP)
+    _add_max_rms(f)
     a = sub.add_parser("apply", help="a scenario with a fragment's parameters")
     a.add_argument("scenario", type=Path)
     a.add_argument("fragment", type=Path)

@@ -71,11 +71,15 @@ def _check_bounds(procedure: str, res, names: list, lo: list, hi: list, redo: st
                            f"({lo[k]:g} to {hi[k]:g}): the readings do not follow the model", redo)
 
 
-def _check_rms(procedure: str, rms: float, unit: str, max_rms: float | None, redo: str):
+def _checked_rms(procedure: str, residuals, unit: str, max_rms: float | None, redo: str) -> float:
+    """The rms of a fit's residuals, once it is within the procedure's
+    tolerance (`max_rms`, else MAX_RMS's)."""
+    rms = float(np.sqrt(np.mean(np.asarray(residuals) ** 2)))
     tol = MAX_RMS[procedure] if max_rms is None else max_rms
     if not rms <= tol:
         raise FitError(procedure, f"the fit's rms residual is {rms:.3g} {unit}, above the tolerance {tol:g} "
                        f"{unit} (--max-rms {procedure}=...): the readings do not follow the model", redo)
+    return rms
 
 
 @dataclass
@@ -148,9 +152,7 @@ def fit_ir(steps: list[Step], max_rms: float | None = None) -> Fit:
     redo = "the ir procedure (a white wall, square on, the gaps measured)"
     # A noise term of 0 is a sensor without it, not a failed fit.
     _check_bounds("ir", nr, ["noise_rel", "noise_abs"], lo, hi, redo, {("noise_rel", -1), ("noise_abs", -1)})
-    r = np.array([p["measured"] - p["simulated"] for p in points])
-    rms = float(np.sqrt(np.mean(r ** 2)))
-    _check_rms("ir", rms, "counts", max_rms, redo)
+    rms = _checked_rms("ir", [p["measured"] - p["simulated"] for p in points], "counts", max_rms, redo)
     return Fit("ir", {"sensors": sensors, "noise_rel": round(float(nr.x[0]), 5),
                       "noise_abs": round(float(nr.x[1]), 3)}, points, rms, "counts")
 
@@ -187,8 +189,7 @@ def fit_ambient(steps: list[Step], setup: Setup, max_rms: float | None = None) -
     rel = float(np.sqrt(max(0.0, np.mean(np.maximum(var[usable] - 1.0 / 12.0, 0.0) / model[usable] ** 2))))
     points = [{"sensor": s, "x": float(ei), "label": f"{dist:g} mm", "measured": float(yi), "simulated": float(mi)}
               for (s, dist), ei, yi, mi in zip(labels, e, y, model, strict=True)]
-    rms = float(np.sqrt(np.mean((y - model) ** 2)))
-    _check_rms("ambient", rms, "counts", max_rms, redo)
+    rms = _checked_rms("ambient", y - model, "counts", max_rms, redo)
     return Fit("ambient", {"dark": round(dark, 2), "half": round(half, 5), "noise_rel": round(rel, 5)}, points,
                rms, "counts")
 
@@ -244,8 +245,7 @@ def fit_wheels(steps: list[Step], setup: Setup, max_rms: float | None = None) ->
             raise FitError("wheels", f"run {label} counted {st.steps[0]:g}, {st.steps[1]:g} steps where "
                            f"{want[0]:g}, {want[1]:g} were commanded (motors clipped? period not "
                            f"{setup.period_ms} ms?)", f"the wheels run {label}")
-    rms = float(np.sqrt(np.mean(res(fit.x) ** 2)))
-    _check_rms("wheels", rms, "mm / deg", max_rms, redo)
+    rms = _checked_rms("wheels", res(fit.x), "mm / deg", max_rms, redo)
     return Fit("wheels", {"gain_left": round(gl, 5), "gain_right": round(gr, 5)}, points, rms, "mm / deg")
 
 
@@ -339,8 +339,7 @@ def fit_sound(steps: list[Step], setup: Setup, max_rms: float | None = None) -> 
     points = [{"band": b, "x": p.distance_mm if p.tone else 0.0, "label": f"band {b}" + ("" if p.tone else " silent"),
                "measured": level, "simulated": float(s)}
               for (b, (p, level, _)), s in zip(((b, r) for b in bands for r in by_band[b]), sim, strict=True)]
-    rms = float(np.sqrt(np.mean(((sim - y) / np.maximum(y, 1.0)) ** 2)))
-    _check_rms("sound", rms, "relative", max_rms, redo)
+    rms = _checked_rms("sound", (sim - y) / np.maximum(y, 1.0), "relative", max_rms, redo)
     return Fit("sound", {"alpha": round(alpha, 5), "ae": round(ae, 4), "noise": round(noise, 5),
                          **{f"gain{b}": round(g, 5) for b, g in gains.items()}}, points, rms, "relative")
 

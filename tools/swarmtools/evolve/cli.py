@@ -52,7 +52,7 @@ from typing import Any
 
 from swarmtools.evolve import algorithms
 from swarmtools.evolve.fitness import Fitness, FitnessError
-from swarmtools.evolve.spec import EvolveError, Spec, check_with_simulator, load
+from swarmtools.evolve.spec import EvolveError, Spec, check_with_simulator, load, set_args
 from swarmtools.sweep import cli as sweep_cli
 from swarmtools.sweep import plan as planmod
 from swarmtools.sweep.plan import file_sha256
@@ -257,9 +257,8 @@ def _best_files(sp: Spec, best: dict[str, Any], out: Path, sim: Path) -> None:
     atomic_write(out / "best_params.h", "\n".join(c) + "\n")
     # A scenario that runs the genome: the simulator's own effective scenario.
     with tempfile.TemporaryDirectory(prefix=".best.", dir=out) as tmp:
-        cmd = [str(sim), str(sp.scenarios[0]), "--steps", "1", "--lcm", "off", "--quiet", "--out", tmp, "--replace"]
-        for k, v in [*sp.fixed, *((k, v) for k, v in sp.decode_params(best["params"]).items())]:
-            cmd += ["--set", f"{k}={set_text(v)}"]
+        cmd = [str(sim), str(sp.scenarios[0]), "--steps", "1", "--lcm", "off", "--quiet", "--out", tmp, "--replace",
+               *set_args([*sp.fixed, *sp.decode_params(best["params"]).items()])]
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=120, check=False)
         copies = sorted(Path(tmp).glob("run_*/scenario.yaml"))
         if p.returncode != 0 or not copies:

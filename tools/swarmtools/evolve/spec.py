@@ -334,6 +334,11 @@ def _algorithm(r: _Reader, node: yaml.Node, sp: Spec) -> None:
 
 
 # ------------------------------------------------------------------ against the simulator
+def set_args(pairs) -> list[str]:
+    """swarmsim's `--set KEY=VALUE` arguments of (key, value) pairs."""
+    return [a for k, v in pairs for a in ("--set", f"{k}={set_text(v)}")]
+
+
 def check_with_simulator(sp: Spec, sim: Path) -> None:
     """What only the simulator knows, checked before anything runs or is
     written: each scenario loads with the `set:` overrides, and with the
@@ -343,7 +348,7 @@ def check_with_simulator(sp: Spec, sim: Path) -> None:
     scenario lists the metrics its runs report, which the fitness must read.
     Each refusal is an EvolveError naming the evolution file's line."""
     from swarmtools.evolve.fitness import Fitness
-    fixed = [a for k, v in sp.fixed for a in ("--set", f"{k}={set_text(v)}")]
+    fixed = set_args(sp.fixed)
     for i, scenario in enumerate(sp.scenarios):
         def check(*args: str, scenario: Path = scenario, i: int = i) -> None:
             p = _simulate(sim, [str(scenario), "--check", "--quiet", *fixed, *args])
@@ -351,7 +356,7 @@ def check_with_simulator(sp: Spec, sim: Path) -> None:
                 raise _blame(sp, i, _last_line(p))
         check()
         for x in (0.0, 1.0, 0.37):    # 0.37: no range's end, and not a whole number of most ranges
-            check(*(a for k, v in sp.decode([x] * sp.dimension).items() for a in ("--set", f"{k}={set_text(v)}")))
+            check(*set_args(sp.decode([x] * sp.dimension).items()))
         with tempfile.TemporaryDirectory(prefix="swarm-evolve-check.") as tmp:
             p = _simulate(sim, [str(scenario), "--steps", "1", "--lcm", "off", "--quiet", "--out", f"{tmp}/o", *fixed])
             if p.returncode != 0:
