@@ -30,6 +30,7 @@ void grid_free(grid_t *g)
 {
     free(g->start);
     free(g->items);
+    free(g->point_cell);
     memset(g, 0, sizeof *g);
 }
 
@@ -43,6 +44,11 @@ int grid_reserve(grid_t *g, uint32_t n)
         return -1;
     }
     g->items = p;
+    uint32_t *c = realloc(g->point_cell, (size_t)n * sizeof *c);
+    if (!c) {
+        return -1;
+    }
+    g->point_cell = c;
     g->item_cap = n;
     return 0;
 }
@@ -62,10 +68,16 @@ int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n)
         return -1;
     }
     memset(g->start, 0, (cells + 1) * sizeof *g->start);
+    /* Each point's cell is found once (two divisions) and kept for the
+     * fill; a point out of play is marked and left out of both passes. */
+    uint32_t *cell = g->point_cell;
     for (uint32_t i = 0; i < n; i++) {
         if (!isnan(x[i]) && !isnan(y[i])) {
-            g->start[cell_of(g, x[i], y[i]) + 1]++;
+            cell[i] = (uint32_t)cell_of(g, x[i], y[i]);
+            g->start[cell[i] + 1]++;
             kept++;
+        } else {
+            cell[i] = UINT32_MAX;
         }
     }
     for (size_t c = 0; c < cells; c++) {
@@ -74,9 +86,8 @@ int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n)
     /* Fill back to front so each cell ends up in ascending index order
      * without a cursor array: start[c] walks down to its final value. */
     for (uint32_t k = n; k-- > 0;) {
-        if (!isnan(x[k]) && !isnan(y[k])) {
-            int32_t c = cell_of(g, x[k], y[k]);
-            g->items[--g->start[c + 1]] = k;
+        if (cell[k] != UINT32_MAX) {
+            g->items[--g->start[cell[k] + 1]] = k;
         }
     }
     /* start[c+1] now holds the beginning of cell c: shift back by one. */

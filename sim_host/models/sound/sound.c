@@ -366,6 +366,15 @@ typedef struct listeners {
 
 /* pool_fn: listeners [begin, end), each its own sums and noise stream, so
  * that they are summed side by side. */
+/* Listener i's sums as the counts its microphones read. */
+static void levels_of(sound_t *s, uint32_t i)
+{
+    s->level[i][0] = 0;
+    for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+        s->level[i][k] = sound_counts(s->acc[i][k]);
+    }
+}
+
 static void listen_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
 {
     listeners_t *l = ctx;
@@ -379,6 +388,7 @@ static void listen_range(uint32_t begin, uint32_t end, uint32_t worker, void *ct
         } else {
             listen_near(l->sim, s, &l->sim->scratch[worker], i, l->emitters);
         }
+        levels_of(s, i);   /* here, on the pool, not after it on one thread */
     }
 }
 
@@ -450,15 +460,12 @@ static void sound_update(struct sim *sim, sound_t *s)
     }
     s->stamp = sim->step + 1;
     if (s->cfg->cutoff > 0.0) {
-        update_with_cutoff(sim, s);
-    } else {
-        update_all_pairs(sim, s);
+        update_with_cutoff(sim, s);   /* levels included */
+        return;
     }
+    update_all_pairs(sim, s);
     for (uint32_t i = 0; i < sim->n; i++) {
-        s->level[i][0] = 0;
-        for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
-            s->level[i][k] = sound_counts(s->acc[i][k]);
-        }
+        levels_of(s, i);
     }
 }
 

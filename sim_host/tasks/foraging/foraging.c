@@ -262,6 +262,26 @@ static double nest_distance(const foraging_t *f, double x, double y)
     return hypot(x - f->cfg->nest.x, y - f->cfg->nest.y);
 }
 
+/* nest_distance(f, x, y) < reach, as that comparison decides, with hypot
+ * called only within a hair of the rim: the squared distance decides the
+ * rest (hypot is within an ulp of the exact root and the square within
+ * two of the exact square, so a relative margin of 1e-12 leaves no case
+ * the two answer differently; NaN falls through to hypot).  Every robot
+ * is tested every step: hypot was 2 % of full sensing at 10,000 robots,
+ * all of it on the stepping thread. */
+static int within_of_nest(const foraging_t *f, double x, double y, double reach)
+{
+    double dx = x - f->cfg->nest.x, dy = y - f->cfg->nest.y;
+    double d2 = dx * dx + dy * dy, r2 = reach * reach;
+    if (d2 < r2 * (1.0 - 1e-12)) {
+        return 1;
+    }
+    if (d2 > r2 * (1.0 + 1e-12)) {
+        return 0;
+    }
+    return hypot(dx, dy) < reach;
+}
+
 /* A free spot for token k: inside the walls, outside the nest, off the
  * obstacles.  Returns 0, or -1 when the arena has no room. */
 static int place_token(foraging_t *f, const sim_t *sim, uint32_t k)
@@ -491,12 +511,15 @@ static void foraging_update(void *self, sim_t *sim)
         double x, y, th;
         sim_robot_pose(sim, i, &x, &y, &th);
         oae += fs->walk.oae_count;
-        if (nest_distance(f, x, y) < nest_radius(f) + NEST_REACH) {
+        /* A waiting robot's distance is summed anyway: one hypot serves
+         * both; the others need only which side of the rim they are. */
+        double reach = nest_radius(f) + NEST_REACH, d = st == 'W' ? nest_distance(f, x, y) : NAN;
+        if (st == 'W' ? d < reach : within_of_nest(f, x, y, reach)) {
             f->oae_at_nest += fs->walk.oae_count - f->last_oae[i];
         }
         f->last_oae[i] = fs->walk.oae_count;
         if (st == 'W') {
-            f->wait_radius_sum += nest_distance(f, x, y);
+            f->wait_radius_sum += d;
             f->wait_steps++;
         }
         f->waiting += st == 'W';
