@@ -4,6 +4,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -78,9 +79,52 @@ static void test_gather_holds_every_point_in_the_box(void **state)
     grid_free(&g);
 }
 
+/* Binning: every point in play once, in the cell its coordinates give, a
+ * cell's points in ascending index; a point with a NaN coordinate left out;
+ * a second binning of fewer points over the first one's storage alike. */
+static void test_build_bins_each_point_once_in_index_order(void **state)
+{
+    (void)state;
+    enum { N = 300 };
+    float x[N], y[N];
+    uint64_t seed = 11;
+    grid_t g;
+    assert_int_equal(grid_init(&g, -2.0f, -2.0f, 4.0f, 4.0f, 0.5f), 0);
+    for (uint32_t k = 0; k < N; k++) {
+        x[k] = (float)(next(&seed) % 4000u) / 1000.0f - 2.0f;
+        y[k] = (float)(next(&seed) % 4000u) / 1000.0f - 2.0f;
+        if (k % 7 == 3) {
+            (k % 2 ? x : y)[k] = NAN;
+        }
+    }
+    const uint32_t sizes[2] = { N, 100 };
+    for (int pass = 0; pass < 2; pass++) {
+        uint32_t n = sizes[pass], in_play = 0, seen[N] = { 0 };
+        assert_int_equal(grid_build_points(&g, x, y, n), 0);
+        for (uint32_t k = 0; k < n; k++) {
+            in_play += !isnan(x[k]) && !isnan(y[k]);
+        }
+        uint32_t cells = (uint32_t)(g.nx * g.ny);
+        assert_int_equal(g.start[cells], in_play);
+        for (uint32_t c = 0; c < cells; c++) {
+            for (uint32_t k = g.start[c]; k < g.start[c + 1]; k++) {
+                uint32_t id = g.items[k];
+                int32_t cx0, cy0, cx1, cy1;
+                assert_true(id < n && !seen[id] && !isnan(x[id]) && !isnan(y[id]));
+                assert_true(k == g.start[c] || g.items[k - 1] < id);
+                grid_range(&g, x[id], y[id], x[id], y[id], &cx0, &cy0, &cx1, &cy1);
+                assert_int_equal((uint32_t)(cy0 * g.nx + cx0), c);
+                seen[id] = 1;
+            }
+        }
+    }
+    grid_free(&g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_build_bins_each_point_once_in_index_order),
         cmocka_unit_test(test_sort_ids_matches_a_full_sort),
         cmocka_unit_test(test_gather_holds_every_point_in_the_box),
     };
