@@ -16,3 +16,6 @@ bench-floor: $(BUILD)/floor_bench
 
 bench-guard: $(BUILD)/floor_bench
 	$(BUILD)/floor_bench --counts 20:2000,2000:50 --threads 1 --reps 15 $(BENCH_FLOOR_ARGS)
+TEST_BUILD += $(BUILD)/floor_bench
+# tests/cli/floor_bench.sh runs it (20 robots, 20 steps: its checks, not a timing).
+cli-tests: $(BUILD)/floor_bench
