@@ -932,11 +932,18 @@ static void test_placements(void **state)
           "robots[0].placement.poses: 1 poses for a group of 3 robots (give one per robot)" },
         { RW "    placement:\n      poses: [{x: 0, y: 0, heading: left}]\n", 4,
           "robots[0].placement.poses[0].heading: expected an angle in degrees or 'random'" },
+        { RW "    placement:\n      shape: poses\n      order: space\n      poses: [{x: 0, y: 0}]\n", 5,
+          "robots[0].placement.order: order: space renumbers the spots drawn, and a poses group gives "
+          "each robot its own pose" },
+        { RW "    placement: {order: morton}\n", 3,
+          "robots[0].placement.order: expected one of drawn|space, got 'morton'" },
     };
     fixture_t *fx = *state;
     expect_cases(fx, cases, sizeof cases / sizeof cases[0]);
     /* A group of 0 robots needs no poses. */
     assert_int_equal(load(fx, RW "    count: 0\n    placement: {shape: poses}\n"), 0);
+    assert_int_equal(load(fx, RW "    placement: {shape: ring, inner: 0.2, outer: 0.6, order: space}\n"), 0);
+    assert_int_equal(fx->sc->groups[0].placement.order, PLACE_ORDER_SPACE);
 }
 
 /* A controller that sends 16-bit messages on an 8-bit platform, or one

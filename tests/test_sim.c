@@ -643,6 +643,61 @@ static void test_placement_shapes(void **state)
     }
 }
 
+/* Two poses, by x, then y, then heading. */
+static int pose_order(const void *a, const void *b)
+{
+    const double *p = a, *q = b;
+    for (int k = 0; k < 3; k++) {
+        if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
+    }
+    return 0;
+}
+
+/* placement.order: space gives the order drawn's spots and headings, each
+ * robot in a group, renumbered along the Morton curve of 0.5 m cells (ids
+ * near in space), the other group untouched; the same run for the same
+ * seed. */
+static void test_placement_order_space(void **state)
+{
+    (void)state;
+    enum { N = 400 };
+    static double drawn[N][3], space[N][3];
+    uint64_t hash[2];
+    for (int run = 0; run < 3; run++) {
+        scenario_t *sc = two_groups(N - 1, 0);   /* N - 1 at random, then one posed */
+        sc->arena.width = sc->arena.height = 12.0f;
+        sc->groups[0].placement = (placement_def_t){ .shape = PLACE_RECTANGLE,
+                                                     .order = run ? PLACE_ORDER_SPACE : PLACE_ORDER_DRAWN };
+        sim_t *sim = fixture_sim(sc, 21);
+        assert_non_null(sim);
+        double (*pose)[3] = run ? space : drawn;
+        for (uint32_t i = 0; i < N; i++) sim_robot_pose(sim, i, &pose[i][0], &pose[i][1], &pose[i][2]);
+        if (run) hash[run - 1] = sim_state_hash(sim);
+        sim_destroy(sim);
+        scenario_free(sc);
+        free(sc);
+    }
+    assert_true(hash[0] == hash[1]);
+    uint64_t last = 0;
+    int moved = 0;
+    for (uint32_t i = 0; i < N - 1; i++) {
+        /* The Morton key of robot i's cell: x's bits even, y's odd. */
+        uint32_t cx = (uint32_t)((space[i][0] + 6.0) / 0.5), cy = (uint32_t)((space[i][1] + 6.0) / 0.5);
+        uint64_t key = 0;
+        for (int b = 0; b < 16; b++) {
+            key |= (uint64_t)((cx >> b) & 1u) << (2 * b) | (uint64_t)((cy >> b) & 1u) << (2 * b + 1);
+        }
+        assert_true(key >= last);
+        last = key;
+        moved += pose_order(drawn[i], space[i]) != 0;
+    }
+    assert_true(moved > N / 2);
+    assert_int_equal(pose_order(drawn[N - 1], space[N - 1]), 0);
+    qsort(drawn, N, sizeof drawn[0], pose_order);
+    qsort(space, N, sizeof space[0], pose_order);
+    assert_memory_equal(drawn, space, sizeof drawn);
+}
+
 /* A pose on an obstacle is an error naming the group and the pose. */
 static void test_bad_pose_is_reported(void **state)
 {
@@ -975,6 +1030,7 @@ int main(void)
         cmocka_unit_test(test_twenty_robots_100k_steps_stay_inside),
         cmocka_unit_test(test_static_group_is_not_pushed),
         cmocka_unit_test(test_placement_shapes),
+        cmocka_unit_test(test_placement_order_space),
         cmocka_unit_test(test_bad_pose_is_reported),
         cmocka_unit_test(test_step_order_does_not_matter),
         cmocka_unit_test(test_thread_count_does_not_matter),

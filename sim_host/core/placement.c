@@ -348,6 +348,71 @@ int placement_cylinders(struct sim *sim, char err[SIM_ERR_MAX])
     return 0;
 }
 
+/* placement.order: space.  Cells of this side (m) along a Morton (Z)
+ * curve: the robot grid's cell, so that robots of one cell, and of
+ * neighbouring cells mostly, are neighbours in id too. */
+#define ORDER_CELL_M 0.5f
+
+typedef struct spot {
+    uint64_t key;               /* Morton code of its cell */
+    uint32_t drawn;             /* which robot drew it (ties: the order drawn) */
+    float x, y, theta;
+} spot_t;
+
+/* The low 32 bits of v spread to the even bits of the result. */
+static uint64_t spread_bits(uint32_t v)
+{
+    uint64_t x = v;
+    x = (x | (x << 16)) & UINT64_C(0x0000FFFF0000FFFF);
+    x = (x | (x << 8)) & UINT64_C(0x00FF00FF00FF00FF);
+    x = (x | (x << 4)) & UINT64_C(0x0F0F0F0F0F0F0F0F);
+    x = (x | (x << 2)) & UINT64_C(0x3333333333333333);
+    x = (x | (x << 1)) & UINT64_C(0x5555555555555555);
+    return x;
+}
+
+static uint32_t order_cell(float v, float half)
+{
+    float c = (v + half) / ORDER_CELL_M;
+    return c >= 1.0f ? (uint32_t)fminf(c, 4.0e9f) : 0u;
+}
+
+static int by_key(const void *a, const void *b)
+{
+    const spot_t *p = a, *q = b;
+    if (p->key != q->key) {
+        return p->key < q->key ? -1 : 1;
+    }
+    return (p->drawn > q->drawn) - (p->drawn < q->drawn);
+}
+
+/* A group's spots, once all are drawn, given to its robots in Morton order:
+ * the same poses and headings, robot k now the k-th along the curve.  After
+ * every group is placed, so that the placement's checks (which name robots
+ * by index) are those of the order drawn. */
+static int renumber_by_space(struct sim *sim, uint32_t first, uint32_t count, char err[SIM_ERR_MAX])
+{
+    spot_t *spot = malloc((count ? count : 1) * sizeof *spot);
+    if (!spot) {
+        snprintf(err, SIM_ERR_MAX, "out of memory ordering %u robots by space", count);
+        return -1;
+    }
+    for (uint32_t k = 0; k < count; k++) {
+        const sim_robot_t *r = &sim->robots[first + k];
+        uint64_t key = spread_bits(order_cell(r->x, sim->hw)) | (spread_bits(order_cell(r->y, sim->hh)) << 1);
+        spot[k] = (spot_t){ key, k, r->x, r->y, r->theta };
+    }
+    qsort(spot, count, sizeof *spot, by_key);
+    for (uint32_t k = 0; k < count; k++) {
+        sim_robot_t *r = &sim->robots[first + k];
+        r->x = spot[k].x;
+        r->y = spot[k].y;
+        r->theta = spot[k].theta;
+    }
+    free(spot);
+    return 0;
+}
+
 int placement_run(struct sim *sim, char err[SIM_ERR_MAX])
 {
     const scenario_t *sc = sim->sc;
@@ -374,5 +439,10 @@ int placement_run(struct sim *sim, char err[SIM_ERR_MAX])
         }
     }
     placed_free(&placed);
+    for (uint32_t g = 0; g < sc->group_count && rc == 0; g++) {
+        if (sc->groups[g].placement.order == PLACE_ORDER_SPACE) {
+            rc = renumber_by_space(sim, first[g], sc->groups[g].count, err);
+        }
+    }
     return rc;
 }

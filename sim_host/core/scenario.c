@@ -48,6 +48,7 @@
 static const char *const shape_choices[] = { "cylinder", "box", NULL };
 static const char *const colour_choices[] = { "none", "red", "green", "blue", NULL };
 static const char *const placement_choices[] = { "rectangle", "circle", "ring", "grid", "poses", NULL };
+static const char *const order_choices[] = { "drawn", "space", NULL };
 
 static const param_desc_t top_params[] = {
     { .key = "name", PARAM_STRING_FIELD(SC, name),
@@ -112,6 +113,11 @@ static const param_desc_t placement_params[] = {
       .doc = "ring: inner radius, m" },
     { .key = "outer", PARAM_FIELD(GRP, placement.outer, float), .min = 0, .max = 500,
       .doc = "ring: outer radius, m" },
+    { .key = "order", PARAM_ENUM_FIELD(GRP, placement.order, order_choices),
+      .doc = "which robot takes which spot: drawn (robot k the k-th spot drawn) or space (the same "
+             "spots renumbered along a Morton curve of 0.5 m cells, so that robots near in id start "
+             "near in space and their data shares the caches: a large swarm steps faster; the run "
+             "is another sample of the same start, not the drawn one's)" },
     PARAM_END
 };
 
@@ -436,6 +442,13 @@ static int check_placement(const loader_t *ld, const ynode_t *item, const char *
         return schema_fail(ld, schema_node_of(node ? node : item, "outer"), q,
                            "a ring placement needs outer > inner (%g <= %g)", (double)pl->outer,
                            (double)pl->inner);
+    }
+    if (pl->shape == PLACE_POSES && pl->order == PLACE_ORDER_SPACE) {
+        char q[SCHEMA_PATH_MAX];
+        schema_join(q, p, "order");
+        return schema_fail(ld, schema_node_of(node ? node : item, "order"), q,
+                           "order: space renumbers the spots drawn, and a poses group gives each "
+                           "robot its own pose (leave order out, or place the group at random)");
     }
     if (pl->shape == PLACE_POSES && g->count != 0 && pl->pose_count != g->count) {
         char q[SCHEMA_PATH_MAX];

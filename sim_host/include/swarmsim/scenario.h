@@ -73,6 +73,12 @@ typedef enum placement_shape {
     PLACE_POSES = 4       /**< one explicit pose per robot */
 } placement_shape_t;
 
+/** Which robot of a group takes which spot (placement.c). */
+typedef enum placement_order {
+    PLACE_ORDER_DRAWN = 0,  /**< robot k the k-th spot drawn */
+    PLACE_ORDER_SPACE = 1   /**< the spots renumbered by space (0.5 m cells, Morton order) */
+} placement_order_t;
+
 typedef struct pose_def {
     float x, y;         /**< m */
     float heading;      /**< deg CCW from +x; NaN ("random"): the group's heading */
@@ -80,6 +86,7 @@ typedef struct pose_def {
 
 typedef struct placement_def {
     int shape;                  /**< placement_shape_t */
+    int order;                  /**< placement_order_t */
     float x, y;                 /**< centre of the region, m */
     float width, height;        /**< rectangle, grid; 0: the arena's */
     float radius;               /**< circle, m */
