@@ -653,21 +653,28 @@ static int pose_order(const void *a, const void *b)
     return 0;
 }
 
-/* placement.order: space gives the order drawn's spots and headings, each
- * robot in a group, renumbered along the Morton curve of 0.5 m cells (ids
- * near in space), the other group untouched; the same run for the same
- * seed. */
+/* placement.order: space gives the order drawn's spots and headings to a
+ * group's robots along the Morton curve of 0.5 m cells (ids near in
+ * space; robots of one cell in the order drawn), once every group is
+ * placed: a posed group and a random group placed after it are as in the
+ * order drawn (a crowded arena: a renumbering before the later group would
+ * move its spacing checks).  The same run for the same seed. */
 static void test_placement_order_space(void **state)
 {
     (void)state;
-    enum { N = 400 };
+    enum { A = 300, B = 200, N = A + 1 + B };
     static double drawn[N][3], space[N][3];
     uint64_t hash[2];
     for (int run = 0; run < 3; run++) {
-        scenario_t *sc = two_groups(N - 1, 0);   /* N - 1 at random, then one posed */
-        sc->arena.width = sc->arena.height = 12.0f;
+        scenario_t *sc = two_groups(A, 0);   /* A at random, then one posed */
+        sc->arena.width = sc->arena.height = 3.0f;
         sc->groups[0].placement = (placement_def_t){ .shape = PLACE_RECTANGLE,
                                                      .order = run ? PLACE_ORDER_SPACE : PLACE_ORDER_DRAWN };
+        sc->group_count = 3;
+        sc->groups[2] = sc->groups[0];
+        strcpy(sc->groups[2].name, "later");
+        sc->groups[2].count = B;
+        sc->groups[2].placement.order = PLACE_ORDER_DRAWN;
         sim_t *sim = fixture_sim(sc, 21);
         assert_non_null(sim);
         double (*pose)[3] = run ? space : drawn;
@@ -679,23 +686,34 @@ static void test_placement_order_space(void **state)
     }
     assert_true(hash[0] == hash[1]);
     uint64_t last = 0;
-    int moved = 0;
-    for (uint32_t i = 0; i < N - 1; i++) {
-        /* The Morton key of robot i's cell: x's bits even, y's odd. */
-        uint32_t cx = (uint32_t)((space[i][0] + 6.0) / 0.5), cy = (uint32_t)((space[i][1] + 6.0) / 0.5);
+    int moved = 0, ties = 0;
+    uint32_t last_drawn = 0;
+    for (uint32_t i = 0; i < A; i++) {
+        /* The Morton key of robot i's cell, as placement.c takes it (in
+         * float, from the arena's corner): x's bits even, y's odd. */
+        uint32_t cx = (uint32_t)(((float)space[i][0] + 1.5f) / 0.5f);
+        uint32_t cy = (uint32_t)(((float)space[i][1] + 1.5f) / 0.5f);
         uint64_t key = 0;
         for (int b = 0; b < 16; b++) {
             key |= (uint64_t)((cx >> b) & 1u) << (2 * b) | (uint64_t)((cy >> b) & 1u) << (2 * b + 1);
         }
+        uint32_t k = 0;   /* which robot drew this spot */
+        while (k < A && pose_order(drawn[k], space[i]) != 0) k++;
+        assert_true(k < A);
         assert_true(key >= last);
+        if (i > 0 && key == last) {
+            assert_true(k > last_drawn);   /* one cell's robots in the order drawn */
+            ties++;
+        }
         last = key;
-        moved += pose_order(drawn[i], space[i]) != 0;
+        last_drawn = k;
+        moved += k != i;
     }
-    assert_true(moved > N / 2);
-    assert_int_equal(pose_order(drawn[N - 1], space[N - 1]), 0);
-    qsort(drawn, N, sizeof drawn[0], pose_order);
-    qsort(space, N, sizeof space[0], pose_order);
-    assert_memory_equal(drawn, space, sizeof drawn);
+    assert_true(moved > A / 2 && ties > A / 2);
+    for (uint32_t i = A; i < N; i++) assert_int_equal(pose_order(drawn[i], space[i]), 0);
+    qsort(drawn, A, sizeof drawn[0], pose_order);
+    qsort(space, A, sizeof space[0], pose_order);
+    assert_memory_equal(drawn, space, A * sizeof drawn[0]);
 }
 
 /* A pose on an obstacle is an error naming the group and the pose. */

@@ -34,7 +34,8 @@ void grid_free(grid_t *g)
     memset(g, 0, sizeof *g);
 }
 
-int grid_reserve(grid_t *g, uint32_t n)
+/* Room for n items (boxes need no more: a box grid is built once). */
+static int reserve_items(grid_t *g, uint32_t n)
 {
     if (n <= g->item_cap) {
         return 0;
@@ -44,12 +45,24 @@ int grid_reserve(grid_t *g, uint32_t n)
         return -1;
     }
     g->items = p;
+    g->item_cap = n;
+    return 0;
+}
+
+int grid_reserve(grid_t *g, uint32_t n)
+{
+    if (reserve_items(g, n) != 0) {
+        return -1;
+    }
+    if (n <= g->point_cap) {
+        return 0;
+    }
     uint32_t *c = realloc(g->point_cell, (size_t)n * sizeof *c);
     if (!c) {
         return -1;
     }
     g->point_cell = c;
-    g->item_cap = n;
+    g->point_cap = n;
     return 0;
 }
 
@@ -70,14 +83,14 @@ int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n)
     memset(g->start, 0, (cells + 1) * sizeof *g->start);
     /* Each point's cell is found once (two divisions) and kept for the
      * fill; a point out of play is marked and left out of both passes. */
-    uint32_t *cell = g->point_cell;
+    uint32_t *pc = g->point_cell;
     for (uint32_t i = 0; i < n; i++) {
         if (!isnan(x[i]) && !isnan(y[i])) {
-            cell[i] = (uint32_t)cell_of(g, x[i], y[i]);
-            g->start[cell[i] + 1]++;
+            pc[i] = (uint32_t)cell_of(g, x[i], y[i]);
+            g->start[pc[i] + 1]++;
             kept++;
         } else {
-            cell[i] = UINT32_MAX;
+            pc[i] = UINT32_MAX;
         }
     }
     for (size_t c = 0; c < cells; c++) {
@@ -86,8 +99,8 @@ int grid_build_points(grid_t *g, const float *x, const float *y, uint32_t n)
     /* Fill back to front so each cell ends up in ascending index order
      * without a cursor array: start[c] walks down to its final value. */
     for (uint32_t k = n; k-- > 0;) {
-        if (cell[k] != UINT32_MAX) {
-            g->items[--g->start[cell[k] + 1]] = k;
+        if (pc[k] != UINT32_MAX) {
+            g->items[--g->start[pc[k] + 1]] = k;
         }
     }
     /* start[c+1] now holds the beginning of cell c: shift back by one. */
@@ -111,7 +124,7 @@ int grid_build_boxes(grid_t *g, const float (*aabb)[4], uint32_t n)
             }
         }
     }
-    if (grid_reserve(g, total) != 0) {
+    if (reserve_items(g, total) != 0) {
         return -1;
     }
     for (size_t c = 0; c < cells; c++) {

@@ -17,7 +17,9 @@
  *              (as many columns as the rectangle's aspect asks);
  *   poses      one pose per robot, in order.
  * The heading is the group's (degrees), or drawn uniformly when `random`;
- * a pose's own heading, when given, wins.
+ * a pose's own heading, when given, wins.  Robot k of a group takes the
+ * k-th spot drawn, or with `order: space` the k-th along a Morton curve
+ * once every group is placed (renumber_by_space).
  *
  * Random cylinders (scenario random_cylinders, placement_cylinders) come
  * before any robot: cylinder k draws its radius uniformly in [radius_min,
@@ -349,8 +351,8 @@ int placement_cylinders(struct sim *sim, char err[SIM_ERR_MAX])
 }
 
 /* placement.order: space.  Cells of this side (m) along a Morton (Z)
- * curve: the robot grid's cell, so that robots of one cell, and of
- * neighbouring cells mostly, are neighbours in id too. */
+ * curve: the robot grid's cell at the default IR range, so that robots of
+ * one cell, and of neighbouring cells mostly, are neighbours in id too. */
 #define ORDER_CELL_M 0.5f
 
 typedef struct spot {
@@ -440,7 +442,9 @@ int placement_run(struct sim *sim, char err[SIM_ERR_MAX])
     }
     placed_free(&placed);
     for (uint32_t g = 0; g < sc->group_count && rc == 0; g++) {
-        if (sc->groups[g].placement.order == PLACE_ORDER_SPACE) {
+        /* Poses are the user's, robot by robot: the loader refuses space
+         * for them, and a scenario built in code is held to it here. */
+        if (sc->groups[g].placement.order == PLACE_ORDER_SPACE && sc->groups[g].placement.shape != PLACE_POSES) {
             rc = renumber_by_space(sim, first[g], sc->groups[g].count, err);
         }
     }

@@ -366,7 +366,8 @@ void sim_memory_estimate(const scenario_t *sc, uint32_t threads, sim_memory_t *o
     uint64_t n = scenario_robot_count(sc), no = (uint64_t)sc->object_count + sc->random_cylinders.count;
     uint64_t w = threads ? threads : 1;
     uint64_t robots = n * (sizeof(sim_robot_t) + 2 * sizeof(float) + sizeof(uint32_t) + sizeof(world_velocity_t)
-                           + sizeof(uint32_t) + w * sizeof(uint32_t) + BOX2D_BYTES_PER_BODY);
+                           + sizeof(uint32_t) + w * sizeof(uint32_t) + BOX2D_BYTES_PER_BODY
+                           + sizeof(uint32_t) /* the robot grid's point_cell */);
     for (uint32_t g = 0; g < sc->group_count; g++) {
         const controller_def_t *def = sc->groups[g].def;
         robots += (uint64_t)sc->groups[g].count * (def ? (def->state_size + 15u) & ~(size_t)15u : 0u);

@@ -9,8 +9,7 @@
 # a second.)
 set -u
 cd "$(dirname "$0")/../.."
-bench=$(dirname "$1")/floor_bench
-bench=$(cd "$(dirname "$bench")" && pwd)/floor_bench
+bench=$(cd "$(dirname "${1:-build/swarmsim}")" && pwd)/floor_bench
 pass=0 fail=0
 check() { if [ "$2" = "$3" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$2', expected '$3'"; fi; }
 tmp=$(mktemp -d)
@@ -22,8 +21,6 @@ check "rows" "$(awk '$1 == 20 && $2 == 20' "$tmp/all.txt" | wc -l | tr -d ' ')" 
 check "no body apart from the random walk's" "$(grep -c 'apart' "$tmp/all.txt")" 0
 check "the floor against itself" "$(awk '$3 == "floor" && $4 == 1 {print $8}' "$tmp/all.txt")" 1.00
 check "the random walk against itself" "$(awk '$3 == "rw" && $4 == 1 {print $9}' "$tmp/all.txt")" 1.00
-rw=$(awk '$3 == "rw" && $4 == 1 {print $8}' "$tmp/all.txt")
-check "the random walk costs more than the floor" "$(awk -v r="$rw" 'BEGIN {print (r > 1.0) ? "yes" : "no"}')" yes
 
 "$bench" --counts 20:20 --threads 1 --reps 1 --worlds fs > "$tmp/fs.txt" 2>&1
 check "full sensing alone: exit" "$?" 0

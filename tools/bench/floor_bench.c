@@ -99,7 +99,10 @@ static scenario_t *load(const char *path, uint32_t n, int tokens)
     scenario_t *sc = calloc(1, sizeof *sc);
     if (!sc || scenario_load(path, o, tokens ? 4 : 3, sc, err) != 0) {
         fprintf(stderr, "floor_bench: %s\n", sc ? err : "out of memory");
-        if (sc && strncmp(path, "tools/bench/", 12) == 0) {
+        FILE *f = sc ? fopen(path, "r") : NULL;
+        if (f) {
+            fclose(f);   /* there, and bad: its error says why */
+        } else if (sc && strncmp(path, "tools/bench/", 12) == 0) {
             fprintf(stderr, "floor_bench: its worlds are read from the current directory: run it from the "
                             "repository's root (as make bench-floor does), or give --rw FILE and --fs FILE\n");
         }
@@ -109,9 +112,9 @@ static scenario_t *load(const char *path, uint32_t n, int tokens)
 }
 
 /* A multiple, or "-" when the world it is taken against was not run. */
-static void print_multiple(double m)
+static void print_multiple(int run, double m)
 {
-    if (isfinite(m)) {
+    if (run) {
         printf(" %10.2f", m);
     } else {
         printf(" %10s", "-");
@@ -299,8 +302,8 @@ int main(int argc, char **argv)
                 }
                 printf("%7u %6u %5s %3u %4d %10.3f %10.3f", n, steps[c], world_name[w], threads[t], reps,
                        1e6 * median(x->cpu, reps) / rs, 1e6 * median(x->wall, reps) / rs);
-                print_multiple(median(ratio_f, reps));
-                print_multiple(on[W_RW] ? median(ratio_rw, reps) : NAN);
+                print_multiple(on[W_FLOOR], median(ratio_f, reps));
+                print_multiple(on[W_RW], median(ratio_rw, reps));
                 printf(" %8.2f\n", median(speed, reps));
             }
             if (on[W_FLOOR]) {

@@ -6,6 +6,7 @@
 #                      thread (about 1 min); its multiples of the floor are
 #                      recorded in docs/development/benchmarks.md per commit
 #                      that changes stepping
+# make test builds it and checks it (tests/cli/floor_bench.sh).
 # BENCH_FLOOR_ARGS: e.g. "--counts 2000:50 --threads 1 --reps 9".
 .PHONY: bench-floor bench-guard
 $(BUILD)/floor_bench: tools/bench/floor_bench.c $(BUILD)/libswarm.a
@@ -16,6 +17,7 @@ bench-floor: $(BUILD)/floor_bench
 
 bench-guard: $(BUILD)/floor_bench
 	$(BUILD)/floor_bench --counts 20:2000,2000:50 --threads 1 --reps 15 $(BENCH_FLOOR_ARGS)
-TEST_BUILD += $(BUILD)/floor_bench
+
 # tests/cli/floor_bench.sh runs it (20 robots, 20 steps: its checks, not a timing).
+TEST_BUILD += $(BUILD)/floor_bench
 cli-tests: $(BUILD)/floor_bench

@@ -17,7 +17,8 @@ typedef struct grid {
     uint32_t *start;     /**< nx*ny + 1 offsets into items */
     uint32_t *items;
     uint32_t item_cap;
-    uint32_t *point_cell; /**< item_cap: each point's cell while binning (found once, used twice) */
+    uint32_t *point_cell; /**< point_cap: each point's cell while binning (found once, used twice) */
+    uint32_t point_cap;
 } grid_t;
 
 /** Covers [x0, x0+w] x [y0, y0+h] with cells of side about `cell`.

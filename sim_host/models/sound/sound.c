@@ -364,8 +364,6 @@ typedef struct listeners {
     uint32_t emitters[HAL_SOUND_BANDS];   /**< robots that played in each band */
 } listeners_t;
 
-/* pool_fn: listeners [begin, end), each its own sums and noise stream, so
- * that they are summed side by side. */
 /* Listener i's sums as the counts its microphones read. */
 static void levels_of(sound_t *s, uint32_t i)
 {
@@ -375,6 +373,8 @@ static void levels_of(sound_t *s, uint32_t i)
     }
 }
 
+/* pool_fn: listeners [begin, end), each its own sums and noise stream, so
+ * that they are summed side by side. */
 static void listen_range(uint32_t begin, uint32_t end, uint32_t worker, void *ctx)
 {
     listeners_t *l = ctx;

@@ -265,11 +265,11 @@ static double nest_distance(const foraging_t *f, double x, double y)
 /* nest_distance(f, x, y) < reach, as that comparison decides, with hypot
  * called only within a hair of the rim: the squared distance decides the
  * rest (hypot is within an ulp of the exact root and the square within
- * two of the exact square, so a relative margin of 1e-12 leaves no case
+ * two ulps of the exact square, so a relative margin of 1e-12 leaves no case
  * the two answer differently; NaN falls through to hypot).  Every robot
  * is tested every step: hypot was 2 % of full sensing at 10,000 robots,
  * all of it on the stepping thread. */
-static int within_of_nest(const foraging_t *f, double x, double y, double reach)
+static int near_nest(const foraging_t *f, double x, double y, double reach)
 {
     double dx = x - f->cfg->nest.x, dy = y - f->cfg->nest.y;
     double d2 = dx * dx + dy * dy, r2 = reach * reach;
@@ -513,12 +513,14 @@ static void foraging_update(void *self, sim_t *sim)
         oae += fs->walk.oae_count;
         /* A waiting robot's distance is summed anyway: one hypot serves
          * both; the others need only which side of the rim they are. */
-        double reach = nest_radius(f) + NEST_REACH, d = st == 'W' ? nest_distance(f, x, y) : NAN;
-        if (st == 'W' ? d < reach : within_of_nest(f, x, y, reach)) {
+        int waiting = st == 'W';
+        double reach = nest_radius(f) + NEST_REACH, d = waiting ? nest_distance(f, x, y) : 0.0;
+        int at_nest = waiting ? d < reach : near_nest(f, x, y, reach);
+        if (at_nest) {
             f->oae_at_nest += fs->walk.oae_count - f->last_oae[i];
         }
         f->last_oae[i] = fs->walk.oae_count;
-        if (st == 'W') {
+        if (waiting) {
             f->wait_radius_sum += d;
             f->wait_steps++;
         }
