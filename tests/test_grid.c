@@ -47,6 +47,17 @@ static void test_sort_ids_matches_a_full_sort(void **state)
     }
 }
 
+/* n points uniform over the square of side side_mm (mm) centred on the origin,
+ * on a 1 mm lattice. */
+static void random_points(float *x, float *y, uint32_t n, uint32_t side_mm, uint64_t *seed)
+{
+    float half = (float)side_mm / 2000.0f;
+    for (uint32_t k = 0; k < n; k++) {
+        x[k] = (float)(next(seed) % side_mm) / 1000.0f - half;
+        y[k] = (float)(next(seed) % side_mm) / 1000.0f - half;
+    }
+}
+
 static void test_gather_holds_every_point_in_the_box(void **state)
 {
     (void)state;
@@ -55,10 +66,7 @@ static void test_gather_holds_every_point_in_the_box(void **state)
     uint64_t seed = 3;
     grid_t g;
     assert_int_equal(grid_init(&g, -5.0f, -5.0f, 10.0f, 10.0f, 0.4f), 0);
-    for (uint32_t k = 0; k < N; k++) {
-        x[k] = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f;
-        y[k] = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f;
-    }
+    random_points(x, y, N, 10000u, &seed);
     assert_int_equal(grid_build_points(&g, x, y, N), 0);
     for (int q = 0; q < 100; q++) {
         float cx = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f, cy = (float)(next(&seed) % 10000u) / 1000.0f - 5.0f;
@@ -90,12 +98,9 @@ static void test_build_bins_each_point_once_in_index_order(void **state)
     uint64_t seed = 11;
     grid_t g;
     assert_int_equal(grid_init(&g, -2.0f, -2.0f, 4.0f, 4.0f, 0.5f), 0);
-    for (uint32_t k = 0; k < N; k++) {
-        x[k] = (float)(next(&seed) % 4000u) / 1000.0f - 2.0f;
-        y[k] = (float)(next(&seed) % 4000u) / 1000.0f - 2.0f;
-        if (k % 7 == 3) {
-            (k % 2 ? x : y)[k] = NAN;
-        }
+    random_points(x, y, N, 4000u, &seed);
+    for (uint32_t k = 3; k < N; k += 7) {
+        (k % 2 ? x : y)[k] = NAN;
     }
     const uint32_t sizes[2] = { N, 100 };
     for (int pass = 0; pass < 2; pass++) {

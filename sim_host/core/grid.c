@@ -34,36 +34,25 @@ void grid_free(grid_t *g)
     memset(g, 0, sizeof *g);
 }
 
-/* Room for n items (boxes need no more: a box grid is built once). */
-static int reserve_items(grid_t *g, uint32_t n)
+/* Grows *a to n entries when it holds fewer (*cap). */
+static int grow(uint32_t **a, uint32_t *cap, uint32_t n)
 {
-    if (n <= g->item_cap) {
+    if (n <= *cap) {
         return 0;
     }
-    uint32_t *p = realloc(g->items, (size_t)n * sizeof *p);
+    uint32_t *p = realloc(*a, (size_t)n * sizeof *p);
     if (!p) {
         return -1;
     }
-    g->items = p;
-    g->item_cap = n;
+    *a = p;
+    *cap = n;
     return 0;
 }
 
+/* Points need a cell each while binning; boxes (built once) only items. */
 int grid_reserve(grid_t *g, uint32_t n)
 {
-    if (reserve_items(g, n) != 0) {
-        return -1;
-    }
-    if (n <= g->point_cap) {
-        return 0;
-    }
-    uint32_t *c = realloc(g->point_cell, (size_t)n * sizeof *c);
-    if (!c) {
-        return -1;
-    }
-    g->point_cell = c;
-    g->point_cap = n;
-    return 0;
+    return grow(&g->items, &g->item_cap, n) != 0 || grow(&g->point_cell, &g->point_cap, n) != 0 ? -1 : 0;
 }
 
 static int32_t cell_of(const grid_t *g, float x, float y)
@@ -124,7 +113,7 @@ int grid_build_boxes(grid_t *g, const float (*aabb)[4], uint32_t n)
             }
         }
     }
-    if (reserve_items(g, total) != 0) {
+    if (grow(&g->items, &g->item_cap, total) != 0) {
         return -1;
     }
     for (size_t c = 0; c < cells; c++) {
