@@ -353,7 +353,7 @@ int placement_cylinders(struct sim *sim, char err[SIM_ERR_MAX])
 /* placement.order: space.  Cells of this side (m) along a Morton (Z)
  * curve: the robot grid's cell at the default IR range, so that robots of
  * one cell, and of neighbouring cells mostly, are neighbours in id too. */
-#define ORDER_CELL_M 0.5f
+#define ORDER_CELL_M SIM_ROBOT_CELL_MIN_M
 
 typedef struct spot {
     uint64_t key;               /* Morton code of its cell */

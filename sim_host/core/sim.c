@@ -441,7 +441,7 @@ sim_t *sim_create_threads(const scenario_t *sc, uint64_t seed, uint32_t threads,
         }
         reach = fmaxf(reach, lay.neighbour_reach_m);
     }
-    float cell = fmaxf(0.5f, 2 * EPUCK_BODY_RADIUS_M + reach + 0.04f);
+    float cell = fmaxf(SIM_ROBOT_CELL_MIN_M, 2 * EPUCK_BODY_RADIUS_M + reach + 0.04f);
     if (!sim->robots || !sim->ctrl_blocks || !sim->step_order || !sim->px
         || !sim->py || !sim->obstacles || !sim->objects
         || grid_init(&sim->robot_grid, -sim->hw, -sim->hh, 2 * sim->hw, 2 * sim->hh, cell) != 0

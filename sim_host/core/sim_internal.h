@@ -76,6 +76,10 @@ typedef struct sim_scratch {
 /** A counter the run's controllers declare (observable.h), and its keys in
  *  the summary and time series. */
 #define SIM_MAX_COUNTERS 16
+
+/** The robot grid's smallest cell side, m (wider when a model reaches
+ *  further); placement.order: space numbers robots along cells of it. */
+#define SIM_ROBOT_CELL_MIN_M 0.5f
 typedef struct sim_counter {
     const char *name;
     const char *unit;
