@@ -117,6 +117,51 @@ static void test_ir_sees_other_robot(void **state)
     free(sc);
 }
 
+/* IR0's readings square onto a wall `gap_m` away, n steps: their mean and
+ * sd, with the noise drawn `draws` (noise_draws_t). */
+static void ir0_at_wall(int draws, double gap_m, int n, double *mean, double *sd)
+{
+    scenario_t *sc = fixture_idle_scenario(1, 2.0f);
+    ir_config_mut(sc)->noise_draws = draws;
+    sim_t *sim = fixture_sim(sc, 21);
+    sim_set_robot_pose(sim, 0, 1.0 - 0.033 - gap_m, 0.0, 17.0 * PI / 180.0);
+    double sum = 0.0, sq = 0.0;
+    for (int k = 0; k < n; k++) {
+        double v = hal_ir_proximity(sim_robot_hal(sim, 0), 0);
+        sum += v;
+        sq += v * v;
+        sim_step(sim);
+    }
+    *mean = sum / n;
+    *sd = sqrt(sq / n - *mean * *mean);
+    sim_destroy(sim);
+    scenario_free(sc);
+    free(sc);
+}
+
+/* noise_draws: summed draws one normal per sensor for both noise parts:
+ * the same distribution as two, sd sqrt((0.01 v)^2 + 5^2) (and 1/12 of
+ * the rounding), at a reading where the relative part leads (2133 counts)
+ * and where the additive one does (235). */
+static void test_ir_noise_draws_summed(void **state)
+{
+    (void)state;
+    static const double gap[] = { 0.005, 0.030 }, raw[] = { 2133, 235 };
+    enum { N = 4000 };
+    for (int k = 0; k < 2; k++) {
+        double want_sd = sqrt(pow(0.01 * raw[k], 2) + 25.0 + 1.0 / 12.0), mean[2], sd[2];
+        for (int draws = 0; draws < 2; draws++) {
+            ir0_at_wall(draws, gap[k], N, &mean[draws], &sd[draws]);
+            print_message("%s at %.0f counts: mean %.2f, sd %.3f (want %.3f)\n", draws ? "summed" : "per_term",
+                          raw[k], mean[draws], sd[draws], want_sd);
+            /* 4 standard errors of the mean; the sd's is 1/sqrt(2N) = 1.1 %. */
+            assert_true(fabs(mean[draws] - raw[k]) < 4.0 * want_sd / sqrt((double)N) + 0.5);
+            assert_true(fabs(sd[draws] / want_sd - 1.0) < 0.05);
+        }
+        assert_true(mean[0] != mean[1]);   /* other values drawn: another sample */
+    }
+}
+
 /* --------------------------------------------------------------- light */
 
 static void test_light_falls_with_distance(void **state)
@@ -769,59 +814,73 @@ static uint64_t fnv_more(uint64_t h, const void *p, size_t n)
  * every step, the sound field with a cutoff, 800 food tokens), so that every
  * parallel phase splits into several chunks.  Compared: the state hash, and
  * what each robot then holds: its IR inbox (value, sensor, bearing, range),
- * its microphones' levels and its blobs. */
+ * its microphones' levels, its blobs and its proximity readings.  Both with
+ * the noise drawn per term and summed (noise_draws: summed, IR and sound),
+ * which must then be another sample. */
 static void test_thread_count_does_not_matter(void **state)
 {
     (void)state;
     static const scenario_override_t sets[] = { { "robots.0.count=800" }, { "arena.width=25.3" },
-                                                { "arena.height=25.3" }, { "foraging.food_count=800" } };
-    scenario_t *sc = malloc(sizeof *sc);
-    char err[SIM_ERR_MAX];
-    assert_non_null(sc);
-    if (scenario_load("../tools/bench/bench_full_sensing.yaml", sets, 4, sc, err) != 0) fail_msg("%s", err);
-    uint64_t hash[3], held[3];
-    for (uint32_t t = 1; t <= 3; t++) {
-        sim_t *sim = sim_create_threads(sc, 7, t, err);
-        if (!sim) fail_msg("sim_create_threads: %s", err);
-        for (int k = 0; k < 40; k++) sim_step(sim);
-        hash[t - 1] = sim_state_hash(sim);
-        uint64_t h = UINT64_C(0xcbf29ce484222325);
-        uint32_t messages = 0;
-        for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
-            hal_t *hal = sim_robot_hal(sim, i);
-            hal_ircom_msg_t m;
-            while (hal_ircom_receive(hal, &m) == HAL_OK) {
-                h = fnv_more(h, &m.value, sizeof m.value);
-                h = fnv_more(h, &m.sensor, sizeof m.sensor);
-                h = fnv_more(h, &m.bearing_mrad, sizeof m.bearing_mrad);
-                h = fnv_more(h, &m.range_mm, sizeof m.range_mm);
-                messages++;
-            }
-            for (uint8_t band = 1; band < HAL_SOUND_BANDS; band++) {
-                uint32_t level = 0;
-                hal_status_t st = hal_mic_level(hal, 0, band, &level);
-                h = fnv_more(h, &st, sizeof st);
-                h = fnv_more(h, &level, sizeof level);
-            }
-            hal_blob_t b[HAL_MAX_BLOBS];
-            uint8_t nb = hal_camera_blobs(hal, b, HAL_MAX_BLOBS);
-            for (uint8_t k = 0; k < nb; k++) {   /* field by field: a struct has padding */
-                h = fnv_more(h, &b[k].colour, sizeof b[k].colour);
-                h = fnv_more(h, &b[k].bearing_mrad, sizeof b[k].bearing_mrad);
-                h = fnv_more(h, &b[k].width_mrad, sizeof b[k].width_mrad);
-                h = fnv_more(h, &b[k].pixels, sizeof b[k].pixels);
-            }
+                                                { "arena.height=25.3" }, { "foraging.food_count=800" },
+                                                { "ir.noise_draws=summed" }, { "sound.noise_draws=summed" } };
+    uint64_t held_of[2];
+    for (int draws = 0; draws < 2; draws++) {
+        scenario_t *sc = malloc(sizeof *sc);
+        char err[SIM_ERR_MAX];
+        assert_non_null(sc);
+        if (scenario_load("../tools/bench/bench_full_sensing.yaml", sets, draws ? 6 : 4, sc, err) != 0) {
+            fail_msg("%s", err);
         }
-        held[t - 1] = h;
-        print_message("%u thread(s): state %016llx, held %016llx (%u IR messages)\n", t,
-                      (unsigned long long)hash[t - 1], (unsigned long long)h, messages);
-        assert_true(messages > 800);   /* delivery did happen */
-        sim_destroy(sim);
+        uint64_t hash[3], held[3];
+        for (uint32_t t = 1; t <= 3; t++) {
+            sim_t *sim = sim_create_threads(sc, 7, t, err);
+            if (!sim) fail_msg("sim_create_threads: %s", err);
+            for (int k = 0; k < 40; k++) sim_step(sim);
+            hash[t - 1] = sim_state_hash(sim);
+            uint64_t h = UINT64_C(0xcbf29ce484222325);
+            uint32_t messages = 0;
+            for (uint32_t i = 0; i < sim_robot_count(sim); i++) {
+                hal_t *hal = sim_robot_hal(sim, i);
+                hal_ircom_msg_t m;
+                while (hal_ircom_receive(hal, &m) == HAL_OK) {
+                    h = fnv_more(h, &m.value, sizeof m.value);
+                    h = fnv_more(h, &m.sensor, sizeof m.sensor);
+                    h = fnv_more(h, &m.bearing_mrad, sizeof m.bearing_mrad);
+                    h = fnv_more(h, &m.range_mm, sizeof m.range_mm);
+                    messages++;
+                }
+                for (uint8_t band = 1; band < HAL_SOUND_BANDS; band++) {
+                    uint32_t level = 0;
+                    hal_status_t st = hal_mic_level(hal, 0, band, &level);
+                    h = fnv_more(h, &st, sizeof st);
+                    h = fnv_more(h, &level, sizeof level);
+                }
+                hal_blob_t b[HAL_MAX_BLOBS];
+                uint8_t nb = hal_camera_blobs(hal, b, HAL_MAX_BLOBS);
+                for (uint8_t k = 0; k < nb; k++) {   /* field by field: a struct has padding */
+                    h = fnv_more(h, &b[k].colour, sizeof b[k].colour);
+                    h = fnv_more(h, &b[k].bearing_mrad, sizeof b[k].bearing_mrad);
+                    h = fnv_more(h, &b[k].width_mrad, sizeof b[k].width_mrad);
+                    h = fnv_more(h, &b[k].pixels, sizeof b[k].pixels);
+                }
+                for (uint8_t k = 0; k < HAL_IR_COUNT; k++) {
+                    uint16_t p = hal_ir_proximity(hal, k);
+                    h = fnv_more(h, &p, sizeof p);
+                }
+            }
+            held[t - 1] = h;
+            print_message("%u thread(s): state %016llx, held %016llx (%u IR messages)\n", t,
+                          (unsigned long long)hash[t - 1], (unsigned long long)h, messages);
+            assert_true(messages > 800);   /* delivery did happen */
+            sim_destroy(sim);
+        }
+        assert_true(hash[0] == hash[1] && hash[0] == hash[2]);
+        assert_true(held[0] == held[1] && held[0] == held[2]);
+        held_of[draws] = held[0];
+        scenario_free(sc);
+        free(sc);
     }
-    assert_true(hash[0] == hash[1] && hash[0] == hash[2]);
-    assert_true(held[0] == held[1] && held[0] == held[2]);
-    scenario_free(sc);
-    free(sc);
+    assert_true(held_of[0] != held_of[1]);
 }
 
 /* ---------------------------------------------------------- HAL channels */
@@ -1036,6 +1095,7 @@ int main(void)
         cmocka_unit_test(test_ir_follows_calibration_table),
         cmocka_unit_test(test_ir_bearing_left_is_ir5),
         cmocka_unit_test(test_ir_sees_other_robot),
+        cmocka_unit_test(test_ir_noise_draws_summed),
         cmocka_unit_test(test_light_falls_with_distance),
         cmocka_unit_test(test_camera_field_of_view_and_occlusion),
         cmocka_unit_test(test_motion_straight_500_steps),

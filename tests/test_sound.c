@@ -25,6 +25,7 @@
 #include "swarmsim/scenario.h"
 #include "swarmsim/sim.h"
 #include "core/sim_internal.h"
+#include "models/noise_draws.h"
 #include "models/sound/sound.h"
 
 #define A0 299.18
@@ -396,6 +397,116 @@ static void test_cutoff_far_field_statistics(void **state)
     free(sc);
 }
 
+/* noise_draws: summed.  Nine static probes 0.8 m apart, playing bands
+ * i % 4; every listener's level in every band, as z-scores against eq 2's
+ * mean and eq 4's sd, sqrt(sum of the squared terms) times the noise,
+ * computed here term by term (beyond a cutoff a source's term is ae).  Both
+ * draw rules must give mean 0 and sd 1 under both silent_robots rules, all
+ * pairs and with a cutoff that leaves some sources far, and bands
+ * uncorrelated; without noise the two give the same levels (to a count:
+ * the sum's order differs). */
+enum { SUMMED_ROBOTS = 9, SUMMED_STEPS = 1500 };
+
+static void place_summed_probes(sim_t *sim)
+{
+    for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
+        sim_set_robot_pose(sim, i, 0.8 * (i % 3), 0.8 * (i / 3), 0.0);
+        probe(sim, i)->emit = (uint8_t)(i % 4);
+    }
+}
+
+static void expected_level(uint32_t i, uint8_t band, int ambient, double cutoff, double *mean, double *sd)
+{
+    double sum = 0.0, sq = 0.0;
+    for (uint32_t j = 0; j < SUMMED_ROBOTS; j++) {
+        double d = 0.8 * hypot((double)(i % 3) - (double)(j % 3), (double)(i / 3) - (double)(j / 3));
+        double a = (j % 4 == band) ? ((cutoff > 0.0 && d > cutoff) ? AE : loud(d)) : (ambient ? AE : 0.0);
+        if (j != i) {
+            sum += a;
+            sq += a * a;
+        }
+    }
+    *mean = 1000.0 * sum;
+    *sd = 1000.0 * 0.06 * sqrt(sq);
+}
+
+static void test_summed_draws_same_distribution(void **state)
+{
+    (void)state;
+    for (int setting = 0; setting < 4; setting++) {
+        int ambient = !(setting & 1);
+        double cutoff = (setting & 2) ? 1.0 : 0.0;
+        for (int draws = 0; draws < 2; draws++) {
+            scenario_t *sc = probe_scenario(SUMMED_ROBOTS);
+            sound_config_mut(sc)->noise = 0.06;
+            sound_config_mut(sc)->self_masking = 0;
+            sound_config_mut(sc)->silent_robots = ambient ? SOUND_SILENT_AMBIENT : SOUND_SILENT_NONE;
+            sound_config_mut(sc)->cutoff = cutoff;
+            sound_config_mut(sc)->noise_draws = draws;
+            sim_t *sim = fixture_sim(sc, 5);
+            place_summed_probes(sim);
+            sim_step(sim);
+            double zs = 0.0, zq = 0.0, z12 = 0.0;
+            int n = 0, n12 = 0;
+            for (int k = 0; k < SUMMED_STEPS; k++) {
+                sim_step(sim);
+                for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
+                    double z[HAL_SOUND_BANDS] = { 0.0 };
+                    for (uint8_t b = 1; b < HAL_SOUND_BANDS; b++) {
+                        double mean, sd;
+                        expected_level(i, b, ambient, cutoff, &mean, &sd);
+                        if (sd == 0.0) {
+                            continue;   /* no term in this band (none: no emitter but itself) */
+                        }
+                        z[b] = (probe(sim, i)->level[0][b] - mean) / sd;
+                        zs += z[b];
+                        zq += z[b] * z[b];
+                        n++;
+                    }
+                    z12 += z[1] * z[2];
+                    n12++;
+                }
+            }
+            double mz = zs / n, sdz = sqrt(zq / n - mz * mz), corr = z12 / n12;
+            print_message("%s, cutoff %.1f, %s: z mean %.4f, sd %.4f, bands 1-2 %.4f over %d\n",
+                          ambient ? "ambient" : "none", cutoff, draws ? "summed" : "per_term", mz, sdz, corr, n);
+            assert_true(fabs(mz) < 4.0 / sqrt((double)n));
+            assert_true(fabs(sdz - 1.0) < 0.03);      /* its standard error: 1 / sqrt(2 n), under 0.5 % */
+            assert_true(fabs(corr) < 4.0 / sqrt((double)n12) + 0.01);
+            sim_destroy(sim);
+            scenario_free(sc);
+            free(sc);
+        }
+        /* Without noise the two rules give the same sums. */
+        uint32_t level[2][SUMMED_ROBOTS][HAL_SOUND_BANDS];
+        for (int draws = 0; draws < 2; draws++) {
+            scenario_t *sc = probe_scenario(SUMMED_ROBOTS);
+            sound_config_mut(sc)->self_masking = 0;
+            sound_config_mut(sc)->silent_robots = ambient ? SOUND_SILENT_AMBIENT : SOUND_SILENT_NONE;
+            sound_config_mut(sc)->cutoff = cutoff;
+            sound_config_mut(sc)->noise_draws = draws;
+            sim_t *sim = fixture_sim(sc, 5);
+            place_summed_probes(sim);
+            sim_step(sim);
+            sim_step(sim);
+            for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
+                memcpy(level[draws][i], probe(sim, i)->level[0], sizeof level[draws][i]);
+            }
+            sim_destroy(sim);
+            scenario_free(sc);
+            free(sc);
+        }
+        for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
+            for (uint8_t b = 1; b < HAL_SOUND_BANDS; b++) {
+                double mean, sd;
+                expected_level(i, b, ambient, cutoff, &mean, &sd);
+                assert_true(level[0][i][b] + 1 >= level[1][i][b] && level[1][i][b] + 1 >= level[0][i][b]);
+                assert_true(fabs(level[1][i][b] - mean) <= 1.0);
+            }
+        }
+    }
+}
+
 /* The count scale and its ends. */
 static void test_counts(void **state)
 {
@@ -429,6 +540,7 @@ static void test_scenario_section(void **state)
     assert_true(sound_config_mut(sc)->alpha == 0.726 && sound_config_mut(sc)->noise == 0.06 && sound_config_mut(sc)->a0 == A0
                 && sound_config_mut(sc)->ae == AE && sound_config_mut(sc)->cutoff == 0.0);
     assert_int_equal(sound_config_mut(sc)->silent_robots, SOUND_SILENT_AMBIENT);
+    assert_int_equal(sound_config_mut(sc)->noise_draws, NOISE_DRAWS_PER_TERM);
 
     scenario_override_t bad[] = { { "sound.silent_robots=loud" } };
     assert_int_equal(scenario_load("data/scenarios/sound_small.yaml", bad, 1, sc, err), -1);
@@ -437,6 +549,13 @@ static void test_scenario_section(void **state)
     scenario_override_t neg[] = { { "sound.cutoff=-1" } };
     assert_int_equal(scenario_load("data/scenarios/sound_small.yaml", neg, 1, sc, err), -1);
     assert_non_null(strstr(err, "sound.cutoff"));
+    scenario_override_t summed[] = { { "sound.noise_draws=summed" } }, wrong[] = { { "sound.noise_draws=each" } };
+    assert_int_equal(scenario_load("data/scenarios/sound_small.yaml", summed, 1, sc, err), 0);
+    assert_int_equal(sound_config(sc)->noise_draws, NOISE_DRAWS_SUMMED);
+    scenario_free(sc);
+    assert_int_equal(scenario_load("data/scenarios/sound_small.yaml", wrong, 1, sc, err), -1);
+    assert_non_null(strstr(err, "sound.noise_draws: expected one of per_term|summed"));
+
     scenario_override_t typo[] = { { "sound.volume=3" } };
     assert_int_equal(scenario_load("data/scenarios/sound_small.yaml", typo, 1, sc, err), -1);
     assert_non_null(strstr(err, "volume"));
@@ -587,6 +706,7 @@ int main(void)
         cmocka_unit_test(test_cutoff_error),
         cmocka_unit_test(test_cutoff_beyond_arena_is_all_pairs),
         cmocka_unit_test(test_cutoff_far_field_statistics),
+        cmocka_unit_test(test_summed_draws_same_distribution),
         cmocka_unit_test(test_counts),
         cmocka_unit_test(test_scenario_section),
         cmocka_unit_test(test_same_levels_any_thread_count),

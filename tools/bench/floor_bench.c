@@ -27,8 +27,11 @@
  *
  *   floor_bench [--counts 20:2000,200:500,2000:50,10000:10,100000:2]
  *               [--threads 1,2] [--reps 7] [--worlds floor,rw,fs]
- *               [--rw FILE] [--fs FILE]
- * Prints one line per count, world and thread count, then the multiples.
+ *               [--rw FILE] [--fs FILE] [--set K=V ...]
+ * --set overrides a key of both worlds' scenarios (as swarmsim's), after
+ * the robot count and the arena: `--set ir.noise_draws=summed` measures an
+ * option.  Prints one line per count, world and thread count, then the
+ * multiples.
  */
 #include <inttypes.h>
 #include <math.h>
@@ -43,6 +46,7 @@
 #define MAX_THREADS 4
 #define MAX_REPS 51
 #define DENSITY 1.25
+#define MAX_SETS 16
 
 enum { W_FLOOR, W_RW, W_FS, WORLDS };
 static const char *const world_name[WORLDS] = { "floor", "rw", "fs" };
@@ -87,7 +91,13 @@ static double median(const double *v, int n)
     return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
 }
 
-static scenario_t *load(const char *path, uint32_t n, int tokens)
+/* --set's overrides, in the order given. */
+typedef struct sets {
+    scenario_override_t o[MAX_SETS];
+    int n;
+} sets_t;
+
+static scenario_t *load(const char *path, uint32_t n, int tokens, const sets_t *sets)
 {
     char count[64], width[64], height[64], food[64], err[SIM_ERR_MAX];
     double side = sqrt(n / DENSITY);
@@ -95,9 +105,13 @@ static scenario_t *load(const char *path, uint32_t n, int tokens)
     snprintf(width, sizeof width, "arena.width=%.3f", side);
     snprintf(height, sizeof height, "arena.height=%.3f", side);
     snprintf(food, sizeof food, "foraging.food_count=%u", n);
-    scenario_override_t o[4] = { { count }, { width }, { height }, { food } };
+    scenario_override_t o[4 + MAX_SETS] = { { count }, { width }, { height }, { food } };
+    size_t k = tokens ? 4 : 3;
+    for (int i = 0; i < sets->n; i++) {
+        o[k++] = sets->o[i];
+    }
     scenario_t *sc = calloc(1, sizeof *sc);
-    if (!sc || scenario_load(path, o, tokens ? 4 : 3, sc, err) != 0) {
+    if (!sc || scenario_load(path, o, k, sc, err) != 0) {
         fprintf(stderr, "floor_bench: %s\n", sc ? err : "out of memory");
         FILE *f = sc ? fopen(path, "r") : NULL;
         if (f) {
@@ -221,7 +235,7 @@ static int parse_list(const char *s, uint32_t *a, uint32_t *b, int max)
 static void usage(void)
 {
     fprintf(stderr, "usage: floor_bench [--counts N:STEPS,...] [--threads T,...] [--reps R] "
-                    "[--worlds floor,rw,fs] [--rw FILE] [--fs FILE]\n");
+                    "[--worlds floor,rw,fs] [--rw FILE] [--fs FILE] [--set K=V ...]\n");
     exit(2);
 }
 
@@ -231,6 +245,7 @@ int main(int argc, char **argv)
     const char *worlds_arg = "floor,rw,fs";
     const char *path[WORLDS] = { NULL, "tools/bench/bench_random_walk.yaml", "tools/bench/bench_full_sensing.yaml" };
     int reps = 7;
+    sets_t sets = { .n = 0 };
     for (int a = 1; a < argc; a++) {
         if (a + 1 >= argc) usage();
         if (!strcmp(argv[a], "--counts")) counts_arg = argv[++a];
@@ -239,6 +254,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[a], "--worlds")) worlds_arg = argv[++a];
         else if (!strcmp(argv[a], "--rw")) path[W_RW] = argv[++a];
         else if (!strcmp(argv[a], "--fs")) path[W_FS] = argv[++a];
+        else if (!strcmp(argv[a], "--set") && sets.n < MAX_SETS) sets.o[sets.n++].text = argv[++a];
         else usage();
     }
     uint32_t count[MAX_COUNTS], steps[MAX_COUNTS], threads[MAX_THREADS];
@@ -254,7 +270,7 @@ int main(int argc, char **argv)
      * alone, not under a header. */
     for (int w = W_RW; w < WORLDS; w++) {
         if (on[w]) {
-            scenario_t *sc = load(path[w], count[0], w == W_FS);
+            scenario_t *sc = load(path[w], count[0], w == W_FS, &sets);
             scenario_free(sc);
             free(sc);
         }
@@ -271,7 +287,7 @@ int main(int argc, char **argv)
             b[t].steps = steps[c];
             for (int w = 0; w < WORLDS; w++) {
                 if (on[w]) {
-                    b[t].w[w].sc = load(path[w == W_FLOOR ? W_RW : w], n, w == W_FS);
+                    b[t].w[w].sc = load(path[w == W_FLOOR ? W_RW : w], n, w == W_FS, &sets);
                     b[t].w[w].sim = create(b[t].w[w].sc, threads[t]);
                 }
             }

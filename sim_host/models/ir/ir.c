@@ -9,6 +9,7 @@
 
 #include "core/sim_internal.h"
 #include "models/faults/faults.h"
+#include "models/noise_draws.h"
 #include "models/per_robot.h"
 #include "units.h"
 
@@ -120,6 +121,8 @@ static const param_desc_t ir_params[] = {
       .doc = "relative Gaussian sd of the value" },
     { .key = "noise_abs", PARAM_FIELD(C, noise_abs, float), .min = 0, .max = 4095,
       .doc = "additive Gaussian sd, raw counts" },
+    { .key = "noise_draws", PARAM_ENUM_FIELD(C, noise_draws, noise_draws_names),
+      .doc = "the relative and additive noise drawn apart (per_term) or as one (summed: the same distribution)" },
     PARAM_END
 };
 
@@ -161,6 +164,7 @@ static void ir_defaults(void *config)
     c->range = 0.1f;
     c->noise_rel = 0.01f;
     c->noise_abs = 5.0f;
+    c->noise_draws = NOISE_DRAWS_PER_TERM;
     c->ambient.dark = 4000.0f;
     c->ambient.half = 1.0f;
     c->ambient.noise_rel = 0.01f;
@@ -390,9 +394,11 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
     float noise_abs = (e != NULL && !isnan(e->noise_abs)) ? e->noise_abs : cfg->noise_abs;
     float ch = cosf(r->theta), sh = sinf(r->theta);
     float half = m->half, cos_half = m->cos_half, sin_half = m->sin_half;
-    /* Each sensor's two draws (relative, then absolute), in sensor order. */
+    /* Each sensor's two draws (relative, then absolute), in sensor order;
+     * summed: one each (models/noise_draws.h). */
+    int summed = cfg->noise_draws == NOISE_DRAWS_SUMMED;
     double n[2 * HAL_IR_COUNT];
-    sim_rand_normals(noise, n, 2 * HAL_IR_COUNT);
+    sim_rand_normals(noise, n, summed ? HAL_IR_COUNT : 2 * HAL_IR_COUNT);
     for (uint32_t s = 0; s < HAL_IR_COUNT; s++) {
         float d = INFINITY;
         if (nr > 1 || no > 0 || nw > 0) {
@@ -417,8 +423,14 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
         if (gains != NULL) {
             v = gains[s].gain * v + gains[s].offset;
         }
-        v += v * noise_rel * n[2 * s];
-        v += noise_abs * n[2 * s + 1];
+        if (summed) {
+            /* v (1 + rel N1) + abs N2 is v + sqrt((v rel)^2 + abs^2) N. */
+            double rel = v * noise_rel;
+            v += sqrt(rel * rel + (double)noise_abs * noise_abs) * n[s];
+        } else {
+            v += v * noise_rel * n[2 * s];
+            v += noise_abs * n[2 * s + 1];
+        }
         out[s] = to_raw(v);
     }
 }

@@ -46,6 +46,7 @@ typedef struct ir_config {
     float range;               /**< beyond this the sensor reads ~0, m */
     float noise_rel;           /**< relative Gaussian sd of the value */
     float noise_abs;           /**< additive Gaussian sd, raw counts */
+    int noise_draws;           /**< noise_draws_t: the two parts drawn apart, or one draw of their sum */
     uint32_t sensor_count;     /**< `sensors`: 0 (gain 1, offset 0) or HAL_IR_COUNT */
     ir_sensor_cal_t sensor[HAL_IR_COUNT];
     uint32_t robot_count;      /**< `robots` */

@@ -16,6 +16,7 @@
 
 #include "core/pool.h"
 #include "core/sim_internal.h"
+#include "models/noise_draws.h"
 #include "models/per_robot.h"
 
 /* The names of sound_silent_t, in its order. */
@@ -39,6 +40,8 @@ static const param_desc_t sound_params[] = {
       .doc = "a robot whose speaker played hears nothing that period (false: full duplex)" },
     { .key = "cutoff", PARAM_FIELD(S, cutoff, double), .min = 0, .max = 1e6,
       .doc = "m; > 0: sources farther away add only ae (error <= a0 e^(-alpha cutoff) each)" },
+    { .key = "noise_draws", PARAM_ENUM_FIELD(S, noise_draws, noise_draws_names),
+      .doc = "eq 4 drawn per pair (per_term) or once per band's sum (summed: the same distribution, faster)" },
     PARAM_END
 };
 #undef S
@@ -103,6 +106,7 @@ static void sound_defaults(void *config)
     c->silent_robots = SOUND_SILENT_AMBIENT;
     c->self_masking = 1;
     c->cutoff = 0.0;
+    c->noise_draws = NOISE_DRAWS_PER_TERM;
     c->robot_count = 0;
     c->robots = NULL;
 }
@@ -138,7 +142,7 @@ uint32_t sound_counts(double units)
 
 /* ---------------------------------------------------------------- state */
 
-enum { SET, PLAYED, LEVEL, ACC, RAND, CAL, ARRAYS };
+enum { SET, PLAYED, LEVEL, ACC, RAND, CAL, SQ, ARRAYS };
 
 typedef uint32_t levels_t[HAL_SOUND_BANDS];   /* counts per band ([0] unused) */
 typedef double sums_t[HAL_SOUND_BANDS];       /* sound_update's sums, units */
@@ -151,6 +155,7 @@ typedef struct sound {
     uint8_t *played;         /* band that played during the last period */
     levels_t *level;
     sums_t *acc;
+    sums_t *sq;              /* noise_draws: summed, all pairs: the sums of the squared terms */
     sim_rand_t *rand;        /* RAND_SOUND: eq 4's noise of every pair the robot hears */
     per_robot_cache_t *cal;  /* which `robots` entry each robot takes (NULL: none listed) */
 } sound_t;
@@ -161,13 +166,17 @@ static void sound_layout(const void *config, const scenario_t *sc, model_layout_
     const sound_config_t *c = config;
     (void)sc;
     if (c->enabled) {
-        out->arrays = c->robot_count > 0 ? ARRAYS : CAL;   /* the entries' cache only when some are listed */
+        /* The entries' cache only when some are listed, the squares only
+         * where the all-pairs loop sums them for summed draws. */
+        int squares = c->noise_draws == NOISE_DRAWS_SUMMED && c->cutoff <= 0.0;
+        out->arrays = squares ? ARRAYS : (c->robot_count > 0 ? SQ : CAL);
         out->elem_size[SET] = sizeof(uint8_t);
         out->elem_size[PLAYED] = sizeof(uint8_t);
         out->elem_size[LEVEL] = sizeof(levels_t);
         out->elem_size[ACC] = sizeof(sums_t);
         out->elem_size[RAND] = sizeof(sim_rand_t);
         out->elem_size[CAL] = sizeof(per_robot_cache_t);
+        out->elem_size[SQ] = sizeof(sums_t);
         out->run_bytes = sizeof(sound_t);
     }
 }
@@ -189,6 +198,9 @@ static int sound_create(sim_t *sim, const void *config, void **self, char err[SI
     s->level = sim_model_array(sim, SIM_MODEL_sound, LEVEL);
     s->acc = sim_model_array(sim, SIM_MODEL_sound, ACC);
     s->rand = sim_model_array(sim, SIM_MODEL_sound, RAND);
+    if (c->noise_draws == NOISE_DRAWS_SUMMED && c->cutoff <= 0.0) {
+        s->sq = sim_model_array(sim, SIM_MODEL_sound, SQ);
+    }
     for (uint32_t i = 0; i < sim->n; i++) {
         sim_rand_seed(&s->rand[i], sim->seed, i, RAND_SOUND);
     }
@@ -302,6 +314,31 @@ static void near_terms_ambient(struct sim *sim, sound_t *s, uint32_t i, const ui
     acc[3] = s3;
 }
 
+/* noise_draws: summed.  What source `src` adds to a listener's sums `acc`
+ * and to the sums of its squared terms `sq`: the terms of hear(), without
+ * their noise. */
+static void moments(const sound_t *s, sums_t acc, sums_t sq, uint32_t src, double loud)
+{
+    int ambient = s->cfg->silent_robots == SOUND_SILENT_AMBIENT;
+    for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+        double a = s->played[src] == k ? loud : (ambient ? s->cfg->ae : 0.0);
+        acc[k] += a;
+        sq[k] += a * a;
+    }
+}
+
+/* noise_draws: summed.  Eq 4's noise of listener i's whole sum in each
+ * band: sum_j A_j (1 - noise N_j) is sum_j A_j - noise sqrt(sum_j A_j^2) N
+ * in distribution; one draw per band, from the listener's stream. */
+static void summed_noise(sound_t *s, uint32_t i, sums_t acc, const sums_t sq)
+{
+    double z[HAL_SOUND_BANDS - 1];
+    sim_rand_normals(&s->rand[i], z, HAL_SOUND_BANDS - 1);
+    for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
+        acc[k] -= s->cfg->noise * sqrt(sq[k]) * z[k - 1];
+    }
+}
+
 /* cutoff > 0: listener i's sums from the robot grid.  Robots within the
  * cutoff, in id order, as the all-pairs loop meets them (same terms, same
  * draws); every robot beyond it adds only ae to a band (in `none` mode only
@@ -333,13 +370,33 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
         near_emit[s->played[near[c]]]++;
         near[n_near++] = near[c];
     }
-    grid_sort_ids(near, n_near);
-    sums_t acc = { 0.0 };
+    sums_t acc = { 0.0 }, sq = { 0.0 };
     int ambient = cfg->silent_robots == SOUND_SILENT_AMBIENT;
-    if (ambient && cfg->noise > 0.0) {
-        near_terms_ambient(sim, s, i, near, n_near, acc);
+    int summed = cfg->noise_draws == NOISE_DRAWS_SUMMED;
+    if (summed) {
+        /* No draw per source, so no order to keep (the grid's), and only
+         * emitters to visit: every other near source adds ae to a band
+         * (silent_robots: ambient), counted by near_emit. */
+        for (uint32_t c = 0; c < n_near; c++) {
+            uint8_t p = s->played[near[c]];
+            if (p) {
+                double loud = loud_of(sim, s, i, near[c]);
+                acc[p] += loud;
+                sq[p] += loud * loud;
+            }
+        }
+        for (uint8_t k = 1; ambient && k < HAL_SOUND_BANDS; k++) {
+            double others = (double)(n_near - near_emit[k]);
+            acc[k] += others * cfg->ae;
+            sq[k] += others * cfg->ae * cfg->ae;
+        }
     } else {
-        near_terms(sim, s, i, near, n_near, acc);
+        grid_sort_ids(near, n_near);
+        if (ambient && cfg->noise > 0.0) {
+            near_terms_ambient(sim, s, i, near, n_near, acc);
+        } else {
+            near_terms(sim, s, i, near, n_near, acc);
+        }
     }
     for (uint8_t k = 1; k < HAL_SOUND_BANDS; k++) {
         uint32_t m = ambient ? sim->n - 1 - n_near
@@ -348,10 +405,15 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
             continue;
         }
         double sum = (double)m * cfg->ae;
-        if (cfg->noise > 0.0) {
+        if (summed) {
+            sq[k] += (double)m * cfg->ae * cfg->ae;
+        } else if (cfg->noise > 0.0) {
             sum -= cfg->ae * cfg->noise * sqrt((double)m) * sim_rand_normal(&s->rand[i]);
         }
         acc[k] += sum;
+    }
+    if (summed && cfg->noise > 0.0) {
+        summed_noise(s, i, acc, sq);
     }
     for (uint32_t k = 0; k < HAL_SOUND_BANDS; k++) {
         s->acc[i][k] = acc[k];
@@ -415,9 +477,13 @@ static void update_all_pairs(struct sim *sim, sound_t *s)
      * sources in id order: j < m at the outer loop's earlier rounds, then
      * j > m at its own, so its draws and its sum's order are those of a
      * plain loop over j. */
+    int summed = cfg->noise_draws == NOISE_DRAWS_SUMMED;
     for (uint32_t i = 0; i < n; i++) {
         for (uint8_t k = 0; k < HAL_SOUND_BANDS; k++) {
             s->acc[i][k] = 0.0;
+            if (summed) {
+                s->sq[i][k] = 0.0;
+            }
         }
     }
     for (uint32_t i = 0; i < n; i++) {
@@ -436,6 +502,15 @@ static void update_all_pairs(struct sim *sim, sound_t *s)
                 double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y;
                 loud = eq1(cfg, sqrt(dx * dx + dy * dy));
             }
+            if (summed) {
+                if (a_hears) {
+                    moments(s, s->acc[i], s->sq[i], j, loud);
+                }
+                if (b_hears) {
+                    moments(s, s->acc[j], s->sq[j], i, loud);
+                }
+                continue;
+            }
             double z[HAL_SOUND_BANDS];
             const double *next = z;
             if (a_hears) {
@@ -447,6 +522,11 @@ static void update_all_pairs(struct sim *sim, sound_t *s)
                 sim_rand_normals(&s->rand[j], z, draws_of(s, i));
                 hear(s, s->acc[j], i, loud, &next);
             }
+        }
+    }
+    for (uint32_t i = 0; summed && cfg->noise > 0.0 && i < n; i++) {
+        if (!(masking && s->played[i])) {
+            summed_noise(s, i, s->acc[i], s->sq[i]);
         }
     }
 }

@@ -32,6 +32,10 @@
  *    term in the sum, sources in id order then bands 1..3: the field is a
  *    function of (seed, poses, speakers), whatever the thread count or the
  *    order in which robots step.
+ *  - noise_draws: summed (models/noise_draws.h): one draw per listener and
+ *    band for its whole sum, sd noise sqrt(sum of the squared terms): eq
+ *    4's distribution, three draws a listener instead of three a source;
+ *    the near sources are then summed in the grid's order, unsorted.
  * A robot id may have its microphones' gain per band (`robots`: what the
  * calibration kit fits): its levels are the field's times the gain,
  * rounded; the field itself and its draws are unchanged.
@@ -74,6 +78,7 @@ typedef struct sound_config {
     int silent_robots;         /**< sound_silent_t */
     uint8_t self_masking;      /**< a robot whose speaker played hears nothing (HAL_ERR_BUSY) */
     double cutoff;             /**< m; > 0: sources farther away give only ae (0: exact) */
+    int noise_draws;           /**< noise_draws_t: eq 4 drawn per pair, or once per band's sum */
     uint32_t robot_count;      /**< `robots` */
     sound_robot_cal_t *robots; /**< on the heap (free_config) */
 } sound_config_t;
