@@ -398,26 +398,44 @@ static void test_cutoff_far_field_statistics(void **state)
 }
 
 /* noise_draws: summed.  Nine static probes 0.8 m apart, playing bands
- * i % 4; every listener's level in every band, as z-scores against eq 2's
- * mean and eq 4's sd, sqrt(sum of the squared terms) times the noise,
- * computed here term by term (beyond a cutoff a source's term is ae).  Both
- * draw rules must give mean 0 and sd 1 under both silent_robots rules, all
- * pairs and with a cutoff that leaves some sources far, and bands
- * uncorrelated; without noise the two give the same levels (to a count:
- * the sum's order differs). */
+ * i % 4 (summed_sim), under both silent_robots rules, all pairs and with a
+ * cutoff that leaves some sources far.  Eq 2's mean and eq 4's sd of every
+ * level are computed here term by term (expected_level: beyond a cutoff a
+ * source's term is ae).  Per term, the levels' z-scores have mean 0, sd 1
+ * and uncorrelated bands; summed, every level is exactly mean - sd N, N the
+ * listener's own RAND_SOUND draws replayed here, three a step (to a count:
+ * the sums' order differs); without noise the two give the same levels. */
 enum { SUMMED_ROBOTS = 9, SUMMED_STEPS = 1500 };
 
-static void place_summed_probes(sim_t *sim)
+static sim_t *summed_sim(scenario_t **sc_out, int setting, int draws, double noise)
 {
+    scenario_t *sc = probe_scenario(SUMMED_ROBOTS);
+    sound_config_mut(sc)->noise = noise;
+    sound_config_mut(sc)->self_masking = 0;
+    sound_config_mut(sc)->silent_robots = (setting & 1) ? SOUND_SILENT_NONE : SOUND_SILENT_AMBIENT;
+    sound_config_mut(sc)->cutoff = (setting & 2) ? 1.0 : 0.0;
+    sound_config_mut(sc)->noise_draws = draws;
+    sim_t *sim = fixture_sim(sc, 5);
     for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
         sim_set_robot_pose(sim, i, 0.8 * (i % 3), 0.8 * (i / 3), 0.0);
         probe(sim, i)->emit = (uint8_t)(i % 4);
     }
+    sim_step(sim);   /* the tones play from the next period on */
+    *sc_out = sc;
+    return sim;
 }
 
-static void expected_level(uint32_t i, uint8_t band, int ambient, double cutoff, double *mean, double *sd)
+static void summed_done(sim_t *sim, scenario_t *sc)
 {
-    double sum = 0.0, sq = 0.0;
+    sim_destroy(sim);
+    scenario_free(sc);
+    free(sc);
+}
+
+static void expected_level(uint32_t i, uint8_t band, int setting, double *mean, double *sd)
+{
+    int ambient = !(setting & 1);
+    double cutoff = (setting & 2) ? 1.0 : 0.0, sum = 0.0, sq = 0.0;
     for (uint32_t j = 0; j < SUMMED_ROBOTS; j++) {
         double d = 0.8 * hypot((double)(i % 3) - (double)(j % 3), (double)(i / 3) - (double)(j / 3));
         double a = (j % 4 == band) ? ((cutoff > 0.0 && d > cutoff) ? AE : loud(d)) : (ambient ? AE : 0.0);
@@ -430,78 +448,88 @@ static void expected_level(uint32_t i, uint8_t band, int ambient, double cutoff,
     *sd = 1000.0 * 0.06 * sqrt(sq);
 }
 
+/* Per term: the z-scores of every level with a term in its band. */
+static void per_term_statistics(int setting)
+{
+    scenario_t *sc;
+    sim_t *sim = summed_sim(&sc, setting, NOISE_DRAWS_PER_TERM, 0.06);
+    double zs = 0.0, zq = 0.0, z12 = 0.0;
+    int n = 0, n12 = 0;
+    for (int k = 0; k < SUMMED_STEPS; k++) {
+        sim_step(sim);
+        for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
+            double z[HAL_SOUND_BANDS] = { 0.0 }, mean, sd;
+            for (uint8_t b = 1; b < HAL_SOUND_BANDS; b++) {
+                expected_level(i, b, setting, &mean, &sd);
+                if (sd > 0.0) {   /* none: a band without an emitter but itself has no term */
+                    z[b] = (probe(sim, i)->level[0][b] - mean) / sd;
+                    zs += z[b];
+                    zq += z[b] * z[b];
+                    n++;
+                }
+            }
+            z12 += z[1] * z[2];
+            n12++;
+        }
+    }
+    double mz = zs / n, sdz = sqrt(zq / n - mz * mz), corr = z12 / n12;
+    print_message("setting %d, per_term: z mean %.4f, sd %.4f, bands 1-2 %.4f over %d\n", setting, mz, sdz, corr, n);
+    assert_true(fabs(mz) < 4.0 / sqrt((double)n));
+    assert_true(fabs(sdz - 1.0) < 0.015);   /* its standard error: 1 / sqrt(2 n), under 0.4 % */
+    assert_true(fabs(corr) < 4.0 / sqrt((double)n12) + 0.01);
+    summed_done(sim, sc);
+}
+
+/* Summed: each level from the listener's replayed draws. */
+static void summed_replayed(int setting)
+{
+    scenario_t *sc;
+    sim_t *sim = summed_sim(&sc, setting, NOISE_DRAWS_SUMMED, 0.06);
+    sim_rand_t r[SUMMED_ROBOTS];
+    double z[SUMMED_ROBOTS][HAL_SOUND_BANDS - 1];
+    for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
+        sim_rand_seed(&r[i], 5, i, RAND_SOUND);
+        sim_rand_normals(&r[i], z[i], HAL_SOUND_BANDS - 1);   /* the first step's */
+    }
+    uint32_t worst = 0;
+    for (int k = 0; k < SUMMED_STEPS; k++) {
+        sim_step(sim);
+        for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
+            sim_rand_normals(&r[i], z[i], HAL_SOUND_BANDS - 1);
+            for (uint8_t b = 1; b < HAL_SOUND_BANDS; b++) {
+                double mean, sd;
+                expected_level(i, b, setting, &mean, &sd);
+                double want = fmax(0.0, mean - sd * z[i][b - 1]);
+                uint32_t got = probe(sim, i)->level[0][b];
+                uint32_t off = (uint32_t)fabs(got - floor(want + 0.5));
+                worst = off > worst ? off : worst;
+            }
+        }
+    }
+    print_message("setting %d, summed: every level within %u count(s) of its replayed draw\n", setting, worst);
+    assert_true(worst <= 1);
+    summed_done(sim, sc);
+}
+
 static void test_summed_draws_same_distribution(void **state)
 {
     (void)state;
     for (int setting = 0; setting < 4; setting++) {
-        int ambient = !(setting & 1);
-        double cutoff = (setting & 2) ? 1.0 : 0.0;
-        for (int draws = 0; draws < 2; draws++) {
-            scenario_t *sc = probe_scenario(SUMMED_ROBOTS);
-            sound_config_mut(sc)->noise = 0.06;
-            sound_config_mut(sc)->self_masking = 0;
-            sound_config_mut(sc)->silent_robots = ambient ? SOUND_SILENT_AMBIENT : SOUND_SILENT_NONE;
-            sound_config_mut(sc)->cutoff = cutoff;
-            sound_config_mut(sc)->noise_draws = draws;
-            sim_t *sim = fixture_sim(sc, 5);
-            place_summed_probes(sim);
-            sim_step(sim);
-            double zs = 0.0, zq = 0.0, z12 = 0.0;
-            int n = 0, n12 = 0;
-            for (int k = 0; k < SUMMED_STEPS; k++) {
-                sim_step(sim);
-                for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
-                    double z[HAL_SOUND_BANDS] = { 0.0 };
-                    for (uint8_t b = 1; b < HAL_SOUND_BANDS; b++) {
-                        double mean, sd;
-                        expected_level(i, b, ambient, cutoff, &mean, &sd);
-                        if (sd == 0.0) {
-                            continue;   /* no term in this band (none: no emitter but itself) */
-                        }
-                        z[b] = (probe(sim, i)->level[0][b] - mean) / sd;
-                        zs += z[b];
-                        zq += z[b] * z[b];
-                        n++;
-                    }
-                    z12 += z[1] * z[2];
-                    n12++;
-                }
-            }
-            double mz = zs / n, sdz = sqrt(zq / n - mz * mz), corr = z12 / n12;
-            print_message("%s, cutoff %.1f, %s: z mean %.4f, sd %.4f, bands 1-2 %.4f over %d\n",
-                          ambient ? "ambient" : "none", cutoff, draws ? "summed" : "per_term", mz, sdz, corr, n);
-            assert_true(fabs(mz) < 4.0 / sqrt((double)n));
-            assert_true(fabs(sdz - 1.0) < 0.03);      /* its standard error: 1 / sqrt(2 n), under 0.5 % */
-            assert_true(fabs(corr) < 4.0 / sqrt((double)n12) + 0.01);
-            sim_destroy(sim);
-            scenario_free(sc);
-            free(sc);
-        }
-        /* Without noise the two rules give the same sums. */
+        per_term_statistics(setting);
+        summed_replayed(setting);
         uint32_t level[2][SUMMED_ROBOTS][HAL_SOUND_BANDS];
         for (int draws = 0; draws < 2; draws++) {
-            scenario_t *sc = probe_scenario(SUMMED_ROBOTS);
-            sound_config_mut(sc)->self_masking = 0;
-            sound_config_mut(sc)->silent_robots = ambient ? SOUND_SILENT_AMBIENT : SOUND_SILENT_NONE;
-            sound_config_mut(sc)->cutoff = cutoff;
-            sound_config_mut(sc)->noise_draws = draws;
-            sim_t *sim = fixture_sim(sc, 5);
-            place_summed_probes(sim);
-            sim_step(sim);
+            scenario_t *sc;
+            sim_t *sim = summed_sim(&sc, setting, draws, 0.0);
             sim_step(sim);
             for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
                 memcpy(level[draws][i], probe(sim, i)->level[0], sizeof level[draws][i]);
             }
-            sim_destroy(sim);
-            scenario_free(sc);
-            free(sc);
+            summed_done(sim, sc);
         }
         for (uint32_t i = 0; i < SUMMED_ROBOTS; i++) {
             for (uint8_t b = 1; b < HAL_SOUND_BANDS; b++) {
-                double mean, sd;
-                expected_level(i, b, ambient, cutoff, &mean, &sd);
                 assert_true(level[0][i][b] + 1 >= level[1][i][b] && level[1][i][b] + 1 >= level[0][i][b]);
-                assert_true(fabs(level[1][i][b] - mean) <= 1.0);
             }
         }
     }

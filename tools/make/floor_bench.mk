@@ -7,7 +7,8 @@
 #                      recorded in docs/development/benchmarks.md per commit
 #                      that changes stepping
 # make test builds it and checks it (tests/cli/floor_bench.sh).
-# BENCH_FLOOR_ARGS: e.g. "--counts 2000:50 --threads 1 --reps 9".
+# BENCH_FLOOR_ARGS: e.g. "--counts 2000:50 --threads 1 --reps 9", or
+# "--set sound.noise_draws=summed" (a scenario key of both worlds).
 .PHONY: bench-floor bench-guard
 $(BUILD)/floor_bench: tools/bench/floor_bench.c $(BUILD)/libswarm.a
 	$(call show,CC,$@)$(CC) $(SIM_CFLAGS) -o $@ $< $(BUILD)/libswarm.a $(LDLIBS_SIM)

@@ -424,7 +424,8 @@ static void sense_proximity(struct sim *sim, const ir_t *m, uint32_t i, uint16_t
             v = gains[s].gain * v + gains[s].offset;
         }
         if (summed) {
-            /* v (1 + rel N1) + abs N2 is v + sqrt((v rel)^2 + abs^2) N. */
+            /* v (1 + rel N1) + abs N2 is, in distribution,
+             * v + sqrt((v rel)^2 + abs^2) N. */
             double rel = v * noise_rel;
             v += sqrt(rel * rel + (double)noise_abs * noise_abs) * n[s];
         } else {

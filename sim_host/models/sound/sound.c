@@ -160,6 +160,14 @@ typedef struct sound {
     per_robot_cache_t *cal;  /* which `robots` entry each robot takes (NULL: none listed) */
 } sound_t;
 
+/* noise_draws: summed over all pairs: the pair loop adds both listeners'
+ * squared terms as it goes, so it keeps them per robot (with a cutoff each
+ * listener sums its own on the stack). */
+static int keeps_squares(const sound_config_t *c)
+{
+    return c->noise_draws == NOISE_DRAWS_SUMMED && c->cutoff <= 0.0;
+}
+
 /* Only when enabled: a run without sound holds nothing of it. */
 static void sound_layout(const void *config, const scenario_t *sc, model_layout_t *out)
 {
@@ -167,9 +175,8 @@ static void sound_layout(const void *config, const scenario_t *sc, model_layout_
     (void)sc;
     if (c->enabled) {
         /* The entries' cache only when some are listed, the squares only
-         * where the all-pairs loop sums them for summed draws. */
-        int squares = c->noise_draws == NOISE_DRAWS_SUMMED && c->cutoff <= 0.0;
-        out->arrays = squares ? ARRAYS : (c->robot_count > 0 ? SQ : CAL);
+         * when kept (they come last, after the cache). */
+        out->arrays = keeps_squares(c) ? ARRAYS : (c->robot_count > 0 ? CAL + 1 : CAL);
         out->elem_size[SET] = sizeof(uint8_t);
         out->elem_size[PLAYED] = sizeof(uint8_t);
         out->elem_size[LEVEL] = sizeof(levels_t);
@@ -198,7 +205,7 @@ static int sound_create(sim_t *sim, const void *config, void **self, char err[SI
     s->level = sim_model_array(sim, SIM_MODEL_sound, LEVEL);
     s->acc = sim_model_array(sim, SIM_MODEL_sound, ACC);
     s->rand = sim_model_array(sim, SIM_MODEL_sound, RAND);
-    if (c->noise_draws == NOISE_DRAWS_SUMMED && c->cutoff <= 0.0) {
+    if (keeps_squares(c)) {
         s->sq = sim_model_array(sim, SIM_MODEL_sound, SQ);
     }
     for (uint32_t i = 0; i < sim->n; i++) {
@@ -327,6 +334,30 @@ static void moments(const sound_t *s, sums_t acc, sums_t sq, uint32_t src, doubl
     }
 }
 
+/* noise_draws: summed, cutoff > 0.  The near sources' terms in listener
+ * i's sums `acc` and their squares in `sq`.  No draw per source, so no
+ * order to keep (the grid's), and only emitters to visit: under
+ * silent_robots: ambient every other near source adds ae to a band, and
+ * near_emit[k] says how many do not. */
+static void near_moments(struct sim *sim, sound_t *s, uint32_t i, const uint32_t *near, uint32_t n_near,
+                         const uint32_t near_emit[HAL_SOUND_BANDS], sums_t acc, sums_t sq)
+{
+    const double ae = s->cfg->ae;
+    for (uint32_t c = 0; c < n_near; c++) {
+        uint8_t p = s->played[near[c]];
+        if (p) {
+            double loud = loud_of(sim, s, i, near[c]);
+            acc[p] += loud;
+            sq[p] += loud * loud;
+        }
+    }
+    for (uint8_t k = 1; s->cfg->silent_robots == SOUND_SILENT_AMBIENT && k < HAL_SOUND_BANDS; k++) {
+        double others = (double)(n_near - near_emit[k]);
+        acc[k] += others * ae;
+        sq[k] += others * ae * ae;
+    }
+}
+
 /* noise_draws: summed.  Eq 4's noise of listener i's whole sum in each
  * band: sum_j A_j (1 - noise N_j) is sum_j A_j - noise sqrt(sum_j A_j^2) N
  * in distribution; one draw per band, from the listener's stream. */
@@ -347,7 +378,9 @@ static void summed_noise(sound_t *s, uint32_t i, sums_t acc, const sums_t sq)
  * (a sum of independent Gaussians), and work per listener bounded by the
  * robots within the cutoff, not by the swarm.  The near ones are found
  * first (then sorted: fewer to sort), so that their draws are taken in
- * blocks, exactly as many as the terms use. */
+ * blocks, exactly as many as the terms use.  noise_draws: summed takes
+ * none of that order: near_moments, and one draw per band for the whole
+ * sum, far terms included. */
 static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t i,
                         const uint32_t emitters[HAL_SOUND_BANDS])
 {
@@ -374,22 +407,7 @@ static void listen_near(struct sim *sim, sound_t *s, sim_scratch_t *ws, uint32_t
     int ambient = cfg->silent_robots == SOUND_SILENT_AMBIENT;
     int summed = cfg->noise_draws == NOISE_DRAWS_SUMMED;
     if (summed) {
-        /* No draw per source, so no order to keep (the grid's), and only
-         * emitters to visit: every other near source adds ae to a band
-         * (silent_robots: ambient), counted by near_emit. */
-        for (uint32_t c = 0; c < n_near; c++) {
-            uint8_t p = s->played[near[c]];
-            if (p) {
-                double loud = loud_of(sim, s, i, near[c]);
-                acc[p] += loud;
-                sq[p] += loud * loud;
-            }
-        }
-        for (uint8_t k = 1; ambient && k < HAL_SOUND_BANDS; k++) {
-            double others = (double)(n_near - near_emit[k]);
-            acc[k] += others * cfg->ae;
-            sq[k] += others * cfg->ae * cfg->ae;
-        }
+        near_moments(sim, s, i, near, n_near, near_emit, acc, sq);
     } else {
         grid_sort_ids(near, n_near);
         if (ambient && cfg->noise > 0.0) {
@@ -477,7 +495,7 @@ static void update_all_pairs(struct sim *sim, sound_t *s)
      * sources in id order: j < m at the outer loop's earlier rounds, then
      * j > m at its own, so its draws and its sum's order are those of a
      * plain loop over j. */
-    int summed = cfg->noise_draws == NOISE_DRAWS_SUMMED;
+    int summed = s->sq != NULL;   /* keeps_squares */
     for (uint32_t i = 0; i < n; i++) {
         for (uint8_t k = 0; k < HAL_SOUND_BANDS; k++) {
             s->acc[i][k] = 0.0;

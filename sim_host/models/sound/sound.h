@@ -25,7 +25,7 @@
  *    distribution of m separate draws; so a listener's work grows with the
  *    robots within the cutoff (found on the robot grid), not with the
  *    swarm.  A cutoff beyond every distance gives the all-pairs field
- *    draw for draw.  0 (the default): every pair exact, eq 2 as the paper
+ *    draw for draw (per_term; summed, to the rounding of the sums).  0 (the default): every pair exact, eq 2 as the paper
  *    writes it, work growing with the square of the swarm.
  *  - Levels are counts: round(1000 x the sum), clamped to [0, UINT32_MAX].
  *  - Noise comes from the listener's own stream (RAND_SOUND), one draw per
@@ -35,7 +35,9 @@
  *  - noise_draws: summed (models/noise_draws.h): one draw per listener and
  *    band for its whole sum, sd noise sqrt(sum of the squared terms): eq
  *    4's distribution, three draws a listener instead of three a source;
- *    the near sources are then summed in the grid's order, unsorted.
+ *    the near sources are then summed in the grid's order, unsorted
+ *    (whose cells follow the largest reach of every model: a level's last
+ *    bit may then depend on another model's settings, never on threads).
  * A robot id may have its microphones' gain per band (`robots`: what the
  * calibration kit fits): its levels are the field's times the gain,
  * rounded; the field itself and its draws are unchanged.
