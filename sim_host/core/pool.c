@@ -11,7 +11,10 @@
 #include "pool.h"
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
+#include <time.h>
+#include <unistd.h>
 
 #define POOL_SLOTS (2u * POOL_MAX_THREADS + 8u)
 
@@ -43,7 +46,53 @@ struct pool {
     task_t slot[POOL_SLOTS];
     task_t *head, *tail;      /**< tasks with chunks left to take */
     int stop;
+    int64_t spin_ns;          /**< POOL_SPIN_NS, or 0 with more threads than CPUs */
+    atomic_uint queued_seq;   /**< + 1 at every task queued (a hint for spinning) */
+    atomic_uint done_seq;     /**< + 1 at every task's last chunk done */
 };
+
+/* A thread that finds nothing to do polls this long before it sleeps on
+ * its condition, ns.  A step hands out some fifteen tasks (our phases,
+ * Box2D's stages), many of them tens of microseconds long below 10,000
+ * robots, and waking a sleeping thread costs tens of microseconds on a
+ * virtual machine: more than a short task.  Polling costs CPU time only
+ * while a run's own threads wait for each other; with more threads than
+ * CPUs a polling thread would take a CPU from one that works, so they
+ * sleep at once. */
+#define POOL_SPIN_NS 50000
+
+static inline void cpu_relax(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    __asm__ __volatile__("yield");
+#endif
+}
+
+static int64_t now_ns(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (int64_t)t.tv_sec * 1000000000 + t.tv_nsec;
+}
+
+/* Outside the lock: polls *seq until it is no longer `seen` or
+ * POOL_SPIN_NS have passed (the clock read every 32 polls).  Only a hint:
+ * the caller looks again under the lock. */
+static void spin_while(const pool_t *p, const atomic_uint *seq, unsigned seen)
+{
+    if (p->spin_ns == 0) {
+        return;
+    }
+    int64_t until = now_ns() + p->spin_ns;
+    for (uint32_t k = 1; atomic_load_explicit(seq, memory_order_relaxed) == seen; k++) {
+        cpu_relax();
+        if (k % 32 == 0 && now_ns() >= until) {
+            return;
+        }
+    }
+}
 
 /* Under the lock: the next chunk of the first queued task, or NULL. */
 static task_t *take(pool_t *p, uint32_t *chunk)
@@ -74,6 +123,7 @@ static void run(pool_t *p, task_t *t, uint32_t c, uint32_t worker)
     }
     pthread_mutex_lock(&p->lock);
     if (++t->done == t->chunks) {
+        atomic_fetch_add_explicit(&p->done_seq, 1u, memory_order_relaxed);
         pthread_cond_broadcast(&p->finished);
     }
 }
@@ -82,14 +132,23 @@ static void *worker_main(void *a)
 {
     worker_arg_t *arg = a;
     pool_t *p = arg->pool;
+    int spun = 0;
     pthread_mutex_lock(&p->lock);
     while (!p->stop) {
         uint32_t c;
         task_t *t = take(p, &c);
         if (t) {
             run(p, t, c, arg->index);
+            spun = 0;
+        } else if (!spun) {   /* poll a while, then look again */
+            unsigned seen = atomic_load_explicit(&p->queued_seq, memory_order_relaxed);
+            pthread_mutex_unlock(&p->lock);
+            spin_while(p, &p->queued_seq, seen);
+            pthread_mutex_lock(&p->lock);
+            spun = 1;
         } else {
             pthread_cond_wait(&p->work, &p->lock);
+            spun = 0;
         }
     }
     pthread_mutex_unlock(&p->lock);
@@ -106,6 +165,8 @@ pool_t *pool_create(uint32_t threads)
         return NULL;
     }
     p->threads = 1;
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    p->spin_ns = (cpus > 0 && threads <= (uint32_t)cpus) ? POOL_SPIN_NS : 0;
     const char *forced = getenv(POOL_CHUNK_ENV);
     if (forced) {
         char *end;
@@ -161,6 +222,7 @@ static task_t *submit(pool_t *p, pool_fn *fn, box2d_fn *b2, void *ctx, uint32_t 
                 p->head = t;
             }
             p->tail = t;
+            atomic_fetch_add_explicit(&p->queued_seq, 1u, memory_order_relaxed);
             pthread_cond_broadcast(&p->work);
             return t;
         }
@@ -172,13 +234,22 @@ static task_t *submit(pool_t *p, pool_fn *fn, box2d_fn *b2, void *ctx, uint32_t 
  * its slot. */
 static void help_until(pool_t *p, task_t *t)
 {
+    int spun = 0;
     while (t->done < t->chunks) {
         uint32_t c;
         task_t *any = take(p, &c);
         if (any) {
             run(p, any, c, 0);
+            spun = 0;
+        } else if (!spun) {   /* the last chunks are running elsewhere: poll a while */
+            unsigned seen = atomic_load_explicit(&p->done_seq, memory_order_relaxed);
+            pthread_mutex_unlock(&p->lock);
+            spin_while(p, &p->done_seq, seen);
+            pthread_mutex_lock(&p->lock);
+            spun = 1;
         } else {
             pthread_cond_wait(&p->finished, &p->lock);
+            spun = 0;
         }
     }
     t->used = 0;
