@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/control.h"
+#include "core/pool.h"
 #include "models/model.h"
 #include "registry.h"
 
@@ -51,7 +52,7 @@ static const cli_option_t options[] = {
       "repetitions (default 1); with N > 1 an aggregate OUT/summary.json holds mean, sd, min, max of "
       "each metric" },
     { "--threads", NULL, "N", 1, 1024, F(threads), NO_FIELD, NULL, NULL,
-      "worker threads (default: CPUs online): repetitions run side by side, and with fewer repetitions "
+      "worker threads (default: the CPUs this process may use): repetitions run side by side, and with fewer repetitions "
       "than threads the spare ones go inside each run of 500 robots or more; results for a seed are "
       "bit-identical for any N" },
     { "--run-threads", NULL, "N", 1, 64, F(run_threads), NO_FIELD, NULL, NULL,
@@ -245,8 +246,7 @@ int cli_parse(int argc, char **argv, cli_t *c)
     memset(c, 0, sizeof *c);
     c->reps = 1;
     c->frame_px = 800;
-    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    c->threads = cpus > 0 ? (uint64_t)cpus : 1;
+    c->threads = pool_cpus();
     c->out_mode = OUTDIR_NEW;
     telemetry_default_options(&c->telemetry);
     c->video = (video_options_t)VIDEO_OPTIONS_DEFAULT;

@@ -8,9 +8,12 @@
  * tasks in flight (solver workers, island split, tree rebuild, one
  * parallel-for), our phases one.
  */
+#define _GNU_SOURCE 1   /* sched_getaffinity, CPU_COUNT (Linux): the CPUs this process may use */
 #include "pool.h"
 
 #include <pthread.h>
+#include <sched.h>
+#include <stdio.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <time.h>
@@ -46,7 +49,8 @@ struct pool {
     task_t slot[POOL_SLOTS];
     task_t *head, *tail;      /**< tasks with chunks left to take */
     int stop;
-    int64_t spin_ns;          /**< POOL_SPIN_NS, or 0 with more threads than CPUs */
+    int64_t spin_ns;          /**< how long an idle thread polls (POOL_SPIN_NS, POOL_SPIN_ENV; 0: never) */
+    uint32_t cpus;            /**< pool_cpus() when it was made */
     atomic_uint queued_seq;   /**< + 1 at every task queued (a hint for spinning) */
     atomic_uint done_seq;     /**< + 1 at every task's last chunk done */
 };
@@ -56,17 +60,22 @@ struct pool {
  * Box2D's stages), many of them tens of microseconds long below 10,000
  * robots, and waking a sleeping thread costs tens of microseconds on a
  * virtual machine: more than a short task.  Polling costs CPU time only
- * while a run's own threads wait for each other; with more threads than
- * CPUs a polling thread would take a CPU from one that works, so they
- * sleep at once. */
+ * while a run's own threads wait for each other, and it must not take the
+ * CPU a working thread needs: no more threads than the process has CPUs
+ * poll at a time, counting every pool of the process (runs side by side),
+ * and on one CPU none does.  (One fewer is too few: a 2-thread pool's two
+ * threads poll at once for a moment whenever a task ends, the one waiting
+ * for it and the one that ran its last chunk.) */
 #define POOL_SPIN_NS 50000
 
+/* The threads of every pool in the process polling now. */
+static atomic_uint polling;
 static inline void cpu_relax(void)
 {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
 #elif defined(__aarch64__)
-    __asm__ __volatile__("yield");
+    __asm__ __volatile__("isb");   /* yield is close to a no-op on most cores */
 #endif
 }
 
@@ -77,21 +86,46 @@ static int64_t now_ns(void)
     return (int64_t)t.tv_sec * 1000000000 + t.tv_nsec;
 }
 
-/* Outside the lock: polls *seq until it is no longer `seen` or
- * POOL_SPIN_NS have passed (the clock read every 32 polls).  Only a hint:
- * the caller looks again under the lock. */
-static void spin_while(const pool_t *p, const atomic_uint *seq, unsigned seen)
+/* Outside the lock: polls *seq until it is no longer `seen` (1) or
+ * spin_ns have passed (0; the clock read every 32 polls); 0 at once when
+ * this pool does not poll or enough threads of the process already do.
+ * Only a hint: the caller looks again under the lock, and sleeps only
+ * after a poll that timed out (a change may have been another thread's
+ * chunk). */
+static int spin_while(const pool_t *p, const atomic_uint *seq, unsigned seen)
 {
-    if (p->spin_ns == 0) {
-        return;
+    if (p->spin_ns == 0 || p->cpus < 2) {
+        return 0;
     }
+    if (atomic_fetch_add_explicit(&polling, 1u, memory_order_relaxed) + 1u > p->cpus) {
+        atomic_fetch_sub_explicit(&polling, 1u, memory_order_relaxed);
+        return 0;
+    }
+    int changed = 1;
     int64_t until = now_ns() + p->spin_ns;
     for (uint32_t k = 1; atomic_load_explicit(seq, memory_order_relaxed) == seen; k++) {
         cpu_relax();
         if (k % 32 == 0 && now_ns() >= until) {
-            return;
+            changed = 0;
+            break;
         }
     }
+    atomic_fetch_sub_explicit(&polling, 1u, memory_order_relaxed);
+    return changed;
+}
+
+uint32_t pool_cpus(void)
+{
+    long online = sysconf(_SC_NPROCESSORS_ONLN);
+    uint32_t n = online > 0 ? (uint32_t)online : 1u;
+#ifdef CPU_COUNT
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) == 0) {
+        int allowed = CPU_COUNT(&set);
+        n = (allowed > 0 && (uint32_t)allowed < n) ? (uint32_t)allowed : n;
+    }
+#endif
+    return n;
 }
 
 /* Under the lock: the next chunk of the first queued task, or NULL. */
@@ -140,12 +174,11 @@ static void *worker_main(void *a)
         if (t) {
             run(p, t, c, arg->index);
             spun = 0;
-        } else if (!spun) {   /* poll a while, then look again */
+        } else if (!spun && p->spin_ns > 0) {   /* poll a while, then look again */
             unsigned seen = atomic_load_explicit(&p->queued_seq, memory_order_relaxed);
             pthread_mutex_unlock(&p->lock);
-            spin_while(p, &p->queued_seq, seen);
+            spun = !spin_while(p, &p->queued_seq, seen);
             pthread_mutex_lock(&p->lock);
-            spun = 1;
         } else {
             pthread_cond_wait(&p->work, &p->lock);
             spun = 0;
@@ -165,8 +198,19 @@ pool_t *pool_create(uint32_t threads)
         return NULL;
     }
     p->threads = 1;
-    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    p->spin_ns = (cpus > 0 && threads <= (uint32_t)cpus) ? POOL_SPIN_NS : 0;
+    p->cpus = pool_cpus();
+    p->spin_ns = POOL_SPIN_NS;
+    const char *spin = getenv(POOL_SPIN_ENV);
+    if (spin) {
+        char *end;
+        unsigned long us = strtoul(spin, &end, 10);
+        if (!*spin || *end || us > 1000000) {
+            fprintf(stderr, "warning: %s=%s is not 0..1000000 microseconds: polling %d us\n", POOL_SPIN_ENV, spin,
+                    POOL_SPIN_NS / 1000);
+        } else {
+            p->spin_ns = (int64_t)us * 1000;
+        }
+    }
     const char *forced = getenv(POOL_CHUNK_ENV);
     if (forced) {
         char *end;
@@ -194,6 +238,7 @@ void pool_destroy(pool_t *p)
     }
     pthread_mutex_lock(&p->lock);
     p->stop = 1;
+    atomic_fetch_add_explicit(&p->queued_seq, 1u, memory_order_relaxed);   /* a polling worker leaves now */
     pthread_cond_broadcast(&p->work);
     pthread_mutex_unlock(&p->lock);
     for (uint32_t k = 1; k < p->threads; k++) {
@@ -241,12 +286,14 @@ static void help_until(pool_t *p, task_t *t)
         if (any) {
             run(p, any, c, 0);
             spun = 0;
-        } else if (!spun) {   /* the last chunks are running elsewhere: poll a while */
+        } else if (!spun && p->spin_ns > 0) {
+            /* The last chunks are running elsewhere: poll a while.  Only
+             * this thread queues tasks (Box2D enqueues from the thread
+             * that steps the world), so nothing new can come meanwhile. */
             unsigned seen = atomic_load_explicit(&p->done_seq, memory_order_relaxed);
             pthread_mutex_unlock(&p->lock);
-            spin_while(p, &p->done_seq, seen);
+            spun = !spin_while(p, &p->done_seq, seen);
             pthread_mutex_lock(&p->lock);
-            spun = 1;
         } else {
             pthread_cond_wait(&p->finished, &p->lock);
             spun = 0;

@@ -14,8 +14,11 @@
  * pending chunks of any task.  Box2D's solver needs that: its workerCount
  * tasks wait for each other, so all of them must be able to run at once.
  * A thread left with nothing to do polls for about 50 us before it sleeps
- * (a pool with no more threads than CPUs): a step's tasks come tens of
- * microseconds apart, and a sleeping thread takes as long to wake.
+ * (no more threads at a time than the process has CPUs, every pool
+ * counted; none on one CPU): a step's tasks come tens of microseconds
+ * apart, and a sleeping thread takes as long to wake.  POOL_SPIN_ENV sets the time (0: sleep at once),
+ * for machines whose CPUs are shared in ways the process cannot see
+ * (quotas, other jobs).
  */
 #ifndef SIM_POOL_H
 #define SIM_POOL_H
@@ -32,6 +35,10 @@
  *  (tests/cli/golden.sh, determinism.sh). */
 #define POOL_CHUNK_ENV "SWARMSIM_POOL_CHUNK"
 
+/** How long an idle thread polls before it sleeps, microseconds (0 to
+ *  1,000,000; read as a pool is created; default 50). */
+#define POOL_SPIN_ENV "SWARMSIM_POOL_SPIN_US"
+
 typedef struct pool pool_t;
 
 /** Items [begin, end) of a parallel-for, run by `worker` (< pool_threads). */
@@ -45,6 +52,10 @@ pool_t *pool_create(uint32_t threads);
 void pool_destroy(pool_t *p);
 
 uint32_t pool_threads(const pool_t *p);
+
+/** The CPUs this process may use: those online, fewer when its affinity
+ *  mask allows fewer (taskset, a batch system's binding). */
+uint32_t pool_cpus(void);
 
 /** Runs fn over [0, n) in chunks of at least `min_chunk` items, on every
  *  worker, and returns when all are done.  Called by the pool's owner
