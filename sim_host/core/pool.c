@@ -13,8 +13,8 @@
 
 #include <pthread.h>
 #include <sched.h>
-#include <stdio.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
 #include <unistd.h>
@@ -70,6 +70,7 @@ struct pool {
 
 /* The threads of every pool in the process polling now. */
 static atomic_uint polling;
+
 static inline void cpu_relax(void)
 {
 #if defined(__x86_64__) || defined(__i386__)
@@ -87,16 +88,13 @@ static int64_t now_ns(void)
 }
 
 /* Outside the lock: polls *seq until it is no longer `seen` (1) or
- * spin_ns have passed (0; the clock read every 32 polls); 0 at once when
- * this pool does not poll or enough threads of the process already do.
+ * spin_ns (> 0) have passed (0; the clock read every 32 polls); 0 at once
+ * when enough threads of the process already poll.
  * Only a hint: the caller looks again under the lock, and sleeps only
  * after a poll that timed out (a change may have been another thread's
  * chunk). */
 static int spin_while(const pool_t *p, const atomic_uint *seq, unsigned seen)
 {
-    if (p->spin_ns == 0 || p->cpus < 2) {
-        return 0;
-    }
     if (atomic_fetch_add_explicit(&polling, 1u, memory_order_relaxed) + 1u > p->cpus) {
         atomic_fetch_sub_explicit(&polling, 1u, memory_order_relaxed);
         return 0;
@@ -210,6 +208,9 @@ pool_t *pool_create(uint32_t threads)
         } else {
             p->spin_ns = (int64_t)us * 1000;
         }
+    }
+    if (p->cpus < 2) {
+        p->spin_ns = 0;   /* a polling thread would hold the only CPU */
     }
     const char *forced = getenv(POOL_CHUNK_ENV);
     if (forced) {

@@ -41,8 +41,10 @@ pass=0 fail=0
 for pin in "${pins[@]}"; do
     read -r name want <<<"$pin"
     out="$tmp/$name"
-    if ! "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --out "$out"; then
-        echo "FAIL: $name: swarmsim exited with status $?"
+    status=0
+    "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --out "$out" || status=$?
+    if [ "$status" -ne 0 ]; then
+        echo "FAIL: $name: swarmsim exited with status $status"
         fail=$((fail + 1))
         continue
     fi
@@ -67,9 +69,11 @@ for pin in "${pins[@]}"; do
     else
         pass=$((pass + 1))
     fi
-    if ! SWARMSIM_POOL_CHUNK=1 "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --run-threads 2 \
-        --out "$out.2"; then
-        echo "FAIL: $name on 2 threads: swarmsim exited with status $?"
+    status=0
+    SWARMSIM_POOL_CHUNK=1 "$sim" "sim_host/scenarios/$name.yaml" --lcm off --quiet --threads 1 --run-threads 2 \
+        --out "$out.2" || status=$?
+    if [ "$status" -ne 0 ]; then
+        echo "FAIL: $name on 2 threads: swarmsim exited with status $status"
         fail=$((fail + 1))
         continue
     fi
